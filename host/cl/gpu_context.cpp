@@ -1,0 +1,152 @@
+#include "cl/gpu_context.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <unistd.h>
+
+#include "cl/embedded_kernels.h"
+#include "util/error.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_kernel_file(const std::string& file) {
+  std::string dir = kernel_source_dir();
+  if (dir.empty()) {
+    const auto& sources = embedded_kernel_sources();
+    auto it = sources.find(file);
+    if (it == sources.end()) throw Error("kernel source '" + file + "' is not embedded in this build");
+    return it->second;
+  }
+  std::ifstream in(fs::path(dir) / file, std::ios::binary);
+  if (!in) throw Error("kernel source '" + (fs::path(dir) / file).string() + "' cannot be read (RCSPLAT_KERNEL_DIR)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void append_resolved(const std::string& file, std::set<std::string>& seen, std::string& out) {
+  if (!seen.insert(file).second) return;  // every kernel header is include-once
+  static const std::regex include_line(R"(^\s*#\s*include\s*"([^"]+)\"\s*$)");
+  std::istringstream lines(read_kernel_file(file));
+  std::string line;
+  int number = 0;
+  out += "#line 1 \"kernels/" + file + "\"\n";
+  while (std::getline(lines, line)) {
+    ++number;
+    std::smatch m;
+    if (std::regex_match(line, m, include_line)) {
+      append_resolved(m[1].str(), seen, out);
+      out += "#line " + std::to_string(number + 1) + " \"kernels/" + file + "\"\n";
+    } else {
+      out += line + "\n";
+    }
+  }
+}
+
+// FNV-1a: a stable 64-bit key for the on-disk cache (std::hash may differ between builds).
+uint64_t stable_hash(const std::string& text) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+fs::path binary_cache_dir() {
+  if (const char* env = std::getenv("RCSPLAT_CACHE_DIR")) return env;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME")) return fs::path(xdg) / "rcsplat";
+  if (const char* home = std::getenv("HOME")) return fs::path(home) / ".cache" / "rcsplat";
+  return {};
+}
+
+std::string build_log(const cl::Program& program, const cl::Device& device) {
+  try {
+    return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+  } catch (const cl::Error&) {
+    return "(no build log)";
+  }
+}
+
+}  // namespace
+
+std::string kernel_source_dir() {
+  const char* dir = std::getenv("RCSPLAT_KERNEL_DIR");
+  return dir && *dir ? dir : "";
+}
+
+std::string resolve_kernel_source(const std::string& file) {
+  std::set<std::string> seen;
+  std::string out;
+  append_resolved(file, seen, out);
+  return out;
+}
+
+GpuContext::GpuContext(const DeviceInfo& device) : info_(device) {
+  context_ = cl::Context(info_.device);
+  queue_ = cl::CommandQueue(context_, info_.device);
+}
+
+cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
+  std::string options = "-cl-std=CL1.2";
+  for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
+  std::string key = file + "|" + options;
+  auto found = programs_.find(key);
+  if (found != programs_.end()) return *found->second;
+
+  auto start = std::chrono::steady_clock::now();
+  std::string source = resolve_kernel_source(file);
+  // The on-disk cache is keyed by everything that changes the binary: device, driver, source and options.
+  std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
+  fs::path cache_dir = binary_cache_dir();
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(stable_hash(identity)));
+  fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / (std::string(hex) + ".bin");
+
+  std::unique_ptr<cl::Program> program;
+  if (!cache_file.empty() && fs::exists(cache_file)) {
+    std::ifstream in(cache_file, std::ios::binary);
+    std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    try {
+      cl::Program::Binaries binaries{binary};
+      program = std::make_unique<cl::Program>(context_, std::vector<cl::Device>{info_.device}, binaries);
+      program->build({info_.device}, options.c_str());
+    } catch (const cl::Error&) {
+      program.reset();  // a stale or foreign binary: rebuild from source
+    }
+  }
+  if (!program) {
+    program = std::make_unique<cl::Program>(context_, source);
+    try {
+      program->build({info_.device}, options.c_str());
+    } catch (const cl::Error&) {
+      throw Error("building kernels/" + file + " (" + options + ") for " + info_.name + " failed:\n" +
+                  build_log(*program, info_.device));
+    }
+    if (!cache_file.empty()) {
+      try {
+        auto binaries = program->getInfo<CL_PROGRAM_BINARIES>();
+        if (!binaries.empty() && !binaries[0].empty()) {
+          fs::create_directories(cache_dir);
+          fs::path temp = cache_file;
+          temp += ".tmp" + std::to_string(::getpid());
+          std::ofstream(temp, std::ios::binary)
+              .write(reinterpret_cast<const char*>(binaries[0].data()), std::streamsize(binaries[0].size()));
+          fs::rename(temp, cache_file);
+        }
+      } catch (const std::exception& e) {
+        log_warning(std::string("could not store the compiled kernel in the cache: ") + e.what());
+      }
+    }
+  }
+  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return *programs_.emplace(key, std::move(program)).first->second;
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,127 @@
+// `rcsplat bench`: the device traversal against Embree's rtcIntersect1 on all cores, on the same incoherent
+// hemisphere rays, paired run by run because the machine's speed drifts.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "bench/ray_sets.h"
+#include "bvh/bvh8.h"
+#include "bvh/embree_scene.h"
+#include "cl/device_info.h"
+#include "cli/commands.h"
+#include "passes/device_bvh.h"
+#include "passes/ray_cast_pass.h"
+#include "scene/procedural.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// Seconds for Embree to trace all rays with one thread per hardware thread.
+double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& rays, std::vector<EmbreeHit>& hits) {
+  hits.resize(rays.size());
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  auto start = std::chrono::steady_clock::now();
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back([&, t] {
+      const size_t chunk = 4096;
+      for (size_t begin = t * chunk; begin < rays.size(); begin += threads * chunk)
+        for (size_t i = begin; i < std::min(rays.size(), begin + chunk); ++i) {
+          const RayDesc& r = rays[i];
+          hits[i] = embree.intersect(glm::vec3(r.origin[0], r.origin[1], r.origin[2]),
+                                     glm::vec3(r.direction[0], r.direction[1], r.direction[2]), r.tmin, r.tmax);
+        }
+    });
+  }
+  for (std::thread& th : pool) th.join();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string default_bench_scene() {
+  for (const char* root : {RCSPLAT_SOURCE_DIR, "."}) {
+    std::filesystem::path p = std::filesystem::path(root) / ".." / "shared" / "scenes" / "sponza_dabrovic" / "sponza.gltf";
+    if (std::filesystem::exists(p)) return p.lexically_normal().string();
+  }
+  return "";
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& options) {
+  std::string path = options.scene_path.empty() ? default_bench_scene() : options.scene_path;
+  Scene scene;
+  if (path.empty()) {
+    log_warning("../shared/scenes/sponza_dabrovic is absent: benchmarking a generated room of 5,000 boxes instead");
+    scene = make_box_room(5000, 7);
+  } else {
+    scene = load_scene(path);
+  }
+  DeviceInfo device = select_device(options.device);
+  log_info("scene " + scene.source + ", " + std::to_string(scene.triangle_count()) + " triangles; device " + device.name);
+
+  EmbreeScene embree(scene.positions);
+  Bvh8 bvh = build_bvh8(scene.positions);
+  GpuContext gpu(device);
+  DeviceBvh device_bvh(gpu, bvh);
+  RayCastPass caster(gpu, device_bvh);
+
+  std::vector<SurfaceSample> points = camera_visible_points(scene, embree, options.rays, 1);
+  struct Pattern {
+    std::string name;
+    std::vector<RayDesc> rays;
+  };
+  std::vector<Pattern> patterns;
+  patterns.push_back({"A: one cosine ray from each of " + std::to_string(points.size()) + " visible points",
+                      incoherent_hemisphere_rays(points, 2)});
+  points.resize(std::min(points.size(), options.record_points));
+  patterns.push_back({"B: 16 x 16 stratified cosine rays from each of " + std::to_string(points.size()) + " points",
+                      record_hemisphere_rays(points, 16, 3)});
+
+  nlohmann::json report = {{"scene", scene.source}, {"triangles", scene.triangle_count()}, {"device", device.name},
+                           {"embree_threads", std::max(1u, std::thread::hardware_concurrency())},
+                           {"bvh", {{"nodes", bvh.nodes.size()}, {"blocks", bvh.blocks.size()}, {"depth", bvh.depth},
+                                    {"build_seconds", bvh.build_seconds}}}};
+  std::printf("scene %s (%zu triangles), device %s, Embree on %u threads, %d paired runs, medians\n",
+              scene.source.c_str(), scene.triangle_count(), device.name.c_str(),
+              std::max(1u, std::thread::hardware_concurrency()), options.repeats);
+  for (Pattern& pattern : patterns) {
+    caster.set_rays(pattern.rays);
+    std::vector<EmbreeHit> embree_hits;
+    caster.cast_closest();  // warm-up: first-run allocation and caches
+    embree_seconds(embree, pattern.rays, embree_hits);
+    std::vector<double> embree_rate, device_rate, ratio;
+    for (int r = 0; r < options.repeats; ++r) {
+      double te = embree_seconds(embree, pattern.rays, embree_hits);
+      double td = caster.cast_closest();
+      double n = double(pattern.rays.size());
+      embree_rate.push_back(n / te * 1e-6);
+      device_rate.push_back(n / td * 1e-6);
+      ratio.push_back(te / td);
+    }
+    // Agreement check, so that a fast but wrong kernel cannot pass unnoticed.
+    std::vector<HitDesc> hits = caster.closest_hits();
+    size_t disagree = 0;
+    for (size_t i = 0; i < hits.size(); ++i)
+      if ((hits[i].prim < 0) != (embree_hits[i].prim < 0)) ++disagree;
+    std::printf("%s\n  Embree %.2f Mrays/s, OpenCL %.2f Mrays/s, ratio %.3f (hit/miss disagreements: %zu of %zu)\n",
+                pattern.name.c_str(), median(embree_rate), median(device_rate), median(ratio), disagree, hits.size());
+    report["patterns"].push_back({{"name", pattern.name}, {"rays", pattern.rays.size()},
+                                  {"embree_mrays_per_s", median(embree_rate)},
+                                  {"opencl_mrays_per_s", median(device_rate)}, {"ratio", median(ratio)},
+                                  {"hit_miss_disagreements", disagree}});
+  }
+  if (!options.json_path.empty()) write_text_file(options.json_path, report.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,42 @@
+// The rcsplat subcommands. Each returns the process exit code; rcsplat::Error escapes to main, which prints it.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace rcsplat {
+
+struct DevicesOptions {
+  std::string json_path;
+};
+int run_devices(const DevicesOptions& options);
+
+struct RenderOptions {
+  std::string scene_path;  // empty: the built-in Cornell box
+  std::vector<std::string> outputs;
+  std::string device;
+  RenderSettings settings;
+  float exposure = 0.0f;
+  std::string json_path;
+};
+int run_render(const RenderOptions& options);
+
+struct BenchOptions {
+  std::string scene_path;  // empty: Sponza from ../shared/scenes when present, else a generated mesh
+  std::string device;
+  size_t rays = 1u << 20;
+  size_t record_points = 4096;
+  int repeats = 5;
+  std::string json_path;
+};
+int run_bench(const BenchOptions& options);
+
+// The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing.
+Scene load_scene(const std::string& path);
+
+// Writes text to path atomically (temporary file, then rename). Throws rcsplat::Error.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace rcsplat

@@ -1,0 +1,41 @@
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli/commands.h"
+#include "scene/cornell_box.h"
+#include "scene/gltf_loader.h"
+#include "util/error.h"
+
+namespace rcsplat {
+
+Scene load_scene(const std::string& path) {
+  Scene scene = path.empty() ? make_cornell_box() : load_gltf(path);
+  scene.add_defaults_where_missing();
+  return scene;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  fs::path target(path);
+  fs::path temp = target;
+  temp += ".tmp" + std::to_string(getpid());
+  {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    if (!out.flush()) {
+      std::error_code ec;
+      fs::remove(temp, ec);
+      throw Error(path + ": cannot be written");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temp, target, ec);
+  if (ec) {
+    fs::remove(temp, ec);
+    throw Error(path + ": cannot be written: " + ec.message());
+  }
+}
+
+}  // namespace rcsplat

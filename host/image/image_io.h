@@ -1,0 +1,27 @@
+// Writing images: EXR (linear float, with the render's layers) and PNG (tone-mapped, sRGB). A file appears only when
+// complete: it is written under a temporary name and renamed.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace rcsplat {
+
+struct ImageLayer {
+  std::string name;  // "" for the main RGB
+  std::vector<std::string> channels;  // e.g. {"R", "G", "B"}
+  const std::vector<float>* data;     // channels.size() floats a pixel
+};
+
+void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers);
+// Exposure in stops, then a filmic curve (Narkowicz's ACES fit) and the sRGB transfer function.
+void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops);
+
+// Writes the render to a .exr or .png file chosen by the path's extension.
+void write_render(const std::string& path, const RenderedImage& image, float exposure_stops);
+
+// Reads an EXR's main RGB (R, G, B channels) for comparisons. Throws rcsplat::Error on failure.
+std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height);
+
+}  // namespace rcsplat

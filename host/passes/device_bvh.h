@@ -1,0 +1,22 @@
+// The BVH's node and triangle-block buffers on the device.
+#pragma once
+#include "bvh/bvh8.h"
+#include "cl/gpu_context.h"
+
+namespace rcsplat {
+
+class DeviceBvh {
+ public:
+  DeviceBvh(GpuContext& gpu, const Bvh8& bvh);
+
+  const cl::Buffer& nodes() const { return nodes_; }
+  const cl::Buffer& blocks() const { return blocks_; }
+  // The traversal stack's size, sized from the tree's depth so that it cannot overflow.
+  void add_defines(KernelDefines& defines) const;
+
+ private:
+  cl::Buffer nodes_, blocks_;
+  int stack_size_;
+};
+
+}  // namespace rcsplat

@@ -1,0 +1,121 @@
+#include "passes/device_scene.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace rcsplat {
+namespace {
+
+void put3(float* dst, const glm::vec3& v) {
+  dst[0] = v.x;
+  dst[1] = v.y;
+  dst[2] = v.z;
+}
+
+PunctualLight pack_light(const SceneLight& l) {
+  PunctualLight out{};
+  put3(out.position, l.position);
+  put3(out.direction, glm::normalize(l.direction));
+  put3(out.intensity, l.intensity);
+  out.range = l.range > 0.0f ? l.range : 0.0f;
+  out.type = l.type == LightType::point ? LIGHT_POINT : l.type == LightType::spot ? LIGHT_SPOT : LIGHT_DIRECTIONAL;
+  // glTF's recommended spot falloff: saturate(cos(angle) * scale + offset)^2.
+  float cos_outer = std::cos(l.outer_cone), cos_inner = std::cos(l.inner_cone);
+  out.spot_scale = 1.0f / std::max(1e-3f, cos_inner - cos_outer);
+  out.spot_offset = -cos_outer * out.spot_scale;
+  return out;
+}
+
+}  // namespace
+
+PackedScene pack_scene(const Scene& scene) {
+  PackedScene p;
+  size_t n = scene.triangle_count();
+  p.triangles.resize(n);
+  double total_power = 0.0;
+  for (size_t t = 0; t < n; ++t) {
+    TriangleShading& s = p.triangles[t];
+    std::memset(&s, 0, sizeof s);
+    const glm::vec3* v = &scene.positions[3 * t];
+    glm::vec3 ng = glm::cross(v[1] - v[0], v[2] - v[0]);
+    float twice_area = glm::length(ng);
+    ng = twice_area > 0.0f ? ng / twice_area : glm::vec3(0, 0, 1);
+    put3(s.geometric_normal, ng);
+    put3(s.v0, v[0]);
+    put3(s.v1, v[1]);
+    put3(s.v2, v[2]);
+    s.material = scene.triangle_material[t];
+    put3(s.normal0, scene.normals[3 * t]);
+    put3(s.normal1, scene.normals[3 * t + 1]);
+    put3(s.normal2, scene.normals[3 * t + 2]);
+    for (int k = 0; k < 2; ++k) {
+      s.uv0[k] = scene.uvs[3 * t][k];
+      s.uv1[k] = scene.uvs[3 * t + 1][k];
+      s.uv2[k] = scene.uvs[3 * t + 2][k];
+    }
+    const SceneMaterial& m = scene.materials[s.material];
+    float luminance = 0.2126f * m.emission.x + 0.7152f * m.emission.y + 0.0722f * m.emission.z;
+    if (luminance > 0.0f && twice_area > 0.0f) {
+      EmissiveTriangle e{};
+      put3(e.v0, v[0]);
+      put3(e.edge1, v[1] - v[0]);
+      put3(e.edge2, v[2] - v[0]);
+      e.area = 0.5f * twice_area;
+      put3(e.radiance, m.emission);
+      e.double_sided = m.double_sided ? 1 : 0;
+      double power = double(luminance) * e.area * (m.double_sided ? 2.0 : 1.0);
+      total_power += power;
+      e.cdf = float(total_power);   // normalised below
+      e.pdf_select = float(power);
+      p.emitters.push_back(e);
+    }
+  }
+  for (EmissiveTriangle& e : p.emitters) {
+    e.cdf = float(double(e.cdf) / total_power);
+    e.pdf_select = float(double(e.pdf_select) / total_power);
+  }
+  if (!p.emitters.empty()) p.emitters.back().cdf = 1.0f;  // no sample may fall past the last entry through rounding
+
+  for (const SceneMaterial& m : scene.materials) {
+    Material out{};
+    for (int i = 0; i < 4; ++i) out.base_color[i] = m.base_color[i];
+    put3(out.emission, m.emission);
+    out.base_color_texture = m.base_color_texture;
+    out.double_sided = m.double_sided ? 1 : 0;
+    p.materials.push_back(out);
+  }
+  for (const SceneTexture& t : scene.textures) {
+    TextureInfo info{};
+    info.first_texel = uint32_t(p.texels.size());
+    info.width = uint32_t(t.width);
+    info.height = uint32_t(t.height);
+    info.wrap = uint32_t(t.wrap_s) | uint32_t(t.wrap_t) << 8;
+    size_t start = p.texels.size();
+    p.texels.resize(start + t.rgba.size() / 4);
+    std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());
+    p.textures.push_back(info);
+  }
+  for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(l));
+  return p;
+}
+
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) : bvh_(gpu, bvh) {
+  PackedScene p = pack_scene(scene);
+  triangles_ = gpu.upload(p.triangles);
+  materials_ = gpu.upload(p.materials);
+  textures_ = gpu.upload(p.textures);
+  texels_ = gpu.upload(p.texels);
+  lights_ = gpu.upload(p.lights);
+  emitters_ = gpu.upload(p.emitters);
+  light_count_ = cl_uint(p.lights.size());
+  emitter_count_ = cl_uint(p.emitters.size());
+
+  bool textured = false;
+  for (const Material& m : p.materials) textured |= m.base_color_texture >= 0;
+  defines_["HAS_TEXTURES"] = textured ? "1" : "0";
+  defines_["HAS_PUNCTUAL_LIGHTS"] = light_count_ ? "1" : "0";
+  defines_["HAS_EMITTERS"] = emitter_count_ ? "1" : "0";
+  bvh_.add_defines(defines_);
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,58 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+#include "util/error.h"
+
+namespace rcsplat {
+
+SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& o) {
+  if (index < 0 || size_t(index) >= scene.cameras.size()) {
+    throw Error("--camera " + std::to_string(index) + ": " + scene.source + " has " + std::to_string(scene.cameras.size()) +
+                " camera(s)");
+  }
+  SceneCamera c = scene.cameras[size_t(index)];
+  if (o.eye || o.target) {
+    glm::vec3 forward = glm::normalize(c.target - c.eye);
+    glm::vec3 eye = o.eye.value_or(c.eye);
+    c.target = o.target.value_or(eye + forward);
+    c.eye = eye;
+  }
+  if (o.up) c.up = *o.up;
+  if (o.fov_degrees) {
+    if (!(*o.fov_degrees > 0.0f && *o.fov_degrees < 179.0f)) throw Error("--fov must be between 0 and 179 degrees");
+    c.yfov = glm::radians(*o.fov_degrees);
+  }
+  glm::vec3 forward = c.target - c.eye;
+  if (!(glm::length(forward) > 0.0f) || !(glm::length(glm::cross(forward, c.up)) > 1e-6f * glm::length(forward) * glm::length(c.up)))
+    throw Error("the camera's eye, target and up do not define a view (target = eye, or up parallel to the view)");
+  return c;
+}
+
+void resolve_resolution(const SceneCamera& camera, int& width, int& height) {
+  float aspect = camera.aspect.value_or(1.0f);
+  if (width <= 0 && height <= 0) width = 512;
+  if (width <= 0) width = std::max(1, int(std::lround(float(height) * aspect)));
+  if (height <= 0) height = std::max(1, int(std::lround(float(width) / aspect)));
+  if (width > 16384 || height > 16384) throw Error("the resolution is limited to 16384 x 16384");
+}
+
+CameraParams camera_params(const SceneCamera& camera, int width, int height) {
+  glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  glm::vec3 up = glm::cross(right, forward);
+  CameraParams p{};
+  for (int i = 0; i < 3; ++i) {
+    p.eye[i] = camera.eye[i];
+    p.forward[i] = forward[i];
+    p.right[i] = right[i];
+    p.up[i] = up[i];
+  }
+  p.tan_half_fov_y = std::tan(0.5f * camera.yfov);
+  p.aspect = float(width) / float(height);
+  p.width = width;
+  p.height = height;
+  return p;
+}
+
+}  // namespace rcsplat

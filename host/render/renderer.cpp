@@ -1,0 +1,89 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "bvh/bvh8.h"
+#include "passes/device_scene.h"
+#include "passes/direct_pass.h"
+#include "passes/gbuffer_pass.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace
+
+RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+  auto start = Clock::now();
+  RenderedImage img;
+  RenderStats& st = img.stats;
+  st.device = gpu.device_info().name;
+  st.triangles = scene.triangle_count();
+
+  SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
+  img.width = settings.width;
+  img.height = settings.height;
+  resolve_resolution(cam, img.width, img.height);
+  CameraParams params = camera_params(cam, img.width, img.height);
+  unsigned strata = settings.light_samples ? unsigned(std::ceil(std::sqrt(double(settings.light_samples)))) : 0;
+  st.light_samples = strata * strata;
+
+  log_info("building the BVH over " + std::to_string(st.triangles) + " triangles");
+  Bvh8 bvh = build_bvh8(scene.positions);
+  st.bvh_build_s = bvh.build_seconds;
+  st.bvh_nodes = bvh.nodes.size();
+  st.bvh_blocks = bvh.blocks.size();
+  st.bvh_depth = bvh.depth;
+
+  auto t = Clock::now();
+  DeviceScene device_scene(gpu, scene, bvh);
+  st.upload_s = seconds_since(t);
+  double program_before = gpu.program_seconds();
+  log_info("compiling kernels for " + st.device);
+  GBufferPass gbuffer(gpu, device_scene);
+  DirectPass direct(gpu, device_scene);
+  st.program_s = gpu.program_seconds() - program_before;
+
+  Progress progress("rendering", 2);
+  t = Clock::now();
+  gbuffer.run(params);
+  st.gbuffer_s = seconds_since(t);
+  progress.update(1);
+  t = Clock::now();
+  direct.run(gbuffer, strata, settings.seed);
+  st.direct_s = seconds_since(t);
+  progress.finish();
+
+  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<float> d = direct.download_rgba();
+  size_t pixels = g.size();
+  img.color.resize(pixels * 3);
+  img.direct.resize(pixels * 3);
+  img.emission.resize(pixels * 3);
+  img.albedo.resize(pixels * 3);
+  img.normal.resize(pixels * 3);
+  img.depth.resize(pixels);
+  img.triangle.resize(pixels);
+  st.primary_rays = pixels;
+  for (size_t i = 0; i < pixels; ++i) {
+    const GBufferSample& s = g[i];
+    img.triangle[i] = s.triangle;
+    img.depth[i] = s.triangle >= 0 ? s.depth : 0.0f;
+    st.shadow_rays += uint64_t(d[4 * i + 3]);
+    for (int c = 0; c < 3; ++c) {
+      img.direct[3 * i + c] = d[4 * i + c];
+      img.emission[3 * i + c] = s.emission[c];
+      img.albedo[3 * i + c] = s.albedo[c];
+      img.normal[3 * i + c] = s.normal[c];
+      img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
+    }
+  }
+  st.total_s = seconds_since(start);
+  return img;
+}
+
+}  // namespace rcsplat

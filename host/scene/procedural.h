@@ -1,0 +1,15 @@
+// Generated scenes for tests and for benchmarks when the real scenes are absent.
+#pragma once
+#include <cstdint>
+
+#include "scene/scene.h"
+
+namespace rcsplat {
+
+// A closed room holding `boxes` randomly placed, rotated boxes (12 triangles each), a camera inside and a point light.
+Scene make_box_room(int boxes, uint32_t seed);
+
+// A closed, watertight sphere of (roughly) 20 * 4^subdivisions triangles with shared vertices and wavy displacement.
+Scene make_bumpy_sphere(int subdivisions, float radius);
+
+}  // namespace rcsplat

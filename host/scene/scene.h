@@ -1,0 +1,68 @@
+// A scene as rcsplat renders it: world-space triangles (unindexed), their materials and textures, lights, a camera.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rcsplat {
+
+struct SceneMaterial {
+  std::string name;
+  glm::vec4 base_color{1.0f};  // linear
+  int base_color_texture = -1;
+  glm::vec3 emission{0.0f};  // emissiveFactor x strength: linear radiance
+  bool double_sided = false;
+};
+
+struct SceneTexture {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;  // sRGB-encoded RGBA8, rows top to bottom
+  int wrap_s = 0, wrap_t = 0;  // WRAP_REPEAT, WRAP_CLAMP or WRAP_MIRROR (shared_types.h)
+};
+
+enum class LightType { point, spot, directional };
+
+struct SceneLight {
+  std::string name;
+  LightType type = LightType::point;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the direction light travels
+  glm::vec3 intensity{1.0f};             // colour x intensity (cd, or lux for directional)
+  float range = 0.0f;                    // 0 = infinite
+  float inner_cone = 0.0f, outer_cone = 0.7853982f;
+};
+
+struct SceneCamera {
+  glm::vec3 eye{0.0f}, target{0.0f, 0.0f, -1.0f}, up{0.0f, 1.0f, 0.0f};
+  float yfov = 0.8f;               // radians
+  std::optional<float> aspect;     // width / height, if the scene states one
+};
+
+struct Scene {
+  std::string source;  // file it came from, or "built-in Cornell box"
+  std::vector<glm::vec3> positions;  // three per triangle
+  std::vector<glm::vec3> normals;    // three per triangle (unit)
+  std::vector<glm::vec2> uvs;        // three per triangle
+  std::vector<uint32_t> triangle_material;
+  std::vector<SceneMaterial> materials;
+  std::vector<SceneTexture> textures;
+  std::vector<SceneLight> lights;
+  std::vector<SceneCamera> cameras;
+
+  size_t triangle_count() const { return triangle_material.size(); }
+  bool has_emissive_triangles() const;
+  glm::vec3 bounds_min() const;
+  glm::vec3 bounds_max() const;
+
+  // Appends a triangle; normals default to the geometric normal, texture coordinates to zero.
+  void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint32_t material);
+
+  // A camera and a light for scenes that lack them (with a warning each), so that every scene renders something.
+  void add_defaults_where_missing();
+};
+
+}  // namespace rcsplat

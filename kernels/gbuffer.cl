@@ -1,0 +1,50 @@
+// Primary visibility: what the ray through each pixel's centre hits, with its normals, albedo and emission.
+#include "traverse.h"
+#include "surface.h"
+
+inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int y) {
+  float sx = (2.0f * ((float)x + 0.5f) / (float)cam->width - 1.0f) * cam->tan_half_fov_y * cam->aspect;
+  float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)cam->height) * cam->tan_half_fov_y;
+  return normalize(vload3(0, cam->forward) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up));
+}
+
+__kernel void gbuffer(__global const float8* nodes, __global const float8* blocks,
+                      __global const TriangleShading* triangles, __global const Material* materials,
+                      __global const TextureInfo* textures, __global const uint* texels,
+                      __global const CameraParams* camera, __global GBufferSample* out) {
+  int x = get_global_id(0), y = get_global_id(1);
+  if (x >= camera->width || y >= camera->height) return;
+  float3 org = vload3(0, camera->eye);
+  float3 dir = camera_ray_direction(camera, x, y);
+  RayPrecomp r = ray_precompute(org, dir);
+  TraceHit hit;
+  GBufferSample g;
+  g.pad0 = g.pad1 = 0.0f;
+  if (!bvh_trace(nodes, blocks, &r, 0.0f, INFINITY, false, &hit)) {
+    vstore3((float3)(0.0f), 0, g.position);
+    vstore3((float3)(0.0f), 0, g.normal);
+    vstore3((float3)(0.0f), 0, g.geometric_normal);
+    vstore3((float3)(0.0f), 0, g.albedo);
+    vstore3((float3)(0.0f), 0, g.emission);
+    g.triangle = -1;
+    g.material = -1;
+    g.depth = INFINITY;
+  } else {
+    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    bool back = dot(s.geometric_normal, dir) > 0.0f;
+    float3 ng = back ? -s.geometric_normal : s.geometric_normal;
+    float3 ns = back ? -s.shading_normal : s.shading_normal;
+    if (dot(ns, ng) <= 0.0f) ns = ng;  // inconsistent vertex normals: trust the geometry
+    __global const Material* m = materials + s.material;
+    float3 emission = (!back || m->double_sided) ? vload3(0, m->emission) : (float3)(0.0f);
+    vstore3(s.position, 0, g.position);
+    vstore3(ns, 0, g.normal);
+    vstore3(ng, 0, g.geometric_normal);
+    vstore3(surface_albedo(materials, textures, texels, &s), 0, g.albedo);
+    vstore3(emission, 0, g.emission);
+    g.triangle = hit.prim;
+    g.material = (int)s.material;
+    g.depth = hit.t;
+  }
+  out[y * camera->width + x] = g;
+}

@@ -1,0 +1,28 @@
+// Casts a batch of arbitrary rays: closest hits or occlusion. Used by the tests (against Embree) and the benchmarks.
+#include "traverse.h"
+
+__kernel void cast_closest(__global const float8* nodes, __global const float8* blocks, __global const RayDesc* rays,
+                           __global HitDesc* hits, uint ray_count) {
+  uint i = get_global_id(0);
+  if (i >= ray_count) return;
+  RayDesc ray = rays[i];
+  RayPrecomp r = ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction));
+  TraceHit h;
+  bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, false, &h);
+  HitDesc out;
+  out.t = h.t;
+  out.u = h.prim >= 0 ? h.u : 0.0f;
+  out.v = h.prim >= 0 ? h.v : 0.0f;
+  out.prim = h.prim;
+  hits[i] = out;
+}
+
+__kernel void cast_occlusion(__global const float8* nodes, __global const float8* blocks, __global const RayDesc* rays,
+                             __global int* occluded, uint ray_count) {
+  uint i = get_global_id(0);
+  if (i >= ray_count) return;
+  RayDesc ray = rays[i];
+  RayPrecomp r = ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction));
+  TraceHit h;
+  occluded[i] = bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, true, &h) ? 1 : 0;
+}

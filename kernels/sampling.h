@@ -1,0 +1,42 @@
+// Random numbers, robust ray origins and light sampling helpers shared by the shading kernels.
+#ifndef RCSPLAT_SAMPLING_H
+#define RCSPLAT_SAMPLING_H
+
+#define RC_PI 3.14159265358979f
+#define RC_INV_PI 0.318309886183791f
+
+// A counter-based generator: the same (pixel, sample, dimension) always gives the same number, on every device,
+// so a render is reproducible whatever the work-group order.
+inline uint hash_u32(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+inline float random01(uint a, uint b, uint c) {
+  uint h = hash_u32(a ^ hash_u32(b ^ hash_u32(c + 0x9e3779b9u)));
+  return (float)(h >> 8) * (1.0f / 16777216.0f);  // 24 bits: strictly below 1
+}
+
+// Moves a surface point off its surface along the geometric normal n (pointing to the side the ray leaves to) by a
+// fixed number of float ULPs, so the offset scales with the coordinates' magnitude; near the origin, where ULPs
+// vanish, by a small absolute step instead (Wächter and Binder, Ray Tracing Gems, chapter 6).
+inline float3 offset_ray_origin(float3 p, float3 n) {
+  const float near_origin = 1.0f / 32.0f;
+  const float float_step = 1.0f / 65536.0f;
+  const float ulp_scale = 256.0f;
+  int3 ulps = convert_int3(ulp_scale * n);
+  float3 shifted = as_float3(as_int3(p) + select(ulps, -ulps, as_int3(p) < 0));
+  return select(shifted, p + float_step * n, fabs(p) < near_origin);
+}
+
+inline float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+inline float3 finite_or_zero(float3 c) {
+  return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);
+}
+
+#endif

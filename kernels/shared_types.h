@@ -1,0 +1,144 @@
+// Structs shared by the host (C++) and the kernels (OpenCL C): the single source of their layout.
+// Every struct is a whole number of 16-byte rows and holds only 4-byte scalars, so both compilers lay it out alike;
+// the static_asserts at the end check that on the host side.
+#ifndef RCSPLAT_SHARED_TYPES_H
+#define RCSPLAT_SHARED_TYPES_H
+
+#ifdef __OPENCL_VERSION__
+typedef uint rc_uint;
+typedef int rc_int;
+#else
+#include <cstdint>
+typedef std::uint32_t rc_uint;
+typedef std::int32_t rc_int;
+#endif
+
+// Eight-wide BVH node: the children's boxes as six rows of eight (so a node test is a few float8 operations) and the
+// children's references. A reference >= 0 is an inner node's index; < 0 is a leaf, ~ref = first_block << 2 | (blocks - 1).
+// An empty slot has an inverted box (lo = +inf, hi = -inf) that no ray can hit.
+#define BVH_WIDTH 8
+#define BVH_MAX_LEAF_BLOCKS 4
+typedef struct {
+  float lo_x[8], hi_x[8], lo_y[8], hi_y[8], lo_z[8], hi_z[8];
+  rc_int child[8];
+} Bvh8Node;
+
+// Eight triangles' vertices stored as rows, intersected together by one float8 watertight test.
+// prim = the scene's triangle index; unused lanes have prim = -1 and all-zero vertices (determinant 0: never hit).
+typedef struct {
+  float v0_x[8], v0_y[8], v0_z[8];
+  float v1_x[8], v1_y[8], v1_z[8];
+  float v2_x[8], v2_y[8], v2_z[8];
+  rc_int prim[8];
+} TriangleBlock8;
+
+// Per-triangle data needed only once a ray has hit: the vertices (a hit point interpolated from them is accurate to
+// a few ULPs of the coordinates, where origin + t * direction is not), normals, texture coordinates, material.
+typedef struct {
+  float v0[3];
+  rc_uint material;
+  float v1[3], v2[3];
+  float geometric_normal[3];  // unit, from the winding (v1 - v0) x (v2 - v0)
+  float normal0[3], normal1[3], normal2[3];  // unit shading normals at the vertices
+  float uv0[2], uv1[2], uv2[2];
+  float pad[4];
+} TriangleShading;
+
+#define TEXTURE_NONE (-1)
+typedef struct {
+  float base_color[4];  // linear RGBA factor
+  float emission[3];    // emissiveFactor x emissive strength, linear RGB radiance
+  rc_int base_color_texture;  // index into the texture table or TEXTURE_NONE
+  rc_int double_sided;
+  rc_int pad[3];
+} Material;
+
+#define WRAP_REPEAT 0
+#define WRAP_CLAMP 1
+#define WRAP_MIRROR 2
+typedef struct {
+  rc_uint first_texel;  // offset into the RGBA8 (sRGB-encoded) texel array
+  rc_uint width, height;
+  rc_uint wrap;  // wrap_s | wrap_t << 8
+} TextureInfo;
+
+#define LIGHT_POINT 0
+#define LIGHT_SPOT 1
+#define LIGHT_DIRECTIONAL 2
+typedef struct {
+  float position[3];
+  rc_int type;
+  float direction[3];  // unit, the direction light travels (spot and directional)
+  float range;         // 0 = infinite
+  float intensity[3];  // colour x intensity: candela (point, spot) or lux (directional)
+  float spot_scale;    // glTF's smooth cone falloff: saturate(cos * scale + offset)^2
+  float spot_offset;
+  float pad[3];
+} PunctualLight;
+
+// One emissive triangle, sampled as an area light in proportion to its emitted power.
+typedef struct {
+  float v0[3];
+  float area;
+  float edge1[3];
+  float cdf;  // inclusive cumulative selection probability
+  float edge2[3];
+  float pdf_select;  // probability of choosing this triangle
+  float radiance[3];
+  rc_int double_sided;
+} EmissiveTriangle;
+
+typedef struct {
+  float eye[3];
+  float tan_half_fov_y;
+  float right[3];  // unit
+  float aspect;    // width / height
+  float up[3];     // unit
+  rc_int width;
+  float forward[3];  // unit
+  rc_int height;
+} CameraParams;
+
+// The G-buffer: what the primary ray through each pixel's centre sees.
+typedef struct {
+  float position[3];
+  rc_int triangle;  // -1 where the ray missed
+  float normal[3];  // shading normal, facing the camera
+  rc_int material;
+  float geometric_normal[3];  // facing the camera
+  float depth;                // distance along the primary ray
+  float albedo[3];
+  float pad0;
+  float emission[3];  // radiance emitted toward the camera
+  float pad1;
+} GBufferSample;
+
+// A ray for the generic ray-casting kernel (tests, benchmarks) and its result.
+typedef struct {
+  float origin[3];
+  float tmin;
+  float direction[3];
+  float tmax;
+} RayDesc;
+
+typedef struct {
+  float t;  // tmax when nothing was hit
+  float u, v;  // barycentrics of v1 and v2 (Embree's convention)
+  rc_int prim;  // -1 when nothing was hit
+} HitDesc;
+
+#ifndef __OPENCL_VERSION__
+static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
+static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
+static_assert(sizeof(TriangleShading) == 128);
+static_assert(sizeof(Material) == 48);
+static_assert(sizeof(TextureInfo) == 16);
+static_assert(sizeof(PunctualLight) == 64);
+static_assert(sizeof(EmissiveTriangle) == 64);
+static_assert(sizeof(CameraParams) == 64);
+static_assert(sizeof(GBufferSample) == 80);
+static_assert(sizeof(RayDesc) == 32);
+static_assert(sizeof(HitDesc) == 16);
+#endif
+
+#endif

@@ -1,0 +1,78 @@
+// What a ray hit: the surface point's normals, texture coordinates and material, and base-colour texture lookups.
+#ifndef RCSPLAT_SURFACE_H
+#define RCSPLAT_SURFACE_H
+#include "shared_types.h"
+
+typedef struct {
+  float3 position;          // interpolated from the vertices
+  float3 geometric_normal;  // unit, by winding
+  float3 shading_normal;    // unit, interpolated
+  float2 uv;
+  uint material;
+} SurfacePoint;
+
+inline SurfacePoint surface_at(__global const TriangleShading* triangles, int prim, float u, float v) {
+  __global const TriangleShading* t = triangles + prim;
+  SurfacePoint s;
+  float w = 1.0f - u - v;
+  s.position = w * vload3(0, t->v0) + u * vload3(0, t->v1) + v * vload3(0, t->v2);
+  s.geometric_normal = vload3(0, t->geometric_normal);
+  float3 n = w * vload3(0, t->normal0) + u * vload3(0, t->normal1) + v * vload3(0, t->normal2);
+  float len = length(n);
+  s.shading_normal = len > 0.0f ? n / len : s.geometric_normal;
+  s.uv = w * vload2(0, t->uv0) + u * vload2(0, t->uv1) + v * vload2(0, t->uv2);
+  s.material = t->material;
+  return s;
+}
+
+#if HAS_TEXTURES
+inline int wrap_texel(int i, int n, uint mode) {
+  if (mode == WRAP_CLAMP) return clamp(i, 0, n - 1);
+  if (mode == WRAP_MIRROR) {
+    int m = i % (2 * n);
+    if (m < 0) m += 2 * n;
+    return m < n ? m : 2 * n - 1 - m;
+  }
+  int m = i % n;
+  return m < 0 ? m + n : m;
+}
+
+inline float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
+inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x, int y) {
+  uint p = texels[info.first_texel + (uint)y * info.width + (uint)x];
+  float4 c = (float4)(p & 255u, (p >> 8) & 255u, (p >> 16) & 255u, p >> 24) * (1.0f / 255.0f);
+  return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);
+}
+
+// Bilinear lookup in linear space; texture coordinates wrap as the sampler says.
+inline float4 sample_texture(__global const TextureInfo* infos, __global const uint* texels, int index, float2 uv) {
+  TextureInfo info = infos[index];
+  int w = (int)info.width, h = (int)info.height;
+  float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)h - 0.5f;
+  if (!isfinite(fx) || !isfinite(fy) || fabs(fx) > 1e8f || fabs(fy) > 1e8f) fx = fy = 0.0f;
+  float x0f = floor(fx), y0f = floor(fy);
+  float ax = fx - x0f, ay = fy - y0f;
+  int x0 = (int)x0f, y0 = (int)y0f;
+  uint ws = info.wrap & 255u, wt = info.wrap >> 8;
+  int xa = wrap_texel(x0, w, ws), xb = wrap_texel(x0 + 1, w, ws);
+  int ya = wrap_texel(y0, h, wt), yb = wrap_texel(y0 + 1, h, wt);
+  float4 top = mix(texel_linear(texels, info, xa, ya), texel_linear(texels, info, xb, ya), ax);
+  float4 bottom = mix(texel_linear(texels, info, xa, yb), texel_linear(texels, info, xb, yb), ax);
+  return mix(top, bottom, ay);
+}
+#endif
+
+inline float3 surface_albedo(__global const Material* materials, __global const TextureInfo* textures,
+                             __global const uint* texels, const SurfacePoint* s) {
+  __global const Material* m = materials + s->material;
+  float3 albedo = vload3(0, m->base_color);
+#if HAS_TEXTURES
+  if (m->base_color_texture >= 0) albedo *= sample_texture(textures, texels, m->base_color_texture, s->uv).xyz;
+#endif
+  return clamp(albedo, 0.0f, 1.0f);
+}
+
+#endif

@@ -1,0 +1,239 @@
+// Eight-wide BVH traversal with a watertight triangle test (Woop, Benthin, Wald 2013), one ray per work-item.
+// The node and block buffers are read as float8 rows (see Bvh8Node and TriangleBlock8 in shared_types.h):
+// a node is 7 rows (six bound rows, then the child references), a block 10 rows (nine vertex rows, then prim ids).
+#ifndef RCSPLAT_TRAVERSE_H
+#define RCSPLAT_TRAVERSE_H
+#include "shared_types.h"
+
+// The watertight test needs its edge functions evaluated exactly as written: a fused multiply-add would round a*b - c*d
+// differently from its mirror image on the neighbouring triangle (cracks), and would make the empty lanes' zero
+// determinant non-zero.
+#pragma OPENCL FP_CONTRACT OFF
+
+#define NODE_ROWS 7
+#define BLOCK_ROWS 10
+#ifndef BVH_STACK_SIZE
+#define BVH_STACK_SIZE 64
+#endif
+
+// Per-ray constants: the box test's scaled origin and inverse direction, the triangle test's axis permutation and shear.
+typedef struct {
+  float3 org;
+  float3 dir;
+  float3 inv_dir;
+  float3 org_inv;  // org * inv_dir, so that a slab distance is one fma
+  int near_x, near_y, near_z;  // row of the near plane per axis, chosen by the direction's sign
+  int kx, ky, kz;
+  float shear_x, shear_y, shear_z;
+  float org_kx, org_ky, org_kz;
+} RayPrecomp;
+
+inline float safe_inverse(float d) {
+  // A finite stand-in for 1/0 keeps (plane - origin) * inverse free of NaN.
+  const float tiny = 1e-30f;
+  return fabs(d) > tiny ? 1.0f / d : (d < 0.0f ? -1e30f : 1e30f);
+}
+
+inline RayPrecomp ray_precompute(float3 org, float3 dir) {
+  RayPrecomp r;
+  r.org = org;
+  r.dir = dir;
+  r.inv_dir = (float3)(safe_inverse(dir.x), safe_inverse(dir.y), safe_inverse(dir.z));
+  r.org_inv = org * r.inv_dir;
+  r.near_x = dir.x < 0.0f ? 1 : 0;
+  r.near_y = dir.y < 0.0f ? 3 : 2;
+  r.near_z = dir.z < 0.0f ? 5 : 4;
+  float3 a = fabs(dir);
+  int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  float dir_c[3] = {dir.x, dir.y, dir.z};
+  float org_c[3] = {org.x, org.y, org.z};
+  if (dir_c[kz] < 0.0f) {  // keep the winding so that the determinant's sign means the same for every ray
+    int t = kx;
+    kx = ky;
+    ky = t;
+  }
+  r.kx = kx;
+  r.ky = ky;
+  r.kz = kz;
+  r.shear_x = dir_c[kx] / dir_c[kz];
+  r.shear_y = dir_c[ky] / dir_c[kz];
+  r.shear_z = 1.0f / dir_c[kz];
+  r.org_kx = org_c[kx];
+  r.org_ky = org_c[ky];
+  r.org_kz = org_c[kz];
+  return r;
+}
+
+// Index of the lowest set bit of a non-zero mask (ctz is OpenCL 2.0; this is 1.2).
+inline int lowest_bit(uint mask) { return 31 - (int)clz(mask & (0u - mask)); }
+
+#define SEL_MIN(a, b) ((a) < (b) ? (a) : (b))
+#define SEL_MAX(a, b) ((a) > (b) ? (a) : (b))
+
+// Which of the eight children the ray enters before t_far, and at what distance.
+inline uint node_hit_mask(__global const float8* node, const RayPrecomp* r, float t_min, float t_far, float8* t_entry) {
+  float8 nx = node[r->near_x] * r->inv_dir.x - r->org_inv.x;
+  float8 fx = node[r->near_x ^ 1] * r->inv_dir.x - r->org_inv.x;
+  float8 ny = node[r->near_y] * r->inv_dir.y - r->org_inv.y;
+  float8 fy = node[r->near_y ^ 1] * r->inv_dir.y - r->org_inv.y;
+  float8 nz = node[r->near_z] * r->inv_dir.z - r->org_inv.z;
+  float8 fz = node[r->near_z ^ 1] * r->inv_dir.z - r->org_inv.z;
+  float8 tn = SEL_MAX(SEL_MAX(nx, ny), SEL_MAX(nz, (float8)(t_min)));
+  float8 tf = SEL_MIN(SEL_MIN(fx, fy), SEL_MIN(fz, (float8)(t_far)));
+  int8 bits = (tn <= tf) & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+  int4 b4 = bits.lo | bits.hi;
+  int2 b2 = b4.lo | b4.hi;
+  *t_entry = tn;
+  return (uint)(b2.x | b2.y);
+}
+
+// The watertight test on eight triangles at once. Returns the lanes hit within (t_min, t_max) and their distances and
+// barycentrics (u for v1, v for v2).
+inline uint block_hit_mask(__global const float8* block, const RayPrecomp* r, float t_min, float t_max, float8* t_out,
+                           float8* u_out, float8* v_out) {
+  float8 ax = block[r->kx] - r->org_kx, ay = block[r->ky] - r->org_ky, az = block[r->kz] - r->org_kz;
+  float8 bx = block[3 + r->kx] - r->org_kx, by = block[3 + r->ky] - r->org_ky, bz = block[3 + r->kz] - r->org_kz;
+  float8 cx = block[6 + r->kx] - r->org_kx, cy = block[6 + r->ky] - r->org_ky, cz = block[6 + r->kz] - r->org_kz;
+  ax = ax - r->shear_x * az;
+  ay = ay - r->shear_y * az;
+  bx = bx - r->shear_x * bz;
+  by = by - r->shear_y * bz;
+  cx = cx - r->shear_x * cz;
+  cy = cy - r->shear_y * cz;
+  float8 eu = cx * by - cy * bx;  // weight of v0
+  float8 ev = ax * cy - ay * cx;  // weight of v1
+  float8 ew = bx * ay - by * ax;  // weight of v2
+  int8 mixed = ((eu < 0.0f) | (ev < 0.0f) | (ew < 0.0f)) & ((eu > 0.0f) | (ev > 0.0f) | (ew > 0.0f));
+  float8 det = eu + ev + ew;
+  float8 t_scaled = (eu * az + ev * bz + ew * cz) * r->shear_z;
+  float8 abs_det = fabs(det);
+  // Compare t * det against the range without dividing: flip t's sign with det's.
+  float8 t_signed = as_float8(as_int8(t_scaled) ^ (as_int8(det) & (int8)(0x80000000)));
+  int8 ok = ~mixed & (det != 0.0f) & (t_signed > t_min * abs_det) & (t_signed < t_max * abs_det);
+  int8 bits = ok & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+  int4 b4 = bits.lo | bits.hi;
+  int2 b2 = b4.lo | b4.hi;
+  uint mask = (uint)(b2.x | b2.y);
+  if (mask) {
+    float8 inv_det = 1.0f / det;
+    *t_out = t_scaled * inv_det;
+    *u_out = ev * inv_det;
+    *v_out = ew * inv_det;
+  }
+  return mask;
+}
+
+typedef struct {
+  float t;
+  float u, v;
+  int prim;
+} TraceHit;
+
+// Visits the BVH for one ray. ANY_HIT stops at the first hit within range (shadow rays); otherwise the closest hit wins.
+// Returns whether anything was hit; on a closest hit *hit holds it.
+inline bool bvh_trace(__global const float8* nodes, __global const float8* blocks, const RayPrecomp* r, float t_min,
+                      float t_max, bool any_hit, TraceHit* hit) {
+  int stack_ref[BVH_STACK_SIZE];
+  float stack_t[BVH_STACK_SIZE];
+  int sp = 0;
+  int ref = 0;  // the root is always an inner node
+  bool found = false;
+  hit->prim = -1;
+  hit->t = t_max;
+  for (;;) {
+    if (ref >= 0) {
+      __global const float8* node = nodes + (size_t)ref * NODE_ROWS;
+      float8 t_entry;
+      uint mask = node_hit_mask(node, r, t_min, t_max, &t_entry);
+      if (mask) {
+        float te[8];
+        int refs[8];
+        vstore8(t_entry, 0, te);
+        vstore8(as_int8(node[6]), 0, refs);
+        int i0 = lowest_bit(mask);
+        mask &= mask - 1;
+        if (!mask) {
+          ref = refs[i0];
+          continue;
+        }
+        int i1 = lowest_bit(mask);
+        mask &= mask - 1;
+        if (!mask) {  // two children: descend into the nearer, keep the farther
+          int near_i = te[i0] <= te[i1] ? i0 : i1;
+          int far_i = near_i == i0 ? i1 : i0;
+          stack_ref[sp] = refs[far_i];
+          stack_t[sp] = te[far_i];
+          ++sp;
+          ref = refs[near_i];
+          continue;
+        }
+        // Three or more: push all, sorted so that the nearest ends on top.
+        int base = sp;
+        stack_ref[sp] = refs[i0];
+        stack_t[sp++] = te[i0];
+        stack_ref[sp] = refs[i1];
+        stack_t[sp++] = te[i1];
+        while (mask) {
+          int i = lowest_bit(mask);
+          mask &= mask - 1;
+          stack_ref[sp] = refs[i];
+          stack_t[sp++] = te[i];
+        }
+        for (int a = base + 1; a < sp; ++a) {
+          float ta = stack_t[a];
+          int ra = stack_ref[a];
+          int b = a - 1;
+          while (b >= base && stack_t[b] < ta) {
+            stack_t[b + 1] = stack_t[b];
+            stack_ref[b + 1] = stack_ref[b];
+            --b;
+          }
+          stack_t[b + 1] = ta;
+          stack_ref[b + 1] = ra;
+        }
+        ref = stack_ref[--sp];
+        continue;
+      }
+    } else {
+      int leaf = ~ref;
+      int first = leaf >> 2;
+      int count = (leaf & 3) + 1;
+      for (int b = 0; b < count; ++b) {
+        __global const float8* block = blocks + (size_t)(first + b) * BLOCK_ROWS;
+        float8 tt, uu, vv;
+        uint mask = block_hit_mask(block, r, t_min, t_max, &tt, &uu, &vv);
+        if (mask) {
+          if (any_hit) return true;
+          float ts[8], us[8], vs[8];
+          int prims[8];
+          vstore8(tt, 0, ts);
+          vstore8(uu, 0, us);
+          vstore8(vv, 0, vs);
+          vstore8(as_int8(block[9]), 0, prims);
+          while (mask) {
+            int i = lowest_bit(mask);
+            mask &= mask - 1;
+            if (ts[i] < t_max) {
+              t_max = ts[i];
+              hit->t = ts[i];
+              hit->u = us[i];
+              hit->v = vs[i];
+              hit->prim = prims[i];
+              found = true;
+            }
+          }
+        }
+      }
+    }
+    // Pop the next subtree that may still hold something nearer than the current hit.
+    do {
+      if (sp == 0) return found;
+      --sp;
+    } while (stack_t[sp] > t_max);
+    ref = stack_ref[sp];
+  }
+}
+
+#endif
