@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   using namespace rcsplat;
   CLI::App app{"rcsplat: global illumination by radiance cache splatting on OpenCL devices"};
   app.require_subcommand(1);
+  app.fallthrough();  // -q may follow the subcommand
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "Print only the summary and errors");
 

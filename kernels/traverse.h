@@ -72,14 +72,15 @@ inline int lowest_bit(uint mask) { return 31 - (int)clz(mask & (0u - mask)); }
 #define SEL_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define SEL_MAX(a, b) ((a) > (b) ? (a) : (b))
 
-// Which of the eight children the ray enters before t_far, and at what distance.
+// Which of the eight children the ray enters before t_far, and at what distance. The slab distances use explicit
+// fma (contraction is off in this file): one instruction each, and conservative enough for the box test.
 inline uint node_hit_mask(__global const float8* node, const RayPrecomp* r, float t_min, float t_far, float8* t_entry) {
-  float8 nx = node[r->near_x] * r->inv_dir.x - r->org_inv.x;
-  float8 fx = node[r->near_x ^ 1] * r->inv_dir.x - r->org_inv.x;
-  float8 ny = node[r->near_y] * r->inv_dir.y - r->org_inv.y;
-  float8 fy = node[r->near_y ^ 1] * r->inv_dir.y - r->org_inv.y;
-  float8 nz = node[r->near_z] * r->inv_dir.z - r->org_inv.z;
-  float8 fz = node[r->near_z ^ 1] * r->inv_dir.z - r->org_inv.z;
+  float8 nx = fma(node[r->near_x], (float8)(r->inv_dir.x), (float8)(-r->org_inv.x));
+  float8 fx = fma(node[r->near_x ^ 1], (float8)(r->inv_dir.x), (float8)(-r->org_inv.x));
+  float8 ny = fma(node[r->near_y], (float8)(r->inv_dir.y), (float8)(-r->org_inv.y));
+  float8 fy = fma(node[r->near_y ^ 1], (float8)(r->inv_dir.y), (float8)(-r->org_inv.y));
+  float8 nz = fma(node[r->near_z], (float8)(r->inv_dir.z), (float8)(-r->org_inv.z));
+  float8 fz = fma(node[r->near_z ^ 1], (float8)(r->inv_dir.z), (float8)(-r->org_inv.z));
   float8 tn = SEL_MAX(SEL_MAX(nx, ny), SEL_MAX(nz, (float8)(t_min)));
   float8 tf = SEL_MIN(SEL_MIN(fx, fy), SEL_MIN(fz, (float8)(t_far)));
   int8 bits = (tn <= tf) & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
