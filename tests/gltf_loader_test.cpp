@@ -1,0 +1,250 @@
+// The glTF loader on small files written here: what it must read, and each malformed case it must reject cleanly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "scene/gltf_loader.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+using nlohmann::json;
+
+// Builds a one-buffer glTF: a quad (4 vertices, 2 triangles) with indices of the chosen component type.
+struct GltfBuilder {
+  std::vector<uint8_t> bin;
+  json doc = {{"asset", {{"version", "2.0"}}}};
+
+  int add_view(const void* data, size_t bytes) {
+    while (bin.size() % 4) bin.push_back(0);
+    size_t offset = bin.size();
+    bin.insert(bin.end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + bytes);
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
+    return int(doc["bufferViews"].size() - 1);
+  }
+  int add_accessor(int view, int component_type, size_t count, const std::string& type) {
+    doc["accessors"].push_back({{"bufferView", view}, {"componentType", component_type}, {"count", count}, {"type", type}});
+    return int(doc["accessors"].size() - 1);
+  }
+  // Writes NAME.gltf and NAME.bin into dir; returns the .gltf path.
+  std::string write(const std::string& dir, const std::string& name) {
+    doc["buffers"] = json::array({{{"uri", name + ".bin"}, {"byteLength", bin.size()}}});
+    test::write_file(dir + "/" + name + ".bin", std::string(bin.begin(), bin.end()));
+    std::string path = dir + "/" + name + ".gltf";
+    test::write_file(path, doc.dump(1));
+    return path;
+  }
+};
+
+// A unit quad in the xy plane, its indices with the given component type, a material and a mesh.
+GltfBuilder quad_scene(int index_type) {
+  GltfBuilder b;
+  float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  uint32_t idx32[] = {0, 1, 2, 0, 2, 3};
+  int p = b.add_accessor(b.add_view(pos, sizeof pos), 5126, 4, "VEC3");
+  int t = b.add_accessor(b.add_view(uv, sizeof uv), 5126, 4, "VEC2");
+  int i;
+  if (index_type == 5121) {
+    uint8_t idx[6];
+    for (int k = 0; k < 6; ++k) idx[k] = uint8_t(idx32[k]);
+    i = b.add_accessor(b.add_view(idx, sizeof idx), 5121, 6, "SCALAR");
+  } else if (index_type == 5123) {
+    uint16_t idx[6];
+    for (int k = 0; k < 6; ++k) idx[k] = uint16_t(idx32[k]);
+    i = b.add_accessor(b.add_view(idx, sizeof idx), 5123, 6, "SCALAR");
+  } else {
+    i = b.add_accessor(b.add_view(idx32, sizeof idx32), 5125, 6, "SCALAR");
+  }
+  b.doc["meshes"] = json::array({{{"name", "quad"},
+                                  {"primitives", json::array({{{"attributes", {{"POSITION", p}, {"TEXCOORD_0", t}}},
+                                                               {"indices", i}, {"material", 0}}})}}});
+  b.doc["materials"] = json::array({{{"name", "glow"},
+                                     {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"metallicFactor", 0.0}}},
+                                     {"emissiveFactor", {1.0, 0.5, 0.0}},
+                                     {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}});
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_lights_punctual"};
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  b.doc["scenes"] = json::array({{{"nodes", {0}}}});
+  return b;
+}
+
+void expect_load_error(const std::string& path, const std::string& fragment) {
+  try {
+    load_gltf(path);
+    ADD_FAILURE() << "loading " << path << " should have failed (" << fragment << ")";
+  } catch (const Error& e) {
+    std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+  }
+}
+
+TEST(GltfLoader, ReadsEveryIndexWidth) {
+  for (int type : {5121, 5123, 5125}) {
+    std::string path = quad_scene(type).write(test::scratch_dir(), "quad" + std::to_string(type));
+    Scene s = load_gltf(path);
+    ASSERT_EQ(s.triangle_count(), 2u);
+    EXPECT_EQ(s.positions[4], glm::vec3(1, 1, 0));  // second triangle's second vertex: index 2
+    EXPECT_EQ(s.uvs[4], glm::vec2(1, 1));
+    EXPECT_EQ(s.normals[0], glm::vec3(0, 0, 1));  // no NORMAL attribute: the geometric normal
+  }
+}
+
+TEST(GltfLoader, ReadsMaterialsEmissionAndTransforms) {
+  GltfBuilder b = quad_scene(5125);
+  // Parent translates by (10, 0, 0); child rotates 90 degrees about z and scales by 2.
+  b.doc["nodes"] = json::array({{{"translation", {10, 0, 0}}, {"children", {1}}},
+                                {{"mesh", 0}, {"rotation", {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}, {"scale", {2, 2, 2}}}});
+  Scene s = load_gltf(b.write(test::scratch_dir(), "hier"));
+  ASSERT_EQ(s.triangle_count(), 2u);
+  glm::vec3 v1 = s.positions[1];  // local (1, 0, 0) -> scaled (2, 0, 0) -> rotated (0, 2, 0) -> translated (10, 2, 0)
+  EXPECT_NEAR(v1.x, 10.0f, 1e-5f);
+  EXPECT_NEAR(v1.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(v1.z, 0.0f, 1e-5f);
+  const SceneMaterial& m = s.materials[s.triangle_material[0]];
+  EXPECT_FLOAT_EQ(m.base_color.y, 0.25f);
+  EXPECT_FLOAT_EQ(m.emission.x, 4.0f);
+  EXPECT_FLOAT_EQ(m.emission.y, 2.0f);
+}
+
+TEST(GltfLoader, MirroringTransformKeepsFacesFacingOut) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["nodes"] = json::array({{{"mesh", 0}, {"scale", {-1, 1, 1}}}});
+  Scene s = load_gltf(b.write(test::scratch_dir(), "mirror"));
+  glm::vec3 n = glm::cross(s.positions[1] - s.positions[0], s.positions[2] - s.positions[0]);
+  EXPECT_GT(n.z, 0.0f);  // still facing +z, as the unmirrored quad
+}
+
+TEST(GltfLoader, ReadsCamerasAndLights) {
+  GltfBuilder b = quad_scene(5123);
+  b.doc["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}});
+  b.doc["extensions"] = {{"KHR_lights_punctual",
+                          {{"lights", json::array({{{"type", "point"}, {"intensity", 10.0}, {"color", {1, 0.5, 0.25}}},
+                                                   {{"type", "spot"}, {"intensity", 5.0}, {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.4}}}},
+                                                   {{"type", "directional"}, {"intensity", 2.0}}})}}}};
+  b.doc["nodes"] = json::array({{{"mesh", 0}},
+                                {{"camera", 0}, {"translation", {0, 0, 5}}},
+                                {{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                                {{"translation", {0, 0, 4}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}},
+                                {{"rotation", {std::sqrt(0.5), 0, 0, std::sqrt(0.5)}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}}});
+  b.doc["scenes"] = json::array({{{"nodes", {0, 1, 2, 3, 4}}}});
+  Scene s = load_gltf(b.write(test::scratch_dir(), "camlight"));
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.cameras[0].eye, glm::vec3(0, 0, 5));
+  EXPECT_NEAR(s.cameras[0].target.z, 4.0f, 1e-6f);  // looks down -z
+  EXPECT_FLOAT_EQ(s.cameras[0].aspect.value(), 2.0f);
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.lights[0].type, LightType::point);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(1, 2, 3));
+  EXPECT_FLOAT_EQ(s.lights[0].intensity.z, 2.5f);
+  EXPECT_EQ(s.lights[1].type, LightType::spot);
+  EXPECT_FLOAT_EQ(s.lights[1].outer_cone, 0.4f);
+  EXPECT_EQ(s.lights[2].type, LightType::directional);
+  EXPECT_NEAR(s.lights[2].direction.y, 1.0f, 1e-5f);  // -z rotated 90 degrees about x points to +y
+}
+
+TEST(GltfLoader, SceneWithoutCameraOrLightGetsDefaults) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["materials"][0].erase("emissiveFactor");
+  Scene s = load_scene(b.write(test::scratch_dir(), "bare"));
+  EXPECT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.lights.size(), 1u);
+}
+
+TEST(GltfLoader, RejectsBadJson) {
+  std::string path = test::scratch_dir() + "/bad.gltf";
+  test::write_file(path, "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");
+  expect_load_error(path, "cannot be loaded");
+}
+
+TEST(GltfLoader, RejectsMissingFile) { expect_load_error(test::scratch_dir() + "/nothing.gltf", "no such file"); }
+
+TEST(GltfLoader, RejectsMissingBuffer) {
+  std::string dir = test::scratch_dir();
+  std::string path = quad_scene(5125).write(dir, "nobin");
+  std::filesystem::remove(dir + "/nobin.bin");
+  expect_load_error(path, "cannot be loaded");
+}
+
+TEST(GltfLoader, RejectsTruncatedBuffer) {
+  std::string dir = test::scratch_dir();
+  GltfBuilder b = quad_scene(5125);
+  std::string path = b.write(dir, "trunc");
+  // Cut the binary file short and state the short length, so only the views' ranges reveal the damage.
+  b.bin.resize(40);
+  b.doc["buffers"][0]["byteLength"] = 40;
+  test::write_file(dir + "/trunc.bin", std::string(b.bin.begin(), b.bin.end()));
+  test::write_file(path, b.doc.dump());
+  expect_load_error(path, "runs past the end of buffer");
+}
+
+TEST(GltfLoader, RejectsAccessorPastItsView) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["accessors"][0]["count"] = 400;
+  expect_load_error(b.write(test::scratch_dir(), "overrun"), "reads past the end of its buffer view");
+}
+
+TEST(GltfLoader, RejectsOutOfRangeIndices) {
+  GltfBuilder b = quad_scene(5125);
+  uint32_t idx[] = {0, 1, 2, 0, 2, 7};
+  b.doc["accessors"][2]["bufferView"] = b.add_view(idx, sizeof idx);
+  expect_load_error(b.write(test::scratch_dir(), "badidx"), "index 7 at position 5 is out of range");
+}
+
+TEST(GltfLoader, RejectsNanPositions) {
+  GltfBuilder b = quad_scene(5125);
+  float pos[] = {0, 0, 0, NAN, 0, 0, 1, 1, 0, 0, 1, 0};
+  b.doc["accessors"][0]["bufferView"] = b.add_view(pos, sizeof pos);
+  expect_load_error(b.write(test::scratch_dir(), "nan"), "vertex 1 has a non-finite position");
+}
+
+TEST(GltfLoader, SkipsNonTriangleModesAndRejectsAnEmptyResult) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["meshes"][0]["primitives"][0]["mode"] = 1;  // lines
+  expect_load_error(b.write(test::scratch_dir(), "lines"), "no triangles");
+}
+
+TEST(GltfLoader, RejectsNodeCycles) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["nodes"] = json::array({{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}});
+  expect_load_error(b.write(test::scratch_dir(), "cycle"), "cycle");
+}
+
+// The CLI path: a malformed scene gives an error and leaves no output file behind.
+TEST(GltfLoader, RenderOfMalformedSceneWritesNothing) {
+  std::string dir = test::scratch_dir();
+  std::string bad = dir + "/broken.gltf";
+  test::write_file(bad, "not json at all");
+  RenderOptions options;
+  options.scene_path = bad;
+  options.outputs = {dir + "/out.exr", dir + "/out.png"};
+  EXPECT_THROW(run_render(options), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.png"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+}
+
+TEST(GltfLoader, LoadsEverySharedScene) {
+  std::filesystem::path root = std::filesystem::path(RCSPLAT_SOURCE_DIR) / "../shared/scenes";
+  if (!std::filesystem::exists(root)) GTEST_SKIP() << root << " is absent";
+  size_t loaded = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+    if (entry.path().extension() != ".gltf") continue;
+    SCOPED_TRACE(entry.path().string());
+    Scene s = load_gltf(entry.path().string());
+    EXPECT_GT(s.triangle_count(), 0u);
+    EXPECT_FALSE(s.cameras.empty());
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 7u);
+}
+
+}  // namespace
+}  // namespace rcsplat
