@@ -97,6 +97,7 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
                {"emission", rgb, &image.emission},
                {"albedo", rgb, &image.albedo},
                {"normal", {"X", "Y", "Z"}, &image.normal},
+               {"position", {"X", "Y", "Z"}, &image.position},
                {"depth", {"Z"}, &image.depth}});
   } else {
     throw Error(path + ": unknown output format '" + ext + "' (use .exr or .png)");

@@ -66,6 +66,7 @@ RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSet
   img.emission.resize(pixels * 3);
   img.albedo.resize(pixels * 3);
   img.normal.resize(pixels * 3);
+  img.position.resize(pixels * 3);
   img.depth.resize(pixels);
   img.triangle.resize(pixels);
   st.primary_rays = pixels;
@@ -79,6 +80,7 @@ RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSet
       img.emission[3 * i + c] = s.emission[c];
       img.albedo[3 * i + c] = s.albedo[c];
       img.normal[3 * i + c] = s.normal[c];
+      img.position[3 * i + c] = s.position[c];
       img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
     }
   }

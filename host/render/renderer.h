@@ -34,6 +34,7 @@ struct RenderedImage {
   std::vector<float> emission;  // light emitted toward the camera
   std::vector<float> albedo;
   std::vector<float> normal;    // shading normal, world space
+  std::vector<float> position;  // world-space position of the primary hit
   std::vector<float> depth;     // distance along the primary ray; 0 where nothing was hit
   std::vector<int> triangle;    // the primary hit's triangle, -1 where nothing was hit
   RenderStats stats;
