@@ -97,6 +97,34 @@ TEST(GltfLoader, ReadsEveryIndexWidth) {
   }
 }
 
+// The same quad as a binary .glb: a 12-byte header, then a JSON chunk and a BIN chunk, each padded to 4 bytes.
+TEST(GltfLoader, ReadsBinaryGlb) {
+  GltfBuilder b = quad_scene(5123);
+  b.doc["buffers"] = json::array({{{"byteLength", b.bin.size()}}});
+  std::string text = b.doc.dump();
+  while (text.size() % 4) text += ' ';
+  std::vector<uint8_t> bin = b.bin;
+  while (bin.size() % 4) bin.push_back(0);
+  auto u32 = [](std::string& out, uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+  std::string glb;
+  u32(glb, 0x46546C67);  // "glTF"
+  u32(glb, 2);
+  u32(glb, uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+  u32(glb, uint32_t(text.size()));
+  u32(glb, 0x4E4F534A);  // "JSON"
+  glb += text;
+  u32(glb, uint32_t(bin.size()));
+  u32(glb, 0x004E4942);  // "BIN"
+  glb.append(bin.begin(), bin.end());
+  std::string path = test::scratch_dir() + "/quad.glb";
+  test::write_file(path, glb);
+  Scene s = load_gltf(path);
+  ASSERT_EQ(s.triangle_count(), 2u);
+  EXPECT_EQ(s.positions[4], glm::vec3(1, 1, 0));
+  test::write_file(path, glb.substr(0, glb.size() - 20));  // truncated
+  expect_load_error(path, path);
+}
+
 TEST(GltfLoader, ReadsMaterialsEmissionAndTransforms) {
   GltfBuilder b = quad_scene(5125);
   // Parent translates by (10, 0, 0); child rotates 90 degrees about z and scales by 2.

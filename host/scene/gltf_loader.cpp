@@ -64,11 +64,11 @@ class GltfReader {
       fail(what + ": accessor " + std::to_string(accessor_index) + " has the wrong type (expected " +
            std::to_string(components) + " components)");
     }
-    std::vector<float> out(acc.count * size_t(components), 0.0f);
     const unsigned char* data = nullptr;
     size_t stride = 0;
     int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
-    element_data(acc, accessor_index, components, what, &data, &stride);
+    element_data(acc, accessor_index, components, what, &data, &stride);  // validates before anything is allocated
+    std::vector<float> out(acc.count * size_t(components), 0.0f);
     if (!data) return out;  // no buffer view: all zeros, as the specification says
     for (size_t i = 0; i < acc.count; ++i) {
       const unsigned char* e = data + i * stride;
@@ -130,7 +130,11 @@ class GltfReader {
     if (acc.sparse.isSparse) fail(name + " is sparse, which is not supported");
     int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     if (component_size <= 0) fail(name + " has an invalid component type");
-    if (acc.bufferView < 0) return;
+    if (acc.bufferView < 0) {
+      // No data: all zeros by the specification. Bound the count so that a hostile file cannot demand terabytes.
+      if (acc.count > (size_t(1) << 26)) fail(name + " has no buffer view and an implausible count");
+      return;
+    }
     if (size_t(acc.bufferView) >= model_.bufferViews.size()) fail(name + " refers to a missing buffer view");
     const tinygltf::BufferView& view = model_.bufferViews[size_t(acc.bufferView)];
     if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
