@@ -1,12 +1,14 @@
 // Casts a batch of arbitrary rays: closest hits or occlusion. Used by the tests (against Embree) and the benchmarks.
 #include "traverse.h"
 
+inline RayPrecomp load_ray(RayDesc ray) { return ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction)); }
+
 __kernel void cast_closest(__global const float8* nodes, __global const float8* blocks, __global const RayDesc* rays,
                            __global HitDesc* hits, uint ray_count) {
   uint i = get_global_id(0);
   if (i >= ray_count) return;
   RayDesc ray = rays[i];
-  RayPrecomp r = ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction));
+  RayPrecomp r = load_ray(ray);
   TraceHit h;
   bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, false, &h);
   HitDesc out;
@@ -22,7 +24,7 @@ __kernel void cast_occlusion(__global const float8* nodes, __global const float8
   uint i = get_global_id(0);
   if (i >= ray_count) return;
   RayDesc ray = rays[i];
-  RayPrecomp r = ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction));
+  RayPrecomp r = load_ray(ray);
   TraceHit h;
   occluded[i] = bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, true, &h) ? 1 : 0;
 }

@@ -47,6 +47,25 @@ std::vector<RayDesc> random_rays(size_t count, uint32_t seed, float tmax) {
   return rays;
 }
 
+// The triangles' BVH on the device and a ray caster over it.
+struct DeviceRays {
+  Bvh8 bvh;
+  DeviceBvh device_bvh;
+  RayCastPass caster;
+  explicit DeviceRays(const std::vector<glm::vec3>& positions)
+      : bvh(build_bvh8(positions)), device_bvh(test::gpu(), bvh), caster(test::gpu(), device_bvh) {}
+  std::vector<HitDesc> closest(const std::vector<RayDesc>& rays) {
+    caster.set_rays(rays);
+    caster.cast_closest();
+    return caster.closest_hits();
+  }
+  std::vector<int> occlusion(const std::vector<RayDesc>& rays) {
+    caster.set_rays(rays);
+    caster.cast_occlusion();
+    return caster.occlusion();
+  }
+};
+
 struct Agreement {
   size_t rays = 0, hit_miss_disagree = 0, distance_off = 0, other_prim = 0;
 };
@@ -55,17 +74,12 @@ struct Agreement {
 // faces) and counts as agreement; distances must match to a relative 1e-4 (both test in float).
 Agreement compare_with_embree(const std::vector<glm::vec3>& positions, const std::vector<RayDesc>& rays) {
   EmbreeScene embree(positions);
-  Bvh8 bvh = build_bvh8(positions);
-  DeviceBvh device_bvh(test::gpu(), bvh);
-  RayCastPass caster(test::gpu(), device_bvh);
-  caster.set_rays(rays);
-  caster.cast_closest();
-  std::vector<HitDesc> hits = caster.closest_hits();
+  std::vector<HitDesc> hits = DeviceRays(positions).closest(rays);
   Agreement a;
   a.rays = rays.size();
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayDesc& r = rays[i];
-    EmbreeHit e = embree.intersect({r.origin[0], r.origin[1], r.origin[2]}, {r.direction[0], r.direction[1], r.direction[2]},
+    EmbreeHit e = embree.intersect(ray_origin(r), ray_direction(r),
                                    r.tmin, r.tmax);
     if ((e.prim < 0) != (hits[i].prim < 0)) {
       ++a.hit_miss_disagree;
@@ -103,12 +117,7 @@ TEST(Traversal, ClosedMeshIsWatertight) {
   std::uniform_real_distribution<float> small(-0.3f, 0.3f);
   for (RayDesc& r : rays)
     for (int i = 0; i < 3; ++i) r.origin[i] = small(rng);  // inside the sphere
-  Bvh8 bvh = build_bvh8(sphere.positions);
-  DeviceBvh device_bvh(test::gpu(), bvh);
-  RayCastPass caster(test::gpu(), device_bvh);
-  caster.set_rays(rays);
-  caster.cast_closest();
-  std::vector<HitDesc> hits = caster.closest_hits();
+  std::vector<HitDesc> hits = DeviceRays(sphere.positions).closest(rays);
   size_t escaped = 0;
   for (const HitDesc& h : hits) escaped += h.prim < 0;
   EXPECT_EQ(escaped, 0u);
@@ -140,16 +149,11 @@ TEST(Traversal, ShadowRaysMatchEmbreeOcclusion) {
   std::vector<glm::vec3> soup = random_soup(4000, 31);
   std::vector<RayDesc> rays = random_rays(100000, 32, 1.0f);
   EmbreeScene embree(soup);
-  Bvh8 bvh = build_bvh8(soup);
-  DeviceBvh device_bvh(test::gpu(), bvh);
-  RayCastPass caster(test::gpu(), device_bvh);
-  caster.set_rays(rays);
-  caster.cast_occlusion();
-  std::vector<int> occluded = caster.occlusion();
+  std::vector<int> occluded = DeviceRays(soup).occlusion(rays);
   size_t disagree = 0, blocked = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayDesc& r = rays[i];
-    bool e = embree.occluded({r.origin[0], r.origin[1], r.origin[2]}, {r.direction[0], r.direction[1], r.direction[2]},
+    bool e = embree.occluded(ray_origin(r), ray_direction(r),
                              r.tmin, r.tmax);
     disagree += e != (occluded[i] != 0);
     blocked += e;
@@ -164,12 +168,7 @@ TEST(Traversal, EmptyAndSingleTriangleScenes) {
   std::vector<RayDesc> rays(2);
   rays[0] = {{0, 0, -1}, 0.0f, {0, 0, 1}, INFINITY};
   rays[1] = {{5, 5, -1}, 0.0f, {0, 0, 1}, INFINITY};
-  Bvh8 bvh = build_bvh8(one);
-  DeviceBvh device_bvh(test::gpu(), bvh);
-  RayCastPass caster(test::gpu(), device_bvh);
-  caster.set_rays(rays);
-  caster.cast_closest();
-  std::vector<HitDesc> hits = caster.closest_hits();
+  std::vector<HitDesc> hits = DeviceRays(one).closest(rays);
   EXPECT_EQ(hits[0].prim, 0);
   EXPECT_NEAR(hits[0].t, 1.0f, 1e-6f);
   EXPECT_EQ(hits[1].prim, -1);

@@ -9,6 +9,9 @@
 
 namespace rcsplat {
 
+inline glm::vec3 ray_origin(const RayDesc& r) { return {r.origin[0], r.origin[1], r.origin[2]}; }
+inline glm::vec3 ray_direction(const RayDesc& r) { return {r.direction[0], r.direction[1], r.direction[2]}; }
+
 struct SurfaceSample {
   glm::vec3 position, normal;  // normal: geometric, facing the camera
 };

@@ -38,8 +38,7 @@ double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& ray
       for (size_t begin = t * chunk; begin < rays.size(); begin += threads * chunk)
         for (size_t i = begin; i < std::min(rays.size(), begin + chunk); ++i) {
           const RayDesc& r = rays[i];
-          hits[i] = embree.intersect(glm::vec3(r.origin[0], r.origin[1], r.origin[2]),
-                                     glm::vec3(r.direction[0], r.direction[1], r.direction[2]), r.tmin, r.tmax);
+          hits[i] = embree.intersect(ray_origin(r), ray_direction(r), r.tmin, r.tmax);
         }
     });
   }

@@ -28,23 +28,17 @@ double RayCastPass::run(cl::Kernel& kernel) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double RayCastPass::cast_closest() {
-  closest_.setArg(0, bvh_.nodes());
-  closest_.setArg(1, bvh_.blocks());
-  closest_.setArg(2, rays_);
-  closest_.setArg(3, hits_);
-  closest_.setArg(4, cl_uint(ray_count_));
-  return run(closest_);
+double RayCastPass::cast(cl::Kernel& kernel, const cl::Buffer& results) {
+  kernel.setArg(0, bvh_.nodes());
+  kernel.setArg(1, bvh_.blocks());
+  kernel.setArg(2, rays_);
+  kernel.setArg(3, results);
+  kernel.setArg(4, cl_uint(ray_count_));
+  return run(kernel);
 }
 
-double RayCastPass::cast_occlusion() {
-  occlusion_.setArg(0, bvh_.nodes());
-  occlusion_.setArg(1, bvh_.blocks());
-  occlusion_.setArg(2, rays_);
-  occlusion_.setArg(3, occluded_);
-  occlusion_.setArg(4, cl_uint(ray_count_));
-  return run(occlusion_);
-}
+double RayCastPass::cast_closest() { return cast(closest_, hits_); }
+double RayCastPass::cast_occlusion() { return cast(occlusion_, occluded_); }
 
 std::vector<HitDesc> RayCastPass::closest_hits() { return gpu_.download<HitDesc>(hits_, ray_count_); }
 std::vector<int> RayCastPass::occlusion() { return gpu_.download<int>(occluded_, ray_count_); }

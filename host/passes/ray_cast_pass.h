@@ -15,13 +15,14 @@ class RayCastPass {
 
   // Uploads rays once so that repeated casts (benchmarks) time the kernel alone.
   void set_rays(const std::vector<RayDesc>& rays);
-  // Runs the kernel on the uploaded rays and waits; returns the kernel's seconds (from the queue's clock).
+  // Runs the kernel on the uploaded rays and waits; returns the wall-clock seconds of the launch.
   double cast_closest();
   double cast_occlusion();
   std::vector<HitDesc> closest_hits();
   std::vector<int> occlusion();
 
  private:
+  double cast(cl::Kernel& kernel, const cl::Buffer& results);  // binds the arguments shared by both kernels
   double run(cl::Kernel& kernel);
 
   GpuContext& gpu_;
