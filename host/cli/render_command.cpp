@@ -1,5 +1,4 @@
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cl/device_info.h"
@@ -14,9 +13,7 @@ namespace rcsplat {
 int run_render(const RenderOptions& options) {
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
-    std::string ext = std::filesystem::path(out).extension().string();
-    if (ext != ".exr" && ext != ".png" && ext != ".EXR" && ext != ".PNG")
-      throw Error(out + ": unknown output format (use .exr or .png)");
+    if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
   }
   Scene scene = load_scene(options.scene_path);
   DeviceInfo device = select_device(options.device);

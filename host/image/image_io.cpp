@@ -8,16 +8,11 @@
 #include <filesystem>
 
 #include "util/error.h"
+#include "util/paths.h"
 
 namespace rcsplat {
 namespace fs = std::filesystem;
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 // Writes through OpenImageIO to a temporary file beside the target, then renames it into place.
 void write_pixels(const std::string& path, OIIO::ImageSpec spec, const void* pixels) {
@@ -83,6 +78,11 @@ void write_png(const std::string& path, int width, int height, const std::vector
   }
   OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
   write_pixels(path, spec, bytes.data());
+}
+
+bool is_output_format(const std::string& path) {
+  std::string ext = lower_extension(path);
+  return ext == ".png" || ext == ".exr";
 }
 
 void write_render(const std::string& path, const RenderedImage& image, float exposure_stops) {

@@ -18,6 +18,9 @@ void write_exr(const std::string& path, int width, int height, const std::vector
 // Exposure in stops, then a filmic curve (Narkowicz's ACES fit) and the sRGB transfer function.
 void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops);
 
+// Whether write_render can write this path (.exr or .png, any case).
+bool is_output_format(const std::string& path);
+
 // Writes the render to a .exr or .png file chosen by the path's extension.
 void write_render(const std::string& path, const RenderedImage& image, float exposure_stops);
 

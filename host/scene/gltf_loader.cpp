@@ -14,6 +14,7 @@
 #include "kernels/shared_types.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/paths.h"
 
 namespace rcsplat {
 namespace {
@@ -412,8 +413,7 @@ Scene load_gltf(const std::string& path) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  std::string ext = lower_extension(path);
   bool ok;
   try {
     ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
