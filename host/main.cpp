@@ -8,15 +8,48 @@
 
 namespace {
 
+using namespace rcsplat;
+
 std::optional<glm::vec3> as_vec3(const std::vector<float>& v) {
   if (v.empty()) return std::nullopt;
   return glm::vec3(v[0], v[1], v[2]);
 }
 
+struct CameraFlags {
+  std::vector<float> eye, target, up;
+  std::optional<float> fov;
+  void apply(RenderSettings& s) const {
+    s.camera_overrides.eye = as_vec3(eye);
+    s.camera_overrides.target = as_vec3(target);
+    s.camera_overrides.up = as_vec3(up);
+    s.camera_overrides.fov_degrees = fov;
+  }
+};
+
+// The options every image-making command shares: scene, outputs, device, frame and camera, light samples.
+void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam) {
+  cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
+  cmd->add_option("-o,--output", o.outputs, "Output image(s): .exr (linear, with layers) or .png (tone-mapped)")
+      ->required();
+  cmd->add_option("--device", o.device, "OpenCL device: index or name substring (see `rcsplat devices`)");
+  cmd->add_option("--width", o.settings.width, "Image width in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o.settings.height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--camera", o.settings.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--eye", cam.eye, "Camera position x,y,z")->delimiter(',')->expected(3);
+  cmd->add_option("--target", cam.target, "Point the camera looks at x,y,z")->delimiter(',')->expected(3);
+  cmd->add_option("--up", cam.up, "Camera up vector x,y,z")->delimiter(',')->expected(3);
+  cmd->add_option("--fov", cam.fov, "Vertical field of view in degrees");
+  cmd->add_option("--light-samples", o.settings.light_samples,
+                  "Samples per pixel on emissive triangles (rounded up to a square)")
+      ->check(CLI::Range(0u, 1u << 20));
+  cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
+  cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
+  cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace rcsplat;
   CLI::App app{"rcsplat: global illumination by radiance cache splatting on OpenCL devices"};
   app.require_subcommand(1);
   app.fallthrough();  // -q may follow the subcommand
@@ -28,26 +61,43 @@ int main(int argc, char** argv) {
   devices_cmd->add_option("--json", devices.json_path, "Also write the list as JSON");
 
   RenderOptions render;
-  std::vector<float> eye, target, up;
-  std::optional<float> fov;
+  CameraFlags render_camera;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
-  render_cmd->add_option("scene", render.scene_path, "glTF 2.0 scene (.gltf or .glb)");
-  render_cmd->add_option("-o,--output", render.outputs, "Output image(s): .exr (linear, with layers) or .png (tone-mapped)")
-      ->required();
-  render_cmd->add_option("--device", render.device, "OpenCL device: index or name substring (see `rcsplat devices`)");
-  render_cmd->add_option("--width", render.settings.width, "Image width in pixels")->check(CLI::Range(1, 16384));
-  render_cmd->add_option("--height", render.settings.height, "Image height in pixels")->check(CLI::Range(1, 16384));
-  render_cmd->add_option("--camera", render.settings.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
-  render_cmd->add_option("--eye", eye, "Camera position x,y,z")->delimiter(',')->expected(3);
-  render_cmd->add_option("--target", target, "Point the camera looks at x,y,z")->delimiter(',')->expected(3);
-  render_cmd->add_option("--up", up, "Camera up vector x,y,z")->delimiter(',')->expected(3);
-  render_cmd->add_option("--fov", fov, "Vertical field of view in degrees");
-  render_cmd->add_option("--light-samples", render.settings.light_samples,
-                         "Samples per pixel on emissive triangles (rounded up to a square)")
-      ->check(CLI::Range(0u, 65536u));
-  render_cmd->add_option("--seed", render.settings.seed, "Seed of the sample pattern");
-  render_cmd->add_option("--exposure", render.exposure, "PNG exposure in stops");
-  render_cmd->add_option("--json", render.json_path, "Also write the summary as JSON");
+  add_frame_options(render_cmd, render, render_camera);
+  std::string gi = "splat", hemisphere, spacing;
+  render_cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
+                                     "irradiance cache on the host), path (path tracing), none")
+      ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
+  render_cmd->add_option("--accuracy", render.settings.cache.accuracy,
+                         "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer")
+      ->check(CLI::Range(1e-3f, 100.0f));
+  render_cmd->add_option("--hemisphere", hemisphere, "Rays per record as MxN strata (theta x phi), default 16x32");
+  render_cmd->add_option("--spacing", spacing, "Record radius clamps MIN,MAX in pixels, default 3,20");
+  render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
+      ->check(CLI::Range(1u, 1u << 20));
+  render_cmd->add_flag("--stratified", render.settings.path.stratified,
+                       "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
+
+  RenderOptions reference;
+  CameraFlags reference_camera;
+  reference.settings.gi = GiMethod::path;
+  reference.settings.path.samples = 1024;
+  reference.settings.path.stratified = true;
+  bool light_samples_given = false;
+  CLI::App* reference_cmd =
+      app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
+  add_frame_options(reference_cmd, reference, reference_camera);
+  reference_cmd->add_option("--spp", reference.settings.path.samples, "Samples per pixel (default 1024); the light "
+                                                                      "samples default to the same number")
+      ->check(CLI::Range(1u, 1u << 20));
+  reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
+
+  CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE");
+  compare_cmd->add_option("image", compare.image_path, "The image to judge (.exr)")->required();
+  compare_cmd->add_option("reference", compare.reference_path, "The reference (.exr)")->required();
+  compare_cmd->add_option("--heatmap", compare.heatmap_path, "Write a false-colour relative error image (.png)");
+  compare_cmd->add_option("--json", compare.json_path, "Also write the numbers as JSON");
 
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Traversal speed: the OpenCL kernel against Embree on the same rays");
@@ -64,12 +114,18 @@ int main(int argc, char** argv) {
   try {
     if (*devices_cmd) return run_devices(devices);
     if (*render_cmd) {
-      render.settings.camera_overrides.eye = as_vec3(eye);
-      render.settings.camera_overrides.target = as_vec3(target);
-      render.settings.camera_overrides.up = as_vec3(up);
-      render.settings.camera_overrides.fov_degrees = fov;
+      render_camera.apply(render.settings);
+      render.settings.gi = parse_gi_method(gi);
+      if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
+      if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
       return run_render(render);
     }
+    if (*reference_cmd) {
+      reference_camera.apply(reference.settings);
+      if (!light_samples_given) reference.settings.light_samples = reference.settings.path.samples;
+      return run_render(reference);
+    }
+    if (*compare_cmd) return run_compare(compare);
     if (*bench_cmd) return run_bench(bench);
   } catch (const Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -127,6 +127,39 @@ typedef struct {
   rc_int prim;  // -1 when nothing was hit
 } HitDesc;
 
+// An irradiance cache record (ALGORITHM.md section 2): where it sits, how far it reaches, its irradiance and the
+// Ward-Heckbert gradients. A gradient row is d(E.rgb)/d(axis): E_k(P) = E + sum_axis delta[axis] * row[axis].
+typedef struct {
+  float position[3];
+  float radius;  // validity radius R in world units, clamped in screen space and by its neighbours
+  float normal[3];
+  rc_int pixel;  // the pixel it was placed at (index y * width + x)
+  float irradiance[3];
+  float pixel_size;  // world size of one pixel at the record, for the screen-space clamps
+  float grad_translation[9];
+  float grad_rotation[9];
+  float harmonic_distance;  // Ward's harmonic mean hit distance, before any clamp
+  float pad;
+} CacheRecord;
+
+// How records sample their hemisphere and clamp their radii.
+typedef struct {
+  rc_uint theta_strata;  // M
+  rc_uint phi_strata;    // N
+  rc_uint seed;
+  float min_spacing;  // radius clamps in pixel footprints
+  float max_spacing;
+  float pad[3];
+} HemisphereParams;
+
+// The splat's constants for one frame.
+typedef struct {
+  float accuracy;          // a: a record reaches points with Ward weight above 1/a
+  float irradiance_scale;  // fixed-point unit of w * E (from the largest record irradiance)
+  rc_uint record_count;
+  float pad;
+} SplatParams;
+
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
 static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
@@ -139,6 +172,9 @@ static_assert(sizeof(CameraParams) == 64);
 static_assert(sizeof(GBufferSample) == 80);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
+static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);
+static_assert(sizeof(HemisphereParams) == 32);
+static_assert(sizeof(SplatParams) == 16);
 #endif
 
 #endif

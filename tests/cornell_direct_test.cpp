@@ -91,9 +91,10 @@ TEST(CornellDirect, MatchesHostReferenceStatistically) {
   const int size = 48, region = 6, reference_samples = 1024;
   const unsigned device_samples = 16;
   RenderSettings settings;
+  settings.gi = GiMethod::none;
   settings.width = settings.height = size;
   settings.light_samples = device_samples;
-  RenderedImage img = render_direct(test::gpu(), scene, settings);
+  RenderedImage img = render(test::gpu(), scene, settings);
   CameraParams cam = camera_params(scene.cameras[0], size, size);
   std::vector<ReferencePixel> ref = reference_direct(scene, cam, reference_samples);
 

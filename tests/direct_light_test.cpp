@@ -33,9 +33,10 @@ Scene plane_scene() {
 
 RenderedImage render(const Scene& s, int size, unsigned light_samples) {
   RenderSettings settings;
+  settings.gi = GiMethod::none;
   settings.width = settings.height = size;
   settings.light_samples = light_samples;
-  return render_direct(test::gpu(), s, settings);
+  return render(test::gpu(), s, settings);
 }
 
 dvec3 position_of(const RenderedImage& img, size_t i) {

@@ -51,12 +51,13 @@ TEST(OpenClLayer, BuildFailureNamesFileAndLine) {
 TEST(OpenClLayer, SameInputSameImage) {
   Scene scene = make_cornell_box();
   RenderSettings settings;
+  settings.gi = GiMethod::none;
   settings.width = settings.height = 40;
-  RenderedImage a = render_direct(test::gpu(), scene, settings);
-  RenderedImage b = render_direct(test::gpu(), scene, settings);
+  RenderedImage a = render(test::gpu(), scene, settings);
+  RenderedImage b = render(test::gpu(), scene, settings);
   EXPECT_EQ(a.color, b.color);
   settings.seed = 1;
-  RenderedImage c = render_direct(test::gpu(), scene, settings);
+  RenderedImage c = render(test::gpu(), scene, settings);
   EXPECT_NE(a.color, c.color);  // the seed changes the sample pattern
   for (float v : a.color) ASSERT_TRUE(std::isfinite(v));
 }

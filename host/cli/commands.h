@@ -23,6 +23,16 @@ struct RenderOptions {
 };
 int run_render(const RenderOptions& options);
 
+struct CompareOptions {
+  std::string image_path, reference_path, heatmap_path, json_path;
+};
+int run_compare(const CompareOptions& options);
+
+// Parsers for the render options; each throws rcsplat::Error naming the option on bad input.
+GiMethod parse_gi_method(const std::string& name);
+void parse_hemisphere(const std::string& text, CacheSettings& cache);  // "MxN"
+void parse_spacing(const std::string& text, CacheSettings& cache);     // "MIN,MAX"
+
 struct BenchOptions {
   std::string scene_path;  // empty: Sponza from ../shared/scenes when present, else a generated mesh
   std::string device;

@@ -9,45 +9,92 @@
 #include "util/log.h"
 
 namespace rcsplat {
+namespace {
+
+double mrays_per_second(uint64_t rays, double seconds) { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+
+void print_summary(const Scene& scene, const RenderedImage& image, const RenderSettings& settings,
+                   const std::vector<std::string>& outputs) {
+  const RenderStats& s = image.stats;
+  std::printf("scene        %s\n", scene.source.c_str());
+  std::printf("device       %s\n", s.device.c_str());
+  std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
+              s.light_samples, gi_method_name(s.gi));
+  std::printf("triangles    %zu (BVH: %zu nodes, %zu triangle blocks, depth %d)\n", s.triangles, s.bvh_nodes,
+              s.bvh_blocks, s.bvh_depth);
+  std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
+              (unsigned long long)s.shadow_rays);
+  std::printf("time         BVH build %.3f s, upload %.3f s, kernel build %.3f s\n", s.bvh_build_s, s.upload_s, s.program_s);
+  std::printf("             G-buffer %.3f s, direct light %.3f s (%.2f Mrays/s)\n", s.gbuffer_s, s.direct_s,
+              mrays_per_second(s.primary_rays + s.shadow_rays, s.gbuffer_s + s.direct_s));
+  if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
+    const CacheSettings& c = settings.cache;
+    std::printf("cache        a = %g, %ux%u rays per record, radius %g..%g pixels\n", c.accuracy, c.theta_strata,
+                c.phi_strata, c.min_spacing, c.max_spacing);
+    std::printf("records      %llu:", (unsigned long long)s.records);
+    for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing);
+    std::printf(" %llu pixels left uncovered\n", (unsigned long long)s.uncovered_pixels);
+    std::printf("             radius at the minimum clamp: %.1f%%, at the maximum: %.1f%%\n",
+                100.0 * double(s.records_at_min_radius) / double(std::max<uint64_t>(s.records, 1)),
+                100.0 * double(s.records_at_max_radius) / double(std::max<uint64_t>(s.records, 1)));
+    std::printf("             %llu rays (%.2f Mrays/s)\n", (unsigned long long)s.record_rays,
+                mrays_per_second(s.record_rays, s.records_s));
+    std::printf("time         records %.3f s, placement %.3f s, splat %.3f s, resolve %.3f s\n", s.records_s,
+                s.placement_s, s.splat_s, s.resolve_s);
+  }
+  if (s.gi == GiMethod::path) {
+    std::printf("path         %u samples per pixel%s, %llu rays, %.3f s (%.2f Mrays/s)\n", s.path_samples,
+                settings.path.stratified ? " (stratified)" : "", (unsigned long long)s.path_rays, s.path_s,
+                mrays_per_second(s.path_rays, s.path_s));
+  }
+  std::printf("total        %.3f s\n", s.total_s);
+  for (const std::string& out : outputs) std::printf("wrote        %s\n", out.c_str());
+}
+
+nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, const RenderSettings& settings,
+                            const std::vector<std::string>& outputs) {
+  const RenderStats& s = image.stats;
+  nlohmann::json j = {
+      {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
+      {"gi", gi_method_name(s.gi)}, {"light_samples", s.light_samples}, {"triangles", s.triangles},
+      {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
+      {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}, {"records", s.record_rays},
+                {"path", s.path_rays}}},
+      {"seconds", {{"bvh_build", s.bvh_build_s}, {"upload", s.upload_s}, {"kernel_build", s.program_s},
+                   {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
+                   {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
+                   {"path", s.path_s}, {"total", s.total_s}}},
+      {"outputs", outputs}};
+  if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
+    const CacheSettings& c = settings.cache;
+    nlohmann::json levels = nlohmann::json::array();
+    for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing}, {"records", l.records}});
+    j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
+                  {"spacing", {c.min_spacing, c.max_spacing}}, {"records", s.records}, {"levels", levels},
+                  {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
+                  {"at_max_radius", s.records_at_max_radius}};
+  }
+  if (s.gi == GiMethod::path) j["path"] = {{"samples", s.path_samples}, {"stratified", settings.path.stratified}};
+  return j;
+}
+
+}  // namespace
 
 int run_render(const RenderOptions& options) {
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
   }
+  check_cache_settings(options.settings.cache);
   Scene scene = load_scene(options.scene_path);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);
-  RenderedImage image = render_direct(gpu, scene, options.settings);
+  RenderedImage image = render(gpu, scene, options.settings);
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure);
-
-  const RenderStats& s = image.stats;
-  double kernel_s = s.gbuffer_s + s.direct_s;
-  double mrays = kernel_s > 0 ? double(s.primary_rays + s.shadow_rays) / kernel_s * 1e-6 : 0.0;
-  std::printf("scene        %s\n", scene.source.c_str());
-  std::printf("device       %s\n", s.device.c_str());
-  std::printf("image        %d x %d, %u light samples per pixel\n", image.width, image.height, s.light_samples);
-  std::printf("triangles    %zu (BVH: %zu nodes, %zu triangle blocks, depth %d)\n", s.triangles, s.bvh_nodes,
-              s.bvh_blocks, s.bvh_depth);
-  std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
-              (unsigned long long)s.shadow_rays);
-  std::printf("time         BVH build %.3f s, upload %.3f s, kernel build %.3f s\n", s.bvh_build_s, s.upload_s, s.program_s);
-  std::printf("             G-buffer %.3f s, direct light %.3f s (%.2f Mrays/s), total %.3f s\n", s.gbuffer_s,
-              s.direct_s, mrays, s.total_s);
-  for (const std::string& out : options.outputs) std::printf("wrote        %s\n", out.c_str());
-
-  if (!options.json_path.empty()) {
-    nlohmann::json j = {
-        {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
-        {"light_samples", s.light_samples}, {"triangles", s.triangles},
-        {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
-        {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}}},
-        {"seconds", {{"bvh_build", s.bvh_build_s}, {"upload", s.upload_s}, {"kernel_build", s.program_s},
-                     {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"total", s.total_s}}},
-        {"mrays_per_second", mrays}, {"outputs", options.outputs}};
-    write_text_file(options.json_path, j.dump(2) + "\n");
-  }
+  print_summary(scene, image, options.settings, options.outputs);
+  if (!options.json_path.empty())
+    write_text_file(options.json_path, summary_json(scene, image, options.settings, options.outputs).dump(2) + "\n");
   return 0;
 }
 

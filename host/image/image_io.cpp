@@ -80,6 +80,14 @@ void write_png(const std::string& path, int width, int height, const std::vector
   write_pixels(path, spec, bytes.data());
 }
 
+void write_png_display(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  std::vector<uint8_t> bytes(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i)
+    bytes[i] = uint8_t(std::lround(255.0f * std::clamp(std::isfinite(rgb[i]) ? rgb[i] : 0.0f, 0.0f, 1.0f)));
+  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  write_pixels(path, spec, bytes.data());
+}
+
 bool is_output_format(const std::string& path) {
   std::string ext = lower_extension(path);
   return ext == ".png" || ext == ".exr";
@@ -91,30 +99,42 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     write_png(path, image.width, image.height, image.color, exposure_stops);
   } else if (ext == ".exr") {
     std::vector<std::string> rgb = {"R", "G", "B"};
-    write_exr(path, image.width, image.height,
-              {{"", rgb, &image.color},
-               {"direct", rgb, &image.direct},
-               {"emission", rgb, &image.emission},
-               {"albedo", rgb, &image.albedo},
-               {"normal", {"X", "Y", "Z"}, &image.normal},
-               {"position", {"X", "Y", "Z"}, &image.position},
-               {"depth", {"Z"}, &image.depth}});
+    std::vector<ImageLayer> layers = {{"", rgb, &image.color},
+                                      {"direct", rgb, &image.direct},
+                                      {"emission", rgb, &image.emission},
+                                      {"albedo", rgb, &image.albedo},
+                                      {"normal", {"X", "Y", "Z"}, &image.normal},
+                                      {"position", {"X", "Y", "Z"}, &image.position},
+                                      {"depth", {"Z"}, &image.depth}};
+    // Global illumination layers, present when the render computed them.
+    auto add = [&](const char* name, std::vector<std::string> channels, const std::vector<float>& data) {
+      if (!data.empty()) layers.push_back({name, std::move(channels), &data});
+    };
+    add("indirect", rgb, image.indirect);
+    add("irradiance", rgb, image.irradiance);
+    add("indirect_variance", rgb, image.indirect_variance);
+    add("coverage", {"Y"}, image.coverage);
+    add("records", {"Y"}, image.records_per_pixel);
+    add("record_positions", {"Y"}, image.record_positions);
+    write_exr(path, image.width, image.height, layers);
   } else {
     throw Error(path + ": unknown output format '" + ext + "' (use .exr or .png)");
   }
 }
 
-std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {
+std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   width = spec.width;
   height = spec.height;
+  std::string prefix = layer.empty() ? "" : layer + ".";
   int channel[3] = {-1, -1, -1};
   for (int c = 0; c < spec.nchannels; ++c)
     for (int k = 0; k < 3; ++k)
-      if (spec.channelnames[size_t(c)] == std::string(1, "RGB"[k])) channel[k] = c;
-  if (channel[0] < 0 || channel[1] < 0 || channel[2] < 0) throw Error(path + ": has no R, G, B channels");
+      if (spec.channelnames[size_t(c)] == prefix + std::string(1, "RGB"[k])) channel[k] = c;
+  if (channel[0] < 0 || channel[1] < 0 || channel[2] < 0)
+    throw Error(path + ": has no " + prefix + "R, " + prefix + "G, " + prefix + "B channels");
   std::vector<float> all(size_t(width) * size_t(height) * size_t(spec.nchannels));
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
     throw Error(path + ": cannot be read: " + in->geterror());
@@ -122,6 +142,18 @@ std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height
   for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
     for (int k = 0; k < 3; ++k) rgb[i * 3 + size_t(k)] = all[i * size_t(spec.nchannels) + size_t(channel[k])];
   return rgb;
+}
+
+std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {
+  return read_exr_layer(path, "", width, height);
+}
+
+bool exr_has_layer(const std::string& path, const std::string& layer) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
+  for (const std::string& name : in->spec().channelnames)
+    if (name == layer + ".R") return true;
+  return false;
 }
 
 }  // namespace rcsplat

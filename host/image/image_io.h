@@ -17,6 +17,8 @@ struct ImageLayer {
 void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers);
 // Exposure in stops, then a filmic curve (Narkowicz's ACES fit) and the sRGB transfer function.
 void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops);
+// Display values in [0, 1] straight to 8 bits (false-colour images).
+void write_png_display(const std::string& path, int width, int height, const std::vector<float>& rgb);
 
 // Whether write_render can write this path (.exr or .png, any case).
 bool is_output_format(const std::string& path);
@@ -26,5 +28,8 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
 
 // Reads an EXR's main RGB (R, G, B channels) for comparisons. Throws rcsplat::Error on failure.
 std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height);
+// The same for a layer's R, G, B channels ("indirect" reads indirect.R, indirect.G, indirect.B).
+std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height);
+bool exr_has_layer(const std::string& path, const std::string& layer);
 
 }  // namespace rcsplat

@@ -118,4 +118,14 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) :
   bvh_.add_defines(defines_);
 }
 
+cl_uint DeviceScene::bind_shading_args(cl::Kernel& kernel, cl_uint first) const {
+  cl_uint a = first;
+  for (const cl::Buffer* b : {&bvh_.nodes(), &bvh_.blocks(), &triangles_, &materials_, &textures_, &texels_, &lights_})
+    kernel.setArg(a++, *b);
+  kernel.setArg(a++, light_count_);
+  kernel.setArg(a++, emitters_);
+  kernel.setArg(a++, emitter_count_);
+  return a;
+}
+
 }  // namespace rcsplat

@@ -37,6 +37,9 @@ class DeviceScene {
   cl_uint light_count() const { return light_count_; }
   cl_uint emitter_count() const { return emitter_count_; }
 
+  // Sets the SHADING_SCENE_ARGS of kernels/bounce.h from argument index first; returns the next free index.
+  cl_uint bind_shading_args(cl::Kernel& kernel, cl_uint first) const;
+
   // HAS_TEXTURES, HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, BVH_STACK_SIZE: a scene compiles only the code it needs.
   const KernelDefines& defines() const { return defines_; }
 

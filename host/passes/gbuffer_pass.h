@@ -11,6 +11,7 @@ class GBufferPass {
   GBufferPass(GpuContext& gpu, const DeviceScene& scene);
   void run(const CameraParams& camera);  // blocks until done
   const cl::Buffer& samples() const { return samples_; }
+  const cl::Buffer& camera() const { return camera_; }  // the CameraParams of the last run
   std::vector<GBufferSample> download();
   size_t pixel_count() const { return pixels_; }
 

@@ -1,28 +1,33 @@
 #include "render/renderer.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "bvh/bvh8.h"
 #include "passes/device_scene.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "render/indirect.h"
 #include "util/log.h"
 
 namespace rcsplat {
-namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+const char* gi_method_name(GiMethod method) {
+  switch (method) {
+    case GiMethod::none: return "none";
+    case GiMethod::splat: return "splat";
+    case GiMethod::octree: return "octree";
+    case GiMethod::path: return "path";
+  }
+  return "?";
+}
 
-}  // namespace
-
-RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
   auto start = Clock::now();
   RenderedImage img;
   RenderStats& st = img.stats;
   st.device = gpu.device_info().name;
   st.triangles = scene.triangle_count();
+  st.gi = settings.gi;
 
   SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
   img.width = settings.width;
@@ -48,15 +53,12 @@ RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSet
   DirectPass direct(gpu, device_scene);
   st.program_s = gpu.program_seconds() - program_before;
 
-  Progress progress("rendering", 2);
   t = Clock::now();
   gbuffer.run(params);
   st.gbuffer_s = seconds_since(t);
-  progress.update(1);
   t = Clock::now();
   direct.run(gbuffer, strata, settings.seed);
   st.direct_s = seconds_since(t);
-  progress.finish();
 
   std::vector<GBufferSample> g = gbuffer.download();
   std::vector<float> d = direct.download_rgba();
@@ -83,6 +85,14 @@ RenderedImage render_direct(GpuContext& gpu, const Scene& scene, const RenderSet
       img.position[3 * i + c] = s.position[c];
       img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
     }
+  }
+
+  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img};
+  switch (settings.gi) {
+    case GiMethod::none: break;
+    case GiMethod::splat: splat_indirect(frame); break;
+    case GiMethod::octree: octree_indirect(frame); break;
+    case GiMethod::path: path_traced_indirect(frame); break;
   }
   st.total_s = seconds_since(start);
   return img;

@@ -1,0 +1,28 @@
+// One irradiance record computed on the host in double precision with Embree rays: the same strata, random numbers and
+// formulas as kernels/records.cl, written independently (all strata stored, walls summed over the grid). It is the
+// octree cache's record computation and the record kernel's test reference.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "cache/host_shading.h"
+#include "kernels/shared_types.h"
+
+namespace rcsplat {
+
+struct HostRecord {
+  glm::dvec3 position{0.0}, normal{0.0}, irradiance{0.0};
+  std::array<glm::dvec3, 3> grad_translation{}, grad_rotation{};  // row per axis, RGB
+  double radius = 0, harmonic_distance = 0, pixel_size = 0;
+  uint32_t pixel = 0;
+  uint64_t rays = 0;
+};
+
+// p: surface point, n: shading normal, ng: geometric normal (both facing the viewer); pixel keys the random numbers.
+HostRecord compute_host_record(const HostShading& shading, const glm::vec3& p, const glm::vec3& n, const glm::vec3& ng,
+                               uint32_t pixel, double pixel_size, const HemisphereParams& params);
+
+// The record in the device layout.
+CacheRecord to_cache_record(const HostRecord& r);
+
+}  // namespace rcsplat

@@ -1,0 +1,35 @@
+// Parsing the render command's compound options.
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "util/error.h"
+
+namespace rcsplat {
+
+GiMethod parse_gi_method(const std::string& name) {
+  for (GiMethod m : {GiMethod::none, GiMethod::splat, GiMethod::octree, GiMethod::path})
+    if (name == gi_method_name(m)) return m;
+  throw Error("--gi " + name + ": unknown method (use splat, octree, path or none)");
+}
+
+void parse_hemisphere(const std::string& text, CacheSettings& cache) {
+  unsigned m = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%ux%u%c", &m, &n, &tail) != 2 || m == 0 || n == 0)
+    throw Error("--hemisphere " + text + ": expected MxN, for example 16x32");
+  cache.theta_strata = m;
+  cache.phi_strata = n;
+  check_cache_settings(cache);
+}
+
+void parse_spacing(const std::string& text, CacheSettings& cache) {
+  float lo = 0, hi = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%f,%f%c", &lo, &hi, &tail) != 2)
+    throw Error("--spacing " + text + ": expected MIN,MAX in pixels, for example 3,20");
+  cache.min_spacing = lo;
+  cache.max_spacing = hi;
+  check_cache_settings(cache);
+}
+
+}  // namespace rcsplat

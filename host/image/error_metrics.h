@@ -1,0 +1,21 @@
+// Image error against a reference (ALGORITHM.md section 10): relMSE = mean (x - ref)^2 / (ref^2 + 0.01), RMSE, mean
+// absolute error, over every channel of every pixel. The +0.01 ties relMSE to the scene's radiance scale: state the
+// scene and exposure with every threshold.
+#pragma once
+#include <vector>
+
+namespace rcsplat {
+
+struct ErrorMetrics {
+  double rel_mse = 0, rmse = 0, mae = 0;
+};
+
+ErrorMetrics image_error(const std::vector<float>& image, const std::vector<float>& reference);
+
+// Per-pixel relMSE (mean over the three channels), for heat maps and regional statistics.
+std::vector<double> pixel_rel_mse(const std::vector<float>& image, const std::vector<float>& reference);
+
+// A false-colour map of per-pixel relMSE on a log scale from 1e-6 (dark blue) to 1 (white), as display RGB.
+std::vector<float> error_heatmap(const std::vector<double>& pixel_error);
+
+}  // namespace rcsplat

@@ -1,0 +1,36 @@
+// The path tracer's indirect light (kernels/path.cl): owns the per-pixel sums, so samples can be added in rounds.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/gpu_context.h"
+#include "passes/device_scene.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+class PathPass {
+ public:
+  PathPass(GpuContext& gpu, const DeviceScene& scene);
+
+  // Starts over for a frame of total_samples per pixel; stratified draws them from a grid over the hemisphere.
+  void begin(const GBufferPass& gbuffer, unsigned total_samples, bool stratified, unsigned seed);
+  // Adds the next count samples to every pixel; blocks until done.
+  void add_samples(unsigned count);
+  unsigned samples_done() const { return done_; }
+
+  std::vector<float> mean_rgb();           // indirect radiance per pixel
+  std::vector<float> mean_variance_rgb();  // the variance of that mean, per channel
+  uint64_t rays_cast();
+
+ private:
+  GpuContext& gpu_;
+  const DeviceScene& scene_;
+  const GBufferPass* gbuffer_ = nullptr;
+  cl::Kernel kernel_;
+  cl::Buffer sum_, sum_squares_, ray_total_;
+  size_t pixels_ = 0;
+  unsigned total_ = 0, done_ = 0, grid_side_ = 0, seed_ = 0;
+};
+
+}  // namespace rcsplat

@@ -1,0 +1,37 @@
+// Coarse-to-fine record placement and neighbour clamping (kernels/placement.cl): owns the candidate list and the map
+// from pixels to the records placed on them.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/gpu_context.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+class PlacementPass {
+ public:
+  PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height);
+
+  // Compacts the uncovered pixels with geometry on the grid of this spacing into candidates(); returns their count.
+  uint32_t find_uncovered(const cl::Buffer& sums, int spacing);
+  const cl::Buffer& candidates() const { return candidates_; }
+
+  // Records first .. first + count - 1 now sit on their pixels.
+  void mark(const cl::Buffer& records, uint32_t first, uint32_t count);
+  // R_i <= R_j + |P_i - P_j| over records 0 .. count - 1, for pairs that involve a record first_new or later; older
+  // records keep their radii unless clamp_older.
+  void clamp_neighbours(cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older, float min_spacing);
+
+  std::vector<int32_t> record_at_pixel();  // record index, -1 where none sits
+
+ private:
+  GpuContext& gpu_;
+  const GBufferPass& gbuffer_;
+  int width_, height_;
+  cl::Kernel find_, mark_, clamp_, apply_;
+  cl::Buffer candidates_, count_, record_map_, radii_;
+  size_t radii_capacity_ = 0;
+};
+
+}  // namespace rcsplat

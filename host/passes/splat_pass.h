@@ -1,0 +1,37 @@
+// The splat, normalisation and composition (kernels/splat.cl): owns the fixed-point accumulation buffers and the
+// resolved images.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/gpu_context.h"
+#include "kernels/shared_types.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+class SplatPass {
+ public:
+  explicit SplatPass(GpuContext& gpu);
+
+  // Clears the sums and splats records 0 .. count - 1 at accuracy a; blocks until done.
+  void splat_all(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
+  // Divides and composes with the direct light (RGBA, as DirectPass writes it).
+  void resolve(const GBufferPass& gbuffer, const cl::Buffer& direct_rgba);
+
+  const cl::Buffer& sums() const { return sums_; }  // per pixel: sum w E.rgb, sum w (fixed point)
+  std::vector<float> irradiance_rgbw();             // E.rgb, sum w
+  std::vector<float> indirect_rgba();               // albedo / pi * E, A = covered
+  std::vector<float> color_rgba();
+  std::vector<uint32_t> records_per_pixel();
+  float irradiance_scale() const { return params_.irradiance_scale; }
+
+ private:
+  GpuContext& gpu_;
+  cl::Kernel clear_, max_irradiance_, splat_, resolve_;
+  cl::Buffer sums_, counts_, max_bits_, irradiance_, indirect_, color_;
+  SplatParams params_{};
+  size_t pixels_ = 0;
+};
+
+}  // namespace rcsplat

@@ -1,0 +1,75 @@
+// The irradiance cache's weight, usability test, extrapolation and screen footprint (ALGORITHM.md section 3), shared by
+// the splat and the placement kernels. host/cache/cache_math.h mirrors weight and usability operation for operation.
+#ifndef RCSPLAT_CACHE_H
+#define RCSPLAT_CACHE_H
+#include "shared_types.h"
+
+// Ward's weight is infinite at the record itself; clamping keeps fixed-point sums bounded (see SplatPass).
+#define MAX_RECORD_WEIGHT 1.0e4f
+// The in-front test tolerates points this far (in radii) in front of the record's tangent plane.
+#define IN_FRONT_TOLERANCE 0.05f
+
+// 1 / (|P - Pk| / R + sqrt(1 - n.nk)), with sqrt(1 - n.nk) computed as |n - nk| / sqrt(2), which keeps its precision
+// for nearly equal normals (SPLAT.md).
+inline float ward_weight(float3 p, float3 n, float3 pk, float3 nk, float radius) {
+  float denom = length(p - pk) / radius + length(n - nk) * 0.70710678f;
+  return denom * MAX_RECORD_WEIGHT > 1.0f ? 1.0f / denom : MAX_RECORD_WEIGHT;
+}
+
+inline bool record_usable(float w, float accuracy, float3 p, float3 n, float3 pk, float3 nk, float radius) {
+  return w * accuracy > 1.0f && dot(n, nk) > 0.0f && dot(p - pk, n + nk) * 0.5f >= -IN_FRONT_TOLERANCE * radius;
+}
+
+// E_k(P) = max(0, E + (nk x n) . grad_r + (P - Pk) . grad_t), per channel.
+inline float3 extrapolated_irradiance(__global const CacheRecord* rec, float3 p, float3 n) {
+  float3 dp = p - vload3(0, rec->position);
+  float3 dn = cross(vload3(0, rec->normal), n);
+  float3 e = vload3(0, rec->irradiance);
+  e += dp.x * vload3(0, rec->grad_translation) + dp.y * vload3(1, rec->grad_translation) +
+       dp.z * vload3(2, rec->grad_translation);
+  e += dn.x * vload3(0, rec->grad_rotation) + dn.y * vload3(1, rec->grad_rotation) + dn.z * vload3(2, rec->grad_rotation);
+  return max(e, (float3)(0.0f));
+}
+
+typedef struct {
+  int x0, y0, x1, y1;  // inclusive; empty when x0 > x1 or y0 > y1
+} PixelRect;
+
+// A conservative screen rectangle of the sphere (center, radius): the projection of its camera-aligned bounding cube,
+// plus a pixel of margin for rounding. The whole screen when the cube reaches behind the eye.
+inline PixelRect sphere_footprint(__global const CameraParams* cam, float3 center, float radius) {
+  PixelRect rect = {0, 0, cam->width - 1, cam->height - 1};
+  float3 rel = center - vload3(0, cam->eye);
+  float cx = dot(rel, vload3(0, cam->right)), cy = dot(rel, vload3(0, cam->up));
+  float cz = dot(rel, vload3(0, cam->forward));
+  float z_near = cz - radius, z_far = cz + radius;
+  if (!(z_near > 1e-6f * z_far) || !isfinite(z_far)) return rect;
+  float tx = cam->tan_half_fov_y * cam->aspect, ty = cam->tan_half_fov_y;
+  // x / z over the cube is extreme at one of its z faces, chosen by the sign of x.
+  float x_lo = cx - radius, x_hi = cx + radius, y_lo = cy - radius, y_hi = cy + radius;
+  float sx_min = x_lo / (x_lo < 0.0f ? z_near : z_far) / tx;
+  float sx_max = x_hi / (x_hi > 0.0f ? z_near : z_far) / tx;
+  float sy_min = y_lo / (y_lo < 0.0f ? z_near : z_far) / ty;
+  float sy_max = y_hi / (y_hi > 0.0f ? z_near : z_far) / ty;
+  if (!isfinite(sx_min + sx_max + sy_min + sy_max)) return rect;
+  // Pixel x has its centre at s = 2 (x + 0.5) / width - 1; pixel y at s = 1 - 2 (y + 0.5) / height.
+  float px_min = (sx_min + 1.0f) * 0.5f * (float)cam->width - 0.5f;
+  float px_max = (sx_max + 1.0f) * 0.5f * (float)cam->width - 0.5f;
+  float py_min = (1.0f - sy_max) * 0.5f * (float)cam->height - 0.5f;
+  float py_max = (1.0f - sy_min) * 0.5f * (float)cam->height - 0.5f;
+  // Clamped in float before converting: an off-screen sphere gives an empty rectangle, never an overflow.
+  float w = (float)cam->width, h = (float)cam->height;
+  rect.x0 = (int)clamp(floor(px_min) - 1.0f, 0.0f, w);
+  rect.y0 = (int)clamp(floor(py_min) - 1.0f, 0.0f, h);
+  rect.x1 = (int)clamp(ceil(px_max) + 1.0f, -1.0f, w - 1.0f);
+  rect.y1 = (int)clamp(ceil(py_max) + 1.0f, -1.0f, h - 1.0f);
+  return rect;
+}
+
+// World size of one pixel at the point p (at its distance along the view axis).
+inline float pixel_world_size(__global const CameraParams* cam, float3 p) {
+  float z = dot(p - vload3(0, cam->eye), vload3(0, cam->forward));
+  return 2.0f * fabs(z) * cam->tan_half_fov_y / (float)cam->height;
+}
+
+#endif

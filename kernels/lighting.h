@@ -1,0 +1,107 @@
+// Direct light at a surface point, shared by the direct pass, the record pass and the path tracer: punctual lights with
+// shadow rays, and one sample of the emissive triangles chosen by power. Lambertian surfaces; emission is not included.
+#ifndef RCSPLAT_LIGHTING_H
+#define RCSPLAT_LIGHTING_H
+#include "traverse.h"
+#include "sampling.h"
+
+// Counts every shadow ray it casts in *rays, for the summary's ray count.
+inline bool visible(__global const float8* nodes, __global const float8* blocks, float3 from, float3 to_offset,
+                    float tmax, uint* rays) {
+  ++*rays;
+  RayPrecomp r = ray_precompute(from, to_offset);
+  TraceHit h;
+  return !bvh_trace(nodes, blocks, &r, 0.0f, tmax, true, &h);
+}
+
+#if HAS_PUNCTUAL_LIGHTS
+// Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed.
+inline float3 punctual_irradiance(__global const float8* nodes, __global const float8* blocks, PunctualLight light,
+                                  float3 p, float3 origin, float3 n, float3 ng, uint* rays) {
+  float3 intensity = vload3(0, light.intensity);
+  if (light.type == LIGHT_DIRECTIONAL) {
+    float3 wi = -vload3(0, light.direction);
+    float cos_n = dot(n, wi);
+    if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
+    return visible(nodes, blocks, origin, wi, INFINITY, rays) ? intensity * cos_n : (float3)(0.0f);
+  }
+  float3 to_light = vload3(0, light.position) - p;
+  float d2 = dot(to_light, to_light);
+  if (!(d2 > 0.0f)) return (float3)(0.0f);
+  float d = sqrt(d2);
+  float3 wi = to_light / d;
+  float cos_n = dot(n, wi);
+  if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
+  float attenuation = 1.0f / d2;
+  if (light.range > 0.0f) {  // glTF's recommended windowing, zero at the range
+    float x = d / light.range;
+    attenuation *= clamp(1.0f - x * x * x * x, 0.0f, 1.0f);
+  }
+  if (light.type == LIGHT_SPOT) {
+    float cd = dot(vload3(0, light.direction), -wi);
+    float a = clamp(cd * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
+    attenuation *= a * a;
+  }
+  if (attenuation <= 0.0f) return (float3)(0.0f);
+  float3 to = vload3(0, light.position) - origin;
+  return visible(nodes, blocks, origin, to, 1.0f, rays) ? intensity * (attenuation * cos_n) : (float3)(0.0f);
+}
+#endif
+
+#if HAS_EMITTERS
+// The emitter a uniform number u selects (binary search over the power CDF).
+inline int pick_emitter(__global const EmissiveTriangle* emitters, uint count, float u) {
+  int lo = 0, hi = (int)count - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) >> 1;
+    if (u < emitters[mid].cdf) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+// One light sample's irradiance estimate at p from the point the stratified pair (u, v) picks on the emitters.
+inline float3 emitter_sample(__global const float8* nodes, __global const float8* blocks,
+                             __global const EmissiveTriangle* emitters, uint count, float u, float v, float3 p,
+                             float3 origin, float3 n, float3 ng, uint* rays) {
+  int i = pick_emitter(emitters, count, u);
+  EmissiveTriangle e = emitters[i];
+  float cdf_before = e.cdf - e.pdf_select;
+  float u_in = clamp((u - cdf_before) / e.pdf_select, 0.0f, 0.99999994f);  // reuse u inside the chosen stratum
+  float su = sqrt(u_in);
+  float3 e1 = vload3(0, e.edge1), e2 = vload3(0, e.edge2);
+  float3 y = vload3(0, e.v0) + (su * (1.0f - v)) * e1 + (su * v) * e2;
+  float3 nl = normalize(cross(e1, e2));
+  float3 to = y - p;
+  float d2 = dot(to, to);
+  if (!(d2 > 0.0f)) return (float3)(0.0f);
+  float3 wi = to * rsqrt(d2);
+  float cos_x = dot(n, wi);
+  float cos_y = -dot(nl, wi);
+  if (e.double_sided) cos_y = fabs(cos_y);
+  if (cos_x <= 0.0f || cos_y <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
+  float3 toward_p = dot(nl, wi) < 0.0f ? nl : -nl;
+  float3 target = offset_ray_origin(y, toward_p);
+  if (!visible(nodes, blocks, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
+  float pdf_area = e.pdf_select / e.area;
+  return vload3(0, e.radiance) * (cos_x * cos_y / (d2 * pdf_area));
+}
+#endif
+
+// Irradiance at p from every punctual light plus one emitter sample at the uniform pair (u, v).
+inline float3 direct_irradiance(__global const float8* nodes, __global const float8* blocks,
+                                __global const PunctualLight* lights, uint light_count,
+                                __global const EmissiveTriangle* emitters, uint emitter_count, float3 p, float3 n,
+                                float3 ng, float u, float v, uint* rays) {
+  float3 origin = offset_ray_origin(p, ng);
+  float3 irradiance = (float3)(0.0f);
+#if HAS_PUNCTUAL_LIGHTS
+  for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(nodes, blocks, lights[i], p, origin, n, ng, rays);
+#endif
+#if HAS_EMITTERS
+  if (emitter_count > 0) irradiance += emitter_sample(nodes, blocks, emitters, emitter_count, u, v, p, origin, n, ng, rays);
+#endif
+  return irradiance;
+}
+
+#endif

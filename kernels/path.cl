@@ -1,0 +1,43 @@
+// The path tracer that serves as ground truth and competitor: through the same pixel centres as the G-buffer, one
+// cosine-weighted bounce per sample, the bounce's hit lit directly (kernels/bounce.h): the same integral the cache
+// estimates, with the same bounce count. Accumulates the indirect radiance and its square per pixel (for the variance).
+// Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+#include "bounce.h"
+
+__kernel void path_indirect(SHADING_SCENE_ARGS, __global const GBufferSample* gbuffer, uint pixel_count,
+                            uint first_sample, uint sample_count, uint grid_side, uint seed,
+                            __global float4* sum, __global float4* sum_squares, __global ulong* ray_total) {
+  uint pixel = get_global_id(0);
+  if (pixel >= pixel_count) return;
+  GBufferSample g = gbuffer[pixel];
+  if (g.triangle < 0) return;
+  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  float3 albedo = vload3(0, g.albedo);
+  float3 origin = offset_ray_origin(p, ng);
+  float3 t, b;
+  tangent_frame(n, &t, &b);
+  uint key = hash_u32(pixel ^ hash_u32(seed ^ 0x5bd1e995u));
+  float3 s1 = (float3)(0.0f), s2 = (float3)(0.0f);
+  uint rays = 0;
+  for (uint s = first_sample; s < first_sample + sample_count; ++s) {
+    float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
+    if (s < grid_side * grid_side) {  // stratified: this sample's cell of the grid
+      u1 = ((float)(s % grid_side) + u1) / (float)grid_side;
+      u2 = ((float)(s / grid_side) + u2) / (float)grid_side;
+    }
+    float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
+    float3 dir = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
+    float3 c = (float3)(0.0f);
+    if (dot(dir, ng) > 0.0f) {
+      float r;
+      // Cosine-weighted sampling: f cos / pdf = albedo.
+      c = albedo * bounce_radiance(SHADING_SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+    }
+    s1 += c;
+    s2 += c * c;
+  }
+  sum[pixel] += (float4)(s1, 0.0f);
+  sum_squares[pixel] += (float4)(s2, 0.0f);
+  atom_add(ray_total, (ulong)rays);
+}

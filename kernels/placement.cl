@@ -1,0 +1,54 @@
+// Record placement, coarse to fine (ALGORITHM.md section 7), and neighbour clamping of radii (Křivánek et al. 2006).
+// Only counts cross to the host: candidates are compacted on the device.
+#include "cache.h"
+
+// Pixels on the grid of the given spacing that see geometry and no usable record become candidates.
+__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const long* sums, int width, int height,
+                             int spacing, __global uint* candidates, __global uint* candidate_count) {
+  int x = get_global_id(0) * spacing, y = get_global_id(1) * spacing;
+  if (x >= width || y >= height) return;
+  uint pixel = (uint)(y * width + x);
+  if (gbuffer[pixel].triangle < 0 || sums[4 * (size_t)pixel + 3] > 0) return;
+  candidates[atomic_inc(candidate_count)] = pixel;
+}
+
+__kernel void mark_records(__global const CacheRecord* records, uint first, uint count, __global int* record_at_pixel) {
+  uint i = get_global_id(0);
+  if (i >= count) return;
+  record_at_pixel[records[first + i].pixel] = (int)(first + i);
+}
+
+// R_i <= R_j + |P_i - P_j| for every record j within R_i of record i (only those can lower R_i), for the pairs with at
+// least one record of the newest batch (records first_new and up): each pair is clamped once, when the later of the two
+// appears, as in Křivánek et al. 2006, without a transitive cascade through older records. Reads the radii and writes
+// new ones elsewhere, so the result does not depend on the order work-items run in. Without clamp_older only the new
+// records are clamped: the last rounds of placement use that, so that shrinking old records cannot uncover pixels again.
+__kernel void clamp_neighbours(__global const CacheRecord* records, uint record_count, uint first_new, int clamp_older,
+                               __global const int* record_at_pixel, __global const CameraParams* camera,
+                               float min_spacing, __global float* clamped_radius) {
+  uint i = get_global_id(0);
+  if (i >= record_count) return;
+  float3 pi = vload3(0, records[i].position);
+  float radius = records[i].radius;
+  if (i < first_new && !clamp_older) {
+    clamped_radius[i] = radius;
+    return;
+  }
+  PixelRect rect = sphere_footprint(camera, pi, radius);
+  float clamped = radius;
+  for (int y = rect.y0; y <= rect.y1; ++y) {
+    for (int x = rect.x0; x <= rect.x1; ++x) {
+      int j = record_at_pixel[y * camera->width + x];
+      if (j < 0 || (uint)j == i || (i < first_new && (uint)j < first_new)) continue;
+      clamped = fmin(clamped, records[j].radius + distance(pi, vload3(0, records[j].position)));
+    }
+  }
+  // The screen-space minimum still holds: a neighbour seen at another depth may have a smaller one.
+  clamped_radius[i] = fmax(clamped, fmin(radius, min_spacing * records[i].pixel_size));
+}
+
+__kernel void apply_radii(__global CacheRecord* records, uint record_count, __global const float* clamped_radius) {
+  uint i = get_global_id(0);
+  if (i >= record_count) return;
+  records[i].radius = clamped_radius[i];
+}

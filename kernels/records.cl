@@ -1,0 +1,124 @@
+// Record computation (ALGORITHM.md sections 4 and 5): for each candidate pixel, M x N stratified cosine-weighted rays
+// over the hemisphere of its G-buffer point give the irradiance E, Ward's harmonic mean distance (the validity radius,
+// clamped in screen space) and Ward & Heckbert's rotational and translational gradients, bounded.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+#include "bounce.h"
+#include "cache.h"
+
+#ifndef MAX_THETA_STRATA
+#define MAX_THETA_STRATA 64
+#endif
+
+// gradient[axis] += direction[axis] * value, for a world-space direction and an RGB value.
+inline void add_outer(float3* gradient, float3 direction, float3 value) {
+  gradient[0] += direction.x * value;
+  gradient[1] += direction.y * value;
+  gradient[2] += direction.z * value;
+}
+
+// Scales the per-channel gradient rows so that no channel's gradient is longer than limit (per channel).
+inline void bound_gradient(float3* gradient, float3 limit) {
+  float3 len = sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1] + gradient[2] * gradient[2]);
+  float3 scale = select((float3)(1.0f), limit / len, len > limit);
+  for (int a = 0; a < 3; ++a) gradient[a] = finite_or_zero(gradient[a] * scale);
+}
+
+__kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* gbuffer,
+                              __global const CameraParams* camera, __global const uint* candidates,
+                              uint candidate_count, uint first_record, HemisphereParams hp,
+                              __global CacheRecord* records, __global ulong* ray_total) {
+  uint i = get_global_id(0);
+  if (i >= candidate_count) return;
+  uint pixel = candidates[i];
+  GBufferSample g = gbuffer[pixel];
+  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  float3 origin = offset_ray_origin(p, ng);
+  float3 t, b;
+  tangent_frame(n, &t, &b);
+  const uint M = min(hp.theta_strata, (uint)MAX_THETA_STRATA), N = hp.phi_strata;
+  const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
+  uint key = hash_u32(pixel ^ hash_u32(hp.seed));
+
+  // Stratum (j, k) needs (j - 1, k) and (j, k - 1): keep the previous column, and the first for the wrap-around.
+  float3 prev_l[MAX_THETA_STRATA], first_l[MAX_THETA_STRATA];
+  float prev_r[MAX_THETA_STRATA], first_r[MAX_THETA_STRATA];
+  float3 e = (float3)(0.0f);
+  float3 grad_t[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
+  float3 grad_r[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
+  float inverse_distances = 0.0f;
+  uint rays = 0;
+  for (uint k = 0; k < N; ++k) {
+    float phi_mid = ((float)k + 0.5f) * dphi, phi_lo = (float)k * dphi;
+    float3 u_mid = cos(phi_mid) * t + sin(phi_mid) * b;
+    float3 v_mid = -sin(phi_mid) * t + cos(phi_mid) * b;
+    float3 v_lo = -sin(phi_lo) * t + cos(phi_lo) * b;
+    float3 rotation = (float3)(0.0f), l_below = (float3)(0.0f);
+    float r_below = INFINITY;
+    for (uint j = 0; j < M; ++j) {
+      uint s = j * N + k;
+      float sin2 = ((float)j + random01(key, s, 0u)) * inv_m;
+      float sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
+      float phi = ((float)k + random01(key, s, 1u)) * dphi;
+      float3 dir = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
+      float r = INFINITY;
+      float3 l = (float3)(0.0f);
+      if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
+        l = bounce_radiance(SHADING_SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+      }
+      e += l;
+      inverse_distances += 1.0f / r;
+      rotation -= (sin_t / cos_t) * l;
+      float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
+      float cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
+      if (j > 0) {  // the wall between (j - 1, k) and (j, k), at theta_j-
+        float c = dphi * sin_lo * cos_lo * cos_lo / fmin(r, r_below);
+        add_outer(grad_t, u_mid, c * (l - l_below));
+      }
+      float sin_mid = sqrt(((float)j + 0.5f) * inv_m);
+      float wall = (cos_lo - cos_hi) / sin_mid;
+      if (k > 0) add_outer(grad_t, v_lo, (wall / fmin(r, prev_r[j])) * (l - prev_l[j]));  // wall at phi_k-
+      else {
+        first_l[j] = l;
+        first_r[j] = r;
+      }
+      l_below = l;
+      r_below = r;
+      prev_l[j] = l;
+      prev_r[j] = r;
+    }
+    add_outer(grad_r, v_mid, rotation);
+  }
+  for (uint j = 0; j < M; ++j) {  // the wall at phi = 0 between the last column and the first
+    float cos_lo = sqrt(1.0f - (float)j * inv_m), cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
+    float wall = (cos_lo - cos_hi) / sqrt(((float)j + 0.5f) * inv_m);
+    add_outer(grad_t, b, (wall / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
+  }
+  float norm = RC_PI / (float)(M * N);
+  e = finite_or_zero(e * norm);
+  for (int a = 0; a < 3; ++a) grad_r[a] *= norm;
+
+  // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
+  float harmonic = (float)(M * N) / inverse_distances;
+  float pixel_size = pixel_world_size(camera, p);
+  float radius = clamp(harmonic, hp.min_spacing * pixel_size, hp.max_spacing * pixel_size);
+  if (!(radius > 0.0f)) radius = fmax(hp.min_spacing * pixel_size, 1e-30f);
+  // Bounded gradients (ALGORITHM.md section 5): translation changes E by at most E across R, rotation by at most E.
+  bound_gradient(grad_t, e / radius);
+  bound_gradient(grad_r, e);
+
+  CacheRecord rec;
+  vstore3(p, 0, rec.position);
+  rec.radius = radius;
+  vstore3(n, 0, rec.normal);
+  rec.pixel = (int)pixel;
+  vstore3(e, 0, rec.irradiance);
+  rec.pixel_size = pixel_size;
+  for (int a = 0; a < 3; ++a) {
+    vstore3(grad_t[a], a, rec.grad_translation);
+    vstore3(grad_r[a], a, rec.grad_rotation);
+  }
+  rec.harmonic_distance = harmonic;
+  rec.pad = 0.0f;
+  records[first_record + i] = rec;
+  atom_add(ray_total, (ulong)rays);
+}
