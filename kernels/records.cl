@@ -67,15 +67,14 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       }
       e += l;
       inverse_distances += 1.0f / r;
-      rotation -= (sin_t / cos_t) * l;
+      rotation += (sin_t / cos_t) * l;
       float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
-      float cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
+      float sin_hi = sqrt((float)(j + 1) * inv_m);
       if (j > 0) {  // the wall between (j - 1, k) and (j, k), at theta_j-
         float c = dphi * sin_lo * cos_lo * cos_lo / fmin(r, r_below);
         add_outer(grad_t, u_mid, c * (l - l_below));
       }
-      float sin_mid = sqrt(((float)j + 0.5f) * inv_m);
-      float wall = (cos_lo - cos_hi) / sin_mid;
+      float wall = sin_hi - sin_lo;  // the integral of cos(theta) over the stratum's theta range
       if (k > 0) add_outer(grad_t, v_lo, (wall / fmin(r, prev_r[j])) * (l - prev_l[j]));  // wall at phi_k-
       else {
         first_l[j] = l;
@@ -89,8 +88,7 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
     add_outer(grad_r, v_mid, rotation);
   }
   for (uint j = 0; j < M; ++j) {  // the wall at phi = 0 between the last column and the first
-    float cos_lo = sqrt(1.0f - (float)j * inv_m), cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
-    float wall = (cos_lo - cos_hi) / sqrt(((float)j + 0.5f) * inv_m);
+    float wall = sqrt((float)(j + 1) * inv_m) - sqrt((float)j * inv_m);
     add_outer(grad_t, b, (wall / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   }
   float norm = RC_PI / (float)(M * N);

@@ -73,10 +73,11 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
     dvec3 v_lo = -std::sin(phi_lo) * t + std::cos(phi_lo) * b;
     dvec3 rotation(0.0);
     for (int j = 0; j < M; ++j) {
-      rotation -= tan_theta[at(j, k)] * L[at(j, k)];
-      double cos_lo = std::sqrt(1.0 - double(j) / M), cos_hi = std::sqrt(1.0 - double(j + 1) / M);
-      // Wall at phi_k- between columns k - 1 and k.
-      double wall = (cos_lo - cos_hi) / std::sqrt((j + 0.5) / M);
+      rotation += tan_theta[at(j, k)] * L[at(j, k)];
+      double cos_lo = std::sqrt(1.0 - double(j) / M);
+      // Wall at phi_k- between columns k - 1 and k: content crosses it at angular speed 1 / (r sin(theta)), weighted
+      // by the projected solid angle cos(theta) sin(theta) dtheta, hence the integral of cos(theta) over the stratum.
+      double wall = std::sqrt(double(j + 1) / M) - std::sqrt(double(j) / M);
       add_outer(rec.grad_translation, v_lo, wall / std::min(r[at(j, k)], r[at(j, k - 1)]) * (L[at(j, k)] - L[at(j, k - 1)]));
       // Wall at theta_j- between rows j - 1 and j.
       if (j > 0) {

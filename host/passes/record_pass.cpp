@@ -22,13 +22,13 @@ void RecordPass::reserve(size_t count) {
   capacity_ = grown;
 }
 
-void RecordPass::compute(const GBufferPass& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
-                         const HemisphereParams& params) {
+void RecordPass::compute(const cl::Buffer& gbuffer, const cl::Buffer& camera, const cl::Buffer& candidates,
+                         uint32_t count, uint32_t first, const HemisphereParams& params) {
   if (count == 0) return;
   reserve(size_t(first) + count);
   cl_uint a = scene_.bind_shading_args(kernel_, 0);
-  kernel_.setArg(a++, gbuffer.samples());
-  kernel_.setArg(a++, gbuffer.camera());
+  kernel_.setArg(a++, gbuffer);
+  kernel_.setArg(a++, camera);
   kernel_.setArg(a++, candidates);
   kernel_.setArg(a++, cl_uint(count));
   kernel_.setArg(a++, cl_uint(first));

@@ -6,7 +6,6 @@
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
 #include "passes/device_scene.h"
-#include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
 
@@ -14,9 +13,10 @@ class RecordPass {
  public:
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata);
 
-  // Computes records first .. first + count - 1 from the G-buffer pixels listed in candidates; blocks until done.
-  void compute(const GBufferPass& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
-               const HemisphereParams& params);
+  // Computes records first .. first + count - 1 from the G-buffer samples (GBufferSample) listed in candidates, with
+  // radius clamps in pixels of the camera (CameraParams); blocks until done.
+  void compute(const cl::Buffer& gbuffer, const cl::Buffer& camera, const cl::Buffer& candidates, uint32_t count,
+               uint32_t first, const HemisphereParams& params);
   cl::Buffer& records() { return records_; }
   size_t capacity() const { return capacity_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far

@@ -63,7 +63,7 @@ void splat_indirect(IndirectFrame& f) {
       st.placement_s += seconds_since(t);
       if (!count) break;
       t = Clock::now();
-      records.compute(f.gbuffer, placement.candidates(), count, total, hp);
+      records.compute(f.gbuffer.samples(), f.gbuffer.camera(), placement.candidates(), count, total, hp);
       st.records_s += seconds_since(t);
       t = Clock::now();
       placement.mark(records.records(), total, count);

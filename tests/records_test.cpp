@@ -1,0 +1,189 @@
+// The record kernel (kernels/records.cl) against the host's double-precision records (same strata and random numbers,
+// written independently), and its gradients against finite differences of its own irradiance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "cache/host_records.h"
+#include "cache_test_scenes.h"
+#include "passes/gbuffer_pass.h"
+#include "passes/record_pass.h"
+#include "render/camera.h"
+#include "scene/cornell_box.h"
+
+namespace rcsplat {
+namespace {
+
+using glm::dvec3;
+using glm::vec3;
+
+GBufferSample sample_at(vec3 p, vec3 n) {
+  GBufferSample g{};
+  for (int i = 0; i < 3; ++i) {
+    g.position[i] = p[i];
+    g.normal[i] = n[i];
+    g.geometric_normal[i] = n[i];
+    g.albedo[i] = 1.0f;
+  }
+  g.triangle = 0;
+  return g;
+}
+
+// A camera whose pixels are so small and radius clamps so wide that R is Ward's harmonic mean distance.
+CameraParams tiny_pixel_camera() {
+  CameraParams c{};
+  c.forward[2] = -1.0f;
+  c.right[0] = 1.0f;
+  c.up[1] = 1.0f;
+  c.eye[2] = 1.0f;
+  c.tan_half_fov_y = 1e-3f;
+  c.aspect = 1.0f;
+  c.width = c.height = 1000;
+  return c;
+}
+
+// Runs the record kernel at one point (keyed as pixel 0, so every call draws the same random numbers).
+CacheRecord device_record(test::TwinScene& twin, RecordPass& pass, vec3 p, vec3 n, const HemisphereParams& hp) {
+  GpuContext& gpu = test::gpu();
+  cl::Buffer g = gpu.upload(std::vector<GBufferSample>{sample_at(p, n)});
+  cl::Buffer cam = gpu.upload(std::vector<CameraParams>{tiny_pixel_camera()});
+  cl::Buffer candidates = gpu.upload(std::vector<uint32_t>{0});
+  pass.compute(g, cam, candidates, 1, 0, hp);
+  return pass.download(1)[0];
+}
+
+HemisphereParams hemisphere(unsigned m, unsigned n) {
+  HemisphereParams hp{};
+  hp.theta_strata = m;
+  hp.phi_strata = n;
+  hp.seed = 7;
+  hp.min_spacing = 1e-6f;
+  hp.max_spacing = 1e9f;
+  return hp;
+}
+
+double irradiance_r(const CacheRecord& r) { return r.irradiance[0]; }
+
+TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
+  test::TwinScene twin(make_cornell_box());
+  GpuContext& gpu = test::gpu();
+  SceneCamera cam = choose_camera(twin.scene, 0, {});
+  int w = 48, h = 48;
+  CameraParams params = camera_params(cam, w, h);
+  GBufferPass gbuffer(gpu, twin.device);
+  gbuffer.run(params);
+  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<uint32_t> pixels;
+  std::mt19937 rng(3);
+  while (pixels.size() < 200) {
+    uint32_t p = rng() % uint32_t(w * h);
+    if (g[p].triangle >= 0) pixels.push_back(p);
+  }
+  HemisphereParams hp = hemisphere(8, 16);
+  hp.min_spacing = 3.0f;
+  hp.max_spacing = 20.0f;
+  RecordPass pass(gpu, twin.device, hp.theta_strata);
+  pass.compute(gbuffer.samples(), gbuffer.camera(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
+  std::vector<CacheRecord> device = pass.download(pixels.size());
+
+  // Float directions and hit points differ from double ones by ~1e-7: a ray grazing an edge may land elsewhere, so a
+  // few records may differ by one ray's share; the bulk must agree to float precision.
+  std::vector<double> e_err, r_err, g_err;
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const GBufferSample& s = g[pixels[i]];
+    vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
+    vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
+    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], device[i].pixel_size, hp);
+    ASSERT_EQ(device[i].pixel, int(pixels[i]));
+    double e_scale = std::max({host.irradiance.x, host.irradiance.y, host.irradiance.z, 1e-6});
+    double e_diff = 0, g_diff = 0, g_scale = 1e-9;
+    for (int c = 0; c < 3; ++c) {
+      e_diff = std::max(e_diff, std::abs(device[i].irradiance[c] - host.irradiance[c]));
+      for (int a = 0; a < 3; ++a) {
+        g_diff = std::max(g_diff, std::abs(device[i].grad_translation[3 * a + c] - host.grad_translation[size_t(a)][c]));
+        g_diff = std::max(g_diff, std::abs(device[i].grad_rotation[3 * a + c] - host.grad_rotation[size_t(a)][c]) /
+                                      device[i].radius);
+        g_scale = std::max(g_scale, std::abs(host.grad_translation[size_t(a)][c]));
+      }
+    }
+    e_err.push_back(e_diff / e_scale);
+    r_err.push_back(std::abs(device[i].radius - host.radius) / host.radius);
+    g_err.push_back(g_diff / std::max(g_scale, e_scale / host.radius));
+  }
+  auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[size_t(q * double(v.size() - 1))];
+  };
+  EXPECT_LT(quantile(e_err, 0.5), 1e-5);
+  EXPECT_LT(quantile(e_err, 0.95), 1e-3);
+  EXPECT_LT(quantile(r_err, 0.95), 1e-4);
+  EXPECT_LT(quantile(g_err, 0.5), 1e-4);
+  EXPECT_LT(quantile(g_err, 0.95), 1e-2);
+}
+
+// Central finite differences of the kernel's own E against its Ward-Heckbert gradients, at points where the
+// gradients are not bounded. Both are estimates from M x N jittered strata: the difference quotient of the same
+// samples jumps where a sample crosses an edge, and the rotational gradient weights samples by tan(theta). So each
+// seed gives one paired difference (analytic - finite difference), and the mean over seeds must be within four
+// standard errors of zero, plus 5% of the gradient's size for the formulas' first-order bias.
+struct PairedDifferences {
+  std::vector<double> diff;
+  double scale = 0;
+  void add(double analytic, double fd) { diff.push_back(analytic - fd); }
+  void expect_consistent(const std::string& what) const {
+    double n = double(diff.size()), mean = 0, var = 0;
+    for (double d : diff) mean += d / n;
+    for (double d : diff) var += (d - mean) * (d - mean) / (n - 1);
+    double se = std::sqrt(var / n);
+    EXPECT_LE(std::abs(mean), 4.0 * se + 0.05 * scale) << what << ": mean difference " << mean << ", standard error "
+                                                        << se << ", gradient size " << scale;
+  }
+};
+
+void check_gradients(bool occluder, vec3 p) {
+  test::TwinScene twin(test::floor_and_wall(occluder));
+  RecordPass pass(test::gpu(), twin.device, 32);
+  const vec3 n(0, 0, 1);
+  const float h = 0.01f, angle = 0.01f;
+  PairedDifferences translation[2], rotation[2];
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    HemisphereParams hp = hemisphere(32, 128);
+    hp.seed = seed;
+    hp.max_spacing = 1e4f;  // R = 0.02 (tiny_pixel_camera's pixels are 2e-6 wide here): the bounds stay inactive
+    CacheRecord r = device_record(twin, pass, p, n, hp);
+    double e = irradiance_r(r);
+    ASSERT_GT(e, 0.0);
+    ASSERT_LT(std::hypot(r.grad_translation[0], r.grad_translation[3]) * r.radius, 0.99 * e) << "bound active";
+    ASSERT_LT(std::hypot(r.grad_rotation[0], r.grad_rotation[3]), 0.99 * e) << "bound active";
+    for (int axis = 0; axis < 2; ++axis) {
+      vec3 d(0.0f);
+      d[axis] = h;
+      double fd = (irradiance_r(device_record(twin, pass, p + d, n, hp)) -
+                   irradiance_r(device_record(twin, pass, p - d, n, hp))) / (2.0 * h);
+      translation[axis].add(r.grad_translation[3 * axis], fd);
+      translation[axis].scale += std::hypot(r.grad_translation[0], r.grad_translation[3]) / 12.0;
+      // Tilting n by a small angle about the axis changes E by about angle * (axis . grad_r).
+      vec3 a(0.0f);
+      a[axis] = 1.0f;
+      vec3 tilt = glm::cross(a, n) * std::sin(angle);
+      vec3 plus = glm::normalize(n * std::cos(angle) + tilt), minus = glm::normalize(n * std::cos(angle) - tilt);
+      double fd_rot = (irradiance_r(device_record(twin, pass, p, plus, hp)) -
+                       irradiance_r(device_record(twin, pass, p, minus, hp))) / (2.0 * angle);
+      rotation[axis].add(r.grad_rotation[3 * axis], fd_rot);
+      rotation[axis].scale += std::hypot(r.grad_rotation[0], r.grad_rotation[3]) / 12.0;
+    }
+  }
+  for (int axis = 0; axis < 2; ++axis) {
+    translation[axis].expect_consistent("translation along axis " + std::to_string(axis));
+    rotation[axis].expect_consistent("rotation about axis " + std::to_string(axis));
+  }
+}
+
+TEST(RecordGradients, MatchFiniteDifferencesNearALitWall) { check_gradients(false, vec3(-0.3f, 0.3f, 0.0f)); }
+
+TEST(RecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) { check_gradients(true, vec3(0.3f, 0.0f, 0.0f)); }
+
+}  // namespace
+}  // namespace rcsplat
