@@ -1,0 +1,181 @@
+// The splat (kernels/splat.cl): its screen footprint holds every pixel a record reaches (brute force over all pixels),
+// it interpolates what a direct evaluation of Ward's formula gives, and it is deterministic. And the paper's claim:
+// for the same records, splatting gives the classic octree lookup's image.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "cache/octree_lookup.h"
+#include "cache_test_scenes.h"
+#include "passes/gbuffer_pass.h"
+#include "passes/splat_pass.h"
+#include "render/camera.h"
+#include "render/renderer.h"
+#include "scene/cornell_box.h"
+
+namespace rcsplat {
+namespace {
+
+using glm::dvec3;
+using glm::vec3;
+
+vec3 position_of(const GBufferSample& g) { return {g.position[0], g.position[1], g.position[2]}; }
+vec3 normal_of(const GBufferSample& g) { return {g.normal[0], g.normal[1], g.normal[2]}; }
+
+// A decision within 1e-5 (relative) of its threshold may go either way in float (the kernel's length() and the
+// host's need not round alike); such pixels are left out and counted.
+bool ambiguous(const CacheRecord& r, const GBufferSample& g, float accuracy) {
+  vec3 p = position_of(g), n = normal_of(g), pk = record_position(r), nk = record_normal(r);
+  float w = ward_weight(p, n, pk, nk, r.radius);
+  float in_front = glm::dot(p - pk, n + nk) * 0.5f + kInFrontTolerance * r.radius;
+  if (std::abs(w * accuracy - 1.0f) < 1e-5f) return true;
+  return w * accuracy > 1.0f &&
+         (std::abs(glm::dot(n, nk)) < 1e-6f || std::abs(in_front) < 1e-6f * (r.radius + glm::length(p - pk)));
+}
+
+TEST(Splat, FootprintHoldsEveryReachedPixelAndValuesMatchDirectEvaluation) {
+  test::TwinScene twin(make_cornell_box());
+  GpuContext& gpu = test::gpu();
+  SceneCamera cam = choose_camera(twin.scene, 0, {});
+  const int w = 96, h = 72;
+  GBufferPass gbuffer(gpu, twin.device);
+  gbuffer.run(camera_params(cam, w, h));
+  std::vector<GBufferSample> g = gbuffer.download();
+  float diagonal = glm::length(twin.scene.bounds_max() - twin.scene.bounds_min());
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  for (float accuracy : {0.2f, 0.5f, 1.5f}) {
+    // Records on visible surfaces with perturbed normals, radii from a tenth of a pixel to more than the scene (the
+    // camera then sits inside some spheres), random irradiance and gradients.
+    std::vector<CacheRecord> records(300);
+    for (CacheRecord& r : records) {
+      const GBufferSample* s;
+      do s = &g[rng() % g.size()];
+      while (s->triangle < 0);
+      vec3 n = glm::normalize(normal_of(*s) + 0.4f * vec3(uni(rng) - 0.5f, uni(rng) - 0.5f, uni(rng) - 0.5f));
+      std::memset(&r, 0, sizeof r);
+      r.radius = diagonal * std::pow(10.0f, -3.5f + 3.6f * uni(rng));
+      for (int i = 0; i < 3; ++i) {
+        r.position[i] = s->position[i];
+        r.normal[i] = n[i];
+        r.irradiance[i] = 0.1f + uni(rng);
+        for (int a = 0; a < 3; ++a) {  // within the bounds the record kernel enforces (|grad_t| R <= E, |grad_r| <= E)
+          r.grad_translation[3 * a + i] = 0.5f * (uni(rng) - 0.5f) * r.irradiance[i] / r.radius;
+          r.grad_rotation[3 * a + i] = 0.5f * (uni(rng) - 0.5f) * r.irradiance[i];
+        }
+      }
+    }
+    SplatPass splat(gpu);
+    splat.splat_all(gbuffer, gpu.upload(records), uint32_t(records.size()), accuracy);
+    splat.resolve(gbuffer, gpu.upload(std::vector<float>(g.size() * 4, 0.0f)));
+    std::vector<uint32_t> counts = splat.records_per_pixel();
+    std::vector<float> irradiance = splat.irradiance_rgbw();
+
+    size_t reached = 0, skipped = 0;
+    for (size_t i = 0; i < g.size(); ++i) {
+      if (g[i].triangle < 0) {
+        EXPECT_EQ(counts[i], 0u);
+        continue;
+      }
+      vec3 p = position_of(g[i]), n = normal_of(g[i]);
+      uint32_t expected = 0;
+      dvec3 sum(0.0);
+      double weights = 0.0;
+      bool unsure = false;
+      for (const CacheRecord& r : records) {
+        unsure = unsure || ambiguous(r, g[i], accuracy);
+        float wk = ward_weight(p, n, record_position(r), record_normal(r), r.radius);
+        if (!record_usable(wk, accuracy, p, n, record_position(r), record_normal(r), r.radius)) continue;
+        ++expected;
+        sum += double(wk) * extrapolated_irradiance(r, dvec3(p), dvec3(n));
+        weights += wk;
+      }
+      if (unsure) {
+        ++skipped;
+        continue;
+      }
+      reached += expected;
+      ASSERT_EQ(counts[i], expected) << "pixel " << i % w << "," << i / w << " at a = " << accuracy;
+      for (int c = 0; c < 3 && expected; ++c)
+        ASSERT_NEAR(irradiance[4 * i + size_t(c)], sum[c] / weights, 1e-5 * sum[c] / weights + 1e-7)
+            << "pixel " << i << " channel " << c;
+    }
+    EXPECT_GT(reached, g.size() / 10) << "the random records should reach many pixels";
+    EXPECT_LT(skipped, g.size() / 100) << skipped << " pixels at a threshold";
+  }
+}
+
+RenderSettings small_splat(int size) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.gi = GiMethod::splat;
+  s.light_samples = 4;
+  s.cache.theta_strata = 8;
+  s.cache.phi_strata = 16;
+  return s;
+}
+
+TEST(Splat, SameInputSameBits) {
+  Scene scene = make_cornell_box();
+  RenderedImage a = render(test::gpu(), scene, small_splat(64));
+  RenderedImage b = render(test::gpu(), scene, small_splat(64));
+  ASSERT_GT(a.stats.records, 0u);
+  EXPECT_EQ(a.stats.records, b.stats.records);
+  EXPECT_EQ(0, std::memcmp(a.irradiance.data(), b.irradiance.data(), a.irradiance.size() * sizeof(float)));
+  EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(float)));
+  for (float v : a.color) ASSERT_TRUE(std::isfinite(v));
+}
+
+// Gautron et al.'s central claim: splatting each record over its footprint and normalising gives, pixel for pixel,
+// what Ward's lookup of every record with w > 1/a (through an octree) gives, for the same records.
+TEST(Splat, EqualsClassicOctreeLookupForTheSameRecords) {
+  Scene scene = make_cornell_box();
+  RenderSettings settings = small_splat(96);
+  RenderedImage img = render(test::gpu(), scene, settings);
+  const std::vector<CacheRecord>& records = img.records;
+  ASSERT_GT(records.size(), 100u);
+  float accuracy = settings.cache.accuracy;
+  RecordOctree octree(dvec3(scene.bounds_min()), dvec3(scene.bounds_max()));
+  for (size_t k = 0; k < records.size(); ++k)
+    octree.insert(uint32_t(k), dvec3(record_position(records[k])), double(accuracy) * records[k].radius);
+  double largest = 0.0;
+  for (float v : img.irradiance) largest = std::max(largest, double(v));
+  size_t compared = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (img.triangle[i] < 0) continue;
+    PixelGeometry geo{vec3(img.position[3 * i], img.position[3 * i + 1], img.position[3 * i + 2]),
+                      vec3(img.normal[3 * i], img.normal[3 * i + 1], img.normal[3 * i + 2]), vec3(0.0f), true};
+    Interpolation lookup = interpolate(octree, records, geo, accuracy);
+    ASSERT_GT(lookup.weight, 0.0) << "pixel " << i << " is covered by the splat but not by the lookup";
+    ASSERT_EQ(uint32_t(img.records_per_pixel[i]), lookup.count) << "pixel " << i;
+    for (int c = 0; c < 3; ++c) {
+      double expected = lookup.weighted[c] / lookup.weight;
+      ASSERT_NEAR(img.irradiance[3 * i + size_t(c)], expected, 1e-5 * expected + 1e-7 * largest) << "pixel " << i;
+    }
+    ++compared;
+  }
+  EXPECT_GT(compared, img.triangle.size() / 2);
+}
+
+// The host octree cache computes its own records (Embree, double) with the same placement: its image matches the
+// splat's to float precision of the records.
+TEST(Splat, OctreeRenderMatchesSplatRender) {
+  Scene scene = make_cornell_box();
+  RenderSettings settings = small_splat(48);
+  RenderedImage splat = render(test::gpu(), scene, settings);
+  settings.gi = GiMethod::octree;
+  RenderedImage octree = render(test::gpu(), scene, settings);
+  EXPECT_NEAR(double(octree.stats.records), double(splat.stats.records), 0.01 * double(splat.stats.records));
+  double num = 0, den = 0;
+  for (size_t i = 0; i < splat.indirect.size(); ++i) {
+    num += std::pow(double(octree.indirect[i]) - splat.indirect[i], 2);
+    den += std::pow(double(splat.indirect[i]), 2);
+  }
+  EXPECT_LT(std::sqrt(num / den), 1e-3) << "relative RMS difference of the indirect layers";
+}
+
+}  // namespace
+}  // namespace rcsplat
