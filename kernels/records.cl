@@ -67,9 +67,15 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       }
       e += l;
       inverse_distances += 1.0f / r;
-      rotation += (sin_t / cos_t) * l;
+
       float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
       float sin_hi = sqrt((float)(j + 1) * inv_m);
+      float cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
+      // Tilting n by d about axis a changes E by d * integral of L sin(theta) (a . v(phi)) dw. Integrating that weight
+      // over the stratum (rather than Ward and Heckbert's per-sample tan(theta), whose variance is unbounded in the
+      // stratum at the horizon) leaves no gradient at all in a uniform environment.
+      float th_lo = asin(sin_lo), th_hi = asin(sin_hi);
+      rotation += (0.5f * (th_hi - th_lo) - 0.5f * (sin_hi * cos_hi - sin_lo * cos_lo)) * l;
       if (j > 0) {  // the wall between (j - 1, k) and (j, k), at theta_j-
         float c = dphi * sin_lo * cos_lo * cos_lo / fmin(r, r_below);
         add_outer(grad_t, u_mid, c * (l - l_below));
@@ -85,7 +91,7 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       prev_l[j] = l;
       prev_r[j] = r;
     }
-    add_outer(grad_r, v_mid, rotation);
+    add_outer(grad_r, v_mid, (2.0f * sin(0.5f * dphi)) * rotation);  // the integral of v(phi) over the stratum
   }
   for (uint j = 0; j < M; ++j) {  // the wall at phi = 0 between the last column and the first
     float wall = sqrt((float)(j + 1) * inv_m) - sqrt((float)j * inv_m);
@@ -93,7 +99,6 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   }
   float norm = RC_PI / (float)(M * N);
   e = finite_or_zero(e * norm);
-  for (int a = 0; a < 3; ++a) grad_r[a] *= norm;
 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
   float harmonic = (float)(M * N) / inverse_distances;

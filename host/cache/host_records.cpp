@@ -39,7 +39,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   uint32_t key = hash_u32(pixel ^ hash_u32(hp.seed));
 
   std::vector<dvec3> L(size_t(M * N));
-  std::vector<double> r(size_t(M * N)), tan_theta(size_t(M * N));
+  std::vector<double> r(size_t(M * N));
   HostRecord rec;
   for (int j = 0; j < M; ++j)
     for (int k = 0; k < N; ++k) {
@@ -56,7 +56,6 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
       }
       L[size_t(s)] = l;
       r[size_t(s)] = dist;
-      tan_theta[size_t(s)] = st / ct;
     }
   auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };
 
@@ -73,8 +72,10 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
     dvec3 v_lo = -std::sin(phi_lo) * t + std::cos(phi_lo) * b;
     dvec3 rotation(0.0);
     for (int j = 0; j < M; ++j) {
-      rotation += tan_theta[at(j, k)] * L[at(j, k)];
       double cos_lo = std::sqrt(1.0 - double(j) / M);
+      // Rotation: L sin(theta) v(phi) integrated over the stratum, L taken constant in it.
+      double th_lo = std::asin(std::sqrt(double(j) / M)), th_hi = std::asin(std::sqrt(double(j + 1) / M));
+      rotation += ((th_hi - th_lo) / 2.0 - (std::sin(2.0 * th_hi) - std::sin(2.0 * th_lo)) / 4.0) * L[at(j, k)];
       // Wall at phi_k- between columns k - 1 and k: content crosses it at angular speed 1 / (r sin(theta)), weighted
       // by the projected solid angle cos(theta) sin(theta) dtheta, hence the integral of cos(theta) over the stratum.
       double wall = std::sqrt(double(j + 1) / M) - std::sqrt(double(j) / M);
@@ -86,7 +87,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
         add_outer(rec.grad_translation, u_mid, coef * (L[at(j, k)] - L[at(j - 1, k)]));
       }
     }
-    add_outer(rec.grad_rotation, v_mid, rotation * (kPi / (M * N)));
+    add_outer(rec.grad_rotation, v_mid, rotation * (2.0 * std::sin(kPi / N)));
   }
 
   rec.position = p;

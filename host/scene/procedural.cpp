@@ -52,7 +52,7 @@ Scene make_box_room(int boxes, uint32_t seed) {
   return s;
 }
 
-Scene make_bumpy_sphere(int subdivisions, float radius) {
+Scene make_icosphere(int subdivisions, float radius, float bump) {
   // Icosahedron, subdivided with shared midpoints so that neighbouring triangles share exact vertex positions.
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
   std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
@@ -80,16 +80,23 @@ Scene make_bumpy_sphere(int subdivisions, float radius) {
     }
     f.swap(next);
   }
-  for (glm::vec3& p : v) p *= radius * (1.0f + 0.08f * std::sin(7.0f * p.x) * std::sin(5.0f * p.y) * std::sin(6.0f * p.z));
+  std::vector<glm::vec3> radial = v;
+  for (glm::vec3& p : v) p *= radius * (1.0f + bump * std::sin(7.0f * p.x) * std::sin(5.0f * p.y) * std::sin(6.0f * p.z));
   Scene s;
-  s.source = "generated bumpy sphere";
+  s.source = bump != 0.0f ? "generated bumpy sphere" : "generated sphere";
   s.materials.push_back({"grey", {0.7f, 0.7f, 0.7f, 1.0f}, -1, {0, 0, 0}, false});
-  for (const glm::ivec3& tri : f) s.add_triangle(v[size_t(tri.x)], v[size_t(tri.y)], v[size_t(tri.z)], 0);
+  for (const glm::ivec3& tri : f) {
+    s.add_triangle(v[size_t(tri.x)], v[size_t(tri.y)], v[size_t(tri.z)], 0);
+    if (bump == 0.0f)  // a smooth sphere: radial vertex normals
+      for (int k = 0; k < 3; ++k) s.normals[s.normals.size() - 3 + size_t(k)] = radial[size_t(tri[k])];
+  }
   SceneCamera cam;
   cam.eye = glm::vec3(0.0f, 0.0f, 3.0f * radius);
   cam.target = glm::vec3(0.0f);
   s.cameras.push_back(cam);
   return s;
 }
+
+Scene make_bumpy_sphere(int subdivisions, float radius) { return make_icosphere(subdivisions, radius, 0.08f); }
 
 }  // namespace rcsplat
