@@ -147,8 +147,8 @@ typedef struct {
   rc_uint theta_strata;  // M
   rc_uint phi_strata;    // N
   rc_uint seed;
-  float min_spacing;  // radius clamps in pixel footprints
-  float max_spacing;
+  float min_spacing;  // clamps of the radius R, in pixel footprints at the record (the host passes the
+  float max_spacing;  // record spacing clamps divided by the accuracy a, so that the reach a R is clamped)
   float pad[3];
 } HemisphereParams;
 

@@ -26,6 +26,8 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
 }
 
 #if HAS_TEXTURES
+#include "srgb_table.h"
+
 inline int wrap_texel(int i, int n, uint mode) {
   if (mode == WRAP_CLAMP) return clamp(i, 0, n - 1);
   if (mode == WRAP_MIRROR) {
@@ -37,14 +39,10 @@ inline int wrap_texel(int i, int n, uint mode) {
   return m < 0 ? m + n : m;
 }
 
-inline float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
-
 inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x, int y) {
   uint p = texels[info.first_texel + (uint)y * info.width + (uint)x];
-  float4 c = (float4)(p & 255u, (p >> 8) & 255u, (p >> 16) & 255u, p >> 24) * (1.0f / 255.0f);
-  return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);
+  return (float4)(SRGB_TO_LINEAR[p & 255u], SRGB_TO_LINEAR[(p >> 8) & 255u], SRGB_TO_LINEAR[(p >> 16) & 255u],
+                  (float)(p >> 24) * (1.0f / 255.0f));
 }
 
 // Bilinear lookup in linear space; texture coordinates wrap as the sampler says.

@@ -26,6 +26,17 @@ int run_compare(const CompareOptions& o) {
                                    read_exr_layer(o.reference_path, "indirect", rw, rh));
     std::printf("%-10s %-12.4e %-12.4e %-12.4e\n", "indirect", ind.rel_mse, ind.rmse, ind.mae);
     j["indirect"] = {{"rel_mse", ind.rel_mse}, {"rmse", ind.rmse}, {"mae", ind.mae}};
+    // A path-traced reference carries its own noise, which adds its expected relMSE to every comparison against it.
+    if (exr_has_layer(o.reference_path, "indirect_variance")) {
+      std::vector<float> ref = read_exr_layer(o.reference_path, "indirect", rw, rh);
+      std::vector<float> var = read_exr_layer(o.reference_path, "indirect_variance", rw, rh);
+      double noise = 0.0;
+      for (size_t i = 0; i < ref.size(); ++i) noise += var[i] / (double(ref[i]) * ref[i] + 0.01) / double(ref.size());
+      std::printf("reference noise: expected indirect relMSE %.4e (from its variance); relMSE less that: %.4e\n", noise,
+                  ind.rel_mse - noise);
+      j["indirect"]["reference_noise"] = noise;
+      j["indirect"]["rel_mse_less_reference_noise"] = ind.rel_mse - noise;
+    }
   } else {
     std::printf("indirect   (no indirect layer in both images)\n");
   }

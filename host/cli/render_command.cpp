@@ -29,12 +29,12 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
               mrays_per_second(s.primary_rays + s.shadow_rays, s.gbuffer_s + s.direct_s));
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
-    std::printf("cache        a = %g, %ux%u rays per record, radius %g..%g pixels\n", c.accuracy, c.theta_strata,
+    std::printf("cache        a = %g, %ux%u rays per record, record spacing %g..%g pixels\n", c.accuracy, c.theta_strata,
                 c.phi_strata, c.min_spacing, c.max_spacing);
     std::printf("records      %llu:", (unsigned long long)s.records);
     for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing);
     std::printf(" %llu pixels left uncovered\n", (unsigned long long)s.uncovered_pixels);
-    std::printf("             radius at the minimum clamp: %.1f%%, at the maximum: %.1f%%\n",
+    std::printf("             reach at the minimum spacing: %.1f%%, at the maximum: %.1f%%\n",
                 100.0 * double(s.records_at_min_radius) / double(std::max<uint64_t>(s.records, 1)),
                 100.0 * double(s.records_at_max_radius) / double(std::max<uint64_t>(s.records, 1)));
     std::printf("             %llu rays (%.2f Mrays/s)\n", (unsigned long long)s.record_rays,

@@ -8,7 +8,10 @@ namespace rcsplat {
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata) : gpu_(gpu), scene_(scene) {
   if (theta_strata == 0 || theta_strata > kMaxThetaStrata)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(kMaxThetaStrata));
-  kernel_ = cl::Kernel(gpu_.program("records.cl", scene_.defines()), "compute_records");
+  // The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
+  KernelDefines defines = scene_.defines();
+  defines["MAX_THETA_STRATA"] = std::to_string(theta_strata);
+  kernel_ = cl::Kernel(gpu_.program("records.cl", defines), "compute_records");
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
   reserve(1024);
 }

@@ -22,7 +22,7 @@ class RecordPass {
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t count);
 
-  static constexpr unsigned kMaxThetaStrata = 64;  // MAX_THETA_STRATA in records.cl
+  static constexpr unsigned kMaxThetaStrata = 64;  // the largest M offered
 
  private:
   void reserve(size_t count);  // grows the array, keeping what it holds

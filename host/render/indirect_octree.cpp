@@ -41,8 +41,8 @@ void octree_indirect(IndirectFrame& f) {
   hp.theta_strata = cs.theta_strata;
   hp.phi_strata = cs.phi_strata;
   hp.seed = f.settings.seed;
-  hp.min_spacing = cs.min_spacing;
-  hp.max_spacing = cs.max_spacing;
+  hp.min_spacing = cs.min_spacing / cs.accuracy;
+  hp.max_spacing = cs.max_spacing / cs.accuracy;
   RecordOctree octree(dvec3(f.scene.bounds_min()), dvec3(f.scene.bounds_max()));
   std::vector<CacheRecord> records;
   std::vector<int32_t> record_at_pixel(pixels, -1);
@@ -94,7 +94,7 @@ void octree_indirect(IndirectFrame& f) {
           if (glm::distance(pi, record_position(records[j])) >= ri.radius) return;
           clamped[i] = std::min(clamped[i], records[j].radius + glm::distance(pi, record_position(records[j])));
         });
-        clamped[i] = std::max(clamped[i], std::min(ri.radius, cs.min_spacing * ri.pixel_size));
+        clamped[i] = std::max(clamped[i], std::min(ri.radius, hp.min_spacing * ri.pixel_size));
       });
       for (size_t i = 0; i < records.size(); ++i) records[i].radius = clamped[i];
       st.placement_s += seconds_since(t);

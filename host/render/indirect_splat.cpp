@@ -23,7 +23,7 @@ void check_cache_settings(const CacheSettings& c) {
 
 void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cs, RenderStats& st) {
   for (const CacheRecord& r : records) {
-    float px = r.radius / r.pixel_size;
+    float px = cs.accuracy * r.radius / r.pixel_size;  // the reach in pixels
     if (px <= cs.min_spacing * 1.0001f) ++st.records_at_min_radius;
     else if (px >= cs.max_spacing * 0.9999f) ++st.records_at_max_radius;
   }
@@ -44,8 +44,8 @@ void splat_indirect(IndirectFrame& f) {
   hp.theta_strata = cs.theta_strata;
   hp.phi_strata = cs.phi_strata;
   hp.seed = f.settings.seed;
-  hp.min_spacing = cs.min_spacing;
-  hp.max_spacing = cs.max_spacing;
+  hp.min_spacing = cs.min_spacing / cs.accuracy;
+  hp.max_spacing = cs.max_spacing / cs.accuracy;
 
   int coarsest = 1;
   while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
@@ -68,7 +68,7 @@ void splat_indirect(IndirectFrame& f) {
       t = Clock::now();
       placement.mark(records.records(), total, count);
       total += count;
-      placement.clamp_neighbours(records.records(), total, total - count, round == 0, cs.min_spacing);
+      placement.clamp_neighbours(records.records(), total, total - count, round == 0, hp.min_spacing);
       st.placement_s += seconds_since(t);
       t = Clock::now();
       splat.splat_all(f.gbuffer, records.records(), total, cs.accuracy);

@@ -20,7 +20,10 @@ struct CacheSettings {
   float accuracy = 0.3f;        // a: smaller means more records and less error
   unsigned theta_strata = 16;   // hemisphere rays per record: M x N
   unsigned phi_strata = 32;
-  float min_spacing = 3.0f;     // validity radius clamps, in pixel footprints at the record
+  // Record spacing: a record's reach a * R is clamped to [min, max] pixel footprints at the record (as pbrt-v2 clamps
+  // its contribution extent), so R itself to [min, max] / a. Keeps records from crowding corners and from vanishing
+  // on open areas.
+  float min_spacing = 3.0f;
   float max_spacing = 20.0f;
   int coarsest_spacing = 32;    // record placement starts on this pixel grid and halves it down to 1
 };

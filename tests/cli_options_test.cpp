@@ -1,0 +1,89 @@
+// The render options' parsers and `rcsplat compare`: good input works, bad input is refused with a message naming it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "image/error_metrics.h"
+#include "image/image_io.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+TEST(CliOptions, HemisphereAndSpacingParse) {
+  CacheSettings c;
+  parse_hemisphere("24x48", c);
+  EXPECT_EQ(c.theta_strata, 24u);
+  EXPECT_EQ(c.phi_strata, 48u);
+  parse_spacing("2.5,15", c);
+  EXPECT_FLOAT_EQ(c.min_spacing, 2.5f);
+  EXPECT_FLOAT_EQ(c.max_spacing, 15.0f);
+  EXPECT_EQ(parse_gi_method("octree"), GiMethod::octree);
+}
+
+TEST(CliOptions, BadValuesAreRefusedByName) {
+  CacheSettings c;
+  for (const char* bad : {"16", "0x32", "16x0", "16x32x", "65x8", "ax8"}) {
+    try {
+      parse_hemisphere(bad, c);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--hemisphere"), std::string::npos) << e.what();
+    }
+  }
+  for (const char* bad : {"3", "20,3", "0,5", "a,b", "3,20,1"}) {
+    try {
+      parse_spacing(bad, c);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--spacing"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(parse_gi_method("photon"), Error);
+  CacheSettings bad_accuracy;
+  bad_accuracy.accuracy = -1.0f;
+  EXPECT_THROW(check_cache_settings(bad_accuracy), Error);
+}
+
+void write_rgb_exr(const std::string& path, int w, int h, float value, bool with_indirect) {
+  std::vector<float> rgb(size_t(w) * size_t(h) * 3, value), indirect(rgb.size(), value * 0.5f);
+  std::vector<ImageLayer> layers = {{"", {"R", "G", "B"}, &rgb}};
+  if (with_indirect) layers.push_back({"indirect", {"R", "G", "B"}, &indirect});
+  write_exr(path, w, h, layers);
+}
+
+TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
+  std::string dir = test::scratch_dir();
+  write_rgb_exr(dir + "/a.exr", 8, 6, 1.0f, true);
+  write_rgb_exr(dir + "/b.exr", 8, 6, 1.1f, true);
+  write_rgb_exr(dir + "/small.exr", 4, 6, 1.0f, true);
+  CompareOptions o;
+  o.image_path = dir + "/b.exr";
+  o.reference_path = dir + "/a.exr";
+  o.heatmap_path = dir + "/heat.png";
+  o.json_path = dir + "/cmp.json";
+  EXPECT_EQ(run_compare(o), 0);
+  EXPECT_TRUE(std::filesystem::exists(o.heatmap_path));
+  EXPECT_TRUE(std::filesystem::exists(o.json_path));
+  ErrorMetrics m = image_error(std::vector<float>(3, 1.1f), std::vector<float>(3, 1.0f));
+  EXPECT_NEAR(m.rel_mse, 0.01 / 1.01, 1e-9);
+  EXPECT_NEAR(m.rmse, 0.1, 1e-6);
+  EXPECT_NEAR(m.mae, 0.1, 1e-6);
+
+  o.reference_path = dir + "/small.exr";
+  o.heatmap_path = dir + "/heat2.png";
+  try {
+    run_compare(o);
+    ADD_FAILURE() << "images of different sizes were compared";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("small.exr"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.heatmap_path));
+  o.reference_path = dir + "/missing.exr";
+  EXPECT_THROW(run_compare(o), Error);
+}
+
+}  // namespace
+}  // namespace rcsplat
