@@ -17,9 +17,11 @@ void parse_hemisphere(const std::string& text, CacheSettings& cache) {
   char tail = 0;
   if (std::sscanf(text.c_str(), "%ux%u%c", &m, &n, &tail) != 2 || m == 0 || n == 0)
     throw Error("--hemisphere " + text + ": expected MxN, for example 16x32");
-  cache.theta_strata = m;
-  cache.phi_strata = n;
-  check_cache_settings(cache);
+  CacheSettings changed = cache;  // checked before it replaces the settings: a refused value leaves them as they were
+  changed.theta_strata = m;
+  changed.phi_strata = n;
+  check_cache_settings(changed);
+  cache = changed;
 }
 
 void parse_spacing(const std::string& text, CacheSettings& cache) {
@@ -27,9 +29,11 @@ void parse_spacing(const std::string& text, CacheSettings& cache) {
   char tail = 0;
   if (std::sscanf(text.c_str(), "%f,%f%c", &lo, &hi, &tail) != 2)
     throw Error("--spacing " + text + ": expected MIN,MAX in pixels, for example 3,20");
-  cache.min_spacing = lo;
-  cache.max_spacing = hi;
-  check_cache_settings(cache);
+  CacheSettings changed = cache;
+  changed.min_spacing = lo;
+  changed.max_spacing = hi;
+  check_cache_settings(changed);
+  cache = changed;
 }
 
 }  // namespace rcsplat
