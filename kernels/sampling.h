@@ -1,25 +1,10 @@
 // Random numbers, robust ray origins and light sampling helpers shared by the shading kernels.
 #ifndef RCSPLAT_SAMPLING_H
 #define RCSPLAT_SAMPLING_H
+#include "counter_random.h"
 
 #define RC_PI 3.14159265358979f
 #define RC_INV_PI 0.318309886183791f
-
-// A counter-based generator: the same (pixel, sample, dimension) always gives the same number, on every device,
-// so a render is reproducible whatever the work-group order.
-inline uint hash_u32(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
-inline float random01(uint a, uint b, uint c) {
-  uint h = hash_u32(a ^ hash_u32(b ^ hash_u32(c + 0x9e3779b9u)));
-  return (float)(h >> 8) * (1.0f / 16777216.0f);  // 24 bits: strictly below 1
-}
 
 // Moves a surface point off its surface along the geometric normal n (pointing to the side the ray leaves to) by a
 // fixed number of float ULPs, so the offset scales with the coordinates' magnitude; near the origin, where ULPs

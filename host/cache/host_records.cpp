@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "util/random.h"
+#include "kernels/counter_random.h"
 #include "util/ray_offset.h"
 
 namespace rcsplat {

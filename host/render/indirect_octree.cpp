@@ -37,12 +37,7 @@ void octree_indirect(IndirectFrame& f) {
   PackedScene packed = pack_scene(f.scene);
   EmbreeScene embree(f.scene.positions);
   HostShading shading(packed, embree);
-  HemisphereParams hp{};
-  hp.theta_strata = cs.theta_strata;
-  hp.phi_strata = cs.phi_strata;
-  hp.seed = f.settings.seed;
-  hp.min_spacing = cs.min_spacing / cs.accuracy;
-  hp.max_spacing = cs.max_spacing / cs.accuracy;
+  HemisphereParams hp = hemisphere_params(cs, f.settings.seed);
   RecordOctree octree(dvec3(f.scene.bounds_min()), dvec3(f.scene.bounds_max()));
   std::vector<CacheRecord> records;
   std::vector<int32_t> record_at_pixel(pixels, -1);

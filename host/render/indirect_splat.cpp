@@ -29,6 +29,16 @@ void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSet
   }
 }
 
+HemisphereParams hemisphere_params(const CacheSettings& cs, unsigned seed) {
+  HemisphereParams hp{};
+  hp.theta_strata = cs.theta_strata;
+  hp.phi_strata = cs.phi_strata;
+  hp.seed = seed;
+  hp.min_spacing = cs.min_spacing / cs.accuracy;
+  hp.max_spacing = cs.max_spacing / cs.accuracy;
+  return hp;
+}
+
 void splat_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
   check_cache_settings(cs);
@@ -40,12 +50,7 @@ void splat_indirect(IndirectFrame& f) {
   SplatPass splat(f.gpu);
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  HemisphereParams hp{};
-  hp.theta_strata = cs.theta_strata;
-  hp.phi_strata = cs.phi_strata;
-  hp.seed = f.settings.seed;
-  hp.min_spacing = cs.min_spacing / cs.accuracy;
-  hp.max_spacing = cs.max_spacing / cs.accuracy;
+  HemisphereParams hp = hemisphere_params(cs, f.settings.seed);
 
   int coarsest = 1;
   while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
