@@ -44,8 +44,9 @@ def render(args, extra, tmp, tag):
 
 
 def equal_error_time(args, target, stratified, tmp):
-    """Seconds the path tracer needs to reach relMSE target: doubling spp, then interpolating relMSE ~ c / spp."""
-    spp, previous, rows = 1, None, []
+    """Seconds the path tracer needs to reach relMSE target: doubling spp, then interpolating relMSE ~ c / spp^k
+    between the bracketing runs (extrapolating past --max-spp)."""
+    spp, previous, rows = args.start_spp, None, []
     while True:
         flags = ["--gi", "path", "--spp", str(spp)] + (["--stratified"] if stratified else [])
         r = render(args, flags, tmp, f"path{spp}{'s' if stratified else ''}")
@@ -54,8 +55,10 @@ def equal_error_time(args, target, stratified, tmp):
             break
         previous = (spp, r)
         spp *= 2
-    if r["rel_mse"] > target:
+    if r["rel_mse"] > target and previous is None:
         return None, rows
+    # Past --max-spp the same law extrapolates from the last two runs (plain sampling follows 1/spp closely); the
+    # runs are in the JSON so that an extrapolation shows.
     if previous is None:  # one sample per pixel already suffices: its time is an upper bound
         return r["seconds"], rows
     # Between the bracketing runs relMSE = c / spp^k; solve for the spp giving the target, time linear in spp.
@@ -75,6 +78,7 @@ def main():
     p.add_argument("--accuracy", type=float, nargs="+", default=[0.3])
     p.add_argument("--hemisphere", default="16x32")
     p.add_argument("--spacing", default="3,20")
+    p.add_argument("--start-spp", type=int, default=1, help="first path sample count (then doubled)")
     p.add_argument("--max-spp", type=int, default=4096)
     p.add_argument("--rcsplat", default=os.path.join(os.path.dirname(__file__), "..", "build", "rcsplat"))
     p.add_argument("--json", help="also write the table as JSON")

@@ -2,13 +2,38 @@
 // Only counts cross to the host: candidates are compacted on the device.
 #include "cache.h"
 
-// Pixels on the grid of the given spacing that see geometry and no usable record become candidates.
-__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const long* sums, int width, int height,
-                             int spacing, __global uint* candidates, __global uint* candidate_count) {
+// Coverage on the grid of the given spacing: 1 where some record is usable (w > 1/a and not in front). The same test
+// as the splat's, but only on the grid pixels placement looks at, and a plain store (every writer stores 1), so a
+// level costs about 1/spacing^2 of a splat.
+__kernel void mark_covered(__global const CacheRecord* records, uint record_count, float accuracy,
+                           __global const GBufferSample* gbuffer, __global const CameraParams* camera, int spacing,
+                           __global uchar* covered) {
+  uint k = get_global_id(0);
+  if (k >= record_count) return;
+  __global const CacheRecord* rec = records + k;
+  float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
+  float radius = rec->radius;
+  PixelRect rect = sphere_footprint(camera, pk, accuracy * radius);
+  int x0 = (rect.x0 + spacing - 1) / spacing * spacing, y0 = (rect.y0 + spacing - 1) / spacing * spacing;
+  for (int y = y0; y <= rect.y1; y += spacing) {
+    for (int x = x0; x <= rect.x1; x += spacing) {
+      uint pixel = (uint)(y * camera->width + x);
+      if (covered[pixel]) continue;  // another record got there first: reading is cheaper than writing again
+      __global const GBufferSample* g = gbuffer + pixel;
+      if (g->triangle < 0) continue;
+      float3 p = vload3(0, g->position), n = vload3(0, g->normal);
+      if (record_usable(ward_weight(p, n, pk, nk, radius), accuracy, p, n, pk, nk, radius)) covered[pixel] = 1;
+    }
+  }
+}
+
+// Pixels on the grid of the given spacing that see geometry and are not covered become candidates.
+__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const uchar* covered, int width,
+                             int height, int spacing, __global uint* candidates, __global uint* candidate_count) {
   int x = get_global_id(0) * spacing, y = get_global_id(1) * spacing;
   if (x >= width || y >= height) return;
   uint pixel = (uint)(y * width + x);
-  if (gbuffer[pixel].triangle < 0 || sums[4 * (size_t)pixel + 3] > 0) return;
+  if (gbuffer[pixel].triangle < 0 || covered[pixel]) return;
   candidates[atomic_inc(candidate_count)] = pixel;
 }
 

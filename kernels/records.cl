@@ -39,6 +39,21 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
   uint key = hash_u32(pixel ^ hash_u32(hp.seed));
 
+  // Per-row weights, the same in every column: computed once. theta_wall: the wall between rows j - 1 and j, at
+  // theta_j- (sin theta cos^2 theta dphi); phi_wall: the integral of cos(theta) over row j (the walls between columns);
+  // rotation: the integral of sin^2(theta) over row j. Tilting n by d about axis a changes E by d times the integral
+  // of L sin(theta) (a . v(phi)) dw; integrating that weight over each stratum (rather than Ward and Heckbert's
+  // per-sample tan(theta), whose variance is unbounded in the row at the horizon) leaves no gradient at all in a
+  // uniform environment.
+  float theta_wall[MAX_THETA_STRATA], phi_wall[MAX_THETA_STRATA], rotation_weight[MAX_THETA_STRATA];
+  for (uint j = 0; j < M; ++j) {
+    float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
+    float sin_hi = sqrt((float)(j + 1) * inv_m), cos_hi = sqrt(fmax(1.0f - (float)(j + 1) * inv_m, 0.0f));
+    theta_wall[j] = dphi * sin_lo * cos_lo * cos_lo;
+    phi_wall[j] = sin_hi - sin_lo;
+    rotation_weight[j] = 0.5f * (asin(sin_hi) - asin(sin_lo)) - 0.5f * (sin_hi * cos_hi - sin_lo * cos_lo);
+  }
+
   // Stratum (j, k) needs (j - 1, k) and (j, k - 1): keep the previous column, and the first for the wrap-around.
   float3 prev_l[MAX_THETA_STRATA], first_l[MAX_THETA_STRATA];
   float prev_r[MAX_THETA_STRATA], first_r[MAX_THETA_STRATA];
@@ -48,18 +63,17 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   float inverse_distances = 0.0f;
   uint rays = 0;
   for (uint k = 0; k < N; ++k) {
-    float phi_mid = ((float)k + 0.5f) * dphi, phi_lo = (float)k * dphi;
-    float3 u_mid = cos(phi_mid) * t + sin(phi_mid) * b;
-    float3 v_mid = -sin(phi_mid) * t + cos(phi_mid) * b;
-    float3 v_lo = -sin(phi_lo) * t + cos(phi_lo) * b;
+    float cos_mid, sin_mid = sincos(((float)k + 0.5f) * dphi, &cos_mid);
+    float cos_lo, sin_lo = sincos((float)k * dphi, &cos_lo);
+    float3 u_mid = cos_mid * t + sin_mid * b, v_mid = -sin_mid * t + cos_mid * b, v_lo = -sin_lo * t + cos_lo * b;
     float3 rotation = (float3)(0.0f), l_below = (float3)(0.0f);
     float r_below = INFINITY;
     for (uint j = 0; j < M; ++j) {
       uint s = j * N + k;
       float sin2 = ((float)j + random01(key, s, 0u)) * inv_m;
       float sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
-      float phi = ((float)k + random01(key, s, 1u)) * dphi;
-      float3 dir = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
+      float cos_phi, sin_phi = sincos(((float)k + random01(key, s, 1u)) * dphi, &cos_phi);
+      float3 dir = (cos_phi * sin_t) * t + (sin_phi * sin_t) * b + cos_t * n;
       float r = INFINITY;
       float3 l = (float3)(0.0f);
       if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
@@ -67,21 +81,9 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       }
       e += l;
       inverse_distances += 1.0f / r;
-
-      float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
-      float sin_hi = sqrt((float)(j + 1) * inv_m);
-      float cos_hi = sqrt(1.0f - (float)(j + 1) * inv_m);
-      // Tilting n by d about axis a changes E by d * integral of L sin(theta) (a . v(phi)) dw. Integrating that weight
-      // over the stratum (rather than Ward and Heckbert's per-sample tan(theta), whose variance is unbounded in the
-      // stratum at the horizon) leaves no gradient at all in a uniform environment.
-      float th_lo = asin(sin_lo), th_hi = asin(sin_hi);
-      rotation += (0.5f * (th_hi - th_lo) - 0.5f * (sin_hi * cos_hi - sin_lo * cos_lo)) * l;
-      if (j > 0) {  // the wall between (j - 1, k) and (j, k), at theta_j-
-        float c = dphi * sin_lo * cos_lo * cos_lo / fmin(r, r_below);
-        add_outer(grad_t, u_mid, c * (l - l_below));
-      }
-      float wall = sin_hi - sin_lo;  // the integral of cos(theta) over the stratum's theta range
-      if (k > 0) add_outer(grad_t, v_lo, (wall / fmin(r, prev_r[j])) * (l - prev_l[j]));  // wall at phi_k-
+      rotation += rotation_weight[j] * l;
+      if (j > 0) add_outer(grad_t, u_mid, (theta_wall[j] / fmin(r, r_below)) * (l - l_below));
+      if (k > 0) add_outer(grad_t, v_lo, (phi_wall[j] / fmin(r, prev_r[j])) * (l - prev_l[j]));
       else {
         first_l[j] = l;
         first_r[j] = r;
@@ -91,12 +93,10 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       prev_l[j] = l;
       prev_r[j] = r;
     }
-    add_outer(grad_r, v_mid, (2.0f * sin(0.5f * dphi)) * rotation);  // the integral of v(phi) over the stratum
+    add_outer(grad_r, v_mid, (2.0f * sin(0.5f * dphi)) * rotation);  // the integral of v(phi) over the column
   }
-  for (uint j = 0; j < M; ++j) {  // the wall at phi = 0 between the last column and the first
-    float wall = sqrt((float)(j + 1) * inv_m) - sqrt((float)j * inv_m);
-    add_outer(grad_t, b, (wall / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
-  }
+  for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
+    add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
   e = finite_or_zero(e * norm);
 

@@ -156,8 +156,8 @@ typedef struct {
 typedef struct {
   float accuracy;          // a: a record reaches points with Ward weight above 1/a
   float irradiance_scale;  // fixed-point unit of w * E (from the largest record irradiance)
+  rc_uint first_record;  // the splat adds records first_record .. first_record + record_count - 1
   rc_uint record_count;
-  float pad;
 } SplatParams;
 
 #ifndef __OPENCL_VERSION__

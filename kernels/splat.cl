@@ -28,8 +28,8 @@ __kernel void max_record_irradiance(__global const CacheRecord* records, uint re
 __kernel void splat_records(__global const CacheRecord* records, SplatParams params,
                             __global const GBufferSample* gbuffer, __global const CameraParams* camera,
                             __global long* sums, __global uint* counts) {
-  uint k = get_global_id(0);
-  if (k >= params.record_count) return;
+  if (get_global_id(0) >= params.record_count) return;
+  uint k = params.first_record + get_global_id(0);
   __global const CacheRecord* rec = records + k;
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;

@@ -7,6 +7,7 @@ namespace rcsplat {
 PlacementPass::PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height)
     : gpu_(gpu), gbuffer_(gbuffer), width_(width), height_(height) {
   cl::Program& program = gpu_.program("placement.cl");
+  covered_kernel_ = cl::Kernel(program, "mark_covered");
   find_ = cl::Kernel(program, "find_uncovered");
   mark_ = cl::Kernel(program, "mark_records");
   clamp_ = cl::Kernel(program, "clamp_neighbours");
@@ -15,13 +16,28 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int wi
   candidates_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, pixels * sizeof(cl_uint));
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
   record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE);
+  covered_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, pixels);
 }
 
-uint32_t PlacementPass::find_uncovered(const cl::Buffer& sums, int spacing) {
+uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing) {
+  size_t pixels = size_t(width_) * size_t(height_);
+  gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, pixels);
+  if (record_count) {
+    int a = 0;
+    covered_kernel_.setArg(a++, records);
+    covered_kernel_.setArg(a++, cl_uint(record_count));
+    covered_kernel_.setArg(a++, accuracy);
+    covered_kernel_.setArg(a++, gbuffer_.samples());
+    covered_kernel_.setArg(a++, gbuffer_.camera());
+    covered_kernel_.setArg(a++, spacing);
+    covered_kernel_.setArg(a++, covered_);
+    gpu_.queue().enqueueNDRangeKernel(covered_kernel_, cl::NullRange, cl::NDRange(round_up(record_count, 8)),
+                                      cl::NDRange(8));
+  }
   gpu_.queue().enqueueFillBuffer(count_, cl_uint(0), 0, sizeof(cl_uint));
   int a = 0;
   find_.setArg(a++, gbuffer_.samples());
-  find_.setArg(a++, sums);
+  find_.setArg(a++, covered_);
   find_.setArg(a++, width_);
   find_.setArg(a++, height_);
   find_.setArg(a++, spacing);

@@ -13,8 +13,9 @@ class PlacementPass {
  public:
   PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height);
 
-  // Compacts the uncovered pixels with geometry on the grid of this spacing into candidates(); returns their count.
-  uint32_t find_uncovered(const cl::Buffer& sums, int spacing);
+  // Compacts the pixels with geometry on the grid of this spacing that no record among 0 .. record_count - 1 reaches
+  // (Ward weight above 1/a, not in front) into candidates(); returns their count.
+  uint32_t find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing);
   const cl::Buffer& candidates() const { return candidates_; }
 
   // Records first .. first + count - 1 now sit on their pixels.
@@ -29,8 +30,8 @@ class PlacementPass {
   GpuContext& gpu_;
   const GBufferPass& gbuffer_;
   int width_, height_;
-  cl::Kernel find_, mark_, clamp_, apply_;
-  cl::Buffer candidates_, count_, record_map_, radii_;
+  cl::Kernel covered_kernel_, find_, mark_, clamp_, apply_;
+  cl::Buffer candidates_, count_, record_map_, radii_, covered_;
   size_t radii_capacity_ = 0;
 };
 

@@ -42,8 +42,19 @@ void SplatPass::splat_all(const GBufferPass& gbuffer, const cl::Buffer& records,
   float largest = std::bit_cast<float>(gpu_.download<cl_uint>(max_bits_, 1)[0]);
   params_.accuracy = accuracy;
   params_.irradiance_scale = std::isfinite(largest) && largest > 0.0f ? largest * (3.0f + accuracy) : 1.0f;
+  params_.first_record = 0;
   params_.record_count = count;
-  if (count) {
+  launch_splat(gbuffer, records);
+}
+
+void SplatPass::splat_more(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t first, uint32_t count) {
+  params_.first_record = first;
+  params_.record_count = count;
+  launch_splat(gbuffer, records);
+}
+
+void SplatPass::launch_splat(const GBufferPass& gbuffer, const cl::Buffer& records) {
+  if (params_.record_count) {
     int a = 0;
     splat_.setArg(a++, records);
     splat_.setArg(a++, params_);
@@ -51,9 +62,10 @@ void SplatPass::splat_all(const GBufferPass& gbuffer, const cl::Buffer& records,
     splat_.setArg(a++, gbuffer.camera());
     splat_.setArg(a++, sums_);
     splat_.setArg(a++, counts_);
-    queue.enqueueNDRangeKernel(splat_, cl::NullRange, cl::NDRange(round_up(count, 8)), cl::NDRange(8));
+    gpu_.queue().enqueueNDRangeKernel(splat_, cl::NullRange, cl::NDRange(round_up(params_.record_count, 8)),
+                                      cl::NDRange(8));
   }
-  queue.finish();
+  gpu_.queue().finish();
 }
 
 void SplatPass::resolve(const GBufferPass& gbuffer, const cl::Buffer& direct_rgba) {

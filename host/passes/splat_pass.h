@@ -16,6 +16,9 @@ class SplatPass {
 
   // Clears the sums and splats records 0 .. count - 1 at accuracy a; blocks until done.
   void splat_all(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
+  // Adds records first .. first + count - 1 to the sums as they are, at the last fixed-point scale: the weight sums
+  // (coverage) are exact, the irradiance sums are only meant to be redone by splat_all.
+  void splat_more(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t first, uint32_t count);
   // Divides and composes with the direct light (RGBA, as DirectPass writes it).
   void resolve(const GBufferPass& gbuffer, const cl::Buffer& direct_rgba);
 
@@ -27,6 +30,8 @@ class SplatPass {
   float irradiance_scale() const { return params_.irradiance_scale; }
 
  private:
+  void launch_splat(const GBufferPass& gbuffer, const cl::Buffer& records);  // records params_ names
+
   GpuContext& gpu_;
   cl::Kernel clear_, max_irradiance_, splat_, resolve_;
   cl::Buffer sums_, counts_, max_bits_, irradiance_, indirect_, color_;

@@ -57,14 +57,13 @@ void splat_indirect(IndirectFrame& f) {
   int level_count = int(std::log2(coarsest)) + 1;
   Progress progress("irradiance cache", size_t(level_count));
   uint32_t total = 0;
-  splat.splat_all(f.gbuffer, records.records(), 0, cs.accuracy);  // empty sums: every pixel uncovered
   for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
     // At spacing 1 every candidate becomes a record and covers itself, but neighbour clamping can shrink an older
-    // record enough to uncover a pixel. So one more round covers those, clamping only its own new records (a
+    // record enough to uncover a pixel. So more rounds cover those, clamping only their own new records (a
     // symmetric clamp there would uncover pixels again, cascading along corners for dozens of rounds).
-    for (int round = 0; round < (spacing == 1 ? 4 : 1); ++round) {
+    for (int round = 0; round < (spacing == 1 ? 5 : 1); ++round) {
       auto t = Clock::now();
-      uint32_t count = placement.find_uncovered(splat.sums(), spacing);
+      uint32_t count = placement.find_uncovered(records.records(), total, cs.accuracy, spacing);
       st.placement_s += seconds_since(t);
       if (!count) break;
       t = Clock::now();
@@ -75,14 +74,15 @@ void splat_indirect(IndirectFrame& f) {
       total += count;
       placement.clamp_neighbours(records.records(), total, total - count, round == 0, hp.min_spacing);
       st.placement_s += seconds_since(t);
-      t = Clock::now();
-      splat.splat_all(f.gbuffer, records.records(), total, cs.accuracy);
-      st.splat_s += seconds_since(t);
       if (!st.levels.empty() && st.levels.back().spacing == spacing) st.levels.back().records += count;
       else st.levels.push_back({spacing, count});
     }
     progress.update(size_t(level + 1));
   }
+  // One splat of every record with its final radius, at the frame's fixed-point scale.
+  auto t_splat = Clock::now();
+  splat.splat_all(f.gbuffer, records.records(), total, cs.accuracy);
+  st.splat_s += seconds_since(t_splat);
   progress.finish();
   auto t = Clock::now();
   splat.resolve(f.gbuffer, f.direct.radiance());
