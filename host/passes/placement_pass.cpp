@@ -17,22 +17,26 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int wi
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
   record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE);
   covered_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, pixels);
+  tiles_ = size_t((width + 15) / 16) * size_t((height + 15) / 16);  // NEW_TILE in placement.cl
+  new_in_tile_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, tiles_);
 }
 
-uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing) {
+uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
+                                       uint32_t unchanged_before) {
   size_t pixels = size_t(width_) * size_t(height_);
-  gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, pixels);
-  if (record_count) {
+  if (!unchanged_before) gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, pixels);
+  if (record_count > unchanged_before) {
     int a = 0;
     covered_kernel_.setArg(a++, records);
-    covered_kernel_.setArg(a++, cl_uint(record_count));
+    covered_kernel_.setArg(a++, cl_uint(unchanged_before));
+    covered_kernel_.setArg(a++, cl_uint(record_count - unchanged_before));
     covered_kernel_.setArg(a++, accuracy);
     covered_kernel_.setArg(a++, gbuffer_.samples());
     covered_kernel_.setArg(a++, gbuffer_.camera());
     covered_kernel_.setArg(a++, spacing);
     covered_kernel_.setArg(a++, covered_);
-    gpu_.queue().enqueueNDRangeKernel(covered_kernel_, cl::NullRange, cl::NDRange(round_up(record_count, 8)),
-                                      cl::NDRange(8));
+    gpu_.queue().enqueueNDRangeKernel(covered_kernel_, cl::NullRange,
+                                      cl::NDRange(round_up(record_count - unchanged_before, 8)), cl::NDRange(8));
   }
   gpu_.queue().enqueueFillBuffer(count_, cl_uint(0), 0, sizeof(cl_uint));
   int a = 0;
@@ -51,10 +55,13 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
 
 void PlacementPass::mark(const cl::Buffer& records, uint32_t first, uint32_t count) {
   if (!count) return;
+  gpu_.queue().enqueueFillBuffer(new_in_tile_, cl_uchar(0), 0, tiles_);
   mark_.setArg(0, records);
   mark_.setArg(1, cl_uint(first));
   mark_.setArg(2, cl_uint(count));
   mark_.setArg(3, record_map_);
+  mark_.setArg(4, width_);
+  mark_.setArg(5, new_in_tile_);
   gpu_.queue().enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(round_up(count, 64)), cl::NDRange(64));
 }
 
@@ -71,6 +78,7 @@ void PlacementPass::clamp_neighbours(cl::Buffer& records, uint32_t count, uint32
   clamp_.setArg(a++, cl_uint(first_new));
   clamp_.setArg(a++, cl_int(clamp_older ? 1 : 0));
   clamp_.setArg(a++, record_map_);
+  clamp_.setArg(a++, new_in_tile_);
   clamp_.setArg(a++, gbuffer_.camera());
   clamp_.setArg(a++, min_spacing);
   clamp_.setArg(a++, radii_);

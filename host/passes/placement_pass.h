@@ -14,8 +14,10 @@ class PlacementPass {
   PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height);
 
   // Compacts the pixels with geometry on the grid of this spacing that no record among 0 .. record_count - 1 reaches
-  // (Ward weight above 1/a, not in front) into candidates(); returns their count.
-  uint32_t find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing);
+  // (Ward weight above 1/a, not in front) into candidates(); returns their count. With unchanged_before = n, records
+  // 0 .. n - 1 are known unchanged since the last call at this spacing and their coverage is kept.
+  uint32_t find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
+                          uint32_t unchanged_before = 0);
   const cl::Buffer& candidates() const { return candidates_; }
 
   // Records first .. first + count - 1 now sit on their pixels.
@@ -31,7 +33,8 @@ class PlacementPass {
   const GBufferPass& gbuffer_;
   int width_, height_;
   cl::Kernel covered_kernel_, find_, mark_, clamp_, apply_;
-  cl::Buffer candidates_, count_, record_map_, radii_, covered_;
+  cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_;
+  size_t tiles_ = 0;
   size_t radii_capacity_ = 0;
 };
 

@@ -61,9 +61,10 @@ void splat_indirect(IndirectFrame& f) {
     // At spacing 1 every candidate becomes a record and covers itself, but neighbour clamping can shrink an older
     // record enough to uncover a pixel. So more rounds cover those, clamping only their own new records (a
     // symmetric clamp there would uncover pixels again, cascading along corners for dozens of rounds).
+    uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
     for (int round = 0; round < (spacing == 1 ? 5 : 1); ++round) {
       auto t = Clock::now();
-      uint32_t count = placement.find_uncovered(records.records(), total, cs.accuracy, spacing);
+      uint32_t count = placement.find_uncovered(records.records(), total, cs.accuracy, spacing, unchanged);
       st.placement_s += seconds_since(t);
       if (!count) break;
       t = Clock::now();
@@ -73,6 +74,7 @@ void splat_indirect(IndirectFrame& f) {
       placement.mark(records.records(), total, count);
       total += count;
       placement.clamp_neighbours(records.records(), total, total - count, round == 0, hp.min_spacing);
+      unchanged = round == 0 ? 0 : total - count;
       st.placement_s += seconds_since(t);
       if (!st.levels.empty() && st.levels.back().spacing == spacing) st.levels.back().records += count;
       else st.levels.push_back({spacing, count});
