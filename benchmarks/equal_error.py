@@ -25,7 +25,18 @@ def run(cmd):
     return result
 
 
+_runs = {}
+
+
 def render(args, extra, tmp, tag):
+    """One render and its comparison with the reference; path runs are reused across accuracies."""
+    if tag in _runs:
+        return _runs[tag]
+    _runs[tag] = _render(args, extra, tmp, tag)
+    return _runs[tag]
+
+
+def _render(args, extra, tmp, tag):
     exr, summary = os.path.join(tmp, tag + ".exr"), os.path.join(tmp, tag + ".json")
     cmd = [args.rcsplat, "render", "-q", "--width", str(args.width), "--height", str(args.height),
            "--light-samples", "1", "-o", exr, "--json", summary] + ([args.scene] if args.scene else []) + extra
