@@ -3,9 +3,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "cli/commands.h"
 #include "image/image_io.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -54,6 +56,35 @@ TEST(ImageIo, PngAndUnknownFormats) {
   EXPECT_THROW(write_render(dir + "/missing-folder/out.exr", img, 0.0f), Error);
   // Only the PNG remains: no temporary files left behind by the failures.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+}
+
+}  // namespace
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// `rcsplat render` as a user runs it: the EXR carries the cache's layers, every value finite, and the summary JSON.
+TEST(ImageIo, RenderCommandWritesTheCacheLayers) {
+  std::string dir = test::scratch_dir();
+  RenderOptions o;
+  o.outputs = {dir + "/cornell.exr"};
+  o.json_path = dir + "/summary.json";
+  o.settings.width = o.settings.height = 40;
+  o.settings.light_samples = 1;
+  o.settings.cache.theta_strata = 4;
+  o.settings.cache.phi_strata = 8;
+  ASSERT_EQ(run_render(o), 0);
+  auto in = OIIO::ImageInput::open(o.outputs[0]);
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  for (const char* name : {"R", "direct.R", "indirect.R", "irradiance.G", "coverage.Y", "records.Y",
+                           "record_positions.Y", "depth.Z"})
+    EXPECT_NE(std::find(spec.channelnames.begin(), spec.channelnames.end(), name), spec.channelnames.end()) << name;
+  std::vector<float> all(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+  for (float v : all) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_TRUE(std::filesystem::exists(o.json_path));
 }
 
 }  // namespace
