@@ -5,7 +5,7 @@
 #include "shared_types.h"
 
 // Ward's weight is infinite at the record itself; clamping keeps fixed-point sums bounded (see SplatPass).
-#define MAX_RECORD_WEIGHT 1.0e4f
+#define MAX_RECORD_WEIGHT 1.0e3f
 // The in-front test tolerates points this far (in radii) in front of the record's tangent plane.
 #define IN_FRONT_TOLERANCE 0.05f
 

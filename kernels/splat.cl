@@ -5,9 +5,12 @@
 #include "cache.h"
 #include "sampling.h"
 
-// Fixed-point unit: w <= MAX_RECORD_WEIGHT and w * E / irradiance_scale <= MAX_RECORD_WEIGHT, so one contribution is at
-// most 1e4 * 2^36 < 2^50 and thousands of records can overlap a pixel before a sum could overflow.
-#define FIXED_POINT_ONE 68719476736.0f
+// Fixed-point unit 2^48: w <= MAX_RECORD_WEIGHT = 1e3 and w * E / irradiance_scale <= w, so one contribution is below
+// 2^58. Only a record's own pixel can bring w above 1 / (a / MAX spacing) (about 70 at the defaults: other pixels are
+// at least a pixel footprint away), so a sum would need hundreds of records on one pixel to reach 2^63. Resolution:
+// an irradiance 1e-9 of the frame's largest still has about 2^18 units, so dark corners beside HDR light keep
+// their precision.
+#define FIXED_POINT_ONE 281474976710656.0f
 
 __kernel void clear_accumulators(__global long* sums, __global uint* counts, uint pixel_count) {
   uint i = get_global_id(0);

@@ -9,7 +9,7 @@
 
 namespace rcsplat {
 
-constexpr float kMaxRecordWeight = 1.0e4f;  // MAX_RECORD_WEIGHT
+constexpr float kMaxRecordWeight = 1.0e3f;  // MAX_RECORD_WEIGHT
 constexpr float kInFrontTolerance = 0.05f;  // IN_FRONT_TOLERANCE
 
 inline float ward_weight(const glm::vec3& p, const glm::vec3& n, const glm::vec3& pk, const glm::vec3& nk, float radius) {
