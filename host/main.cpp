@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
   render_cmd->add_option("--accuracy", render.settings.cache.accuracy,
                          "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer")
-      ->check(CLI::Range(1e-3f, 100.0f));
+      ->check(CLI::Range(0.01f, 100.0f));
   render_cmd->add_option("--hemisphere", hemisphere, "Rays per record as MxN strata (theta x phi), default 16x32");
   render_cmd->add_option("--spacing", spacing, "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default 3,20");
   render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")

@@ -27,12 +27,14 @@ __kernel void mark_covered(__global const CacheRecord* records, uint first_recor
 }
 
 // Pixels on the grid of the given spacing that see geometry and are not covered become candidates.
-__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const uchar* covered, int width,
-                             int height, int spacing, __global uint* candidates, __global uint* candidate_count) {
+// A pixel that already holds a record never gets a second one.
+__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const uchar* covered,
+                             __global const int* record_at_pixel, int width, int height, int spacing,
+                             __global uint* candidates, __global uint* candidate_count) {
   int x = get_global_id(0) * spacing, y = get_global_id(1) * spacing;
   if (x >= width || y >= height) return;
   uint pixel = (uint)(y * width + x);
-  if (gbuffer[pixel].triangle < 0 || covered[pixel]) return;
+  if (gbuffer[pixel].triangle < 0 || covered[pixel] || record_at_pixel[pixel] >= 0) return;
   candidates[atomic_inc(candidate_count)] = pixel;
 }
 

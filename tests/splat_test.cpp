@@ -180,3 +180,27 @@ TEST(Splat, OctreeRenderMatchesSplatRender) {
 
 }  // namespace
 }  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// At the finest accuracy offered every pixel may need a record of its own, and never more than one.
+TEST(Splat, AtMostOneRecordPerPixelAndEveryPixelCovered) {
+  Scene scene = make_cornell_box();
+  RenderSettings settings = small_splat(24);
+  settings.cache.accuracy = 0.01f;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  size_t marked = 0, with_geometry = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    marked += img.record_positions[i] > 0.0f;
+    if (img.triangle[i] < 0) continue;
+    ++with_geometry;
+    EXPECT_GT(img.coverage[i], 0.0f) << "pixel " << i << " is uncovered";
+  }
+  EXPECT_EQ(img.stats.records, marked);
+  EXPECT_LE(img.stats.records, with_geometry);
+  EXPECT_EQ(img.stats.uncovered_pixels, 0u);
+}
+
+}  // namespace
+}  // namespace rcsplat

@@ -42,6 +42,7 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
   int a = 0;
   find_.setArg(a++, gbuffer_.samples());
   find_.setArg(a++, covered_);
+  find_.setArg(a++, record_map_);
   find_.setArg(a++, width_);
   find_.setArg(a++, height_);
   find_.setArg(a++, spacing);

@@ -53,7 +53,7 @@ void octree_indirect(IndirectFrame& f) {
       for (int y = 0; y < height; y += spacing)
         for (int x = 0; x < width; x += spacing) {
           size_t i = size_t(y) * size_t(width) + size_t(x);
-          if (geo[i].valid && interpolate(octree, records, geo[i], cs.accuracy).weight == 0.0)
+          if (geo[i].valid && record_at_pixel[i] < 0 && interpolate(octree, records, geo[i], cs.accuracy).weight == 0.0)
             candidates.push_back(uint32_t(i));
         }
       st.placement_s += seconds_since(t);

@@ -13,7 +13,8 @@
 namespace rcsplat {
 
 void check_cache_settings(const CacheSettings& c) {
-  if (!(c.accuracy > 0.0f) || !std::isfinite(c.accuracy)) throw Error("--accuracy must be a positive number");
+  // A record must pass its own threshold: the capped weight at its own pixel, MAX_RECORD_WEIGHT = 1e3, must exceed 1/a.
+  if (!(c.accuracy >= 0.01f) || !(c.accuracy <= 100.0f)) throw Error("--accuracy must be between 0.01 and 100");
   if (c.theta_strata < 1 || c.theta_strata > RecordPass::kMaxThetaStrata || c.phi_strata < 1 || c.phi_strata > 4096)
     throw Error("--hemisphere MxN: M must be 1.." + std::to_string(RecordPass::kMaxThetaStrata) + " and N 1..4096");
   if (!(c.min_spacing > 0.0f) || !(c.max_spacing >= c.min_spacing) || !std::isfinite(c.max_spacing))
