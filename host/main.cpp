@@ -90,6 +90,8 @@ int main(int argc, char** argv) {
   reference_cmd->add_option("--spp", reference.settings.path.samples, "Samples per pixel (default 1024); the light "
                                                                       "samples default to the same number")
       ->check(CLI::Range(1u, 1u << 20));
+  reference_cmd->add_flag("--resume", reference.resume,
+                          "Add samples to the .exr output an earlier run wrote, up to --spp in all");
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
 
   CompareOptions compare;

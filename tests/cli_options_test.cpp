@@ -88,3 +88,42 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
 
 }  // namespace
 }  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// `rcsplat reference --resume`: the second run adds samples drawn with another seed and averages them in by count;
+// what it writes is exactly the two parts' weighted mean, and a mismatched file is refused by name.
+TEST(Reference, ResumeAddsIndependentSamples) {
+  std::string dir = test::scratch_dir();
+  RenderOptions o;
+  o.outputs = {dir + "/ref.exr"};
+  o.settings.width = o.settings.height = 16;
+  o.settings.gi = GiMethod::path;
+  o.settings.path.stratified = true;
+  o.settings.path.samples = o.settings.light_samples = 8;
+  o.resume = true;  // no file yet: an ordinary first run
+  ASSERT_EQ(run_render(o), 0);
+  int w = 0, h = 0;
+  std::vector<float> first = read_exr_layer(o.outputs[0], "indirect", w, h);
+  o.settings.path.samples = o.settings.light_samples = 24;
+  ASSERT_EQ(run_render(o), 0);
+  EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24");
+  std::vector<float> merged = read_exr_layer(o.outputs[0], "indirect", w, h);
+
+  RenderSettings second = o.settings;
+  second.path.samples = 16;
+  second.light_samples = 16;
+  second.seed = 8;  // the resumed part's seed: the first seed plus the samples before it
+  RenderedImage part = render(test::gpu(), load_scene(""), second);
+  for (size_t i = 0; i < merged.size(); ++i)
+    ASSERT_NEAR(merged[i], (first[i] * 8.0f + part.indirect[i] * 16.0f) / 24.0f, 1e-6f) << i;
+
+  o.settings.width = 8;  // another frame: refused, and the file is left as it was
+  o.settings.path.samples = 32;
+  EXPECT_THROW(run_render(o), Error);
+  EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24");
+}
+
+}  // namespace
+}  // namespace rcsplat

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cl/gpu_context.h"
 #include "render/renderer.h"
 
 namespace rcsplat {
@@ -20,8 +21,15 @@ struct RenderOptions {
   RenderSettings settings;
   float exposure = 0.0f;
   std::string json_path;
+  bool resume = false;  // reference: add samples to the .exr output written by an earlier run
 };
 int run_render(const RenderOptions& options);
+
+// A reference continued: reads the path-traced layers of the earlier .exr at `path`, renders the missing samples with
+// other seeds and merges both, weighted by their sample counts. Throws rcsplat::Error when the file does not belong to
+// this scene and frame. Returns false when the file already has the samples asked for.
+bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& options, const std::string& path,
+                      RenderedImage& image);
 
 struct CompareOptions {
   std::string image_path, reference_path, heatmap_path, json_path;

@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cl/device_info.h"
@@ -7,6 +8,7 @@
 #include "image/image_io.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/paths.h"
 
 namespace rcsplat {
 namespace {
@@ -90,8 +92,27 @@ int run_render(const RenderOptions& options) {
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);
-  RenderedImage image = render(gpu, scene, options.settings);
-  for (const std::string& out : options.outputs) write_render(out, image, options.exposure);
+  RenderedImage image;
+  std::string earlier;  // --resume: the .exr output an earlier run wrote
+  for (const std::string& out : options.outputs)
+    if (earlier.empty() && lower_extension(out) == ".exr") earlier = out;
+  if (options.resume && earlier.empty()) throw Error("--resume needs an .exr output to continue");
+  if (options.resume && std::filesystem::exists(earlier)) {
+    if (!resume_reference(gpu, scene, options, earlier, image)) {
+      std::printf("%s already has %u or more samples per pixel\n", earlier.c_str(), options.settings.path.samples);
+      return 0;
+    }
+  } else {
+    image = render(gpu, scene, options.settings);
+  }
+  // What a later --resume needs to know (and what anyone reading the file may want).
+  ExrAttributes attributes = {{"rcsplat:scene", scene.source},
+                              {"rcsplat:gi", gi_method_name(image.stats.gi)},
+                              {"rcsplat:path_samples", std::to_string(image.stats.path_samples)},
+                              {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
+                              {"rcsplat:seed", std::to_string(options.settings.seed)},
+                              {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"}};
+  for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   print_summary(scene, image, options.settings, options.outputs);
   if (!options.json_path.empty())
     write_text_file(options.json_path, summary_json(scene, image, options.settings, options.outputs).dump(2) + "\n");

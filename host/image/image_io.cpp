@@ -46,7 +46,8 @@ float srgb_encode(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std:
 
 }  // namespace
 
-void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers) {
+void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers,
+               const ExrAttributes& attributes) {
   size_t pixels = size_t(width) * size_t(height);
   std::vector<std::string> names;
   for (const ImageLayer& l : layers)
@@ -66,6 +67,7 @@ void write_exr(const std::string& path, int width, int height, const std::vector
   spec.channelnames = names;
   spec.attribute("compression", "zip");
   spec.attribute("Software", "rcsplat " RCSPLAT_VERSION);
+  for (const auto& [name, value] : attributes) spec.attribute(name, value);
   write_pixels(path, spec, interleaved.data());
 }
 
@@ -93,7 +95,8 @@ bool is_output_format(const std::string& path) {
   return ext == ".png" || ext == ".exr";
 }
 
-void write_render(const std::string& path, const RenderedImage& image, float exposure_stops) {
+void write_render(const std::string& path, const RenderedImage& image, float exposure_stops,
+                  const ExrAttributes& attributes) {
   std::string ext = lower_extension(path);
   if (ext == ".png") {
     write_png(path, image.width, image.height, image.color, exposure_stops);
@@ -116,7 +119,7 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     add("coverage", {"Y"}, image.coverage);
     add("records", {"Y"}, image.records_per_pixel);
     add("record_positions", {"Y"}, image.record_positions);
-    write_exr(path, image.width, image.height, layers);
+    write_exr(path, image.width, image.height, layers, attributes);
   } else {
     throw Error(path + ": unknown output format '" + ext + "' (use .exr or .png)");
   }
@@ -146,6 +149,17 @@ std::vector<float> read_exr_layer(const std::string& path, const std::string& la
 
 std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {
   return read_exr_layer(path, "", width, height);
+}
+
+ExrAttributes read_exr_attributes(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
+  ExrAttributes out;
+  for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
+    std::string name = p.name().string();
+    if (name.rfind("rcsplat:", 0) == 0) out[name] = p.get_string();
+  }
+  return out;
 }
 
 bool exr_has_layer(const std::string& path, const std::string& layer) {

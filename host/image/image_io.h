@@ -1,6 +1,7 @@
 // Writing images: EXR (linear float, with the render's layers) and PNG (tone-mapped, sRGB). A file appears only when
 // complete: it is written under a temporary name and renamed.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,11 @@ struct ImageLayer {
   const std::vector<float>* data;     // channels.size() floats a pixel
 };
 
-void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers);
+// Metadata stored in an EXR's header as strings ("rcsplat:path_samples" and the like).
+using ExrAttributes = std::map<std::string, std::string>;
+
+void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers,
+               const ExrAttributes& attributes = {});
 // Exposure in stops, then a filmic curve (Narkowicz's ACES fit) and the sRGB transfer function.
 void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops);
 // Display values in [0, 1] straight to 8 bits (false-colour images).
@@ -24,7 +29,10 @@ void write_png_display(const std::string& path, int width, int height, const std
 bool is_output_format(const std::string& path);
 
 // Writes the render to a .exr or .png file chosen by the path's extension.
-void write_render(const std::string& path, const RenderedImage& image, float exposure_stops);
+void write_render(const std::string& path, const RenderedImage& image, float exposure_stops,
+                  const ExrAttributes& attributes = {});
+// The string attributes of an EXR whose names start with "rcsplat:".
+ExrAttributes read_exr_attributes(const std::string& path);
 
 // Reads an EXR's main RGB (R, G, B channels) for comparisons. Throws rcsplat::Error on failure.
 std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height);

@@ -1,0 +1,71 @@
+// Continuing a path-traced reference: the samples already in the file are kept and new ones, drawn with other seeds,
+// are averaged in by count. The two halves' difference (indirect_variance) merges the same way, so the reference's
+// own error stays known.
+#include <string>
+
+#include "cli/commands.h"
+#include "image/image_io.h"
+#include "util/error.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace {
+
+unsigned parse_count(const std::string& path, const std::string& key, const std::string& value) {
+  try {
+    return unsigned(std::stoul(value));
+  } catch (const std::exception&) {
+    throw Error(path + ": attribute " + key + " is not a count: '" + value + "'");
+  }
+}
+
+}  // namespace
+
+bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& o, const std::string& path,
+                      RenderedImage& image) {
+  ExrAttributes attributes = read_exr_attributes(path);
+  auto need = [&](const std::string& key) {
+    auto it = attributes.find(key);
+    if (it == attributes.end()) throw Error(path + ": no " + key + " attribute: not a reference written by rcsplat");
+    return it->second;
+  };
+  if (need("rcsplat:gi") != "path") throw Error(path + ": not a path-traced reference");
+  if (need("rcsplat:scene") != scene.source)
+    throw Error(path + ": rendered from " + need("rcsplat:scene") + ", not " + scene.source);
+  if (need("rcsplat:stratified") != (o.settings.path.stratified ? "1" : "0"))
+    throw Error(path + ": sampled " + (o.settings.path.stratified ? "without" : "with") + " stratification");
+  unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
+  unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
+  unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));
+  if (samples_before >= o.settings.path.samples) return false;
+  int w = 0, h = 0;
+  std::vector<float> indirect = read_exr_layer(path, "indirect", w, h);
+  std::vector<float> variance = read_exr_layer(path, "indirect_variance", w, h);
+  std::vector<float> direct = read_exr_layer(path, "direct", w, h);
+
+  RenderSettings more = o.settings;
+  more.path.samples = o.settings.path.samples - samples_before;
+  more.seed = seed + samples_before;  // differs from every earlier part's seed: the parts are independent
+  more.light_samples = o.settings.light_samples > lights_before ? o.settings.light_samples - lights_before : 0;
+  log_info(path + ": has " + std::to_string(samples_before) + " samples per pixel; adding " +
+           std::to_string(more.path.samples));
+  image = render(gpu, scene, more);
+  if (image.width != w || image.height != h)
+    throw Error(path + " is " + std::to_string(w) + "x" + std::to_string(h) + ", this frame " +
+                std::to_string(image.width) + "x" + std::to_string(image.height));
+
+  double n0 = samples_before, n1 = more.path.samples, n = n0 + n1;
+  double l0 = lights_before, l1 = image.stats.light_samples, l = std::max(l0 + l1, 1.0);
+  for (size_t i = 0; i < indirect.size(); ++i) {
+    image.indirect[i] = float((indirect[i] * n0 + image.indirect[i] * n1) / n);
+    // Independent means: var((a n0 + b n1) / n) = (var a n0^2 + var b n1^2) / n^2.
+    image.indirect_variance[i] = float((variance[i] * n0 * n0 + image.indirect_variance[i] * n1 * n1) / (n * n));
+    image.direct[i] = float((direct[i] * l0 + image.direct[i] * l1) / l);
+    image.color[i] = image.emission[i] + image.direct[i] + image.indirect[i];
+  }
+  image.stats.path_samples = unsigned(n);
+  image.stats.light_samples = unsigned(l0 + l1);
+  return true;
+}
+
+}  // namespace rcsplat
