@@ -72,6 +72,10 @@ int main(int argc, char** argv) {
                          "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer")
       ->check(CLI::Range(0.01f, 100.0f));
   render_cmd->add_option("--hemisphere", hemisphere, "Rays per record as MxN strata (theta x phi), default 16x32");
+  std::string fine_hemisphere;
+  render_cmd->add_option("--fine-hemisphere", fine_hemisphere,
+                         "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
+                         "few pixels each, as MxN; default: as --hemisphere");
   render_cmd->add_option("--spacing", spacing, "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default 3,20");
   render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
       ->check(CLI::Range(1u, 1u << 20));
@@ -120,6 +124,7 @@ int main(int argc, char** argv) {
       render.settings.gi = parse_gi_method(gi);
       if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
       if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
+      if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, render.settings.cache, true);
       return run_render(render);
     }
     if (*reference_cmd) {

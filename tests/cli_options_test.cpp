@@ -21,6 +21,10 @@ TEST(CliOptions, HemisphereAndSpacingParse) {
   EXPECT_FLOAT_EQ(c.min_spacing, 2.5f);
   EXPECT_FLOAT_EQ(c.max_spacing, 15.0f);
   EXPECT_EQ(parse_gi_method("octree"), GiMethod::octree);
+  parse_hemisphere("8x16", c, true);
+  EXPECT_EQ(c.fine_theta_strata, 8u);
+  EXPECT_EQ(c.fine_phi_strata, 16u);
+  EXPECT_EQ(c.theta_strata, 24u);
 }
 
 TEST(CliOptions, BadValuesAreRefusedByName) {

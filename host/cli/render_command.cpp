@@ -31,8 +31,9 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
               mrays_per_second(s.primary_rays + s.shadow_rays, s.gbuffer_s + s.direct_s));
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
-    std::printf("cache        a = %g, %ux%u rays per record, record spacing %g..%g pixels\n", c.accuracy, c.theta_strata,
-                c.phi_strata, c.min_spacing, c.max_spacing);
+    std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
+    if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
+    std::printf(", record spacing %g..%g pixels\n", c.min_spacing, c.max_spacing);
     std::printf("records      %llu:", (unsigned long long)s.records);
     for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing);
     std::printf(" %llu pixels left uncovered\n", (unsigned long long)s.uncovered_pixels);
@@ -72,6 +73,7 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
     nlohmann::json levels = nlohmann::json::array();
     for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing}, {"records", l.records}});
     j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
+                  {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
                   {"spacing", {c.min_spacing, c.max_spacing}}, {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius}};

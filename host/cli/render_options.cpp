@@ -12,14 +12,15 @@ GiMethod parse_gi_method(const std::string& name) {
   throw Error("--gi " + name + ": unknown method (use splat, octree, path or none)");
 }
 
-void parse_hemisphere(const std::string& text, CacheSettings& cache) {
+void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine) {
   unsigned m = 0, n = 0;
   char tail = 0;
+  std::string option = fine ? "--fine-hemisphere " : "--hemisphere ";
   if (std::sscanf(text.c_str(), "%ux%u%c", &m, &n, &tail) != 2 || m == 0 || n == 0)
-    throw Error("--hemisphere " + text + ": expected MxN, for example 16x32");
+    throw Error(option + text + ": expected MxN, for example 16x32");
   CacheSettings changed = cache;  // checked before it replaces the settings: a refused value leaves them as they were
-  changed.theta_strata = m;
-  changed.phi_strata = n;
+  (fine ? changed.fine_theta_strata : changed.theta_strata) = m;
+  (fine ? changed.fine_phi_strata : changed.phi_strata) = n;
   check_cache_settings(changed);
   cache = changed;
 }

@@ -23,8 +23,9 @@ struct IndirectFrame {
   RenderedImage& image;  // G-buffer layers, direct light and colour (emission + direct) already filled
 };
 
-// The record sampling parameters of these cache settings (the spacing clamps turned into radius clamps).
-HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed);
+// The record sampling parameters of these cache settings for records placed at this grid spacing (the spacing clamps
+// turned into radius clamps; the fine hemisphere at spacing 1 when one is set).
+HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, int spacing);
 // Radiance cache splatting on the device: coarse-to-fine placement, records, neighbour clamping, splat, resolve.
 void splat_indirect(IndirectFrame& frame);
 // The classic irradiance cache (Ward 1988) on the host: Embree rays, an octree lookup, C++ threads.

@@ -37,7 +37,7 @@ void octree_indirect(IndirectFrame& f) {
   PackedScene packed = pack_scene(f.scene);
   EmbreeScene embree(f.scene.positions);
   HostShading shading(packed, embree);
-  HemisphereParams hp = hemisphere_params(cs, f.settings.seed);
+  HemisphereParams hp = hemisphere_params(cs, f.settings.seed, cs.coarsest_spacing);
   RecordOctree octree(dvec3(f.scene.bounds_min()), dvec3(f.scene.bounds_max()));
   std::vector<CacheRecord> records;
   std::vector<int32_t> record_at_pixel(pixels, -1);
@@ -65,7 +65,8 @@ void octree_indirect(IndirectFrame& f) {
       std::vector<uint64_t> rays(candidates.size());
       parallel_for(candidates.size(), [&](size_t c) {
         const PixelGeometry& g = geo[candidates[c]];
-        HostRecord r = compute_host_record(shading, g.p, g.n, g.ng, candidates[c], pixel_world_size(cam, g.p), hp);
+        HostRecord r = compute_host_record(shading, g.p, g.n, g.ng, candidates[c], pixel_world_size(cam, g.p),
+                                           hemisphere_params(cs, f.settings.seed, spacing));
         records[first + c] = to_cache_record(r);
         rays[c] = r.rays;
       }, 4);

@@ -17,6 +17,9 @@ void check_cache_settings(const CacheSettings& c) {
   if (!(c.accuracy >= 0.01f) || !(c.accuracy <= 100.0f)) throw Error("--accuracy must be between 0.01 and 100");
   if (c.theta_strata < 1 || c.theta_strata > RecordPass::kMaxThetaStrata || c.phi_strata < 1 || c.phi_strata > 4096)
     throw Error("--hemisphere MxN: M must be 1.." + std::to_string(RecordPass::kMaxThetaStrata) + " and N 1..4096");
+  if (c.fine_theta_strata > RecordPass::kMaxThetaStrata || c.fine_phi_strata > 4096 ||
+      (c.fine_theta_strata == 0) != (c.fine_phi_strata == 0))
+    throw Error("--fine-hemisphere MxN: M must be 1.." + std::to_string(RecordPass::kMaxThetaStrata) + " and N 1..4096");
   if (!(c.min_spacing > 0.0f) || !(c.max_spacing >= c.min_spacing) || !std::isfinite(c.max_spacing))
     throw Error("--spacing MIN,MAX: need 0 < MIN <= MAX, in pixels");
   if (c.coarsest_spacing < 1) throw Error("the coarsest placement spacing must be at least 1 pixel");
@@ -30,10 +33,11 @@ void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSet
   }
 }
 
-HemisphereParams hemisphere_params(const CacheSettings& cs, unsigned seed) {
+HemisphereParams hemisphere_params(const CacheSettings& cs, unsigned seed, int spacing) {
+  bool fine = spacing == 1 && cs.fine_theta_strata > 0;
   HemisphereParams hp{};
-  hp.theta_strata = cs.theta_strata;
-  hp.phi_strata = cs.phi_strata;
+  hp.theta_strata = fine ? cs.fine_theta_strata : cs.theta_strata;
+  hp.phi_strata = fine ? cs.fine_phi_strata : cs.phi_strata;
   hp.seed = seed;
   hp.min_spacing = cs.min_spacing / cs.accuracy;
   hp.max_spacing = cs.max_spacing / cs.accuracy;
@@ -46,12 +50,12 @@ void splat_indirect(IndirectFrame& f) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   double program_before = f.gpu.program_seconds();
-  RecordPass records(f.gpu, f.device_scene, cs.theta_strata);
+  RecordPass records(f.gpu, f.device_scene, std::max(cs.theta_strata, cs.fine_theta_strata));
   PlacementPass placement(f.gpu, f.gbuffer, img.width, img.height);
   SplatPass splat(f.gpu);
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  HemisphereParams hp = hemisphere_params(cs, f.settings.seed);
+  HemisphereParams hp = hemisphere_params(cs, f.settings.seed, cs.coarsest_spacing);
 
   int coarsest = 1;
   while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
@@ -69,7 +73,8 @@ void splat_indirect(IndirectFrame& f) {
       st.placement_s += seconds_since(t);
       if (!count) break;
       t = Clock::now();
-      records.compute(f.gbuffer.samples(), f.gbuffer.camera(), placement.candidates(), count, total, hp);
+      records.compute(f.gbuffer.samples(), f.gbuffer.camera(), placement.candidates(), count, total,
+                      hemisphere_params(cs, f.settings.seed, spacing));
       st.records_s += seconds_since(t);
       t = Clock::now();
       placement.mark(records.records(), total, count);

@@ -20,6 +20,8 @@ struct CacheSettings {
   float accuracy = 0.3f;        // a: smaller means more records and less error
   unsigned theta_strata = 16;   // hemisphere rays per record: M x N
   unsigned phi_strata = 32;
+  // Rays for the records placed at the finest level (spacing 1), which reach only a few pixels each; 0: M x N too.
+  unsigned fine_theta_strata = 0, fine_phi_strata = 0;
   // Record spacing: a record's reach a * R is clamped to [min, max] pixel footprints at the record (as pbrt-v2 clamps
   // its contribution extent), so R itself to [min, max] / a. Keeps records from crowding corners and from vanishing
   // on open areas.
