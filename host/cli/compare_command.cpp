@@ -22,13 +22,12 @@ int run_compare(const CompareOptions& o) {
                       {"full", {{"rel_mse", full.rel_mse}, {"rmse", full.rmse}, {"mae", full.mae}}}};
   // The indirect layer alone: noisy direct light sets a floor on the full image's error that says nothing of the cache.
   if (exr_has_layer(o.image_path, "indirect") && exr_has_layer(o.reference_path, "indirect")) {
-    ErrorMetrics ind = image_error(read_exr_layer(o.image_path, "indirect", w, h),
-                                   read_exr_layer(o.reference_path, "indirect", rw, rh));
+    std::vector<float> ref = read_exr_layer(o.reference_path, "indirect", rw, rh);
+    ErrorMetrics ind = image_error(read_exr_layer(o.image_path, "indirect", w, h), ref);
     std::printf("%-10s %-12.4e %-12.4e %-12.4e\n", "indirect", ind.rel_mse, ind.rmse, ind.mae);
     j["indirect"] = {{"rel_mse", ind.rel_mse}, {"rmse", ind.rmse}, {"mae", ind.mae}};
     // A path-traced reference carries its own noise, which adds its expected relMSE to every comparison against it.
     if (exr_has_layer(o.reference_path, "indirect_variance")) {
-      std::vector<float> ref = read_exr_layer(o.reference_path, "indirect", rw, rh);
       std::vector<float> var = read_exr_layer(o.reference_path, "indirect_variance", rw, rh);
       double noise = 0.0;
       for (size_t i = 0; i < ref.size(); ++i) noise += var[i] / (double(ref[i]) * ref[i] + 0.01) / double(ref.size());

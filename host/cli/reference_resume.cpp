@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "image/image_io.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -40,6 +41,12 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   if (samples_before >= o.settings.path.samples) return false;
   int w = 0, h = 0;
   std::vector<float> indirect = read_exr_layer(path, "indirect", w, h);
+  // Refused before any work: the frame this run would render must be the file's.
+  int frame_w = o.settings.width, frame_h = o.settings.height;
+  resolve_resolution(choose_camera(scene, o.settings.camera, o.settings.camera_overrides), frame_w, frame_h);
+  if (frame_w != w || frame_h != h)
+    throw Error(path + " is " + std::to_string(w) + "x" + std::to_string(h) + ", this frame " +
+                std::to_string(frame_w) + "x" + std::to_string(frame_h));
   std::vector<float> variance = read_exr_layer(path, "indirect_variance", w, h);
   std::vector<float> direct = read_exr_layer(path, "direct", w, h);
 
@@ -50,9 +57,6 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   log_info(path + ": has " + std::to_string(samples_before) + " samples per pixel; adding " +
            std::to_string(more.path.samples));
   image = render(gpu, scene, more);
-  if (image.width != w || image.height != h)
-    throw Error(path + " is " + std::to_string(w) + "x" + std::to_string(h) + ", this frame " +
-                std::to_string(image.width) + "x" + std::to_string(image.height));
 
   double n0 = samples_before, n1 = more.path.samples, n = n0 + n1;
   double l0 = lights_before, l1 = image.stats.light_samples, l = std::max(l0 + l1, 1.0);

@@ -18,7 +18,6 @@ class RecordPass {
   void compute(const cl::Buffer& gbuffer, const cl::Buffer& camera, const cl::Buffer& candidates, uint32_t count,
                uint32_t first, const HemisphereParams& params);
   cl::Buffer& records() { return records_; }
-  size_t capacity() const { return capacity_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t count);
 

@@ -27,7 +27,6 @@ class SplatPass {
   std::vector<float> indirect_rgba();               // albedo / pi * E, A = covered
   std::vector<float> color_rgba();
   std::vector<uint32_t> records_per_pixel();
-  float irradiance_scale() const { return params_.irradiance_scale; }
 
  private:
   void launch_splat(const GBufferPass& gbuffer, const cl::Buffer& records);  // records params_ names

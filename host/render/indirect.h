@@ -30,6 +30,10 @@ HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, in
 void splat_indirect(IndirectFrame& frame);
 // The classic irradiance cache (Ward 1988) on the host: Embree rays, an octree lookup, C++ threads.
 void octree_indirect(IndirectFrame& frame);
+// Placement starts at the largest power of two not above the settings' coarsest spacing.
+int coarsest_placement_spacing(const CacheSettings& cache);
+// Adds a batch of records placed at this spacing to the per-level counts of the summary.
+void count_placed(RenderStats& stats, int spacing, uint32_t records);
 // Counts the records whose radius sits at a screen-space clamp, for the summary.
 void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RenderStats& stats);
 // Path-traced indirect light on the device, the ground truth and the competitor.

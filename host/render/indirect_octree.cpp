@@ -37,14 +37,13 @@ void octree_indirect(IndirectFrame& f) {
   PackedScene packed = pack_scene(f.scene);
   EmbreeScene embree(f.scene.positions);
   HostShading shading(packed, embree);
-  HemisphereParams hp = hemisphere_params(cs, f.settings.seed, cs.coarsest_spacing);
+  const float min_radius = hemisphere_params(cs, f.settings.seed, 1).min_spacing;  // in pixel footprints
   RecordOctree octree(dvec3(f.scene.bounds_min()), dvec3(f.scene.bounds_max()));
   std::vector<CacheRecord> records;
   std::vector<int32_t> record_at_pixel(pixels, -1);
   st.placement_s += seconds_since(t);
 
-  int coarsest = 1;
-  while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
+  int coarsest = coarsest_placement_spacing(cs);
   Progress progress("irradiance cache (octree)", size_t(std::log2(coarsest)) + 1);
   for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
     for (int round = 0; round < (spacing == 1 ? 4 : 1); ++round) {
@@ -90,12 +89,11 @@ void octree_indirect(IndirectFrame& f) {
           if (glm::distance(pi, record_position(records[j])) >= ri.radius) return;
           clamped[i] = std::min(clamped[i], records[j].radius + glm::distance(pi, record_position(records[j])));
         });
-        clamped[i] = std::max(clamped[i], std::min(ri.radius, hp.min_spacing * ri.pixel_size));
+        clamped[i] = std::max(clamped[i], std::min(ri.radius, min_radius * ri.pixel_size));
       });
       for (size_t i = 0; i < records.size(); ++i) records[i].radius = clamped[i];
       st.placement_s += seconds_since(t);
-      if (!st.levels.empty() && st.levels.back().spacing == spacing) st.levels.back().records += uint32_t(candidates.size());
-      else st.levels.push_back({spacing, uint32_t(candidates.size())});
+      count_placed(st, spacing, uint32_t(candidates.size()));
     }
     progress.update(size_t(level + 1));
   }

@@ -33,6 +33,17 @@ void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSet
   }
 }
 
+int coarsest_placement_spacing(const CacheSettings& cs) {
+  int coarsest = 1;
+  while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
+  return coarsest;
+}
+
+void count_placed(RenderStats& st, int spacing, uint32_t records) {
+  if (!st.levels.empty() && st.levels.back().spacing == spacing) st.levels.back().records += records;
+  else st.levels.push_back({spacing, records});
+}
+
 HemisphereParams hemisphere_params(const CacheSettings& cs, unsigned seed, int spacing) {
   bool fine = spacing == 1 && cs.fine_theta_strata > 0;
   HemisphereParams hp{};
@@ -55,10 +66,8 @@ void splat_indirect(IndirectFrame& f) {
   SplatPass splat(f.gpu);
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  HemisphereParams hp = hemisphere_params(cs, f.settings.seed, cs.coarsest_spacing);
-
-  int coarsest = 1;
-  while (coarsest * 2 <= cs.coarsest_spacing) coarsest *= 2;
+  const float min_radius = hemisphere_params(cs, f.settings.seed, 1).min_spacing;  // in pixel footprints
+  int coarsest = coarsest_placement_spacing(cs);
   int level_count = int(std::log2(coarsest)) + 1;
   Progress progress("irradiance cache", size_t(level_count));
   uint32_t total = 0;
@@ -79,11 +88,10 @@ void splat_indirect(IndirectFrame& f) {
       t = Clock::now();
       placement.mark(records.records(), total, count);
       total += count;
-      placement.clamp_neighbours(records.records(), total, total - count, round == 0, hp.min_spacing);
+      placement.clamp_neighbours(records.records(), total, total - count, round == 0, min_radius);
       unchanged = round == 0 ? 0 : total - count;
       st.placement_s += seconds_since(t);
-      if (!st.levels.empty() && st.levels.back().spacing == spacing) st.levels.back().records += count;
-      else st.levels.push_back({spacing, count});
+      count_placed(st, spacing, count);
     }
     progress.update(size_t(level + 1));
   }
