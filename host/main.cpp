@@ -10,6 +10,12 @@ namespace {
 
 using namespace rcsplat;
 
+std::string shortest(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(v));
+  return text;
+}
+
 std::optional<glm::vec3> as_vec3(const std::vector<float>& v) {
   if (v.empty()) return std::nullopt;
   return glm::vec3(v[0], v[1], v[2]);
@@ -68,15 +74,20 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
                                      "irradiance cache on the host), path (path tracing), none")
       ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
+  const CacheSettings cache_defaults;
   render_cmd->add_option("--accuracy", render.settings.cache.accuracy,
                          "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer")
-      ->check(CLI::Range(0.01f, 100.0f));
-  render_cmd->add_option("--hemisphere", hemisphere, "Rays per record as MxN strata (theta x phi), default 16x32");
+      ->check(CLI::Range(kMinAccuracy, kMaxAccuracy));
+  render_cmd->add_option("--hemisphere", hemisphere,
+                         "Rays per record as MxN strata (theta x phi), default " +
+                             std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
   std::string fine_hemisphere;
   render_cmd->add_option("--fine-hemisphere", fine_hemisphere,
                          "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
                          "few pixels each, as MxN; default: as --hemisphere");
-  render_cmd->add_option("--spacing", spacing, "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default 3,20");
+  render_cmd->add_option("--spacing", spacing,
+                         "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
+                             shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));
   render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
       ->check(CLI::Range(1u, 1u << 20));
   render_cmd->add_flag("--stratified", render.settings.path.stratified,

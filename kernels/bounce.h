@@ -4,19 +4,12 @@
 #ifndef RCSPLAT_BOUNCE_H
 #define RCSPLAT_BOUNCE_H
 #include "lighting.h"
+#include "scene_args.h"
 #include "surface.h"
-
-// The scene arguments every shading kernel takes, in this order (DeviceScene::bind_shading_args sets them).
-#define SHADING_SCENE_ARGS                                                                                          \
-  __global const float8 *nodes, __global const float8 *blocks, __global const TriangleShading *triangles,          \
-      __global const Material *materials, __global const TextureInfo *textures, __global const uint *texels,       \
-      __global const PunctualLight *lights, uint light_count, __global const EmissiveTriangle *emitters,            \
-      uint emitter_count
-#define SHADING_SCENE nodes, blocks, triangles, materials, textures, texels, lights, light_count, emitters, emitter_count
 
 // Radiance arriving at origin from direction dir after one reflection; (u, v) pick the light sample at the hit.
 // *distance is the hit distance, INFINITY on a miss.
-inline float3 bounce_radiance(SHADING_SCENE_ARGS, float3 origin, float3 dir, float u, float v, float* distance,
+inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float* distance,
                               uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
@@ -32,8 +25,8 @@ inline float3 bounce_radiance(SHADING_SCENE_ARGS, float3 origin, float3 dir, flo
   float3 ns = back ? -s.shading_normal : s.shading_normal;
   if (dot(ns, ng) <= 0.0f) ns = ng;
   float3 albedo = surface_albedo(materials, textures, texels, &s);
-  float3 e = direct_irradiance(nodes, blocks, lights, light_count, emitters, emitter_count, s.position, ns, ng, u, v,
-                               rays);
+  float3 e = direct_irradiance(nodes, blocks, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
+                               s.position, ns, ng, u, v, rays);
   return finite_or_zero(albedo * RC_INV_PI * e);
 }
 

@@ -2,13 +2,13 @@
 // triangles sampled as area lights with stratified samples. Lambertian reflection; emission itself is not included.
 // Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
 #include "lighting.h"
+#include "scene_args.h"
 
-__kernel void direct_light(__global const float8* nodes, __global const float8* blocks,
-                           __global const GBufferSample* gbuffer, __global const PunctualLight* lights,
-                           uint light_count, __global const EmissiveTriangle* emitters, uint emitter_count,
-                           uint strata_per_axis, uint seed, uint pixel_count, __global float4* out) {
+__kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __global float4* direct_out) {
   uint pixel = get_global_id(0);
-  if (pixel >= pixel_count) return;
+  if (pixel >= (uint)(camera->width * camera->height)) return;
+  const uint light_count = scene_counts.light_count, emitter_count = scene_counts.emitter_count;
+  const uint strata_per_axis = params.strata_per_axis;
   GBufferSample g = gbuffer[pixel];
   float3 result = (float3)(0.0f);
   uint rays = 0;
@@ -23,7 +23,7 @@ __kernel void direct_light(__global const float8* nodes, __global const float8* 
     if (emitter_count > 0 && strata_per_axis > 0) {
       float3 sum = (float3)(0.0f);
       float inv = 1.0f / (float)strata_per_axis;
-      uint key = hash_u32(pixel ^ hash_u32(seed));
+      uint key = hash_u32(pixel ^ hash_u32(params.seed));
       for (uint j = 0; j < strata_per_axis; ++j) {
         for (uint i = 0; i < strata_per_axis; ++i) {
           uint s = j * strata_per_axis + i;
@@ -37,5 +37,5 @@ __kernel void direct_light(__global const float8* nodes, __global const float8* 
 #endif
     result = finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
   }
-  out[pixel] = (float4)(result, (float)rays);  // w: shadow rays cast (exact below 2^24)
+  direct_out[pixel] = (float4)(result, (float)rays);  // w: shadow rays cast (exact below 2^24)
 }

@@ -1,5 +1,7 @@
 // Primary visibility: what the ray through each pixel's centre hits, with its normals, albedo and emission.
+// traverse.h first: its FP_CONTRACT OFF must also cover surface.h's interpolation, as in every tracing kernel.
 #include "traverse.h"
+#include "scene_args.h"
 #include "surface.h"
 
 inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int y) {
@@ -8,10 +10,8 @@ inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int 
   return normalize(vload3(0, cam->forward) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up));
 }
 
-__kernel void gbuffer(__global const float8* nodes, __global const float8* blocks,
-                      __global const TriangleShading* triangles, __global const Material* materials,
-                      __global const TextureInfo* textures, __global const uint* texels,
-                      __global const CameraParams* camera, __global GBufferSample* out) {
+// Writes the G-buffer the other passes read through GBUFFER_ARGS.
+__kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
   float3 org = vload3(0, camera->eye);
@@ -46,5 +46,5 @@ __kernel void gbuffer(__global const float8* nodes, __global const float8* block
     g.material = (int)s.material;
     g.depth = hit.t;
   }
-  out[y * camera->width + x] = g;
+  gbuffer[y * camera->width + x] = g;
 }

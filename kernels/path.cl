@@ -5,11 +5,11 @@
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
 
-__kernel void path_indirect(SHADING_SCENE_ARGS, __global const GBufferSample* gbuffer, uint pixel_count,
-                            uint first_sample, uint sample_count, uint grid_side, uint seed,
-                            __global float4* sum, __global float4* sum_squares, __global ulong* ray_total) {
+__kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* sum,
+                            __global float4* sum_squares, __global ulong* ray_total) {
   uint pixel = get_global_id(0);
-  if (pixel >= pixel_count) return;
+  if (pixel >= (uint)(camera->width * camera->height)) return;
+  const uint first_sample = params.first_sample, sample_count = params.sample_count, grid_side = params.grid_side;
   GBufferSample g = gbuffer[pixel];
   if (g.triangle < 0) return;
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
@@ -17,7 +17,7 @@ __kernel void path_indirect(SHADING_SCENE_ARGS, __global const GBufferSample* gb
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;
   tangent_frame(n, &t, &b);
-  uint key = hash_u32(pixel ^ hash_u32(seed ^ 0x5bd1e995u));
+  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x5bd1e995u));
   float3 s1 = (float3)(0.0f), s2 = (float3)(0.0f);
   uint rays = 0;
   for (uint s = first_sample; s < first_sample + sample_count; ++s) {
@@ -32,7 +32,7 @@ __kernel void path_indirect(SHADING_SCENE_ARGS, __global const GBufferSample* gb
     if (dot(dir, ng) > 0.0f) {
       float r;
       // Cosine-weighted sampling: f cos / pdf = albedo.
-      c = albedo * bounce_radiance(SHADING_SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+      c = albedo * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
     }
     s1 += c;
     s2 += c * c;

@@ -1,15 +1,17 @@
 // Record placement, coarse to fine (ALGORITHM.md section 7), and neighbour clamping of radii (Křivánek et al. 2006).
 // Only counts cross to the host: candidates are compacted on the device.
-#include "cache.h"
+#include "footprint.h"
+#include "scene_args.h"
 
 // Coverage on the grid of the given spacing: 1 where some record is usable (w > 1/a and not in front). The same test
 // as the splat's, but only on the grid pixels placement looks at, and a plain store (every writer stores 1), so a
 // level costs about 1/spacing^2 of a splat.
-__kernel void mark_covered(__global const CacheRecord* records, uint first_record, uint record_count, float accuracy,
-                           __global const GBufferSample* gbuffer, __global const CameraParams* camera, int spacing,
+__kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, PlacementParams params,
                            __global uchar* covered) {
-  if (get_global_id(0) >= record_count) return;
-  __global const CacheRecord* rec = records + first_record + get_global_id(0);
+  if (get_global_id(0) >= params.record_count) return;
+  const float accuracy = params.accuracy;
+  const int spacing = params.spacing;
+  __global const CacheRecord* rec = records + params.first_record + get_global_id(0);
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;
   PixelRect rect = sphere_footprint(camera, pk, accuracy * radius);
@@ -28,27 +30,25 @@ __kernel void mark_covered(__global const CacheRecord* records, uint first_recor
 
 // Pixels on the grid of the given spacing that see geometry and are not covered become candidates.
 // A pixel that already holds a record never gets a second one.
-__kernel void find_uncovered(__global const GBufferSample* gbuffer, __global const uchar* covered,
-                             __global const int* record_at_pixel, int width, int height, int spacing,
-                             __global uint* candidates, __global uint* candidate_count) {
-  int x = get_global_id(0) * spacing, y = get_global_id(1) * spacing;
-  if (x >= width || y >= height) return;
-  uint pixel = (uint)(y * width + x);
+__kernel void find_uncovered(GBUFFER_ARGS, __global const uchar* covered, __global const int* record_at_pixel,
+                             PlacementParams params, __global uint* candidates, __global uint* candidate_count) {
+  int x = get_global_id(0) * params.spacing, y = get_global_id(1) * params.spacing;
+  if (x >= camera->width || y >= camera->height) return;
+  uint pixel = (uint)(y * camera->width + x);
   if (gbuffer[pixel].triangle < 0 || covered[pixel] || record_at_pixel[pixel] >= 0) return;
   candidates[atomic_inc(candidate_count)] = pixel;
 }
 
-// Tiles of NEW_TILE x NEW_TILE pixels: which ones hold a record of the newest batch (older records need only look there).
-#define NEW_TILE 16
-
-__kernel void mark_records(__global const CacheRecord* records, uint first, uint count, __global int* record_at_pixel,
-                           int width, __global uchar* new_in_tile) {
+// Records first_record .. first_record + record_count - 1 (the newest batch) now sit on their pixels.
+__kernel void mark_records(GBUFFER_ARGS, __global const CacheRecord* records, PlacementParams params,
+                           __global int* record_at_pixel, __global uchar* new_in_tile) {
   uint i = get_global_id(0);
-  if (i >= count) return;
-  int pixel = records[first + i].pixel;
-  record_at_pixel[pixel] = (int)(first + i);
-  int tiles_x = (width + NEW_TILE - 1) / NEW_TILE;
-  new_in_tile[(pixel / width) / NEW_TILE * tiles_x + (pixel % width) / NEW_TILE] = 1;
+  if (i >= params.record_count) return;
+  const int width = camera->width;
+  int pixel = records[params.first_record + i].pixel;
+  record_at_pixel[pixel] = (int)(params.first_record + i);
+  int tiles_x = (width + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE;
+  new_in_tile[(pixel / width) / PLACEMENT_TILE_SIZE * tiles_x + (pixel % width) / PLACEMENT_TILE_SIZE] = 1;
 }
 
 // R_i <= R_j + |P_i - P_j| for every record j within R_i of record i (only those can lower R_i), for the pairs with at
@@ -56,11 +56,13 @@ __kernel void mark_records(__global const CacheRecord* records, uint first, uint
 // appears, as in Křivánek et al. 2006, without a transitive cascade through older records. Reads the radii and writes
 // new ones elsewhere, so the result does not depend on the order work-items run in. Without clamp_older only the new
 // records are clamped: the last rounds of placement use that, so that shrinking old records cannot uncover pixels again.
-__kernel void clamp_neighbours(__global const CacheRecord* records, uint record_count, uint first_new, int clamp_older,
+__kernel void clamp_neighbours(GBUFFER_ARGS, __global const CacheRecord* records, PlacementParams params,
                                __global const int* record_at_pixel, __global const uchar* new_in_tile,
-                               __global const CameraParams* camera, float min_spacing, __global float* clamped_radius) {
+                               __global float* clamped_radius) {
   uint i = get_global_id(0);
-  if (i >= record_count) return;
+  if (i >= params.record_count) return;
+  const uint first_new = params.first_new;
+  const int clamp_older = params.clamp_older;
   float3 pi = vload3(0, records[i].position);
   float radius = records[i].radius;
   if (i < first_new && !clamp_older) {
@@ -70,26 +72,26 @@ __kernel void clamp_neighbours(__global const CacheRecord* records, uint record_
   PixelRect rect = sphere_footprint(camera, pi, radius);
   float clamped = radius;
   bool old = i < first_new;
-  int tiles_x = (camera->width + NEW_TILE - 1) / NEW_TILE;
-  for (int ty = rect.y0 / NEW_TILE; ty <= rect.y1 / NEW_TILE; ++ty) {
-    for (int tx = rect.x0 / NEW_TILE; tx <= rect.x1 / NEW_TILE; ++tx) {
+  int tiles_x = (camera->width + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE;
+  for (int ty = rect.y0 / PLACEMENT_TILE_SIZE; ty <= rect.y1 / PLACEMENT_TILE_SIZE; ++ty) {
+    for (int tx = rect.x0 / PLACEMENT_TILE_SIZE; tx <= rect.x1 / PLACEMENT_TILE_SIZE; ++tx) {
       if (old && !new_in_tile[ty * tiles_x + tx]) continue;  // an old record only pairs with new ones
-      int y_end = min(rect.y1, ty * NEW_TILE + NEW_TILE - 1), x_end = min(rect.x1, tx * NEW_TILE + NEW_TILE - 1);
-      for (int y = max(rect.y0, ty * NEW_TILE); y <= y_end; ++y) {
-        for (int x = max(rect.x0, tx * NEW_TILE); x <= x_end; ++x) {
+      int x_begin = tx * PLACEMENT_TILE_SIZE, y_begin = ty * PLACEMENT_TILE_SIZE;
+      int y_end = min(rect.y1, y_begin + PLACEMENT_TILE_SIZE - 1), x_end = min(rect.x1, x_begin + PLACEMENT_TILE_SIZE - 1);
+      for (int y = max(rect.y0, y_begin); y <= y_end; ++y) {
+        for (int x = max(rect.x0, x_begin); x <= x_end; ++x) {
           int j = record_at_pixel[y * camera->width + x];
           if (j < 0 || (uint)j == i || (old && (uint)j < first_new)) continue;
-          clamped = fmin(clamped, records[j].radius + distance(pi, vload3(0, records[j].position)));
+          clamped = fmin(clamped, neighbour_radius_bound(pi, vload3(0, records[j].position), records[j].radius));
         }
       }
     }
   }
-  // The screen-space minimum still holds: a neighbour seen at another depth may have a smaller one.
-  clamped_radius[i] = fmax(clamped, fmin(radius, min_spacing * records[i].pixel_size));
+  clamped_radius[i] = neighbour_clamped_radius(radius, clamped, params.min_radius_pixels, records[i].pixel_size);
 }
 
-__kernel void apply_radii(__global CacheRecord* records, uint record_count, __global const float* clamped_radius) {
+__kernel void apply_radii(__global CacheRecord* records, PlacementParams params, __global const float* clamped_radius) {
   uint i = get_global_id(0);
-  if (i >= record_count) return;
+  if (i >= params.record_count) return;
   records[i].radius = clamped_radius[i];
 }

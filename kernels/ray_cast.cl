@@ -1,12 +1,12 @@
 // Casts a batch of arbitrary rays: closest hits or occlusion. Used by the tests (against Embree) and the benchmarks.
+#include "scene_args.h"
 #include "traverse.h"
 
 inline RayPrecomp load_ray(RayDesc ray) { return ray_precompute(vload3(0, ray.origin), vload3(0, ray.direction)); }
 
-__kernel void cast_closest(__global const float8* nodes, __global const float8* blocks, __global const RayDesc* rays,
-                           __global HitDesc* hits, uint ray_count) {
+__kernel void cast_closest(SCENE_ARGS, __global const RayDesc* rays, RayCastParams params, __global HitDesc* hits) {
   uint i = get_global_id(0);
-  if (i >= ray_count) return;
+  if (i >= params.ray_count) return;
   RayDesc ray = rays[i];
   RayPrecomp r = load_ray(ray);
   TraceHit h;
@@ -19,10 +19,9 @@ __kernel void cast_closest(__global const float8* nodes, __global const float8* 
   hits[i] = out;
 }
 
-__kernel void cast_occlusion(__global const float8* nodes, __global const float8* blocks, __global const RayDesc* rays,
-                             __global int* occluded, uint ray_count) {
+__kernel void cast_occlusion(SCENE_ARGS, __global const RayDesc* rays, RayCastParams params, __global int* occluded) {
   uint i = get_global_id(0);
-  if (i >= ray_count) return;
+  if (i >= params.ray_count) return;
   RayDesc ray = rays[i];
   RayPrecomp r = load_ray(ray);
   TraceHit h;

@@ -3,11 +3,10 @@
 // clamped in screen space) and Ward & Heckbert's rotational and translational gradients, bounded.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
-#include "cache.h"
+#include "cache_math.h"
 
-#ifndef MAX_THETA_STRATA
-#define MAX_THETA_STRATA 64
-#endif
+// The host compiles this kernel with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
+// HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M.
 
 // gradient[axis] += direction[axis] * value, for a world-space direction and an RGB value.
 inline void add_outer(float3* gradient, float3 direction, float3 value) {
@@ -23,19 +22,18 @@ inline void bound_gradient(float3* gradient, float3 limit) {
   for (int a = 0; a < 3; ++a) gradient[a] = finite_or_zero(gradient[a] * scale);
 }
 
-__kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* gbuffer,
-                              __global const CameraParams* camera, __global const uint* candidates,
-                              uint candidate_count, uint first_record, HemisphereParams hp,
+__kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
                               __global CacheRecord* records, __global ulong* ray_total) {
   uint i = get_global_id(0);
-  if (i >= candidate_count) return;
+  if (i >= batch.candidate_count) return;
+  const HemisphereParams hp = batch.hemisphere;
   uint pixel = candidates[i];
   GBufferSample g = gbuffer[pixel];
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;
   tangent_frame(n, &t, &b);
-  const uint M = min(hp.theta_strata, (uint)MAX_THETA_STRATA), N = hp.phi_strata;
+  const uint M = hp.theta_strata, N = hp.phi_strata;
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
   uint key = hash_u32(pixel ^ hash_u32(hp.seed));
 
@@ -45,7 +43,7 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   // of L sin(theta) (a . v(phi)) dw; integrating that weight over each stratum (rather than Ward and Heckbert's
   // per-sample tan(theta), whose variance is unbounded in the row at the horizon) leaves no gradient at all in a
   // uniform environment.
-  float theta_wall[MAX_THETA_STRATA], phi_wall[MAX_THETA_STRATA], rotation_weight[MAX_THETA_STRATA];
+  float theta_wall[THETA_STRATA_CAPACITY], phi_wall[THETA_STRATA_CAPACITY], rotation_weight[THETA_STRATA_CAPACITY];
   for (uint j = 0; j < M; ++j) {
     float sin_lo = sqrt((float)j * inv_m), cos_lo = sqrt(1.0f - (float)j * inv_m);
     float sin_hi = sqrt((float)(j + 1) * inv_m), cos_hi = sqrt(fmax(1.0f - (float)(j + 1) * inv_m, 0.0f));
@@ -55,8 +53,8 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   }
 
   // Stratum (j, k) needs (j - 1, k) and (j, k - 1): keep the previous column, and the first for the wrap-around.
-  float3 prev_l[MAX_THETA_STRATA], first_l[MAX_THETA_STRATA];
-  float prev_r[MAX_THETA_STRATA], first_r[MAX_THETA_STRATA];
+  float3 prev_l[THETA_STRATA_CAPACITY], first_l[THETA_STRATA_CAPACITY];
+  float prev_r[THETA_STRATA_CAPACITY], first_r[THETA_STRATA_CAPACITY];
   float3 e = (float3)(0.0f);
   float3 grad_t[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
   float3 grad_r[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
@@ -77,7 +75,7 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
       float r = INFINITY;
       float3 l = (float3)(0.0f);
       if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
-        l = bounce_radiance(SHADING_SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
       }
       e += l;
       inverse_distances += 1.0f / r;
@@ -103,8 +101,8 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
   float harmonic = (float)(M * N) / inverse_distances;
   float pixel_size = pixel_world_size(camera, p);
-  float radius = clamp(harmonic, hp.min_spacing * pixel_size, hp.max_spacing * pixel_size);
-  if (!(radius > 0.0f)) radius = fmax(hp.min_spacing * pixel_size, 1e-30f);
+  float radius = clamp(harmonic, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
+  if (!(radius > 0.0f)) radius = fmax(hp.min_radius_pixels * pixel_size, 1e-30f);
   // Bounded gradients (ALGORITHM.md section 5): translation changes E by at most E across R, rotation by at most E.
   bound_gradient(grad_t, e / radius);
   bound_gradient(grad_r, e);
@@ -122,6 +120,6 @@ __kernel void compute_records(SHADING_SCENE_ARGS, __global const GBufferSample* 
   }
   rec.harmonic_distance = harmonic;
   rec.pad = 0.0f;
-  records[first_record + i] = rec;
+  records[batch.first_record + i] = rec;
   atom_add(ray_total, (ulong)rays);
 }

@@ -2,9 +2,7 @@
 #ifndef RCSPLAT_SAMPLING_H
 #define RCSPLAT_SAMPLING_H
 #include "counter_random.h"
-
-#define RC_PI 3.14159265358979f
-#define RC_INV_PI 0.318309886183791f
+#include "host_device.h"
 
 // Moves a surface point off its surface along the geometric normal n (pointing to the side the ray leaves to) by a
 // fixed number of float ULPs, so the offset scales with the coordinates' magnitude; near the origin, where ULPs

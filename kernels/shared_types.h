@@ -142,15 +142,62 @@ typedef struct {
   float pad;
 } CacheRecord;
 
+// The largest hemisphere offered: M x N strata per record (theta x phi).
+#define HEMISPHERE_MAX_THETA_STRATA 64
+#define HEMISPHERE_MAX_PHI_STRATA 4096
+
 // How records sample their hemisphere and clamp their radii.
 typedef struct {
-  rc_uint theta_strata;  // M
-  rc_uint phi_strata;    // N
+  rc_uint theta_strata;  // M, 1 .. HEMISPHERE_MAX_THETA_STRATA
+  rc_uint phi_strata;    // N, 1 .. HEMISPHERE_MAX_PHI_STRATA
   rc_uint seed;
-  float min_spacing;  // clamps of the radius R, in pixel footprints at the record (the host passes the
-  float max_spacing;  // record spacing clamps divided by the accuracy a, so that the reach a R is clamped)
+  float min_radius_pixels;  // clamps of the radius R, in pixel footprints at the record (the settings' clamps of the
+  float max_radius_pixels;  // reach a R, divided by a)
   float pad[3];
 } HemisphereParams;
+
+// Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
+// (host/cl/kernel_args.h checks names and types against the compiled kernels).
+
+// The counts the shading kernels loop over; the scene's arrays travel as SCENE_ARGS buffers (kernels/scene_args.h).
+typedef struct {
+  rc_uint light_count;    // punctual lights
+  rc_uint emitter_count;  // emissive triangles
+  rc_uint pad[2];
+} SceneCounts;
+
+typedef struct {
+  rc_uint strata_per_axis;  // light samples per pixel = strata_per_axis^2, stratified over the emitters
+  rc_uint seed;
+  rc_uint pad[2];
+} DirectParams;
+
+typedef struct {
+  rc_uint first_sample;  // this launch adds samples first_sample .. first_sample + sample_count - 1
+  rc_uint sample_count;
+  rc_uint grid_side;  // stratified: samples drawn from a grid_side x grid_side grid over the hemisphere; 0: plain
+  rc_uint seed;
+} PathParams;
+
+// A batch of records: candidates[0 .. candidate_count - 1] become records first_record and up.
+typedef struct {
+  HemisphereParams hemisphere;
+  rc_uint candidate_count;
+  rc_uint first_record;
+  rc_uint pad[2];
+} RecordBatchParams;
+
+// Placement's kernels, each reading the fields it needs.
+typedef struct {
+  rc_uint first_record;  // the records a kernel visits: first_record .. first_record + record_count - 1
+  rc_uint record_count;
+  float accuracy;   // a
+  rc_int spacing;   // the placement grid's spacing in pixels
+  rc_uint first_new;  // neighbour clamping: records first_new and up are the newest batch
+  rc_int clamp_older;  // neighbour clamping: older records may shrink too (first round of a level)
+  float min_radius_pixels;  // the radius clamp's minimum, in pixel footprints at the record
+  rc_uint pad;
+} PlacementParams;
 
 // The splat's constants for one frame.
 typedef struct {
@@ -159,6 +206,11 @@ typedef struct {
   rc_uint first_record;  // the splat adds records first_record .. first_record + record_count - 1
   rc_uint record_count;
 } SplatParams;
+
+typedef struct {
+  rc_uint ray_count;
+  rc_uint pad[3];
+} RayCastParams;
 
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
@@ -174,7 +226,13 @@ static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 32);
+static_assert(sizeof(SceneCounts) == 16);
+static_assert(sizeof(DirectParams) == 16);
+static_assert(sizeof(PathParams) == 16);
+static_assert(sizeof(RecordBatchParams) == 48);
+static_assert(sizeof(PlacementParams) == 32);
 static_assert(sizeof(SplatParams) == 16);
+static_assert(sizeof(RayCastParams) == 16);
 #endif
 
 #endif

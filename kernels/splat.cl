@@ -2,34 +2,27 @@
 // full Ward weight exceeds 1/a, into 64-bit fixed-point sums that come out the same whatever order records land in.
 // Then the normalisation divides, and the composition adds the indirect light to emission and direct light.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
-#include "cache.h"
+#include "footprint.h"
 #include "sampling.h"
+#include "scene_args.h"
 
-// Fixed-point unit 2^48: w <= MAX_RECORD_WEIGHT = 1e3 and w * E / irradiance_scale <= w, so one contribution is below
-// 2^58. Only a record's own pixel can bring w above 1 / (a / MAX spacing) (about 70 at the defaults: other pixels are
-// at least a pixel footprint away), so a sum would need hundreds of records on one pixel to reach 2^63. Resolution:
-// an irradiance 1e-9 of the frame's largest still has about 2^18 units, so dark corners beside HDR light keep
-// their precision.
-#define FIXED_POINT_ONE 281474976710656.0f
-
-__kernel void clear_accumulators(__global long* sums, __global uint* counts, uint pixel_count) {
+__kernel void clear_accumulators(GBUFFER_ARGS, __global long* sums, __global uint* counts) {
   uint i = get_global_id(0);
-  if (i >= pixel_count) return;
+  if (i >= (uint)(camera->width * camera->height)) return;
   vstore4((long4)(0), i, sums);
   counts[i] = 0u;
 }
 
 // The largest irradiance component over all records, as float bits (positive floats order like their bits).
-__kernel void max_record_irradiance(__global const CacheRecord* records, uint record_count, __global uint* max_bits) {
-  uint i = get_global_id(0);
-  if (i >= record_count) return;
+__kernel void max_record_irradiance(__global const CacheRecord* records, SplatParams params, __global uint* max_bits) {
+  uint i = params.first_record + get_global_id(0);
+  if (get_global_id(0) >= params.record_count) return;
   float3 e = vload3(0, records[i].irradiance);
   atomic_max(max_bits, as_uint(fmax(fmax(e.x, e.y), fmax(e.z, 0.0f))));
 }
 
 // One work-item per record, visiting its footprint.
-__kernel void splat_records(__global const CacheRecord* records, SplatParams params,
-                            __global const GBufferSample* gbuffer, __global const CameraParams* camera,
+__kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, SplatParams params,
                             __global long* sums, __global uint* counts) {
   if (get_global_id(0) >= params.record_count) return;
   uint k = params.first_record + get_global_id(0);
@@ -60,11 +53,11 @@ __kernel void splat_records(__global const CacheRecord* records, SplatParams par
 
 // Normalisation and composition: E = sum(w E) / sum(w); indirect = albedo / pi * E; color = emission + direct +
 // indirect. Uncovered pixels (no usable record) get no indirect light and coverage 0.
-__kernel void resolve_indirect(__global const long* sums, SplatParams params, __global const GBufferSample* gbuffer,
-                               __global const float4* direct, uint pixel_count, __global float4* irradiance_out,
+__kernel void resolve_indirect(GBUFFER_ARGS, __global const long* sums, SplatParams params,
+                               __global const float4* direct, __global float4* irradiance_out,
                                __global float4* indirect_out, __global float4* color_out) {
   uint i = get_global_id(0);
-  if (i >= pixel_count) return;
+  if (i >= (uint)(camera->width * camera->height)) return;
   long4 s = vload4(i, sums);
   GBufferSample g = gbuffer[i];
   float3 e = (float3)(0.0f);

@@ -1,7 +1,9 @@
 #include "cache/host_records.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "kernels/counter_random.h"
@@ -11,7 +13,7 @@ namespace rcsplat {
 namespace {
 
 using glm::dvec3;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 void add_outer(std::array<dvec3, 3>& g, const dvec3& direction, const dvec3& value) {
   for (int a = 0; a < 3; ++a) g[size_t(a)] += direction[a] * value;
@@ -96,7 +98,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   rec.harmonic_distance = double(M * N) / inverse_distances;
   rec.pixel_size = pixel_size;
   rec.pixel = pixel;
-  rec.radius = std::clamp(rec.harmonic_distance, hp.min_spacing * pixel_size, hp.max_spacing * pixel_size);
+  rec.radius = std::clamp(rec.harmonic_distance, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
   bound(rec.grad_translation, rec.irradiance / rec.radius);
   bound(rec.grad_rotation, rec.irradiance);
   return rec;

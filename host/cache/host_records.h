@@ -1,6 +1,7 @@
 // One irradiance record computed on the host in double precision with Embree rays: the same strata, random numbers and
-// formulas as kernels/records.cl, written independently (all strata stored, walls summed over the grid). It is the
-// octree cache's record computation and the record kernel's test reference.
+// formulas as kernels/records.cl, written independently on purpose (all strata stored, walls summed over the grid,
+// no code shared with the kernel): the record kernel's test reference (tests/records_test.cpp). Both cache methods
+// render with the kernel's records.
 #pragma once
 #include <array>
 #include <cstdint>

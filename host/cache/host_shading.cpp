@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "util/ray_offset.h"
 
@@ -10,7 +11,7 @@ namespace rcsplat {
 namespace {
 
 using glm::dvec3;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 dvec3 load3(const float* v) { return dvec3(v[0], v[1], v[2]); }
 

@@ -4,7 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "bvh/embree_scene.h"
-#include "passes/device_scene.h"
+#include "scene/packed_scene.h"
 
 namespace rcsplat {
 

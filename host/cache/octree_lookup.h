@@ -1,16 +1,24 @@
-// The classic lookup: every record whose Ward weight at P exceeds 1/a, found through the octree, in double.
+// The classic lookup: every record whose Ward weight at P exceeds 1/a, found through the octree, with the cache's
+// shared math (kernels/cache_math.h), summed in double.
 #pragma once
 #include <vector>
 
-#include "cache/cache_math.h"
 #include "cache/record_octree.h"
+#include "kernels/cache_math.h"
 
 namespace rcsplat {
 
+inline glm::vec3 record_position(const CacheRecord& r) { return rc_load3(0, r.position); }
+inline glm::vec3 record_normal(const CacheRecord& r) { return rc_load3(0, r.normal); }
+
 struct PixelGeometry {
-  glm::vec3 p, n, ng;
-  bool valid;
+  glm::vec3 p, n;
+  bool valid;  // the pixel sees geometry
 };
+
+inline PixelGeometry pixel_geometry(const GBufferSample& g) {
+  return {rc_load3(0, g.position), rc_load3(0, g.normal), g.triangle >= 0};
+}
 
 // Sum of w * E_k(P) and of w over the usable records at one pixel, in double.
 struct Interpolation {
@@ -19,19 +27,31 @@ struct Interpolation {
   uint32_t count = 0;
 };
 
-inline Interpolation interpolate(const RecordOctree& octree, const std::vector<CacheRecord>& records, const PixelGeometry& g,
-                          float accuracy) {
+inline Interpolation interpolate(const RecordOctree& octree, const std::vector<CacheRecord>& records,
+                                 const PixelGeometry& g, float accuracy) {
   Interpolation out;
   octree.for_each_reaching(glm::dvec3(g.p), [&](uint32_t k) {
     const CacheRecord& r = records[k];
     glm::vec3 pk = record_position(r), nk = record_normal(r);
     float w = ward_weight(g.p, g.n, pk, nk, r.radius);
     if (!record_usable(w, accuracy, g.p, g.n, pk, nk, r.radius)) return;
-    out.weighted += double(w) * extrapolated_irradiance(r, glm::dvec3(g.p), glm::dvec3(g.n));
+    out.weighted += double(w) * glm::dvec3(extrapolated_irradiance(&r, g.p, g.n));
     out.weight += w;
     ++out.count;
   });
   return out;
+}
+
+// Whether some record is usable at the pixel: the placement's coverage test.
+inline bool covered(const RecordOctree& octree, const std::vector<CacheRecord>& records, const PixelGeometry& g,
+                    float accuracy) {
+  bool any = false;
+  octree.for_each_reaching(glm::dvec3(g.p), [&](uint32_t k) {
+    const CacheRecord& r = records[k];
+    glm::vec3 pk = record_position(r), nk = record_normal(r);
+    any = any || record_usable(ward_weight(g.p, g.n, pk, nk, r.radius), accuracy, g.p, g.n, pk, nk, r.radius);
+  });
+  return any;
 }
 
 }  // namespace rcsplat

@@ -33,19 +33,25 @@ std::string read_kernel_file(const std::string& file) {
   return ss.str();
 }
 
+void append_text(const std::string& label, const std::string& text, std::set<std::string>& seen, std::string& out);
+
 void append_resolved(const std::string& file, std::set<std::string>& seen, std::string& out) {
   if (!seen.insert(file).second) return;  // every kernel header is include-once
+  append_text(file, read_kernel_file(file), seen, out);
+}
+
+void append_text(const std::string& label, const std::string& text, std::set<std::string>& seen, std::string& out) {
   static const std::regex include_line(R"(^\s*#\s*include\s*"([^"]+)\"\s*$)");
-  std::istringstream lines(read_kernel_file(file));
+  std::istringstream lines(text);
   std::string line;
   int number = 0;
-  out += "#line 1 \"kernels/" + file + "\"\n";
+  out += "#line 1 \"kernels/" + label + "\"\n";
   while (std::getline(lines, line)) {
     ++number;
     std::smatch m;
     if (std::regex_match(line, m, include_line)) {
       append_resolved(m[1].str(), seen, out);
-      out += "#line " + std::to_string(number + 1) + " \"kernels/" + file + "\"\n";
+      out += "#line " + std::to_string(number + 1) + " \"kernels/" + label + "\"\n";
     } else {
       out += line + "\n";
     }
@@ -88,20 +94,59 @@ std::string resolve_kernel_source(const std::string& file) {
   return out;
 }
 
+std::string resolve_kernel_text(const std::string& label, const std::string& text) {
+  std::set<std::string> seen;
+  std::string out;
+  append_text(label, text, seen, out);
+  return out;
+}
+
 GpuContext::GpuContext(const DeviceInfo& device) : info_(device) {
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
+  // A GPU keeps a warp or wavefront per group busy only with 32 or more work-items; PoCL's CPU device prefers few
+  // heavy work-items per group (measured on the record pass).
+  if (info_.device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) groups_.per_record = 32;
 }
 
+// Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.
+constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
+
 cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
-  std::string options = "-cl-std=CL1.2";
+  std::string options = kBaseBuildOptions;
   for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
   std::string key = file + "|" + options;
   auto found = programs_.find(key);
   if (found != programs_.end()) return *found->second;
+  return build(key, file, resolve_kernel_source(file), options);
+}
 
+cl::Program& GpuContext::program_from_text(const std::string& label, const std::string& text) {
+  std::string key = label + "|" + text;
+  auto found = programs_.find(key);
+  if (found != programs_.end()) return *found->second;
+  return build(key, label, resolve_kernel_text(label, text), kBaseBuildOptions);
+}
+
+NamedKernel GpuContext::kernel(const std::string& file, const std::string& name, const KernelDefines& defines) {
+  return NamedKernel(*this, program(file, defines), name);
+}
+
+std::set<std::string> GpuContext::built_kernel_names() const {
+  std::set<std::string> names;
+  for (const auto& [key, program] : programs_) {
+    std::istringstream list(program->getInfo<CL_PROGRAM_KERNEL_NAMES>());
+    for (std::string name; std::getline(list, name, ';');) {
+      while (!name.empty() && (name.back() == '\0' || name.back() == ' ')) name.pop_back();
+      if (!name.empty()) names.insert(name);
+    }
+  }
+  return names;
+}
+
+cl::Program& GpuContext::build(const std::string& key, const std::string& file, const std::string& source,
+                               const std::string& options) {
   auto start = std::chrono::steady_clock::now();
-  std::string source = resolve_kernel_source(file);
   // The on-disk cache is keyed by everything that changes the binary: device, driver, source and options.
   std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
   fs::path cache_dir = binary_cache_dir();

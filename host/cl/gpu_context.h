@@ -4,15 +4,25 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "cl/device_info.h"
+#include "cl/named_kernel.h"
 
 namespace rcsplat {
 
 // Compile-time switches for a program: "-D NAME=VALUE" pairs, chosen from the scene by the caller.
 using KernelDefines = std::map<std::string, std::string>;
+
+// Work-group sizes by kind of kernel, chosen for the device at run time.
+struct GroupSizes {
+  size_t traversal = 64;  // a ray (or pixel) per work-item, tracing: PoCL runs 15% slower when it picks the size
+  size_t per_record = 8;  // a record per work-item with hundreds of rays each: a coarse level has few records
+  size_t per_item = 64;   // light per-pixel or per-record work
+  size_t tile_side = 8;   // 2-D launches over the image, tile_side x tile_side pixels a group
+};
 
 class GpuContext {
  public:
@@ -26,8 +36,21 @@ class GpuContext {
   // set of switches, and kept on disk between runs (see program_cache.cpp). Throws rcsplat::Error with the build log.
   cl::Program& program(const std::string& file, const KernelDefines& defines = {});
 
+  // Kernel `name` of kernels/<file>, its arguments set by name.
+  NamedKernel kernel(const std::string& file, const std::string& name, const KernelDefines& defines = {});
+  // A program from source text (its includes resolved from kernels/), for tests of shared kernel code.
+  cl::Program& program_from_text(const std::string& label, const std::string& text);
+
   // Seconds spent building (or loading cached) programs so far, for the summary.
   double program_seconds() const { return program_seconds_; }
+
+  const GroupSizes& groups() const { return groups_; }
+
+  // Every kernel of every program built so far, and for each kernel launched whether its last launch set all its
+  // parameters by name in the kernel's own order (tests/kernel_args_test.cpp).
+  std::set<std::string> built_kernel_names() const;
+  const std::map<std::string, bool>& launched_kernels() const { return launched_; }
+  void note_launch(const std::string& kernel, bool all_in_order) { launched_[kernel] = all_in_order; }
 
   template <typename T>
   cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY) {
@@ -46,10 +69,15 @@ class GpuContext {
   }
 
  private:
+  cl::Program& build(const std::string& key, const std::string& label, const std::string& source,
+                     const std::string& options);
+
   DeviceInfo info_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  GroupSizes groups_;
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
+  std::map<std::string, bool> launched_;
   double program_seconds_ = 0.0;
 };
 
@@ -60,5 +88,7 @@ std::string kernel_source_dir();
 // The text of kernels/<file> with every #include "x" replaced by x's text (once per file), framed by #line directives
 // so that compiler messages name the original file and line.
 std::string resolve_kernel_source(const std::string& file);
+// The same for source text given directly, named `label` in messages.
+std::string resolve_kernel_text(const std::string& label, const std::string& text);
 
 }  // namespace rcsplat

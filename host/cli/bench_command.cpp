@@ -11,8 +11,8 @@
 #include "bvh/bvh8.h"
 #include "bvh/embree_scene.h"
 #include "cl/device_info.h"
+#include "cl/device_scene.h"
 #include "cli/commands.h"
-#include "passes/device_bvh.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/procedural.h"
 #include "util/log.h"
@@ -71,8 +71,8 @@ int run_bench(const BenchOptions& options) {
   EmbreeScene embree(scene.positions);
   Bvh8 bvh = build_bvh8(scene.positions);
   GpuContext gpu(device);
-  DeviceBvh device_bvh(gpu, bvh);
-  RayCastPass caster(gpu, device_bvh);
+  DeviceScene device_scene(gpu, scene, bvh);
+  RayCastPass caster(gpu, device_scene);
 
   std::vector<SurfaceSample> points = camera_visible_points(scene, embree, options.rays, 1);
   struct Pattern {

@@ -33,9 +33,9 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
     const CacheSettings& c = settings.cache;
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
-    std::printf(", record spacing %g..%g pixels\n", c.min_spacing, c.max_spacing);
+    std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
     std::printf("records      %llu:", (unsigned long long)s.records);
-    for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing);
+    for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing_pixels);
     std::printf(" %llu pixels left uncovered\n", (unsigned long long)s.uncovered_pixels);
     std::printf("             reach at the minimum spacing: %.1f%%, at the maximum: %.1f%%\n",
                 100.0 * double(s.records_at_min_radius) / double(std::max<uint64_t>(s.records, 1)),
@@ -71,10 +71,10 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     nlohmann::json levels = nlohmann::json::array();
-    for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing}, {"records", l.records}});
+    for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing_pixels}, {"records", l.records}});
     j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
                   {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
-                  {"spacing", {c.min_spacing, c.max_spacing}}, {"records", s.records}, {"levels", levels},
+                  {"spacing", {c.min_reach_pixels, c.max_reach_pixels}}, {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius}};
   }
@@ -89,7 +89,8 @@ int run_render(const RenderOptions& options) {
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
   }
-  check_cache_settings(options.settings.cache);
+  if (options.settings.gi == GiMethod::splat || options.settings.gi == GiMethod::octree)
+    validate_cache_settings(options.settings.cache);
   Scene scene = load_scene(options.scene_path);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");

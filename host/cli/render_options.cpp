@@ -21,7 +21,7 @@ void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine) 
   CacheSettings changed = cache;  // checked before it replaces the settings: a refused value leaves them as they were
   (fine ? changed.fine_theta_strata : changed.theta_strata) = m;
   (fine ? changed.fine_phi_strata : changed.phi_strata) = n;
-  check_cache_settings(changed);
+  validate_cache_settings(changed);
   cache = changed;
 }
 
@@ -31,9 +31,9 @@ void parse_spacing(const std::string& text, CacheSettings& cache) {
   if (std::sscanf(text.c_str(), "%f,%f%c", &lo, &hi, &tail) != 2)
     throw Error("--spacing " + text + ": expected MIN,MAX in pixels, for example 3,20");
   CacheSettings changed = cache;
-  changed.min_spacing = lo;
-  changed.max_spacing = hi;
-  check_cache_settings(changed);
+  changed.min_reach_pixels = lo;
+  changed.max_reach_pixels = hi;
+  validate_cache_settings(changed);
   cache = changed;
 }
 

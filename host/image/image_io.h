@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/renderer.h"
+#include "render/frame.h"
 
 namespace rcsplat {
 

@@ -1,26 +1,36 @@
-// Primary visibility (kernels/gbuffer.cl): owns the G-buffer.
+// Primary visibility (kernels/gbuffer.cl): owns the G-buffer and its camera, which every later pass reads through a
+// GBufferView.
 #pragma once
+#include "cl/device_scene.h"
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
-#include "passes/device_scene.h"
 
 namespace rcsplat {
+
+// The G-buffer and its camera, as every pass receives them (kernels/scene_args.h GBUFFER_ARGS).
+struct GBufferView {
+  cl::Buffer samples;  // GBufferSample per pixel, row-major from the top
+  cl::Buffer camera;   // one CameraParams
+  int width = 0, height = 0;
+
+  size_t pixel_count() const { return size_t(width) * size_t(height); }
+  // Sets a kernel's GBUFFER_ARGS ("gbuffer" and "camera").
+  void bind(NamedKernel& kernel) const;
+};
 
 class GBufferPass {
  public:
   GBufferPass(GpuContext& gpu, const DeviceScene& scene);
   void run(const CameraParams& camera);  // blocks until done
-  const cl::Buffer& samples() const { return samples_; }
-  const cl::Buffer& camera() const { return camera_; }  // the CameraParams of the last run
+  const GBufferView& view() const { return view_; }
   std::vector<GBufferSample> download();
-  size_t pixel_count() const { return pixels_; }
+  size_t pixel_count() const { return view_.pixel_count(); }
 
  private:
   GpuContext& gpu_;
   const DeviceScene& scene_;
-  cl::Kernel kernel_;
-  cl::Buffer camera_, samples_;
-  size_t pixels_ = 0;
+  NamedKernel kernel_;
+  GBufferView view_;
 };
 
 }  // namespace rcsplat

@@ -2,17 +2,15 @@
 
 #include <cmath>
 
-#include "passes/ray_cast_pass.h"
-
 namespace rcsplat {
 
-PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene) : gpu_(gpu), scene_(scene) {
-  kernel_ = cl::Kernel(gpu_.program("path.cl", scene_.defines()), "path_indirect");
+PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("path.cl", "path_indirect", scene.defines())) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
 }
 
-void PathPass::begin(const GBufferPass& gbuffer, unsigned total_samples, bool stratified, unsigned seed) {
-  gbuffer_ = &gbuffer;
+void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed) {
+  gbuffer_ = gbuffer;
   pixels_ = gbuffer.pixel_count();
   std::vector<cl_float4> zeros(pixels_, cl_float4{{0, 0, 0, 0}});
   sum_ = gpu_.upload(zeros, CL_MEM_READ_WRITE);
@@ -27,18 +25,18 @@ void PathPass::begin(const GBufferPass& gbuffer, unsigned total_samples, bool st
 void PathPass::add_samples(unsigned count) {
   count = std::min(count, total_ - done_);
   if (!count || !pixels_) return;
-  cl_uint a = scene_.bind_shading_args(kernel_, 0);
-  kernel_.setArg(a++, gbuffer_->samples());
-  kernel_.setArg(a++, cl_uint(pixels_));
-  kernel_.setArg(a++, cl_uint(done_));
-  kernel_.setArg(a++, cl_uint(count));
-  kernel_.setArg(a++, cl_uint(grid_side_));
-  kernel_.setArg(a++, cl_uint(seed_));
-  kernel_.setArg(a++, sum_);
-  kernel_.setArg(a++, sum_squares_);
-  kernel_.setArg(a++, ray_total_);
-  gpu_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(round_up(pixels_, kTraversalLocalSize)),
-                                    cl::NDRange(kTraversalLocalSize));
+  PathParams params{};
+  params.first_sample = done_;
+  params.sample_count = count;
+  params.grid_side = grid_side_;
+  params.seed = seed_;
+  scene_.bind(kernel_);
+  gbuffer_.bind(kernel_);
+  kernel_.set("params", params)
+      .set_buffer<cl_float4>("sum", sum_)
+      .set_buffer<cl_float4>("sum_squares", sum_squares_)
+      .set_buffer<cl_ulong>("ray_total", ray_total_);
+  kernel_.launch(pixels_, gpu_.groups().traversal);
   gpu_.queue().finish();
   done_ += count;
 }

@@ -1,98 +1,92 @@
 #include "passes/placement_pass.h"
 
-#include "passes/ray_cast_pass.h"
+#include "kernels/cache_math.h"
 
 namespace rcsplat {
 
-PlacementPass::PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height)
-    : gpu_(gpu), gbuffer_(gbuffer), width_(width), height_(height) {
-  cl::Program& program = gpu_.program("placement.cl");
-  covered_kernel_ = cl::Kernel(program, "mark_covered");
-  find_ = cl::Kernel(program, "find_uncovered");
-  mark_ = cl::Kernel(program, "mark_records");
-  clamp_ = cl::Kernel(program, "clamp_neighbours");
-  apply_ = cl::Kernel(program, "apply_radii");
-  size_t pixels = size_t(width) * size_t(height);
-  candidates_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, pixels * sizeof(cl_uint));
+PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
+    : gpu_(gpu),
+      gbuffer_(gbuffer),
+      covered_kernel_(gpu.kernel("placement.cl", "mark_covered")),
+      find_(gpu.kernel("placement.cl", "find_uncovered")),
+      mark_(gpu.kernel("placement.cl", "mark_records")),
+      clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
+      apply_(gpu.kernel("placement.cl", "apply_radii")) {
+  size_t pixels = gbuffer.pixel_count();
+  candidates_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint));
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
   record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE);
-  covered_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, pixels);
-  tiles_ = size_t((width + 15) / 16) * size_t((height + 15) / 16);  // NEW_TILE in placement.cl
-  new_in_tile_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, tiles_);
+  covered_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1));
+  auto tiles = [](int n) { return size_t((n + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE); };
+  tiles_ = tiles(gbuffer.width) * tiles(gbuffer.height);
+  new_in_tile_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1));
 }
 
 uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
                                        uint32_t unchanged_before) {
-  size_t pixels = size_t(width_) * size_t(height_);
-  if (!unchanged_before) gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, pixels);
+  PlacementParams params{};
+  params.accuracy = accuracy;
+  params.spacing = spacing;
+  if (!unchanged_before) gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, gbuffer_.pixel_count());
   if (record_count > unchanged_before) {
-    int a = 0;
-    covered_kernel_.setArg(a++, records);
-    covered_kernel_.setArg(a++, cl_uint(unchanged_before));
-    covered_kernel_.setArg(a++, cl_uint(record_count - unchanged_before));
-    covered_kernel_.setArg(a++, accuracy);
-    covered_kernel_.setArg(a++, gbuffer_.samples());
-    covered_kernel_.setArg(a++, gbuffer_.camera());
-    covered_kernel_.setArg(a++, spacing);
-    covered_kernel_.setArg(a++, covered_);
-    gpu_.queue().enqueueNDRangeKernel(covered_kernel_, cl::NullRange,
-                                      cl::NDRange(round_up(record_count - unchanged_before, 8)), cl::NDRange(8));
+    params.first_record = unchanged_before;
+    params.record_count = record_count - unchanged_before;
+    gbuffer_.bind(covered_kernel_);
+    covered_kernel_.set_buffer<CacheRecord>("records", records).set("params", params).set_buffer<cl_uchar>("covered", covered_);
+    covered_kernel_.launch(params.record_count, gpu_.groups().per_record);
   }
   gpu_.queue().enqueueFillBuffer(count_, cl_uint(0), 0, sizeof(cl_uint));
-  int a = 0;
-  find_.setArg(a++, gbuffer_.samples());
-  find_.setArg(a++, covered_);
-  find_.setArg(a++, record_map_);
-  find_.setArg(a++, width_);
-  find_.setArg(a++, height_);
-  find_.setArg(a++, spacing);
-  find_.setArg(a++, candidates_);
-  find_.setArg(a++, count_);
-  size_t gx = (size_t(width_) + spacing - 1) / spacing, gy = (size_t(height_) + spacing - 1) / spacing;
-  gpu_.queue().enqueueNDRangeKernel(find_, cl::NullRange, cl::NDRange(round_up(gx, 8), round_up(gy, 8)),
-                                    cl::NDRange(8, 8));
+  gbuffer_.bind(find_);
+  find_.set_buffer<cl_uchar>("covered", covered_)
+      .set_buffer<cl_int>("record_at_pixel", record_map_)
+      .set("params", params)
+      .set_buffer<cl_uint>("candidates", candidates_)
+      .set_buffer<cl_uint>("candidate_count", count_);
+  size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing, grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing;
+  find_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
   return gpu_.download<cl_uint>(count_, 1)[0];
 }
 
 void PlacementPass::mark(const cl::Buffer& records, uint32_t first, uint32_t count) {
   if (!count) return;
   gpu_.queue().enqueueFillBuffer(new_in_tile_, cl_uchar(0), 0, tiles_);
-  mark_.setArg(0, records);
-  mark_.setArg(1, cl_uint(first));
-  mark_.setArg(2, cl_uint(count));
-  mark_.setArg(3, record_map_);
-  mark_.setArg(4, width_);
-  mark_.setArg(5, new_in_tile_);
-  gpu_.queue().enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(round_up(count, 64)), cl::NDRange(64));
+  PlacementParams params{};
+  params.first_record = first;
+  params.record_count = count;
+  gbuffer_.bind(mark_);
+  mark_.set_buffer<CacheRecord>("records", records)
+      .set("params", params)
+      .set_buffer<cl_int>("record_at_pixel", record_map_)
+      .set_buffer<cl_uchar>("new_in_tile", new_in_tile_);
+  mark_.launch(count, gpu_.groups().per_item);
 }
 
-void PlacementPass::clamp_neighbours(cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older,
-                                     float min_spacing) {
+void PlacementPass::clamp_neighbours(const cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older,
+                                     float min_radius_pixels) {
   if (!count) return;
   if (count > radii_capacity_) {
     radii_capacity_ = std::max<size_t>(count, radii_capacity_ * 2);
     radii_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, radii_capacity_ * sizeof(float));
   }
-  int a = 0;
-  clamp_.setArg(a++, records);
-  clamp_.setArg(a++, cl_uint(count));
-  clamp_.setArg(a++, cl_uint(first_new));
-  clamp_.setArg(a++, cl_int(clamp_older ? 1 : 0));
-  clamp_.setArg(a++, record_map_);
-  clamp_.setArg(a++, new_in_tile_);
-  clamp_.setArg(a++, gbuffer_.camera());
-  clamp_.setArg(a++, min_spacing);
-  clamp_.setArg(a++, radii_);
-  gpu_.queue().enqueueNDRangeKernel(clamp_, cl::NullRange, cl::NDRange(round_up(count, 8)), cl::NDRange(8));
-  apply_.setArg(0, records);
-  apply_.setArg(1, cl_uint(count));
-  apply_.setArg(2, radii_);
-  gpu_.queue().enqueueNDRangeKernel(apply_, cl::NullRange, cl::NDRange(round_up(count, 64)), cl::NDRange(64));
+  PlacementParams params{};
+  params.record_count = count;
+  params.first_new = first_new;
+  params.clamp_older = clamp_older ? 1 : 0;
+  params.min_radius_pixels = min_radius_pixels;
+  gbuffer_.bind(clamp_);
+  clamp_.set_buffer<CacheRecord>("records", records)
+      .set("params", params)
+      .set_buffer<cl_int>("record_at_pixel", record_map_)
+      .set_buffer<cl_uchar>("new_in_tile", new_in_tile_)
+      .set_buffer<cl_float>("clamped_radius", radii_);
+  clamp_.launch(count, gpu_.groups().per_record);
+  apply_.set_buffer<CacheRecord>("records", records).set("params", params).set_buffer<cl_float>("clamped_radius", radii_);
+  apply_.launch(count, gpu_.groups().per_item);
   gpu_.queue().finish();
 }
 
 std::vector<int32_t> PlacementPass::record_at_pixel() {
-  return gpu_.download<int32_t>(record_map_, size_t(width_) * size_t(height_));
+  return gpu_.download<int32_t>(record_map_, gbuffer_.pixel_count());
 }
 
 }  // namespace rcsplat

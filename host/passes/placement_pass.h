@@ -1,5 +1,5 @@
-// Coarse-to-fine record placement and neighbour clamping (kernels/placement.cl): owns the candidate list and the map
-// from pixels to the records placed on them.
+// Coarse-to-fine record placement on the device and neighbour clamping of radii (kernels/placement.cl): owns the
+// candidate list, the per-level coverage and the map from pixels to the records placed on them.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -11,28 +11,29 @@ namespace rcsplat {
 
 class PlacementPass {
  public:
-  PlacementPass(GpuContext& gpu, const GBufferPass& gbuffer, int width, int height);
+  PlacementPass(GpuContext& gpu, const GBufferView& gbuffer);
 
-  // Compacts the pixels with geometry on the grid of this spacing that no record among 0 .. record_count - 1 reaches
-  // (Ward weight above 1/a, not in front) into candidates(); returns their count. With unchanged_before = n, records
-  // 0 .. n - 1 are known unchanged since the last call at this spacing and their coverage is kept.
+  // Compacts the pixels with geometry on the grid of this spacing that hold no record and that no record among
+  // 0 .. record_count - 1 reaches (Ward weight above 1/a, not in front) into candidates(); returns their count. With
+  // unchanged_before = n, records 0 .. n - 1 kept their radii since the last call at this spacing: their coverage is
+  // kept.
   uint32_t find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
-                          uint32_t unchanged_before = 0);
+                          uint32_t unchanged_before);
   const cl::Buffer& candidates() const { return candidates_; }
 
   // Records first .. first + count - 1 now sit on their pixels.
   void mark(const cl::Buffer& records, uint32_t first, uint32_t count);
   // R_i <= R_j + |P_i - P_j| over records 0 .. count - 1, for pairs that involve a record first_new or later; older
-  // records keep their radii unless clamp_older.
-  void clamp_neighbours(cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older, float min_spacing);
+  // records keep their radii unless clamp_older. Radii stay at least min_radius_pixels footprints.
+  void clamp_neighbours(const cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older,
+                        float min_radius_pixels);
 
   std::vector<int32_t> record_at_pixel();  // record index, -1 where none sits
 
  private:
   GpuContext& gpu_;
-  const GBufferPass& gbuffer_;
-  int width_, height_;
-  cl::Kernel covered_kernel_, find_, mark_, clamp_, apply_;
+  GBufferView gbuffer_;
+  NamedKernel covered_kernel_, find_, mark_, clamp_, apply_;
   cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;

@@ -3,14 +3,30 @@
 #include <chrono>
 
 namespace rcsplat {
+namespace {
 
-RayCastPass::RayCastPass(GpuContext& gpu, const DeviceBvh& bvh) : gpu_(gpu), bvh_(bvh) {
-  KernelDefines defines;
-  bvh_.add_defines(defines);
-  cl::Program& program = gpu_.program("ray_cast.cl", defines);
-  closest_ = cl::Kernel(program, "cast_closest");
-  occlusion_ = cl::Kernel(program, "cast_occlusion");
+double timed(GpuContext& gpu, NamedKernel& kernel, const DeviceScene& scene, const cl::Buffer& rays, size_t count,
+             const char* result_name, const cl::Buffer& results, bool hits) {
+  if (count == 0) return 0.0;
+  RayCastParams params{};
+  params.ray_count = cl_uint(count);
+  scene.bind(kernel);
+  kernel.set_buffer<RayDesc>("rays", rays).set("params", params);
+  if (hits) kernel.set_buffer<HitDesc>(result_name, results);
+  else kernel.set_buffer<cl_int>(result_name, results);
+  auto start = std::chrono::steady_clock::now();
+  kernel.launch(count, gpu.groups().traversal);
+  gpu.queue().finish();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+}  // namespace
+
+RayCastPass::RayCastPass(GpuContext& gpu, const DeviceScene& scene)
+    : gpu_(gpu),
+      scene_(scene),
+      closest_(gpu.kernel("ray_cast.cl", "cast_closest", scene.defines())),
+      occlusion_(gpu.kernel("ray_cast.cl", "cast_occlusion", scene.defines())) {}
 
 void RayCastPass::set_rays(const std::vector<RayDesc>& rays) {
   ray_count_ = rays.size();
@@ -19,26 +35,10 @@ void RayCastPass::set_rays(const std::vector<RayDesc>& rays) {
   occluded_ = cl::Buffer(gpu_.context(), CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(int));
 }
 
-double RayCastPass::run(cl::Kernel& kernel) {
-  if (ray_count_ == 0) return 0.0;
-  auto start = std::chrono::steady_clock::now();
-  gpu_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(ray_count_, kTraversalLocalSize)),
-                                    cl::NDRange(kTraversalLocalSize));
-  gpu_.queue().finish();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+double RayCastPass::cast_closest() { return timed(gpu_, closest_, scene_, rays_, ray_count_, "hits", hits_, true); }
+double RayCastPass::cast_occlusion() {
+  return timed(gpu_, occlusion_, scene_, rays_, ray_count_, "occluded", occluded_, false);
 }
-
-double RayCastPass::cast(cl::Kernel& kernel, const cl::Buffer& results) {
-  kernel.setArg(0, bvh_.nodes());
-  kernel.setArg(1, bvh_.blocks());
-  kernel.setArg(2, rays_);
-  kernel.setArg(3, results);
-  kernel.setArg(4, cl_uint(ray_count_));
-  return run(kernel);
-}
-
-double RayCastPass::cast_closest() { return cast(closest_, hits_); }
-double RayCastPass::cast_occlusion() { return cast(occlusion_, occluded_); }
 
 std::vector<HitDesc> RayCastPass::closest_hits() { return gpu_.download<HitDesc>(hits_, ray_count_); }
 std::vector<int> RayCastPass::occlusion() { return gpu_.download<int>(occluded_, ray_count_); }

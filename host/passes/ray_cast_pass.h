@@ -3,15 +3,15 @@
 #pragma once
 #include <vector>
 
+#include "cl/device_scene.h"
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
-#include "passes/device_bvh.h"
 
 namespace rcsplat {
 
 class RayCastPass {
  public:
-  RayCastPass(GpuContext& gpu, const DeviceBvh& bvh);
+  RayCastPass(GpuContext& gpu, const DeviceScene& scene);
 
   // Uploads rays once so that repeated casts (benchmarks) time the kernel alone.
   void set_rays(const std::vector<RayDesc>& rays);
@@ -22,19 +22,11 @@ class RayCastPass {
   std::vector<int> occlusion();
 
  private:
-  double cast(cl::Kernel& kernel, const cl::Buffer& results);  // binds the arguments shared by both kernels
-  double run(cl::Kernel& kernel);
-
   GpuContext& gpu_;
-  const DeviceBvh& bvh_;
-  cl::Kernel closest_, occlusion_;
+  const DeviceScene& scene_;
+  NamedKernel closest_, occlusion_;
   cl::Buffer rays_, hits_, occluded_;
   size_t ray_count_ = 0;
 };
-
-// The work-group size the traversal kernels run with: PoCL runs 15% slower when it picks one itself.
-constexpr size_t kTraversalLocalSize = 64;
-
-inline size_t round_up(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
 }  // namespace rcsplat

@@ -1,17 +1,26 @@
 #include "passes/record_pass.h"
 
-#include "passes/ray_cast_pass.h"
 #include "util/error.h"
 
 namespace rcsplat {
+namespace {
 
-RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata) : gpu_(gpu), scene_(scene) {
-  if (theta_strata == 0 || theta_strata > kMaxThetaStrata)
-    throw Error("hemisphere: M must be between 1 and " + std::to_string(kMaxThetaStrata));
-  // The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-  KernelDefines defines = scene_.defines();
-  defines["MAX_THETA_STRATA"] = std::to_string(theta_strata);
-  kernel_ = cl::Kernel(gpu_.program("records.cl", defines), "compute_records");
+// The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
+KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata) {
+  if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
+    throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
+  KernelDefines defines = scene.defines();
+  defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
+  return defines;
+}
+
+}  // namespace
+
+RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata)
+    : gpu_(gpu),
+      scene_(scene),
+      theta_capacity_(theta_strata),
+      kernel_(gpu.kernel("records.cl", "compute_records", record_defines(scene, theta_strata))) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
   reserve(1024);
 }
@@ -25,27 +34,37 @@ void RecordPass::reserve(size_t count) {
   capacity_ = grown;
 }
 
-void RecordPass::compute(const cl::Buffer& gbuffer, const cl::Buffer& camera, const cl::Buffer& candidates,
-                         uint32_t count, uint32_t first, const HemisphereParams& params) {
+void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
+                         const HemisphereParams& params) {
+  if (params.theta_strata == 0 || params.theta_strata > theta_capacity_ || params.phi_strata == 0 ||
+      params.phi_strata > HEMISPHERE_MAX_PHI_STRATA)
+    throw Error("records: a " + std::to_string(params.theta_strata) + "x" + std::to_string(params.phi_strata) +
+                " hemisphere does not fit the record pass (built for M up to " + std::to_string(theta_capacity_) +
+                ", N up to " + std::to_string(HEMISPHERE_MAX_PHI_STRATA) + ")");
   if (count == 0) return;
   reserve(size_t(first) + count);
-  cl_uint a = scene_.bind_shading_args(kernel_, 0);
-  kernel_.setArg(a++, gbuffer);
-  kernel_.setArg(a++, camera);
-  kernel_.setArg(a++, candidates);
-  kernel_.setArg(a++, cl_uint(count));
-  kernel_.setArg(a++, cl_uint(first));
-  kernel_.setArg(a++, params);
-  kernel_.setArg(a++, records_);
-  kernel_.setArg(a++, ray_total_);
-  // Small groups: a batch at a coarse level has few records, and each runs hundreds of rays.
-  constexpr size_t local = 8;
-  gpu_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(round_up(count, local)), cl::NDRange(local));
+  RecordBatchParams batch{};
+  batch.hemisphere = params;
+  batch.candidate_count = count;
+  batch.first_record = first;
+  scene_.bind(kernel_);
+  gbuffer.bind(kernel_);
+  kernel_.set_buffer<cl_uint>("candidates", candidates)
+      .set("batch", batch)
+      .set_buffer<CacheRecord>("records", records_)
+      .set_buffer<cl_ulong>("ray_total", ray_total_);
+  kernel_.launch(count, gpu_.groups().per_record);
   gpu_.queue().finish();
 }
 
 uint64_t RecordPass::rays_cast() { return gpu_.download<cl_ulong>(ray_total_, 1)[0]; }
 
-std::vector<CacheRecord> RecordPass::download(size_t count) { return gpu_.download<CacheRecord>(records_, count); }
+std::vector<CacheRecord> RecordPass::download(size_t first, size_t count) {
+  std::vector<CacheRecord> out(count);
+  if (count)
+    gpu_.queue().enqueueReadBuffer(records_, CL_TRUE, first * sizeof(CacheRecord), count * sizeof(CacheRecord),
+                                   out.data());
+  return out;
+}
 
 }  // namespace rcsplat

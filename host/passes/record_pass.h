@@ -1,34 +1,36 @@
-// Record computation (kernels/records.cl): owns the record array, which grows as placement adds batches.
+// Record computation (kernels/records.cl): owns the record array, which grows as placement adds batches. Both cache
+// methods compute their records here, so they are the same records.
 #pragma once
 #include <cstdint>
 #include <vector>
 
+#include "cl/device_scene.h"
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
-#include "passes/device_scene.h"
+#include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
 
 class RecordPass {
  public:
+  // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA).
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata);
 
-  // Computes records first .. first + count - 1 from the G-buffer samples (GBufferSample) listed in candidates, with
-  // radius clamps in pixels of the camera (CameraParams); blocks until done.
-  void compute(const cl::Buffer& gbuffer, const cl::Buffer& camera, const cl::Buffer& candidates, uint32_t count,
-               uint32_t first, const HemisphereParams& params);
-  cl::Buffer& records() { return records_; }
+  // Computes records first .. first + count - 1 at the G-buffer pixels listed in candidates (a device array of pixel
+  // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
+  void compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
+               const HemisphereParams& params);
+  const cl::Buffer& records() const { return records_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
-  std::vector<CacheRecord> download(size_t count);
-
-  static constexpr unsigned kMaxThetaStrata = 64;  // the largest M offered
+  std::vector<CacheRecord> download(size_t first, size_t count);
 
  private:
   void reserve(size_t count);  // grows the array, keeping what it holds
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
-  cl::Kernel kernel_;
+  unsigned theta_capacity_;
+  NamedKernel kernel_;
   cl::Buffer records_, ray_total_;
   size_t capacity_ = 0;
 };

@@ -14,25 +14,20 @@ class SplatPass {
  public:
   explicit SplatPass(GpuContext& gpu);
 
-  // Clears the sums and splats records 0 .. count - 1 at accuracy a; blocks until done.
-  void splat_all(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
-  // Adds records first .. first + count - 1 to the sums as they are, at the last fixed-point scale: the weight sums
-  // (coverage) are exact, the irradiance sums are only meant to be redone by splat_all.
-  void splat_more(const GBufferPass& gbuffer, const cl::Buffer& records, uint32_t first, uint32_t count);
+  // Clears the sums and splats records 0 .. count - 1 at accuracy a, at the frame's fixed-point scale; blocks until
+  // done.
+  void splat_all(const GBufferView& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
   // Divides and composes with the direct light (RGBA, as DirectPass writes it).
-  void resolve(const GBufferPass& gbuffer, const cl::Buffer& direct_rgba);
+  void resolve(const GBufferView& gbuffer, const cl::Buffer& direct_rgba);
 
-  const cl::Buffer& sums() const { return sums_; }  // per pixel: sum w E.rgb, sum w (fixed point)
-  std::vector<float> irradiance_rgbw();             // E.rgb, sum w
-  std::vector<float> indirect_rgba();               // albedo / pi * E, A = covered
+  std::vector<float> irradiance_rgbw();  // E.rgb, sum w
+  std::vector<float> indirect_rgba();    // albedo / pi * E, A = covered
   std::vector<float> color_rgba();
   std::vector<uint32_t> records_per_pixel();
 
  private:
-  void launch_splat(const GBufferPass& gbuffer, const cl::Buffer& records);  // records params_ names
-
   GpuContext& gpu_;
-  cl::Kernel clear_, max_irradiance_, splat_, resolve_;
+  NamedKernel clear_, max_irradiance_, splat_, resolve_;
   cl::Buffer sums_, counts_, max_bits_, irradiance_, indirect_, color_;
   SplatParams params_{};
   size_t pixels_ = 0;

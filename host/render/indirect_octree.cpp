@@ -1,105 +1,108 @@
-// The classic irradiance cache (Ward et al. 1988) on the host, the baseline the paper measured against: the same
-// coarse-to-fine placement, records and neighbour clamping as the splat, but records computed with Embree on C++
-// threads and every pixel interpolated by an octree lookup of the records whose weight exceeds 1/a.
-#include <cmath>
-#include <mutex>
+// The classic irradiance cache (Ward et al. 1988), the baseline the paper measured against: the same coarse-to-fine
+// placement and the same records as the splat (render/placement.h), but coverage, neighbour clamping and every
+// pixel's interpolation go through a loose octree of the records on the host, on C++ threads.
+#include <numbers>
 
-#include "bvh/embree_scene.h"
-#include "cache/cache_math.h"
-#include "cache/host_records.h"
 #include "cache/octree_lookup.h"
 #include "render/indirect.h"
-#include "util/log.h"
+#include "render/placement.h"
 #include "util/parallel.h"
 
 namespace rcsplat {
+namespace {
 
 using glm::dvec3;
 using glm::vec3;
 
+// Placement's coverage and clamping on the host, through the octree. Keeps its own copy of the records, whose radii
+// it clamps.
+class OctreeRecordIndex final : public RecordIndex {
+ public:
+  OctreeRecordIndex(GpuContext& gpu, std::vector<PixelGeometry> pixels, int width, int height, const Scene& scene,
+                    const CacheSettings& cache)
+      : gpu_(gpu),
+        pixels_(std::move(pixels)),
+        width_(width),
+        height_(height),
+        accuracy_(cache.accuracy),
+        min_radius_pixels_(min_radius_pixels(cache)),
+        octree_(dvec3(scene.bounds_min()), dvec3(scene.bounds_max())),
+        record_at_pixel_(pixels_.size(), -1),
+        candidates_(gpu.context(), CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint)) {}
+
+  uint32_t find_uncovered(RecordPass&, uint32_t, int spacing, uint32_t) override {
+    std::vector<cl_uint> found;
+    for (int y = 0; y < height_; y += spacing)
+      for (int x = 0; x < width_; x += spacing) {
+        size_t i = size_t(y) * size_t(width_) + size_t(x);
+        if (pixels_[i].valid && record_at_pixel_[i] < 0 && !covered(octree_, records_, pixels_[i], accuracy_))
+          found.push_back(cl_uint(i));
+      }
+    if (!found.empty())
+      gpu_.queue().enqueueWriteBuffer(candidates_, CL_TRUE, 0, found.size() * sizeof(cl_uint), found.data());
+    return uint32_t(found.size());
+  }
+  const cl::Buffer& candidates() const override { return candidates_; }
+
+  void add_records(RecordPass& records, uint32_t first, uint32_t count) override {
+    std::vector<CacheRecord> batch = records.download(first, count);
+    records_.insert(records_.end(), batch.begin(), batch.end());
+    for (size_t k = first; k < records_.size(); ++k) {
+      record_at_pixel_[size_t(records_[k].pixel)] = int32_t(k);
+      octree_.insert(uint32_t(k), dvec3(record_position(records_[k])), double(accuracy_) * records_[k].radius);
+    }
+  }
+
+  void clamp_neighbours(RecordPass&, uint32_t count, uint32_t first_new, bool clamp_older) override {
+    std::vector<float> clamped(count);
+    parallel_for(count, [&](size_t i) {
+      const CacheRecord& ri = records_[i];
+      clamped[i] = ri.radius;
+      if (i < first_new && !clamp_older) return;
+      vec3 pi = record_position(ri);
+      float smallest = ri.radius;
+      octree_.for_each_near(dvec3(pi), ri.radius, [&](uint32_t j) {
+        if (j == i || (i < first_new && j < first_new)) return;  // an old record only pairs with new ones
+        smallest = rc_fmin(smallest, neighbour_radius_bound(pi, record_position(records_[j]), records_[j].radius));
+      });
+      clamped[i] = neighbour_clamped_radius(ri.radius, smallest, min_radius_pixels_, ri.pixel_size);
+    });
+    for (size_t i = 0; i < count; ++i) records_[i].radius = clamped[i];
+  }
+
+  const RecordOctree& octree() const { return octree_; }
+  const std::vector<int32_t>& record_at_pixel() const { return record_at_pixel_; }
+  std::vector<CacheRecord>& records() { return records_; }
+
+ private:
+  GpuContext& gpu_;
+  std::vector<PixelGeometry> pixels_;
+  int width_, height_;
+  float accuracy_, min_radius_pixels_;
+  RecordOctree octree_;
+  std::vector<CacheRecord> records_;
+  std::vector<int32_t> record_at_pixel_;
+  cl::Buffer candidates_;
+};
+
+}  // namespace
+
 void octree_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
-  check_cache_settings(cs);
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
-  const int width = img.width, height = img.height;
-  const size_t pixels = size_t(width) * size_t(height);
-  CameraParams cam = f.gpu.download<CameraParams>(f.gbuffer.camera(), 1)[0];
+  const size_t pixels = size_t(img.width) * size_t(img.height);
   std::vector<GBufferSample> gb = f.gbuffer.download();
   std::vector<PixelGeometry> geo(pixels);
-  for (size_t i = 0; i < pixels; ++i) {
-    const GBufferSample& s = gb[i];
-    geo[i] = {vec3(s.position[0], s.position[1], s.position[2]), vec3(s.normal[0], s.normal[1], s.normal[2]),
-              vec3(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]), s.triangle >= 0};
-  }
+  for (size_t i = 0; i < pixels; ++i) geo[i] = pixel_geometry(gb[i]);
+
+  double program_before = f.gpu.program_seconds();
+  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
+  st.program_s += f.gpu.program_seconds() - program_before;
+  OctreeRecordIndex index(f.gpu, geo, img.width, img.height, f.scene, cs);
+  place_records(index, records, f.gbuffer.view(), cs, f.settings.seed, st);
 
   auto t = Clock::now();
-  PackedScene packed = pack_scene(f.scene);
-  EmbreeScene embree(f.scene.positions);
-  HostShading shading(packed, embree);
-  const float min_radius = hemisphere_params(cs, f.settings.seed, 1).min_spacing;  // in pixel footprints
-  RecordOctree octree(dvec3(f.scene.bounds_min()), dvec3(f.scene.bounds_max()));
-  std::vector<CacheRecord> records;
-  std::vector<int32_t> record_at_pixel(pixels, -1);
-  st.placement_s += seconds_since(t);
-
-  int coarsest = coarsest_placement_spacing(cs);
-  Progress progress("irradiance cache (octree)", size_t(std::log2(coarsest)) + 1);
-  for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
-    for (int round = 0; round < (spacing == 1 ? 4 : 1); ++round) {
-      t = Clock::now();
-      std::vector<uint32_t> candidates;
-      for (int y = 0; y < height; y += spacing)
-        for (int x = 0; x < width; x += spacing) {
-          size_t i = size_t(y) * size_t(width) + size_t(x);
-          if (geo[i].valid && record_at_pixel[i] < 0 && interpolate(octree, records, geo[i], cs.accuracy).weight == 0.0)
-            candidates.push_back(uint32_t(i));
-        }
-      st.placement_s += seconds_since(t);
-      if (candidates.empty()) break;
-
-      t = Clock::now();
-      size_t first = records.size();
-      records.resize(first + candidates.size());
-      std::vector<uint64_t> rays(candidates.size());
-      parallel_for(candidates.size(), [&](size_t c) {
-        const PixelGeometry& g = geo[candidates[c]];
-        HostRecord r = compute_host_record(shading, g.p, g.n, g.ng, candidates[c], pixel_world_size(cam, g.p),
-                                           hemisphere_params(cs, f.settings.seed, spacing));
-        records[first + c] = to_cache_record(r);
-        rays[c] = r.rays;
-      }, 4);
-      for (uint64_t r : rays) st.record_rays += r;
-      st.records_s += seconds_since(t);
-
-      // Neighbour clamping as the device does it: pairs with a new record, older records only in the first round.
-      t = Clock::now();
-      for (size_t k = first; k < records.size(); ++k) {
-        record_at_pixel[size_t(records[k].pixel)] = int32_t(k);
-        octree.insert(uint32_t(k), dvec3(record_position(records[k])), double(cs.accuracy) * records[k].radius);
-      }
-      std::vector<float> clamped(records.size());
-      parallel_for(records.size(), [&](size_t i) {
-        const CacheRecord& ri = records[i];
-        clamped[i] = ri.radius;
-        if (i < first && round > 0) return;
-        vec3 pi = record_position(ri);
-        octree.for_each_near(dvec3(pi), ri.radius, [&](uint32_t j) {
-          if (j == i || (i < first && j < first)) return;
-          if (glm::distance(pi, record_position(records[j])) >= ri.radius) return;
-          clamped[i] = std::min(clamped[i], records[j].radius + glm::distance(pi, record_position(records[j])));
-        });
-        clamped[i] = std::max(clamped[i], std::min(ri.radius, min_radius * ri.pixel_size));
-      });
-      for (size_t i = 0; i < records.size(); ++i) records[i].radius = clamped[i];
-      st.placement_s += seconds_since(t);
-      count_placed(st, spacing, uint32_t(candidates.size()));
-    }
-    progress.update(size_t(level + 1));
-  }
-  progress.finish();
-
-  t = Clock::now();
   img.indirect.assign(pixels * 3, 0.0f);
   img.irradiance.assign(pixels * 3, 0.0f);
   img.coverage.assign(pixels, 0.0f);
@@ -107,25 +110,24 @@ void octree_indirect(IndirectFrame& f) {
   img.record_positions.assign(pixels, 0.0f);
   parallel_for(pixels, [&](size_t i) {
     if (!geo[i].valid) return;
-    Interpolation in = interpolate(octree, records, geo[i], cs.accuracy);
+    Interpolation in = interpolate(index.octree(), index.records(), geo[i], cs.accuracy);
     img.coverage[i] = float(in.weight);
     img.records_per_pixel[i] = float(in.count);
     if (in.weight == 0.0) return;
     dvec3 e = in.weighted / in.weight;
     for (int c = 0; c < 3; ++c) {
       img.irradiance[3 * i + size_t(c)] = float(e[c]);
-      img.indirect[3 * i + size_t(c)] = float(img.albedo[3 * i + size_t(c)] / 3.14159265358979323846 * e[c]);
+      img.indirect[3 * i + size_t(c)] = float(img.albedo[3 * i + size_t(c)] * std::numbers::inv_pi * e[c]);
     }
   }, 256);
   st.resolve_s = seconds_since(t);
   for (size_t i = 0; i < pixels; ++i) {
-    if (record_at_pixel[i] >= 0) img.record_positions[i] = 1.0f;
+    if (index.record_at_pixel()[i] >= 0) img.record_positions[i] = 1.0f;
     if (geo[i].valid && img.coverage[i] == 0.0f) ++st.uncovered_pixels;
     for (size_t c = 0; c < 3; ++c) img.color[3 * i + c] += img.indirect[3 * i + c];
   }
-  st.records = records.size();
-  count_clamped_radii(records, cs, st);
-  img.records = std::move(records);
+  img.records = std::move(index.records());
+  count_clamped_radii(img.records, cs, st);
 }
 
 }  // namespace rcsplat

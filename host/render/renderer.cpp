@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "bvh/bvh8.h"
-#include "passes/device_scene.h"
+#include "cl/device_scene.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
@@ -22,6 +22,7 @@ const char* gi_method_name(GiMethod method) {
 }
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+  if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
   auto start = Clock::now();
   RenderedImage img;
   RenderStats& st = img.stats;
@@ -57,7 +58,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   gbuffer.run(params);
   st.gbuffer_s = seconds_since(t);
   t = Clock::now();
-  direct.run(gbuffer, strata, settings.seed);
+  direct.run(gbuffer.view(), strata, settings.seed);
   st.direct_s = seconds_since(t);
 
   std::vector<GBufferSample> g = gbuffer.download();

@@ -1,4 +1,4 @@
-#include "passes/device_bvh.h"
+#include "cl/device_bvh.h"
 
 namespace rcsplat {
 

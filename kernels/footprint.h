@@ -1,35 +1,8 @@
-// The irradiance cache's weight, usability test, extrapolation and screen footprint (ALGORITHM.md section 3), shared by
-// the splat and the placement kernels. host/cache/cache_math.h mirrors weight and usability operation for operation.
-#ifndef RCSPLAT_CACHE_H
-#define RCSPLAT_CACHE_H
-#include "shared_types.h"
-
-// Ward's weight is infinite at the record itself; clamping keeps fixed-point sums bounded (see SplatPass).
-#define MAX_RECORD_WEIGHT 1.0e3f
-// The in-front test tolerates points this far (in radii) in front of the record's tangent plane.
-#define IN_FRONT_TOLERANCE 0.05f
-
-// 1 / (|P - Pk| / R + sqrt(1 - n.nk)), with sqrt(1 - n.nk) computed as |n - nk| / sqrt(2), which keeps its precision
-// for nearly equal normals (SPLAT.md).
-inline float ward_weight(float3 p, float3 n, float3 pk, float3 nk, float radius) {
-  float denom = length(p - pk) / radius + length(n - nk) * 0.70710678f;
-  return denom * MAX_RECORD_WEIGHT > 1.0f ? 1.0f / denom : MAX_RECORD_WEIGHT;
-}
-
-inline bool record_usable(float w, float accuracy, float3 p, float3 n, float3 pk, float3 nk, float radius) {
-  return w * accuracy > 1.0f && dot(n, nk) > 0.0f && dot(p - pk, n + nk) * 0.5f >= -IN_FRONT_TOLERANCE * radius;
-}
-
-// E_k(P) = max(0, E + (nk x n) . grad_r + (P - Pk) . grad_t), per channel.
-inline float3 extrapolated_irradiance(__global const CacheRecord* rec, float3 p, float3 n) {
-  float3 dp = p - vload3(0, rec->position);
-  float3 dn = cross(vload3(0, rec->normal), n);
-  float3 e = vload3(0, rec->irradiance);
-  e += dp.x * vload3(0, rec->grad_translation) + dp.y * vload3(1, rec->grad_translation) +
-       dp.z * vload3(2, rec->grad_translation);
-  e += dn.x * vload3(0, rec->grad_rotation) + dn.y * vload3(1, rec->grad_rotation) + dn.z * vload3(2, rec->grad_rotation);
-  return max(e, (float3)(0.0f));
-}
+// A record's screen footprint (ALGORITHM.md section 3): the conservative pixel rectangle of the sphere a record can
+// reach, shared by the placement and splat kernels. Device-only: the host's octree finds neighbours in world space.
+#ifndef RCSPLAT_FOOTPRINT_H
+#define RCSPLAT_FOOTPRINT_H
+#include "cache_math.h"
 
 typedef struct {
   int x0, y0, x1, y1;  // inclusive; empty when x0 > x1 or y0 > y1
@@ -64,12 +37,6 @@ inline PixelRect sphere_footprint(__global const CameraParams* cam, float3 cente
   rect.x1 = (int)clamp(ceil(px_max) + 1.0f, -1.0f, w - 1.0f);
   rect.y1 = (int)clamp(ceil(py_max) + 1.0f, -1.0f, h - 1.0f);
   return rect;
-}
-
-// World size of one pixel at the point p (at its distance along the view axis).
-inline float pixel_world_size(__global const CameraParams* cam, float3 p) {
-  float z = dot(p - vload3(0, cam->eye), vload3(0, cam->forward));
-  return 2.0f * fabs(z) * cam->tan_half_fov_y / (float)cam->height;
 }
 
 #endif

@@ -1,4 +1,4 @@
-#include "passes/device_scene.h"
+#include "scene/packed_scene.h"
 
 #include <cmath>
 #include <cstring>
@@ -97,35 +97,6 @@ PackedScene pack_scene(const Scene& scene) {
   }
   for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(l));
   return p;
-}
-
-DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) : bvh_(gpu, bvh) {
-  PackedScene p = pack_scene(scene);
-  triangles_ = gpu.upload(p.triangles);
-  materials_ = gpu.upload(p.materials);
-  textures_ = gpu.upload(p.textures);
-  texels_ = gpu.upload(p.texels);
-  lights_ = gpu.upload(p.lights);
-  emitters_ = gpu.upload(p.emitters);
-  light_count_ = cl_uint(p.lights.size());
-  emitter_count_ = cl_uint(p.emitters.size());
-
-  bool textured = false;
-  for (const Material& m : p.materials) textured |= m.base_color_texture >= 0;
-  defines_["HAS_TEXTURES"] = textured ? "1" : "0";
-  defines_["HAS_PUNCTUAL_LIGHTS"] = light_count_ ? "1" : "0";
-  defines_["HAS_EMITTERS"] = emitter_count_ ? "1" : "0";
-  bvh_.add_defines(defines_);
-}
-
-cl_uint DeviceScene::bind_shading_args(cl::Kernel& kernel, cl_uint first) const {
-  cl_uint a = first;
-  for (const cl::Buffer* b : {&bvh_.nodes(), &bvh_.blocks(), &triangles_, &materials_, &textures_, &texels_, &lights_})
-    kernel.setArg(a++, *b);
-  kernel.setArg(a++, light_count_);
-  kernel.setArg(a++, emitters_);
-  kernel.setArg(a++, emitter_count_);
-  return a;
 }
 
 }  // namespace rcsplat

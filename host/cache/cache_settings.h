@@ -1,0 +1,42 @@
+// The irradiance cache's controls (ALGORITHM.md sections 3 to 7): defined, defaulted and validated here, and turned
+// into the record kernel's parameters here. Both cache methods (splat and octree) read them.
+#pragma once
+#include <cstdint>
+
+#include "kernels/cache_math.h"
+#include "kernels/shared_types.h"
+
+namespace rcsplat {
+
+struct CacheSettings {
+  float accuracy = 0.3f;       // a: smaller means more records and less error (MIN_ACCURACY .. MAX_ACCURACY)
+  unsigned theta_strata = 16;  // hemisphere rays per record: M x N
+  unsigned phi_strata = 32;
+  // Rays for the records placed at the finest level (spacing 1), which reach only a few pixels each; 0: M x N too.
+  unsigned fine_theta_strata = 0, fine_phi_strata = 0;
+  // A record's reach a * R is clamped to [min, max] pixel footprints at the record (as pbrt-v2 clamps its
+  // contribution extent), so R itself to [min, max] / a. Keeps records from crowding corners and from vanishing on
+  // open areas. The command line's --spacing MIN,MAX.
+  float min_reach_pixels = 3.0f;
+  float max_reach_pixels = 20.0f;
+  int coarsest_spacing_pixels = 32;  // record placement starts on this pixel grid and halves it down to 1
+};
+
+constexpr float kMinAccuracy = MIN_ACCURACY;
+constexpr float kMaxAccuracy = MAX_ACCURACY;
+
+// Throws rcsplat::Error naming the option (--accuracy, --hemisphere, --fine-hemisphere, --spacing) that is out of
+// range: the command line refuses such values when it parses them, and render() before it starts.
+void validate_cache_settings(const CacheSettings& cache);
+
+// The record kernel's sampling parameters for records placed at this grid spacing: the fine hemisphere at spacing 1
+// when one is set, and the reach clamps turned into radius clamps.
+HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, int spacing);
+// The radius clamp's minimum in pixel footprints (the minimum reach over a).
+float min_radius_pixels(const CacheSettings& cache);
+// The largest M any level uses (the record kernel is compiled for it).
+unsigned largest_theta_strata(const CacheSettings& cache);
+// Placement starts at the largest power of two not above the coarsest spacing.
+int coarsest_placement_spacing(const CacheSettings& cache);
+
+}  // namespace rcsplat

@@ -1,0 +1,36 @@
+#include "cl/device_scene.h"
+
+namespace rcsplat {
+
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) : bvh_(gpu, bvh) {
+  PackedScene p = pack_scene(scene);
+  triangles_ = gpu.upload(p.triangles);
+  materials_ = gpu.upload(p.materials);
+  textures_ = gpu.upload(p.textures);
+  texels_ = gpu.upload(p.texels);
+  lights_ = gpu.upload(p.lights);
+  emitters_ = gpu.upload(p.emitters);
+  counts_.light_count = cl_uint(p.lights.size());
+  counts_.emitter_count = cl_uint(p.emitters.size());
+
+  bool textured = false;
+  for (const Material& m : p.materials) textured |= m.base_color_texture >= 0;
+  defines_["HAS_TEXTURES"] = textured ? "1" : "0";
+  defines_["HAS_PUNCTUAL_LIGHTS"] = counts_.light_count ? "1" : "0";
+  defines_["HAS_EMITTERS"] = counts_.emitter_count ? "1" : "0";
+  bvh_.add_defines(defines_);
+}
+
+void DeviceScene::bind(NamedKernel& kernel) const {
+  kernel.set_buffer<cl_float8>("nodes", bvh_.nodes())
+      .set_buffer<cl_float8>("blocks", bvh_.blocks())
+      .set_buffer<TriangleShading>("triangles", triangles_)
+      .set_buffer<Material>("materials", materials_)
+      .set_buffer<TextureInfo>("textures", textures_)
+      .set_buffer<cl_uint>("texels", texels_)
+      .set_buffer<PunctualLight>("lights", lights_)
+      .set_buffer<EmissiveTriangle>("emitters", emitters_)
+      .set("scene_counts", counts_);
+}
+
+}  // namespace rcsplat

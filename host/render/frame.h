@@ -1,0 +1,59 @@
+// What a render produces: the image's layers, the cache's records and the statistics of the frame. Plain data (no
+// OpenCL), read by the image writers and the command line.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kernels/shared_types.h"
+#include "render/settings.h"
+
+namespace rcsplat {
+
+struct PlacementLevel {
+  int spacing_pixels = 0;
+  uint32_t records = 0;
+};
+
+struct RenderStats {
+  std::string device;
+  GiMethod gi = GiMethod::none;
+  size_t triangles = 0, bvh_nodes = 0, bvh_blocks = 0;
+  int bvh_depth = 0;
+  unsigned light_samples = 0;
+  double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
+  uint64_t primary_rays = 0, shadow_rays = 0;
+  // Irradiance cache
+  std::vector<PlacementLevel> levels;
+  uint64_t records = 0, record_rays = 0, uncovered_pixels = 0;
+  uint64_t records_at_min_radius = 0, records_at_max_radius = 0;  // radius at a screen-space clamp
+  double records_s = 0, placement_s = 0, splat_s = 0, resolve_s = 0;
+  // Path tracing
+  unsigned path_samples = 0;
+  uint64_t path_rays = 0;
+  double path_s = 0;
+};
+
+// Linear images, row-major from the top, three floats a pixel (one-channel layers: one).
+struct RenderedImage {
+  int width = 0, height = 0;
+  std::vector<float> color;     // emission + direct + indirect
+  std::vector<float> direct;    // reflected direct light
+  std::vector<float> emission;  // light emitted toward the camera
+  std::vector<float> albedo;
+  std::vector<float> normal;    // shading normal, world space
+  std::vector<float> position;  // world-space position of the primary hit
+  std::vector<float> depth;     // distance along the primary ray; 0 where nothing was hit
+  std::vector<int> triangle;    // the primary hit's triangle, -1 where nothing was hit
+  // Indirect light; empty when not computed.
+  std::vector<float> indirect;           // albedo / pi * E
+  std::vector<float> irradiance;         // E (cache methods)
+  std::vector<float> coverage;           // sum of record weights, 0 where uncovered (cache methods)
+  std::vector<float> records_per_pixel;  // records that reach each pixel (cache methods)
+  std::vector<float> record_positions;   // 1 where a record sits (cache methods)
+  std::vector<float> indirect_variance;  // variance of the indirect estimate (path tracing)
+  std::vector<CacheRecord> records;      // the cache's records (cache methods)
+  RenderStats stats;
+};
+
+}  // namespace rcsplat

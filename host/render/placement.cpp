@@ -1,0 +1,57 @@
+#include "render/placement.h"
+
+#include <cmath>
+
+#include "render/timing.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace {
+
+void count_placed(RenderStats& st, int spacing, uint32_t records) {
+  if (!st.levels.empty() && st.levels.back().spacing_pixels == spacing) st.levels.back().records += records;
+  else st.levels.push_back({spacing, records});
+}
+
+}  // namespace
+
+uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
+                       unsigned seed, RenderStats& st) {
+  int coarsest = coarsest_placement_spacing(cache);
+  Progress progress("irradiance cache", size_t(std::log2(coarsest)) + 1);
+  uint32_t total = 0;
+  for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
+    uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
+    for (int round = 0; round < (spacing == 1 ? kRoundsAtFinestSpacing : 1); ++round) {
+      auto t = Clock::now();
+      uint32_t count = index.find_uncovered(records, total, spacing, unchanged);
+      st.placement_s += seconds_since(t);
+      if (!count) break;
+      t = Clock::now();
+      records.compute(gbuffer, index.candidates(), count, total, hemisphere_params(cache, seed, spacing));
+      st.records_s += seconds_since(t);
+      t = Clock::now();
+      index.add_records(records, total, count);
+      total += count;
+      index.clamp_neighbours(records, total, total - count, round == 0);
+      unchanged = round == 0 ? 0 : total - count;
+      st.placement_s += seconds_since(t);
+      count_placed(st, spacing, count);
+    }
+    progress.update(size_t(level + 1));
+  }
+  progress.finish();
+  st.records = total;
+  st.record_rays = records.rays_cast();
+  return total;
+}
+
+void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RenderStats& st) {
+  for (const CacheRecord& r : records) {
+    float px = cache.accuracy * r.radius / r.pixel_size;  // the reach in pixels
+    if (px <= cache.min_reach_pixels * 1.0001f) ++st.records_at_min_radius;
+    else if (px >= cache.max_reach_pixels * 0.9999f) ++st.records_at_max_radius;
+  }
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,27 @@
+// What a render is asked to do: resolution, camera, light samples, and how indirect light is computed.
+#pragma once
+#include "cache/cache_settings.h"
+#include "render/camera.h"
+
+namespace rcsplat {
+
+enum class GiMethod { none, splat, octree, path };
+const char* gi_method_name(GiMethod method);
+
+struct PathSettings {
+  unsigned samples = 64;  // per pixel
+  bool stratified = false;
+};
+
+struct RenderSettings {
+  int width = 0, height = 0;  // 0: derived (see resolve_resolution)
+  int camera = 0;
+  CameraOverrides camera_overrides;
+  unsigned light_samples = 16;  // per pixel on emissive triangles; rounded up to a square number of strata
+  unsigned seed = 0;
+  GiMethod gi = GiMethod::splat;
+  CacheSettings cache;
+  PathSettings path;
+};
+
+}  // namespace rcsplat

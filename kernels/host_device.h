@@ -1,0 +1,42 @@
+// What lets one header be compiled by both the kernels (OpenCL C) and the host (C++): a three-float vector type, the
+// few vector functions the shared math uses, spelled the same on both sides, and the constants both sides use. On the
+// device the functions are OpenCL's built-ins; on the host, GLM's (tests/cache_math_test.cpp checks that both give
+// the same bits).
+#ifndef RCSPLAT_HOST_DEVICE_H
+#define RCSPLAT_HOST_DEVICE_H
+
+#define RC_PI 3.14159265358979f
+#define RC_INV_PI 0.318309886183791f
+
+#ifdef __OPENCL_VERSION__
+typedef float3 rc_float3;
+#define RC_GLOBAL __global
+#define rc_length length
+#define rc_distance distance
+#define rc_dot dot
+#define rc_cross cross
+#define rc_fmin fmin
+#define rc_fmax fmax
+#define rc_fabs fabs
+// Row `row` of three floats starting at p.
+#define rc_load3(row, p) vload3(row, p)
+#define rc_max_zero(v) max(v, (float3)(0.0f))
+#else
+#include <glm/glm.hpp>
+
+#include <cfloat>
+#include <cmath>
+typedef glm::vec3 rc_float3;
+#define RC_GLOBAL
+inline float rc_length(rc_float3 v) { return glm::length(v); }
+inline float rc_distance(rc_float3 a, rc_float3 b) { return glm::distance(a, b); }
+inline float rc_dot(rc_float3 a, rc_float3 b) { return glm::dot(a, b); }
+inline rc_float3 rc_cross(rc_float3 a, rc_float3 b) { return glm::cross(a, b); }
+inline float rc_fmin(float a, float b) { return std::fmin(a, b); }
+inline float rc_fmax(float a, float b) { return std::fmax(a, b); }
+inline float rc_fabs(float a) { return std::fabs(a); }
+inline rc_float3 rc_load3(int row, const float* p) { return rc_float3(p[3 * row], p[3 * row + 1], p[3 * row + 2]); }
+inline rc_float3 rc_max_zero(rc_float3 v) { return glm::max(v, rc_float3(0.0f)); }
+#endif
+
+#endif
