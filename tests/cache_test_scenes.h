@@ -5,7 +5,7 @@
 #include "bvh/bvh8.h"
 #include "bvh/embree_scene.h"
 #include "cache/host_shading.h"
-#include "passes/device_scene.h"
+#include "cl/device_scene.h"
 #include "scene/scene.h"
 #include "test_support.h"
 

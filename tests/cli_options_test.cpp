@@ -18,8 +18,8 @@ TEST(CliOptions, HemisphereAndSpacingParse) {
   EXPECT_EQ(c.theta_strata, 24u);
   EXPECT_EQ(c.phi_strata, 48u);
   parse_spacing("2.5,15", c);
-  EXPECT_FLOAT_EQ(c.min_spacing, 2.5f);
-  EXPECT_FLOAT_EQ(c.max_spacing, 15.0f);
+  EXPECT_FLOAT_EQ(c.min_reach_pixels, 2.5f);
+  EXPECT_FLOAT_EQ(c.max_reach_pixels, 15.0f);
   EXPECT_EQ(parse_gi_method("octree"), GiMethod::octree);
   parse_hemisphere("8x16", c, true);
   EXPECT_EQ(c.fine_theta_strata, 8u);
@@ -49,7 +49,7 @@ TEST(CliOptions, BadValuesAreRefusedByName) {
   EXPECT_THROW(parse_gi_method("photon"), Error);
   CacheSettings bad_accuracy;
   bad_accuracy.accuracy = -1.0f;
-  EXPECT_THROW(check_cache_settings(bad_accuracy), Error);
+  EXPECT_THROW(validate_cache_settings(bad_accuracy), Error);
 }
 
 void write_rgb_exr(const std::string& path, int w, int h, float value, bool with_indirect) {

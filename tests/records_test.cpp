@@ -45,13 +45,14 @@ CameraParams tiny_pixel_camera() {
 }
 
 // Runs the record kernel at one point (keyed as pixel 0, so every call draws the same random numbers).
-CacheRecord device_record(test::TwinScene& twin, RecordPass& pass, vec3 p, vec3 n, const HemisphereParams& hp) {
+CacheRecord device_record(RecordPass& pass, vec3 p, vec3 n, const HemisphereParams& hp) {
   GpuContext& gpu = test::gpu();
-  cl::Buffer g = gpu.upload(std::vector<GBufferSample>{sample_at(p, n)});
-  cl::Buffer cam = gpu.upload(std::vector<CameraParams>{tiny_pixel_camera()});
+  CameraParams camera = tiny_pixel_camera();
+  GBufferView view{gpu.upload(std::vector<GBufferSample>{sample_at(p, n)}), gpu.upload(std::vector<CameraParams>{camera}),
+                   1, 1};
   cl::Buffer candidates = gpu.upload(std::vector<uint32_t>{0});
-  pass.compute(g, cam, candidates, 1, 0, hp);
-  return pass.download(1)[0];
+  pass.compute(view, candidates, 1, 0, hp);
+  return pass.download(0, 1)[0];
 }
 
 HemisphereParams hemisphere(unsigned m, unsigned n) {
@@ -59,8 +60,8 @@ HemisphereParams hemisphere(unsigned m, unsigned n) {
   hp.theta_strata = m;
   hp.phi_strata = n;
   hp.seed = 7;
-  hp.min_spacing = 1e-6f;
-  hp.max_spacing = 1e9f;
+  hp.min_radius_pixels = 1e-6f;
+  hp.max_radius_pixels = 1e9f;
   return hp;
 }
 
@@ -82,11 +83,11 @@ TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
     if (g[p].triangle >= 0) pixels.push_back(p);
   }
   HemisphereParams hp = hemisphere(8, 16);
-  hp.min_spacing = 3.0f;
-  hp.max_spacing = 20.0f;
+  hp.min_radius_pixels = 3.0f;
+  hp.max_radius_pixels = 20.0f;
   RecordPass pass(gpu, twin.device, hp.theta_strata);
-  pass.compute(gbuffer.samples(), gbuffer.camera(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
-  std::vector<CacheRecord> device = pass.download(pixels.size());
+  pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
+  std::vector<CacheRecord> device = pass.download(0, pixels.size());
 
   // Float directions and hit points differ from double ones by ~1e-7: a ray grazing an edge may land elsewhere, so a
   // few records may differ by one ray's share; the bulk must agree to float precision.
@@ -151,8 +152,8 @@ void check_gradients(bool occluder, vec3 p) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     HemisphereParams hp = hemisphere(32, 128);
     hp.seed = seed;
-    hp.max_spacing = 1e4f;  // R = 0.02 (tiny_pixel_camera's pixels are 2e-6 wide here): the bounds stay inactive
-    CacheRecord r = device_record(twin, pass, p, n, hp);
+    hp.max_radius_pixels = 1e4f;  // R = 0.02 (tiny_pixel_camera's pixels are 2e-6 wide here): the bounds stay inactive
+    CacheRecord r = device_record(pass, p, n, hp);
     double e = irradiance_r(r);
     ASSERT_GT(e, 0.0);
     ASSERT_LT(std::hypot(r.grad_translation[0], r.grad_translation[3]) * r.radius, 0.99 * e) << "bound active";
@@ -160,8 +161,8 @@ void check_gradients(bool occluder, vec3 p) {
     for (int axis = 0; axis < 2; ++axis) {
       vec3 d(0.0f);
       d[axis] = h;
-      double fd = (irradiance_r(device_record(twin, pass, p + d, n, hp)) -
-                   irradiance_r(device_record(twin, pass, p - d, n, hp))) / (2.0 * h);
+      double fd = (irradiance_r(device_record(pass, p + d, n, hp)) -
+                   irradiance_r(device_record(pass, p - d, n, hp))) / (2.0 * h);
       translation[axis].add(r.grad_translation[3 * axis], fd);
       translation[axis].scale += std::hypot(r.grad_translation[0], r.grad_translation[3]) / 12.0;
       // Tilting n by a small angle about the axis changes E by about angle * (axis . grad_r).
@@ -169,8 +170,8 @@ void check_gradients(bool occluder, vec3 p) {
       a[axis] = 1.0f;
       vec3 tilt = glm::cross(a, n) * std::sin(angle);
       vec3 plus = glm::normalize(n * std::cos(angle) + tilt), minus = glm::normalize(n * std::cos(angle) - tilt);
-      double fd_rot = (irradiance_r(device_record(twin, pass, p, plus, hp)) -
-                       irradiance_r(device_record(twin, pass, p, minus, hp))) / (2.0 * angle);
+      double fd_rot = (irradiance_r(device_record(pass, p, plus, hp)) -
+                       irradiance_r(device_record(pass, p, minus, hp))) / (2.0 * angle);
       rotation[axis].add(r.grad_rotation[3 * axis], fd_rot);
       rotation[axis].scale += std::hypot(r.grad_rotation[0], r.grad_rotation[3]) / 12.0;
     }

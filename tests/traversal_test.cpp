@@ -7,7 +7,7 @@
 #include "bench/ray_sets.h"
 #include "bvh/bvh8.h"
 #include "bvh/embree_scene.h"
-#include "passes/device_bvh.h"
+#include "cl/device_scene.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/cornell_box.h"
 #include "scene/gltf_loader.h"
@@ -47,13 +47,27 @@ std::vector<RayDesc> random_rays(size_t count, uint32_t seed, float tmax) {
   return rays;
 }
 
+// A scene of just these triangles (grey, with the default camera and light).
+Scene triangle_soup(const std::vector<glm::vec3>& positions) {
+  Scene s;
+  s.source = "triangle soup";
+  s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  for (size_t i = 0; i + 2 < positions.size(); i += 3) s.add_triangle(positions[i], positions[i + 1], positions[i + 2], 0);
+  s.add_defaults_where_missing();
+  return s;
+}
+
 // The triangles' BVH on the device and a ray caster over it.
 struct DeviceRays {
+  Scene scene;
   Bvh8 bvh;
-  DeviceBvh device_bvh;
+  DeviceScene device;
   RayCastPass caster;
   explicit DeviceRays(const std::vector<glm::vec3>& positions)
-      : bvh(build_bvh8(positions)), device_bvh(test::gpu(), bvh), caster(test::gpu(), device_bvh) {}
+      : scene(triangle_soup(positions)),
+        bvh(build_bvh8(scene.positions)),
+        device(test::gpu(), scene, bvh),
+        caster(test::gpu(), device) {}
   std::vector<HitDesc> closest(const std::vector<RayDesc>& rays) {
     caster.set_rays(rays);
     caster.cast_closest();
