@@ -75,6 +75,8 @@ class NamedKernel {
   void launch(size_t items, size_t group);
   void launch_2d(size_t width, size_t height, size_t tile_side);
   const std::string& name() const { return name_; }
+  // Whether the driver reported the parameters' names and types (else the order of the set() calls binds).
+  bool bound_by_name() const { return by_name_; }
 
  private:
   struct Parameter {

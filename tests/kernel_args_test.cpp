@@ -1,0 +1,81 @@
+// Kernels are bound by name (host/cl/named_kernel.h): the host's names and types are checked against what the
+// compiled kernels report (clGetKernelArgInfo, programs built with -cl-kernel-arg-info). Every kernel of every program
+// a full set of renders builds must have been launched with all its parameters set, by name, in its own order (so
+// that a driver without argument information, which binds by call order, binds them right too); and a binding that
+// swaps two buffers must fail with the kernel's and the parameter's names.
+#include <gtest/gtest.h>
+
+#include "cl/device_scene.h"
+#include "passes/ray_cast_pass.h"
+#include "passes/splat_pass.h"
+#include "render/renderer.h"
+#include "scene/cornell_box.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
+  GpuContext& gpu = test::gpu();
+  Scene scene = make_cornell_box();
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.light_samples = 4;
+  settings.cache.theta_strata = 4;
+  settings.cache.phi_strata = 8;
+  settings.path.samples = 2;
+  for (GiMethod gi : {GiMethod::splat, GiMethod::octree, GiMethod::path, GiMethod::none}) {
+    settings.gi = gi;
+    render(gpu, scene, settings);
+  }
+  Bvh8 bvh = build_bvh8(scene.positions);
+  DeviceScene device(gpu, scene, bvh);
+  RayCastPass caster(gpu, device);
+  glm::vec3 centre = 0.5f * (scene.bounds_min() + scene.bounds_max());  // inside the closed box: every ray hits
+  RayDesc ray{{centre.x, centre.y, centre.z}, 0.0f, {0.0f, -1.0f, 0.0f}, 1e30f};
+  caster.set_rays({ray});
+  caster.cast_closest();
+  caster.cast_occlusion();
+  EXPECT_GE(caster.closest_hits()[0].prim, 0);
+
+  std::set<std::string> built = gpu.built_kernel_names();
+  for (const char* expected : {"gbuffer", "direct_light", "compute_records", "mark_covered", "find_uncovered",
+                               "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
+                               "max_record_irradiance", "splat_records", "resolve_indirect", "path_indirect",
+                               "cast_closest", "cast_occlusion"})
+    EXPECT_TRUE(built.count(expected)) << expected << " was not built";
+  for (const std::string& name : built) {
+    auto launched = gpu.launched_kernels().find(name);
+    ASSERT_NE(launched, gpu.launched_kernels().end()) << "kernel " << name << " was never launched";
+    EXPECT_TRUE(launched->second) << "kernel " << name << ": parameters not all set in the kernel's order";
+  }
+  NamedKernel sample = gpu.kernel("splat.cl", "splat_records");
+  EXPECT_TRUE(sample.bound_by_name()) << "the test device reports no argument names";
+}
+
+TEST(KernelArgs, ASwapOrAMissingArgumentIsAnErrorNamingTheKernel) {
+  GpuContext& gpu = test::gpu();
+  cl::Buffer sums(gpu.context(), CL_MEM_READ_WRITE, 64), counts(gpu.context(), CL_MEM_READ_WRITE, 64);
+  NamedKernel splat = gpu.kernel("splat.cl", "splat_records");
+  try {
+    splat.set_buffer<cl_uint>("sums", counts);  // the planted swap: the counts buffer bound as the sums
+    ADD_FAILURE() << "a uint buffer bound as 'sums' (long*)";
+  } catch (const Error& e) {
+    std::string message = e.what();
+    EXPECT_NE(message.find("splat_records"), std::string::npos) << message;
+    EXPECT_NE(message.find("'sums'"), std::string::npos) << message;
+  }
+  EXPECT_THROW(splat.set("accuracy", 0.5f), Error);  // no such parameter: it travels in SplatParams
+  EXPECT_THROW(splat.set("params", cl_uint(1)), Error);
+  splat.set_buffer<cl_long>("sums", sums).set_buffer<cl_uint>("counts", counts);
+  try {
+    splat.launch(1, 1);
+    ADD_FAILURE() << "launched with parameters unset";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("was not set"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rcsplat
