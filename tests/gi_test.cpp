@@ -74,7 +74,8 @@ TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
   RenderedImage ref = render(test::gpu(), scene, settings);
   double ref_noise = 0.0;
   for (size_t i = 0; i < ref.indirect.size(); ++i)
-    ref_noise += ref.indirect_variance[i] / (double(ref.indirect[i]) * ref.indirect[i] + 0.01) / double(ref.indirect.size());
+    ref_noise += ref.indirect_variance[i] / (double(ref.indirect[i]) * ref.indirect[i] + kRelMseOffset) /
+                 double(ref.indirect.size());
 
   settings.gi = GiMethod::splat;
   const float accuracies[] = {0.8f, 0.4f, 0.2f};

@@ -7,7 +7,9 @@
 #include "bench/ray_sets.h"
 #include "bvh/bvh8.h"
 #include "bvh/embree_scene.h"
+#include "bvh/embree_device.h"
 #include "cl/device_scene.h"
+#include "util/error.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/cornell_box.h"
 #include "scene/gltf_loader.h"
@@ -186,6 +188,22 @@ TEST(Traversal, EmptyAndSingleTriangleScenes) {
   EXPECT_EQ(hits[0].prim, 0);
   EXPECT_NEAR(hits[0].t, 1.0f, 1e-6f);
   EXPECT_EQ(hits[1].prim, -1);
+}
+
+// Embree reports errors through a callback, not exceptions: check_embree must turn one into an error that stops the
+// run with Embree's message (the BVH build and the scene commit call it).
+TEST(Embree, AReportedErrorStopsTheRunWithItsMessage) {
+  EXPECT_NO_THROW(check_embree("nothing"));
+  RTCScene scene = rtcNewScene(embree_device());
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_REFIT);  // a deliberate misuse: scenes cannot be refitted
+  try {
+    check_embree("the deliberate misuse");
+    ADD_FAILURE() << "Embree's error was not reported";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the deliberate misuse"), std::string::npos) << e.what();
+  }
+  rtcReleaseScene(scene);
+  EXPECT_NO_THROW(check_embree("nothing")) << "the error must be reported once";
 }
 
 }  // namespace

@@ -236,6 +236,7 @@ Bvh8 build_bvh8(const std::vector<glm::vec3>& positions) {
 
   Bvh8 out;
   RTCBVH bvh = rtcNewBVH(embree_device());
+  check_embree("creating a BVH");
   const BuildNode* root = nullptr;
   if (!prims.empty()) {
     RTCBuildArguments args = rtcDefaultBuildArguments();
@@ -258,6 +259,12 @@ Bvh8 build_bvh8(const std::vector<glm::vec3>& positions) {
     args.splitPrimitive = split_triangle;
     args.userPtr = const_cast<std::vector<glm::vec3>*>(&positions);
     root = static_cast<const BuildNode*>(rtcBuildBVH(&args));
+    try {
+      check_embree("building the BVH over " + std::to_string(prims.size()) + " triangles");
+    } catch (const Error&) {
+      rtcReleaseBVH(bvh);
+      throw;
+    }
     if (!root) {
       rtcReleaseBVH(bvh);
       throw Error("Embree failed to build the BVH (rtcBuildBVH returned nothing)");

@@ -7,6 +7,16 @@ namespace rcsplat {
 
 EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& positions) {
   scene_ = rtcNewScene(embree_device());
+  check_embree("creating a scene");
+  try {
+    build(positions);
+  } catch (...) {
+    rtcReleaseScene(scene_);
+    throw;
+  }
+}
+
+void EmbreeScene::build(const std::vector<glm::vec3>& positions) {
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   size_t triangles = positions.size() / 3;
   RTCGeometry geom = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -14,6 +24,7 @@ EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& positions) {
                                                                3 * sizeof(float), std::max<size_t>(positions.size(), 3)));
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(unsigned), std::max<size_t>(triangles, 1)));
+  check_embree("allocating the geometry buffers of " + std::to_string(triangles) + " triangles");
   if (!vertices || !indices) throw Error("Embree could not allocate the geometry buffers");
   for (size_t i = 0; i < positions.size(); ++i) {
     vertices[3 * i] = positions[i].x;
@@ -25,6 +36,7 @@ EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& positions) {
   rtcAttachGeometry(scene_, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(scene_);
+  check_embree("committing the scene of " + std::to_string(triangles) + " triangles");
 }
 
 EmbreeScene::~EmbreeScene() { rtcReleaseScene(scene_); }

@@ -25,6 +25,8 @@ class EmbreeScene {
   bool occluded(const glm::vec3& org, const glm::vec3& dir, float tmin, float tmax) const;
 
  private:
+  void build(const std::vector<glm::vec3>& positions);  // fills and commits scene_; throws rcsplat::Error
+
   RTCScene scene_ = nullptr;
 };
 

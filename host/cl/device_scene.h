@@ -13,15 +13,6 @@ class DeviceScene {
  public:
   DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh);
 
-  const DeviceBvh& bvh() const { return bvh_; }
-  const cl::Buffer& triangles() const { return triangles_; }
-  const cl::Buffer& materials() const { return materials_; }
-  const cl::Buffer& textures() const { return textures_; }
-  const cl::Buffer& texels() const { return texels_; }
-  const cl::Buffer& lights() const { return lights_; }
-  const cl::Buffer& emitters() const { return emitters_; }
-  const SceneCounts& counts() const { return counts_; }
-
   // Sets a kernel's SCENE_ARGS.
   void bind(NamedKernel& kernel) const;
 

@@ -30,7 +30,7 @@ int run_compare(const CompareOptions& o) {
     if (exr_has_layer(o.reference_path, "indirect_variance")) {
       std::vector<float> var = read_exr_layer(o.reference_path, "indirect_variance", rw, rh);
       double noise = 0.0;
-      for (size_t i = 0; i < ref.size(); ++i) noise += var[i] / (double(ref[i]) * ref[i] + 0.01) / double(ref.size());
+      for (size_t i = 0; i < ref.size(); ++i) noise += var[i] / (double(ref[i]) * ref[i] + kRelMseOffset) / double(ref.size());
       std::printf("reference noise: expected indirect relMSE %.4e (from its variance); relMSE less that: %.4e\n", noise,
                   ind.rel_mse - noise);
       j["indirect"]["reference_noise"] = noise;

@@ -15,7 +15,7 @@ ErrorMetrics image_error(const std::vector<float>& image, const std::vector<floa
     double x = image[i], r = reference[i];
     if (!std::isfinite(x) || !std::isfinite(r)) throw Error("non-finite pixel value at channel index " + std::to_string(i));
     double d = x - r;
-    m.rel_mse += d * d / (r * r + 0.01);
+    m.rel_mse += d * d / (r * r + kRelMseOffset);
     m.rmse += d * d;
     m.mae += std::abs(d);
   }
@@ -33,7 +33,7 @@ std::vector<double> pixel_rel_mse(const std::vector<float>& image, const std::ve
     double sum = 0;
     for (size_t c = 0; c < 3; ++c) {
       double r = reference[3 * p + c], d = double(image[3 * p + c]) - r;
-      sum += d * d / (r * r + 0.01);
+      sum += d * d / (r * r + kRelMseOffset);
     }
     e[p] = sum / 3.0;
   }

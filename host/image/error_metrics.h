@@ -6,6 +6,9 @@
 
 namespace rcsplat {
 
+// The offset in relMSE's denominator, in the image's radiance units.
+constexpr double kRelMseOffset = 0.01;
+
 struct ErrorMetrics {
   double rel_mse = 0, rmse = 0, mae = 0;
 };

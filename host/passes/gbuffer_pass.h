@@ -24,7 +24,6 @@ class GBufferPass {
   void run(const CameraParams& camera);  // blocks until done
   const GBufferView& view() const { return view_; }
   std::vector<GBufferSample> download();
-  size_t pixel_count() const { return view_.pixel_count(); }
 
  private:
   GpuContext& gpu_;

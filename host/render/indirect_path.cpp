@@ -29,7 +29,7 @@ void path_traced_indirect(IndirectFrame& f) {
     unsigned samples = halves == 1 ? ps.samples : (h == 0 ? ps.samples / 2 : ps.samples - ps.samples / 2);
     path.begin(f.gbuffer.view(), samples, ps.stratified, f.settings.seed + 0x9e3779b9u * h);
     // Rounds of about a second's work keep progress moving without costing launches.
-    unsigned round = std::clamp(4000000u / unsigned(std::max<size_t>(f.gbuffer.pixel_count(), 1)), 1u, 64u);
+    unsigned round = std::clamp(4000000u / unsigned(std::max<size_t>(f.gbuffer.view().pixel_count(), 1)), 1u, 64u);
     while (path.samples_done() < samples) {
       path.add_samples(round);
       progress.update(done_before + path.samples_done());
