@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "bvh/embree_scene.h"
@@ -73,7 +74,7 @@ std::vector<ReferencePixel> reference_direct(const Scene& s, const CameraParams&
           glm::vec3 target = offset_ray_origin(glm::vec3(y), glm::vec3(nl));
           if (!embree.occluded(origin, target - origin, 0.0f, 1.0f)) {
             dvec3 le(s.materials[s.triangle_material[emitters[e]]].emission);
-            value = albedo / 3.14159265358979323846 * le * (cos_x * cos_y / d2 * total_area);
+            value = albedo / std::numbers::pi * le * (cos_x * cos_y / d2 * total_area);
           }
         }
         m1 += value;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "render/renderer.h"
@@ -12,7 +13,7 @@ namespace rcsplat {
 namespace {
 
 using dvec3 = glm::dvec3;
-const double kPi = 3.14159265358979323846;
+const double kPi = std::numbers::pi;
 const glm::vec3 kAlbedo(0.5f, 0.6f, 0.7f);
 
 // A 40 x 40 Lambertian plane at z = 0 facing +z (triangles 0 and 1), seen from above.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "image/error_metrics.h"
 #include "render/renderer.h"
@@ -30,7 +31,7 @@ TEST(GlobalIllumination, ClosedSphereLitFromItsCentreMatchesClosedForm) {
   scene.cameras[0].eye = glm::vec3(0.3f, 0.2f, 1.0f);
   scene.cameras[0].target = glm::vec3(0.0f, 0.0f, -1.0f);
   scene.cameras[0].yfov = 1.2f;
-  const double expected = rho * rho * intensity / (3.14159265358979323846 * radius * radius);
+  const double expected = rho * rho * intensity / (std::numbers::pi * radius * radius);
 
   RenderSettings settings;
   settings.width = settings.height = 48;
