@@ -89,8 +89,6 @@ int run_render(const RenderOptions& options) {
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
   }
-  if (options.settings.gi == GiMethod::splat || options.settings.gi == GiMethod::octree)
-    validate_cache_settings(options.settings.cache);
   Scene scene = load_scene(options.scene_path);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
