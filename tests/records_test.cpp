@@ -12,6 +12,7 @@
 #include "passes/record_pass.h"
 #include "render/camera.h"
 #include "scene/cornell_box.h"
+#include "util/error.h"
 
 namespace rcsplat {
 namespace {
@@ -180,6 +181,16 @@ void check_gradients(bool occluder, vec3 p) {
     translation[axis].expect_consistent("translation along axis " + std::to_string(axis));
     rotation[axis].expect_consistent("rotation about axis " + std::to_string(axis));
   }
+}
+
+// The kernel keeps a column of M strata in an array sized when it is compiled: a larger M is refused, never clamped.
+TEST(RecordKernel, RefusesMoreRowsThanItWasBuiltFor) {
+  test::TwinScene twin(make_cornell_box());
+  RecordPass pass(test::gpu(), twin.device, 8);
+  EXPECT_NO_THROW(device_record(pass, vec3(0.0f), vec3(0, 1, 0), hemisphere(8, 16)));
+  EXPECT_THROW(device_record(pass, vec3(0.0f), vec3(0, 1, 0), hemisphere(9, 16)), Error);
+  EXPECT_THROW(device_record(pass, vec3(0.0f), vec3(0, 1, 0), hemisphere(8, HEMISPHERE_MAX_PHI_STRATA + 1)), Error);
+  EXPECT_THROW(RecordPass(test::gpu(), twin.device, HEMISPHERE_MAX_THETA_STRATA + 1), Error);
 }
 
 TEST(RecordGradients, MatchFiniteDifferencesNearALitWall) { check_gradients(false, vec3(-0.3f, 0.3f, 0.0f)); }
