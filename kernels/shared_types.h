@@ -41,8 +41,13 @@ typedef struct {
   float geometric_normal[3];  // unit, from the winding (v1 - v0) x (v2 - v0)
   float normal0[3], normal1[3], normal2[3];  // unit shading normals at the vertices
   float uv0[2], uv1[2], uv2[2];
-  float pad[4];
+  rc_uint color[3];  // vertex colours (glTF COLOR_0), linear RGB, 10 bits each (VERTEX_COLOR_*): read under HAS_VERTEX_COLORS
+  float pad;
 } TriangleShading;
+
+// A vertex colour channel c in [0, 1] is stored as round(c * VERTEX_COLOR_MAX) in bits 10k .. 10k + 9.
+#define VERTEX_COLOR_BITS 10
+#define VERTEX_COLOR_MAX 1023
 
 #define TEXTURE_NONE (-1)
 typedef struct {

@@ -9,7 +9,17 @@ typedef struct {
   float3 shading_normal;    // unit, interpolated
   float2 uv;
   uint material;
+#if HAS_VERTEX_COLORS
+  float3 color;  // interpolated vertex colour
+#endif
 } SurfacePoint;
+
+#if HAS_VERTEX_COLORS
+inline float3 unpack_vertex_color(uint packed) {
+  return (float3)((float)(packed & VERTEX_COLOR_MAX), (float)((packed >> VERTEX_COLOR_BITS) & VERTEX_COLOR_MAX),
+                  (float)((packed >> (2 * VERTEX_COLOR_BITS)) & VERTEX_COLOR_MAX)) * (1.0f / (float)VERTEX_COLOR_MAX);
+}
+#endif
 
 inline SurfacePoint surface_at(__global const TriangleShading* triangles, int prim, float u, float v) {
   __global const TriangleShading* t = triangles + prim;
@@ -22,6 +32,9 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
   s.shading_normal = len > 0.0f ? n / len : s.geometric_normal;
   s.uv = w * vload2(0, t->uv0) + u * vload2(0, t->uv1) + v * vload2(0, t->uv2);
   s.material = t->material;
+#if HAS_VERTEX_COLORS
+  s.color = w * unpack_vertex_color(t->color[0]) + u * unpack_vertex_color(t->color[1]) + v * unpack_vertex_color(t->color[2]);
+#endif
   return s;
 }
 
@@ -69,6 +82,9 @@ inline float3 surface_albedo(__global const Material* materials, __global const 
   float3 albedo = vload3(0, m->base_color);
 #if HAS_TEXTURES
   if (m->base_color_texture >= 0) albedo *= sample_texture(textures, texels, m->base_color_texture, s->uv).xyz;
+#endif
+#if HAS_VERTEX_COLORS
+  albedo *= s->color;
 #endif
   return clamp(albedo, 0.0f, 1.0f);
 }

@@ -55,6 +55,9 @@ glm::dvec3 HostShading::albedo(int triangle, double u, double v) const {
       }
     color *= sum;
   }
+  double w = 1.0 - u - v;  // vertex colours, from the same 10-bit values the device reads
+  color *= w * dvec3(unpack_vertex_color(t.color[0])) + u * dvec3(unpack_vertex_color(t.color[1])) +
+           v * dvec3(unpack_vertex_color(t.color[2]));
   return glm::clamp(color, 0.0, 1.0);
 }
 

@@ -51,8 +51,9 @@ struct BenchOptions {
 };
 int run_bench(const BenchOptions& options);
 
-// The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing.
-Scene load_scene(const std::string& path);
+// The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
+// placed for the camera the user chose (render/camera.h add_view_defaults).
+Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {});
 
 // Writes text to path atomically (temporary file, then rename). Throws rcsplat::Error.
 void write_text_file(const std::string& path, const std::string& text);

@@ -10,9 +10,9 @@
 
 namespace rcsplat {
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, int camera, const CameraOverrides& overrides) {
   Scene scene = path.empty() ? make_cornell_box() : load_gltf(path);
-  scene.add_defaults_where_missing();
+  add_view_defaults(scene, camera, overrides);
   return scene;
 }
 

@@ -19,6 +19,7 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
                    const std::vector<std::string>& outputs) {
   const RenderStats& s = image.stats;
   std::printf("scene        %s\n", scene.source.c_str());
+  for (const std::string& line : scene.unsupported) std::printf("not simulated %s\n", line.c_str());
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
               s.light_samples, gi_method_name(s.gi));
@@ -67,7 +68,7 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                    {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
                    {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
                    {"path", s.path_s}, {"total", s.total_s}}},
-      {"outputs", outputs}};
+      {"outputs", outputs}, {"not_simulated", scene.unsupported}};
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     nlohmann::json levels = nlohmann::json::array();
@@ -89,7 +90,7 @@ int run_render(const RenderOptions& options) {
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
   }
-  Scene scene = load_scene(options.scene_path);
+  Scene scene = load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);

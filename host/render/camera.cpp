@@ -3,15 +3,29 @@
 #include <cmath>
 
 #include "util/error.h"
+#include "util/log.h"
 
 namespace rcsplat {
+
+std::string describe_cameras(const Scene& scene) {
+  if (scene.cameras.empty()) return "no cameras";
+  std::string list;
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const SceneCamera& c = scene.cameras[i];
+    list += (i ? ", " : "") + std::to_string(i) + " '" + c.name + "' (" + (c.orthographic ? "orthographic" : "perspective") + ")";
+  }
+  return list;
+}
 
 SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& o) {
   if (index < 0 || size_t(index) >= scene.cameras.size()) {
     throw Error("--camera " + std::to_string(index) + ": " + scene.source + " has " + std::to_string(scene.cameras.size()) +
-                " camera(s)");
+                " camera(s): " + describe_cameras(scene));
   }
   SceneCamera c = scene.cameras[size_t(index)];
+  if (c.orthographic)
+    throw Error("--camera " + std::to_string(index) + ": camera '" + c.name + "' of " + scene.source +
+                " is orthographic, which rcsplat does not render yet; its cameras: " + describe_cameras(scene));
   if (o.eye || o.target) {
     glm::vec3 forward = glm::normalize(c.target - c.eye);
     glm::vec3 eye = o.eye.value_or(c.eye);
@@ -27,6 +41,24 @@ SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& 
   if (!(glm::length(forward) > 0.0f) || !(glm::length(glm::cross(forward, c.up)) > 1e-6f * glm::length(forward) * glm::length(c.up)))
     throw Error("the camera's eye, target and up do not define a view (target = eye, or up parallel to the view)");
   return c;
+}
+
+void add_view_defaults(Scene& scene, int index, const CameraOverrides& o) {
+  if (scene.cameras.empty()) {
+    SceneCamera camera = scene.default_camera();
+    if (o.eye && !o.target) camera.eye = *o.eye;  // from the given eye, still at the scene's centre
+    scene.cameras.push_back(camera);
+    if (!(o.eye && o.target))
+      log_warning(scene.source + ": the scene has no camera; " +
+                  (o.eye ? std::string("looking from --eye at the scene's centre")
+                         : o.target ? std::string("looking at --target from a default viewpoint")
+                                    : std::string("using a default camera looking at the scene's centre along -z")));
+  }
+  if (scene.lights.empty() && !scene.has_emissive_triangles()) {
+    SceneCamera view = choose_camera(scene, index, o);
+    scene.lights.push_back(scene.default_light(view));
+    log_warning(scene.source + ": the scene has no light; using a default point light above the camera");
+  }
 }
 
 void resolve_resolution(const SceneCamera& camera, int& width, int& height) {

@@ -9,6 +9,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <algorithm>
+#include <optional>
 #include <set>
 
 #include "kernels/shared_types.h"
@@ -19,7 +21,8 @@
 namespace rcsplat {
 namespace {
 
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                    "KHR_texture_transform"};
 
 class GltfReader {
  public:
@@ -28,11 +31,16 @@ class GltfReader {
 
   void read() {
     for (const std::string& ext : model_.extensionsUsed) {
-      if (!kSupportedExtensions.count(ext)) warn("extension " + ext + " is not supported and is ignored");
+      if (kSupportedExtensions.count(ext)) continue;
+      bool required = std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), ext) !=
+                      model_.extensionsRequired.end();
+      note_unsupported("extension " + ext + (required ? " (required)" : ""),
+                       ext.rfind("KHR_materials_", 0) == 0 ? "ignored: surfaces are shaded as opaque Lambertian"
+                                                           : "ignored; the image may differ from the author's");
     }
-    for (const std::string& ext : model_.extensionsRequired) {
-      if (!kSupportedExtensions.count(ext)) warn("required extension " + ext + " is not supported; the image may differ");
-    }
+    if (!model_.animations.empty())
+      note_unsupported(std::to_string(model_.animations.size()) + " animation(s)",
+                       "a still image of the nodes' own transforms and weights (no animation is sampled)");
     read_textures();
     read_materials();
     std::vector<int> roots;
@@ -56,10 +64,19 @@ class GltfReader {
  private:
   [[noreturn]] void fail(const std::string& what) const { throw Error(path_ + ": " + what); }
   void warn(const std::string& what) const { log_warning(path_ + ": " + what); }
+  // A feature rcsplat does not simulate: named once per scene, in a warning and in the render summary.
+  void note_unsupported(const std::string& feature, const std::string& instead) {
+    std::string line = feature + ": " + instead;
+    if (std::find(scene_.unsupported.begin(), scene_.unsupported.end(), line) != scene_.unsupported.end()) return;
+    scene_.unsupported.push_back(line);
+    warn("not simulated: " + line);
+  }
 
-  // Reads `count` elements of `components` floats from an accessor, after checking it lies inside its buffer.
-  // Normalised integer components (allowed for texture coordinates) are converted to [0, 1].
-  std::vector<float> read_floats(int accessor_index, int components, const std::string& what) const {
+  // Reads an accessor's elements of `components` values each, as floats: float components as they are, integer
+  // components normalised to [0, 1] (or [-1, 1] when signed) unless `integers`, which keeps their values (JOINTS_0).
+  // A sparse accessor's substitutions are applied; every read is checked against its buffer first.
+  std::vector<float> read_floats(int accessor_index, int components, const std::string& what,
+                                 bool integers = false) const {
     const tinygltf::Accessor& acc = accessor(accessor_index, what);
     if (tinygltf::GetNumComponentsInType(uint32_t(acc.type)) != components) {
       fail(what + ": accessor " + std::to_string(accessor_index) + " has the wrong type (expected " +
@@ -67,54 +84,116 @@ class GltfReader {
     }
     const unsigned char* data = nullptr;
     size_t stride = 0;
-    int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     element_data(acc, accessor_index, components, what, &data, &stride);  // validates before anything is allocated
     std::vector<float> out(acc.count * size_t(components), 0.0f);
-    if (!data) return out;  // no buffer view: all zeros, as the specification says
-    for (size_t i = 0; i < acc.count; ++i) {
-      const unsigned char* e = data + i * stride;
-      for (int c = 0; c < components; ++c) {
-        const unsigned char* p = e + size_t(c) * size_t(component_size);
-        float v;
-        switch (acc.componentType) {
-          case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&v, p, 4); break;
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = float(*p) / 255.0f; break;
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            uint16_t s;
-            std::memcpy(&s, p, 2);
-            v = float(s) / 65535.0f;
-            break;
-          }
-          default: fail(what + ": accessor " + std::to_string(accessor_index) + " has an unsupported component type");
-        }
-        out[i * size_t(components) + size_t(c)] = v;
+    int size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
+    auto read_element = [&](const unsigned char* e, size_t slot) {
+      for (int c = 0; c < components; ++c)
+        out[slot * size_t(components) + size_t(c)] =
+            component(acc.componentType, e + size_t(c) * size_t(size), integers, what, accessor_index);
+    };
+    if (data)  // no buffer view: all zeros, as the specification says (then sparse substitutions, if any)
+      for (size_t i = 0; i < acc.count; ++i) read_element(data + i * stride, i);
+    if (acc.sparse.isSparse) {
+      std::string name = what + ": sparse accessor " + std::to_string(accessor_index);
+      size_t count = size_t(std::max(acc.sparse.count, 0));
+      int index_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.sparse.indices.componentType));
+      if (index_size <= 0 || acc.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+          acc.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT)
+        fail(name + ": indices must be unsigned byte, short or int");
+      const unsigned char* indices = view_range(acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset),
+                                                count * size_t(index_size), name + " indices");
+      const unsigned char* values = view_range(acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset),
+                                               count * size_t(size) * size_t(components), name + " values");
+      for (size_t k = 0; k < count; ++k) {
+        uint32_t index = read_index(acc.sparse.indices.componentType, indices + k * size_t(index_size));
+        if (index >= acc.count)
+          fail(name + ": substitution " + std::to_string(k) + " names element " + std::to_string(index) + " of " +
+               std::to_string(acc.count));
+        read_element(values + k * size_t(size) * size_t(components), index);
       }
     }
     return out;
   }
 
+  // One component at p as a float (see read_floats).
+  float component(int type, const unsigned char* p, bool integers, const std::string& what, int accessor_index) const {
+    auto scaled = [&](double v, double unit) { return float(integers ? v : std::max(v / unit, -1.0)); };
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return scaled(*p, 255.0);
+      case TINYGLTF_COMPONENT_TYPE_BYTE: return scaled(double(int8_t(*p)), 127.0);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return scaled(v, 65535.0);
+      }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t v;
+        std::memcpy(&v, p, 2);
+        return scaled(v, 32767.0);
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        if (integers) {
+          uint32_t v;
+          std::memcpy(&v, p, 4);
+          return float(v);
+        }
+        break;
+    }
+    fail(what + ": accessor " + std::to_string(accessor_index) + " has an unsupported component type");
+  }
+
+  static uint32_t read_index(int type, const unsigned char* p) {
+    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return *p;
+    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+      uint16_t s;
+      std::memcpy(&s, p, 2);
+      return s;
+    }
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+  }
+
+  // bytes at offset within buffer view `view`, checked to lie inside it and its buffer.
+  const unsigned char* view_range(int view, size_t offset, size_t bytes, const std::string& name) const {
+    if (view < 0 || size_t(view) >= model_.bufferViews.size()) fail(name + " refer to a missing buffer view");
+    const tinygltf::BufferView& v = model_.bufferViews[size_t(view)];
+    if (v.buffer < 0 || size_t(v.buffer) >= model_.buffers.size()) fail(name + " refer to a missing buffer");
+    const tinygltf::Buffer& buffer = model_.buffers[size_t(v.buffer)];
+    if (v.byteOffset > buffer.data.size() || v.byteLength > buffer.data.size() - v.byteOffset ||
+        offset > v.byteLength || bytes > v.byteLength - offset)
+      fail(name + " run past the end of buffer view " + std::to_string(view));
+    return buffer.data.data() + v.byteOffset + offset;
+  }
+
   std::vector<uint32_t> read_indices(int accessor_index, const std::string& what) const {
     const tinygltf::Accessor& acc = accessor(accessor_index, what);
     if (acc.type != TINYGLTF_TYPE_SCALAR) fail(what + ": the index accessor is not SCALAR");
+    if (acc.sparse.isSparse) {  // rare for indices: read as integers (exact below 2^24)
+      std::vector<float> values = read_floats(accessor_index, 1, what, true);
+      std::vector<uint32_t> out(values.size());
+      for (size_t i = 0; i < values.size(); ++i) {
+        if (!(values[i] < 16777216.0f)) fail(what + ": a sparse index accessor holds an index beyond 2^24");
+        out[i] = uint32_t(values[i]);
+      }
+      return out;
+    }
     const unsigned char* data = nullptr;
     size_t stride = 0;
     element_data(acc, accessor_index, 1, what, &data, &stride);
     std::vector<uint32_t> out(acc.count, 0);
     if (!data) return out;
-    for (size_t i = 0; i < acc.count; ++i) {
-      const unsigned char* p = data + i * stride;
-      switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = *p; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          uint16_t s;
-          std::memcpy(&s, p, 2);
-          out[i] = s;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out[i], p, 4); break;
-        default: fail(what + ": indices must be unsigned byte, short or int");
-      }
-    }
+    if (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(what + ": indices must be unsigned byte, short or int");
+    for (size_t i = 0; i < acc.count; ++i) out[i] = read_index(acc.componentType, data + i * stride);
     return out;
   }
 
@@ -128,7 +207,6 @@ class GltfReader {
   void element_data(const tinygltf::Accessor& acc, int index, int components, const std::string& what,
                     const unsigned char** data, size_t* stride) const {
     std::string name = what + ": accessor " + std::to_string(index);
-    if (acc.sparse.isSparse) fail(name + " is sparse, which is not supported");
     int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     if (component_size <= 0) fail(name + " has an invalid component type");
     if (acc.bufferView < 0) {
@@ -182,7 +260,7 @@ class GltfReader {
     glm::mat4 world = parent * local_matrix(node);
     for (int i = 0; i < 16; ++i)
       if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + " has a non-finite transform");
-    if (node.mesh >= 0) add_mesh(node.mesh, world);
+    if (node.mesh >= 0) add_mesh(index, world);
     if (node.camera >= 0) add_camera(node.camera, world);
     auto ext = node.extensions.find("KHR_lights_punctual");
     if (ext != node.extensions.end() && ext->second.Has("light")) add_light(ext->second.Get("light").GetNumberAsInt(), world);
@@ -190,12 +268,102 @@ class GltfReader {
     visiting[size_t(index)] = false;
   }
 
-  void add_mesh(int mesh_index, const glm::mat4& world) {
+  // The world transform of every node (parents first), for skins: a joint may sit anywhere in the hierarchy.
+  const glm::mat4& node_world(int index) {
+    if (index < 0 || size_t(index) >= model_.nodes.size()) fail("node " + std::to_string(index) + " does not exist");
+    if (node_world_.empty()) {
+      node_world_.resize(model_.nodes.size());
+      parent_.assign(model_.nodes.size(), -1);
+      for (size_t n = 0; n < model_.nodes.size(); ++n)
+        for (int c : model_.nodes[n].children)
+          if (c >= 0 && size_t(c) < parent_.size()) parent_[size_t(c)] = int(n);
+    }
+    if (!node_world_[size_t(index)]) {
+      std::vector<int> chain{index};  // up to the first ancestor already known, iteratively: a cycle cannot recurse
+      for (int up = parent_[size_t(index)]; up >= 0 && !node_world_[size_t(up)]; up = parent_[size_t(up)]) {
+        if (chain.size() > model_.nodes.size()) fail("node " + std::to_string(index) + " is its own ancestor (a cycle)");
+        chain.push_back(up);
+      }
+      for (size_t k = chain.size(); k-- > 0;) {
+        int n = chain[k], up = parent_[size_t(n)];
+        glm::mat4 parent = up >= 0 ? *node_world_[size_t(up)] : glm::mat4(1.0f);
+        node_world_[size_t(n)] = parent * local_matrix(model_.nodes[size_t(n)]);
+      }
+    }
+    return *node_world_[size_t(index)];
+  }
+
+  // A primitive's vertices and normals after its morph targets at the default weights (node's, else mesh's).
+  void apply_morph_targets(const tinygltf::Primitive& prim, const std::vector<double>& weights, const std::string& what,
+                           std::vector<float>& pos, std::vector<float>& nrm) const {
+    for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
+      float w = float(weights[t]);
+      if (!std::isfinite(w)) fail(what + ": morph target weight " + std::to_string(t) + " is not finite");
+      if (w == 0.0f) continue;
+      for (auto [attribute, out] : {std::pair{"POSITION", &pos}, std::pair{"NORMAL", &nrm}}) {
+        auto it = prim.targets[t].find(attribute);
+        if (it == prim.targets[t].end() || out->empty()) continue;
+        std::vector<float> delta = read_floats(it->second, 3, what + " morph target " + std::to_string(t) + " " + attribute);
+        if (delta.size() != out->size()) fail(what + ": morph target " + std::to_string(t) + " has another vertex count");
+        for (size_t i = 0; i < delta.size(); ++i) (*out)[i] += w * delta[i];
+      }
+    }
+  }
+
+  // Skinned vertices in world space, posed by the joints' node transforms (the rest pose a viewer shows without
+  // animation): v' = sum_k weight_k * world(joint_k) * inverseBind_k * v. Returns the first vertex's matrix.
+  glm::mat4 apply_skin(int skin_index, const tinygltf::Primitive& prim, const std::string& what, std::vector<float>& pos,
+                       std::vector<float>& nrm) {
+    if (size_t(skin_index) >= model_.skins.size()) fail(what + ": skin " + std::to_string(skin_index) + " does not exist");
+    const tinygltf::Skin& skin = model_.skins[size_t(skin_index)];
+    auto joints_it = prim.attributes.find("JOINTS_0"), weights_it = prim.attributes.find("WEIGHTS_0");
+    if (joints_it == prim.attributes.end() || weights_it == prim.attributes.end())
+      fail(what + ": a skinned mesh needs JOINTS_0 and WEIGHTS_0");
+    if (prim.attributes.count("JOINTS_1"))
+      note_unsupported("more than four joint influences (JOINTS_1)", "only JOINTS_0 and WEIGHTS_0 pose the mesh");
+    std::vector<float> joints = read_floats(joints_it->second, 4, what + " JOINTS_0", true);
+    std::vector<float> weights = read_floats(weights_it->second, 4, what + " WEIGHTS_0");
+    size_t vertices = pos.size() / 3;
+    if (joints.size() / 4 != vertices || weights.size() / 4 != vertices) fail(what + ": skin attributes have another vertex count");
+    std::vector<glm::mat4> joint_matrix(skin.joints.size(), glm::mat4(1.0f));
+    std::vector<float> inverse_bind;
+    if (skin.inverseBindMatrices >= 0) inverse_bind = read_floats(skin.inverseBindMatrices, 16, what + " inverseBindMatrices");
+    if (!inverse_bind.empty() && inverse_bind.size() / 16 < skin.joints.size()) fail(what + ": too few inverseBindMatrices");
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      glm::mat4 bind(1.0f);
+      if (!inverse_bind.empty()) std::memcpy(glm::value_ptr(bind), &inverse_bind[16 * j], 16 * sizeof(float));
+      joint_matrix[j] = node_world(skin.joints[j]) * bind;
+    }
+    glm::mat4 first(1.0f);
+    for (size_t v = 0; v < vertices; ++v) {
+      glm::mat4 m(0.0f);
+      for (int k = 0; k < 4; ++k) {
+        float w = weights[4 * v + size_t(k)];
+        if (w == 0.0f) continue;
+        size_t j = size_t(joints[4 * v + size_t(k)]);
+        if (j >= joint_matrix.size()) fail(what + ": vertex " + std::to_string(v) + " names joint " + std::to_string(j) + " of " + std::to_string(joint_matrix.size()));
+        m += w * joint_matrix[j];
+      }
+      if (v == 0) first = m;
+      glm::vec3 p = glm::vec3(m * glm::vec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0f));
+      for (int c = 0; c < 3; ++c) pos[3 * v + size_t(c)] = p[c];
+      if (!nrm.empty()) {
+        glm::vec3 n = glm::transpose(glm::inverse(glm::mat3(m))) * glm::vec3(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
+        for (int c = 0; c < 3; ++c) nrm[3 * v + size_t(c)] = n[c];
+      }
+    }
+    return first;
+  }
+
+  void add_mesh(int node_index, const glm::mat4& node_matrix) {
+    const tinygltf::Node& node = model_.nodes[size_t(node_index)];
+    int mesh_index = node.mesh;
     if (size_t(mesh_index) >= model_.meshes.size()) fail("mesh " + std::to_string(mesh_index) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
-    glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
-    bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;  // a mirroring transform flips the winding
+    const std::vector<double>& morph_weights = node.weights.empty() ? mesh.weights : node.weights;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      // A skinned mesh is placed by its joints alone (the specification ignores the mesh node's own transform).
+      glm::mat4 world = node.skin >= 0 ? glm::mat4(1.0f) : node_matrix;
       const tinygltf::Primitive& prim = mesh.primitives[p];
       std::string what = "mesh " + std::to_string(mesh_index) + " ('" + mesh.name + "') primitive " + std::to_string(p);
       int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -208,16 +376,36 @@ class GltfReader {
       if (pos_it == prim.attributes.end()) fail(what + ": no POSITION attribute");
       std::vector<float> pos = read_floats(pos_it->second, 3, what + " POSITION");
       size_t vertex_count = pos.size() / 3;
-      for (size_t i = 0; i < pos.size(); ++i)
-        if (!std::isfinite(pos[i])) fail(what + ": vertex " + std::to_string(i / 3) + " has a non-finite position");
-      std::vector<float> nrm, uv;
+      std::vector<float> nrm, uv, color;
       auto n_it = prim.attributes.find("NORMAL");
       if (n_it != prim.attributes.end()) nrm = read_floats(n_it->second, 3, what + " NORMAL");
+      if (nrm.size() == pos.size()) apply_morph_targets(prim, morph_weights, what, pos, nrm);
+      glm::mat4 skin_matrix(1.0f);
+      if (node.skin >= 0) skin_matrix = apply_skin(node.skin, prim, what, pos, nrm);
+      for (size_t i = 0; i < pos.size(); ++i)
+        if (!std::isfinite(pos[i])) fail(what + ": vertex " + std::to_string(i / 3) + " has a non-finite position");
+      glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
+      // A mirroring transform flips the winding (for a skin, judged by its first vertex's matrix).
+      bool mirrored = glm::determinant(glm::mat3(node.skin >= 0 ? skin_matrix : world)) < 0.0f;
+      auto c_it = prim.attributes.find("COLOR_0");
+      if (c_it != prim.attributes.end()) {
+        int components = accessor(c_it->second, what + " COLOR_0").type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+        std::vector<float> rgba = read_floats(c_it->second, components, what + " COLOR_0");
+        color.resize(rgba.size() / size_t(components) * 3);
+        for (size_t v = 0; v < color.size() / 3; ++v)
+          for (int c = 0; c < 3; ++c) color[3 * v + size_t(c)] = std::clamp(rgba[v * size_t(components) + size_t(c)], 0.0f, 1.0f);
+      }
       uint32_t material = material_slot(prim.material, what);
-      int tex_coord = material_tex_coord(prim.material);
-      auto uv_it = prim.attributes.find("TEXCOORD_" + std::to_string(tex_coord));
+      UvMapping mapping = base_color_uv_mapping(prim.material);
+      auto uv_it = prim.attributes.find("TEXCOORD_" + std::to_string(mapping.tex_coord));
       if (uv_it != prim.attributes.end()) uv = read_floats(uv_it->second, 2, what + " TEXCOORD");
-      if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() / 2 != vertex_count))
+      for (size_t v = 0; v < uv.size() / 2; ++v) {  // KHR_texture_transform, applied once here
+        glm::vec3 t = mapping.transform * glm::vec3(uv[2 * v], uv[2 * v + 1], 1.0f);
+        uv[2 * v] = t.x;
+        uv[2 * v + 1] = t.y;
+      }
+      if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() / 2 != vertex_count) ||
+          (!color.empty() && color.size() != pos.size()))
         fail(what + ": attributes have different vertex counts");
       std::vector<uint32_t> idx;
       if (prim.indices >= 0) {
@@ -233,13 +421,18 @@ class GltfReader {
                " is out of range (the primitive has " + std::to_string(vertex_count) + " vertices)");
         }
       }
-      for (size_t t = 0; t < idx.size(); t += 3) add_triangle(t, idx, pos, nrm, uv, world, normal_matrix, mirrored, material);
+      for (size_t t = 0; t < idx.size(); t += 3)
+        add_triangle(t, idx, {pos, nrm, uv, color}, world, normal_matrix, mirrored, material);
     }
   }
 
-  void add_triangle(size_t t, const std::vector<uint32_t>& idx, const std::vector<float>& pos,
-                    const std::vector<float>& nrm, const std::vector<float>& uv, const glm::mat4& world,
+  struct VertexArrays {
+    const std::vector<float>&pos, &nrm, &uv, &color;  // color: linear RGB, empty when the primitive has none
+  };
+
+  void add_triangle(size_t t, const std::vector<uint32_t>& idx, const VertexArrays& v, const glm::mat4& world,
                     const glm::mat3& normal_matrix, bool mirrored, uint32_t material) {
+    const std::vector<float>&pos = v.pos, &nrm = v.nrm, &uv = v.uv;
     uint32_t order[3] = {idx[t], idx[t + 1], idx[t + 2]};
     if (mirrored) std::swap(order[1], order[2]);
     glm::vec3 p[3];
@@ -257,6 +450,10 @@ class GltfReader {
       if (!uv.empty()) {
         glm::vec2 u(uv[2 * order[k]], uv[2 * order[k] + 1]);
         scene_.uvs[base + size_t(k)] = (std::isfinite(u.x) && std::isfinite(u.y)) ? u : glm::vec2(0.0f);
+      }
+      if (!v.color.empty()) {
+        glm::vec3 c(v.color[3 * order[k]], v.color[3 * order[k] + 1], v.color[3 * order[k] + 2]);
+        scene_.colors[base + size_t(k)] = (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) ? c : glm::vec3(1.0f);
       }
     }
   }
@@ -276,13 +473,40 @@ class GltfReader {
     return uint32_t(default_material_);
   }
 
-  int material_tex_coord(int index) const {
-    if (index < 0 || size_t(index) >= model_.materials.size()) return 0;
-    return model_.materials[size_t(index)].pbrMetallicRoughness.baseColorTexture.texCoord;
+  // Which TEXCOORD set the base colour texture reads, and KHR_texture_transform's matrix for it:
+  // translation * rotation * scale, applied to (u, v, 1).
+  struct UvMapping {
+    int tex_coord = 0;
+    glm::mat3 transform{1.0f};
+  };
+  UvMapping base_color_uv_mapping(int index) const {
+    UvMapping m;
+    if (index < 0 || size_t(index) >= model_.materials.size()) return m;
+    const tinygltf::TextureInfo& info = model_.materials[size_t(index)].pbrMetallicRoughness.baseColorTexture;
+    m.tex_coord = info.texCoord;
+    auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext == info.extensions.end()) return m;
+    const tinygltf::Value& t = ext->second;
+    auto pair = [&](const char* key, glm::vec2 fallback) {
+      if (!t.Has(key) || !t.Get(key).IsArray() || t.Get(key).ArrayLen() != 2) return fallback;
+      return glm::vec2(float(t.Get(key).Get(0).GetNumberAsDouble()), float(t.Get(key).Get(1).GetNumberAsDouble()));
+    };
+    glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
+    float rotation = t.Has("rotation") ? float(t.Get("rotation").GetNumberAsDouble()) : 0.0f;
+    if (t.Has("texCoord")) m.tex_coord = t.Get("texCoord").GetNumberAsInt();
+    float c = std::cos(rotation), s = std::sin(rotation);
+    // The extension's GLSL, column by column: rotation = mat3(c, s, 0, -s, c, 0, 0, 0, 1).
+    glm::mat3 translate(1.0f), rotate(1.0f), scaling(1.0f);
+    translate[2] = glm::vec3(offset, 1.0f);
+    rotate[0] = glm::vec3(c, s, 0.0f);
+    rotate[1] = glm::vec3(-s, c, 0.0f);
+    scaling[0][0] = scale.x;
+    scaling[1][1] = scale.y;
+    m.transform = translate * rotate * scaling;
+    return m;
   }
 
   void read_materials() {
-    bool warned_metal = false;
     for (const tinygltf::Material& src : model_.materials) {
       SceneMaterial m;
       m.name = src.name;
@@ -303,12 +527,10 @@ class GltfReader {
         if (!std::isfinite(m.base_color[i]) || m.base_color[i] < 0.0f) fail("material '" + src.name + "': invalid baseColorFactor");
       for (int i = 0; i < 3; ++i)
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail("material '" + src.name + "': invalid emission");
-      if (src.emissiveTexture.index >= 0) warn("material '" + src.name + "': emissiveTexture is not supported; emissiveFactor alone is used");
-      if (!warned_metal && pbr.metallicFactor > 0.0) {
-        warn("material '" + src.name + "' is metallic; rcsplat shades every surface as Lambertian for now");
-        warned_metal = true;
-      }
-      if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty()) warn("material '" + src.name + "': alphaMode " + src.alphaMode + " is ignored (opaque)");
+      if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
+      if (pbr.metallicFactor > 0.0) note_unsupported("metallic materials", "shaded as Lambertian with their base colour");
+      if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
+        note_unsupported("alphaMode " + src.alphaMode, "surfaces are opaque");
       scene_.materials.push_back(m);
     }
   }
@@ -343,8 +565,11 @@ class GltfReader {
             std::memcpy(&out.rgba[i * 4], c, 4);
           }
           if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size()) {
-            out.wrap_s = wrap_mode(model_.samplers[size_t(tex.sampler)].wrapS);
-            out.wrap_t = wrap_mode(model_.samplers[size_t(tex.sampler)].wrapT);
+            const tinygltf::Sampler& sampler = model_.samplers[size_t(tex.sampler)];
+            out.wrap_s = wrap_mode(sampler.wrapS);
+            out.wrap_t = wrap_mode(sampler.wrapT);
+            if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST)
+              note_unsupported("texture filter NEAREST", "textures are filtered bilinearly");
           }
           slot = int(scene_.textures.size());
           scene_.textures.push_back(std::move(out));
@@ -358,11 +583,15 @@ class GltfReader {
   void add_camera(int index, const glm::mat4& world) {
     if (size_t(index) >= model_.cameras.size()) fail("camera " + std::to_string(index) + " does not exist");
     const tinygltf::Camera& cam = model_.cameras[size_t(index)];
+    SceneCamera c;
+    c.name = cam.name.empty() ? "camera " + std::to_string(index) : cam.name;
     if (cam.type != "perspective") {
-      warn("camera " + std::to_string(index) + " is " + cam.type + "; only perspective cameras are supported, it is skipped");
+      // Kept in the list, so that --camera numbers the file's cameras as the file does; choosing it is an error.
+      c.orthographic = true;
+      note_unsupported("orthographic cameras", "not rendered yet; --camera must name a perspective camera");
+      scene_.cameras.push_back(c);
       return;
     }
-    SceneCamera c;
     c.eye = glm::vec3(world * glm::vec4(0, 0, 0, 1));
     glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
     c.target = c.eye + forward;
@@ -402,6 +631,8 @@ class GltfReader {
   Scene& scene_;
   std::vector<int> texture_slots_;
   int default_material_ = -1;
+  std::vector<std::optional<glm::mat4>> node_world_;
+  std::vector<int> parent_;
 };
 
 }  // namespace

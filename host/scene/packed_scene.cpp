@@ -1,5 +1,6 @@
 #include "scene/packed_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -11,6 +12,25 @@ void put3(float* dst, const glm::vec3& v) {
   dst[1] = v.y;
   dst[2] = v.z;
 }
+
+}  // namespace
+
+uint32_t pack_vertex_color(const glm::vec3& c) {
+  uint32_t packed = 0;
+  for (int k = 0; k < 3; ++k) {
+    float v = std::isfinite(c[k]) ? std::clamp(c[k], 0.0f, 1.0f) : 1.0f;
+    packed |= uint32_t(std::lround(v * VERTEX_COLOR_MAX)) << (VERTEX_COLOR_BITS * k);
+  }
+  return packed;
+}
+
+glm::vec3 unpack_vertex_color(uint32_t packed) {
+  glm::vec3 c;
+  for (int k = 0; k < 3; ++k) c[k] = float((packed >> (VERTEX_COLOR_BITS * k)) & VERTEX_COLOR_MAX) / float(VERTEX_COLOR_MAX);
+  return c;
+}
+
+namespace {
 
 PunctualLight pack_light(const SceneLight& l) {
   PunctualLight out{};
@@ -48,6 +68,7 @@ PackedScene pack_scene(const Scene& scene) {
     put3(s.normal0, scene.normals[3 * t]);
     put3(s.normal1, scene.normals[3 * t + 1]);
     put3(s.normal2, scene.normals[3 * t + 2]);
+    for (int k = 0; k < 3; ++k) s.color[k] = pack_vertex_color(scene.colors.empty() ? glm::vec3(1.0f) : scene.colors[3 * t + size_t(k)]);
     for (int k = 0; k < 2; ++k) {
       s.uv0[k] = scene.uvs[3 * t][k];
       s.uv1[k] = scene.uvs[3 * t + 1][k];

@@ -21,4 +21,8 @@ struct PackedScene {
 
 PackedScene pack_scene(const Scene& scene);
 
+// A vertex colour in TriangleShading's 10-bit-per-channel form, and back.
+uint32_t pack_vertex_color(const glm::vec3& color);
+glm::vec3 unpack_vertex_color(uint32_t packed);
+
 }  // namespace rcsplat

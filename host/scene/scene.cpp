@@ -16,6 +16,12 @@ bool Scene::has_emissive_triangles() const {
   return false;
 }
 
+bool Scene::has_vertex_colors() const {
+  for (const glm::vec3& c : colors)
+    if (c != glm::vec3(1.0f)) return true;
+  return false;
+}
+
 glm::vec3 Scene::bounds_min() const {
   glm::vec3 lo(std::numeric_limits<float>::max());
   for (const glm::vec3& p : positions) lo = glm::min(lo, p);
@@ -35,30 +41,41 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   positions.insert(positions.end(), {a, b, c});
   normals.insert(normals.end(), {n, n, n});
   uvs.insert(uvs.end(), {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
+  colors.insert(colors.end(), {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)});
   triangle_material.push_back(material);
 }
 
+float Scene::bounding_radius() const { return std::max(0.5f * glm::length(bounds_max() - bounds_min()), 1e-3f); }
+
+SceneCamera Scene::default_camera() const {
+  // Look at the scene's centre from the front (+z), far enough for its bounding sphere to fit a 45-degree view.
+  SceneCamera cam;
+  cam.name = "default";
+  cam.yfov = 0.7853982f;
+  cam.target = 0.5f * (bounds_min() + bounds_max());
+  cam.eye = cam.target + glm::vec3(0.0f, 0.0f, bounding_radius() / std::tan(0.5f * cam.yfov) * 1.1f);
+  return cam;
+}
+
+SceneLight Scene::default_light(const SceneCamera& view) const {
+  // A point light a scene radius above the viewpoint (along the view's up), bright enough that a grey surface at the
+  // scene's scale is visible.
+  SceneLight light;
+  light.name = "default";
+  glm::vec3 up = glm::length(view.up) > 0.0f ? glm::normalize(view.up) : glm::vec3(0.0f, 1.0f, 0.0f);
+  light.position = view.eye + up * bounding_radius();
+  float d = glm::length(light.position - 0.5f * (bounds_min() + bounds_max()));
+  light.intensity = glm::vec3(std::max(d * d, 1e-6f) * 3.0f);
+  return light;
+}
+
 void Scene::add_defaults_where_missing() {
-  glm::vec3 lo = bounds_min(), hi = bounds_max();
-  glm::vec3 center = 0.5f * (lo + hi);
-  float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
   if (cameras.empty()) {
-    // Look at the scene's centre from the front (+z), far enough for its bounding sphere to fit a 45-degree view.
-    SceneCamera cam;
-    cam.yfov = 0.7853982f;
-    cam.target = center;
-    cam.eye = center + glm::vec3(0.0f, 0.0f, radius / std::tan(0.5f * cam.yfov) * 1.1f);
-    cameras.push_back(cam);
+    cameras.push_back(default_camera());
     log_warning(source + ": the scene has no camera; using a default camera looking at the scene's centre along -z");
   }
   if (lights.empty() && !has_emissive_triangles()) {
-    // A point light at the default viewpoint's side, bright enough that a grey surface at the scene's scale is visible.
-    SceneLight light;
-    light.name = "default";
-    light.position = cameras.front().eye + glm::vec3(0.0f, radius, 0.0f);
-    float d = glm::length(light.position - center);
-    light.intensity = glm::vec3(d * d * 3.0f);
-    lights.push_back(light);
+    lights.push_back(default_light(cameras.front()));
     log_warning(source + ": the scene has no light; using a default point light above the camera");
   }
 }

@@ -37,8 +37,10 @@ struct SceneLight {
 };
 
 struct SceneCamera {
+  std::string name;
+  bool orthographic = false;  // not rendered yet: choosing one is an error that lists the cameras
   glm::vec3 eye{0.0f}, target{0.0f, 0.0f, -1.0f}, up{0.0f, 1.0f, 0.0f};
-  float yfov = 0.8f;               // radians
+  float yfov = 0.8f;               // radians (perspective)
   std::optional<float> aspect;     // width / height, if the scene states one
 };
 
@@ -47,20 +49,29 @@ struct Scene {
   std::vector<glm::vec3> positions;  // three per triangle
   std::vector<glm::vec3> normals;    // three per triangle (unit)
   std::vector<glm::vec2> uvs;        // three per triangle
+  std::vector<glm::vec3> colors;     // three per triangle: vertex colour (glTF COLOR_0), linear, multiplies the base colour
   std::vector<uint32_t> triangle_material;
   std::vector<SceneMaterial> materials;
   std::vector<SceneTexture> textures;
   std::vector<SceneLight> lights;
   std::vector<SceneCamera> cameras;
+  // What the file asks for that rcsplat does not simulate, once each, as "feature: what rcsplat does instead".
+  std::vector<std::string> unsupported;
 
   size_t triangle_count() const { return triangle_material.size(); }
   bool has_emissive_triangles() const;
+  bool has_vertex_colors() const;  // some vertex colour is not white
   glm::vec3 bounds_min() const;
   glm::vec3 bounds_max() const;
 
   // Appends a triangle; normals default to the geometric normal, texture coordinates to zero.
   void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint32_t material);
 
+  float bounding_radius() const;
+  // What a scene without a camera or light gets: a camera looking at the centre along -z, and a point light a scene
+  // radius above the given view (render/camera.h add_view_defaults places it above the camera actually used).
+  SceneCamera default_camera() const;
+  SceneLight default_light(const SceneCamera& view) const;
   // A camera and a light for scenes that lack them (with a warning each), so that every scene renders something.
   void add_defaults_where_missing();
 };
