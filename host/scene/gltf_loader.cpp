@@ -379,7 +379,7 @@ class GltfReader {
       std::vector<float> nrm, uv, color;
       auto n_it = prim.attributes.find("NORMAL");
       if (n_it != prim.attributes.end()) nrm = read_floats(n_it->second, 3, what + " NORMAL");
-      if (nrm.size() == pos.size()) apply_morph_targets(prim, morph_weights, what, pos, nrm);
+      if (nrm.empty() || nrm.size() == pos.size()) apply_morph_targets(prim, morph_weights, what, pos, nrm);
       glm::mat4 skin_matrix(1.0f);
       if (node.skin >= 0) skin_matrix = apply_skin(node.skin, prim, what, pos, nrm);
       for (size_t i = 0; i < pos.size(); ++i)

@@ -1,0 +1,237 @@
+// glTF 2.0 conformance for a still image, one small file per feature, each checked against what the feature must
+// produce: a sparse accessor's values, a morphed vertex, a skinned vertex, normalised integer texture coordinates, a
+// transformed UV, a vertex colour's albedo; defaults that follow the camera the user chose; camera errors that list
+// the file's cameras; features not simulated named once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cli/commands.h"
+#include "gltf_builder.h"
+#include "render/camera.h"
+#include "render/renderer.h"
+#include "scene/gltf_loader.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+using test::GltfBuilder;
+using test::json;
+
+constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123;
+
+// A unit quad in the xy plane facing +z (4 vertices, 2 triangles); returns the position accessor.
+int add_quad(GltfBuilder& b, json attributes = json::object(), int material = -1) {
+  float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+  int p = b.add_accessor(b.add_view(pos, sizeof pos), kFloat, 4, "VEC3");
+  int i = b.add_accessor(b.add_view(idx, sizeof idx), kUnsignedShort, 6, "SCALAR");
+  attributes["POSITION"] = p;
+  json primitive = {{"attributes", attributes}, {"indices", i}};
+  if (material >= 0) primitive["material"] = material;
+  b.doc["meshes"].push_back({{"primitives", json::array({primitive})}});
+  return p;
+}
+
+Scene load(GltfBuilder& b, const std::string& name) { return load_gltf(b.write(test::scratch_dir(), name)); }
+
+void expect_vec3(const glm::vec3& a, const glm::vec3& b, float tolerance, const std::string& what) {
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], tolerance) << what << " component " << k;
+}
+
+TEST(GltfConformance, SparseAccessorSubstitutesItsValues) {
+  GltfBuilder b;
+  add_quad(b);
+  // Vertices 1 and 3 of the position accessor moved by a sparse substitution.
+  uint8_t which[] = {1, 3};
+  float moved[] = {2, 0, 0, 0, 3, 0};
+  b.doc["accessors"][0]["sparse"] = {{"count", 2},
+                                     {"indices", {{"bufferView", b.add_view(which, sizeof which)}, {"componentType", kUnsignedByte}}},
+                                     {"values", {{"bufferView", b.add_view(moved, sizeof moved)}}}};
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  Scene s = load(b, "sparse");
+  ASSERT_EQ(s.triangle_count(), 2u);
+  expect_vec3(s.positions[1], {2, 0, 0}, 0.0f, "vertex 1");  // triangle (0, 1, 2)
+  expect_vec3(s.positions[5], {0, 3, 0}, 0.0f, "vertex 3");  // triangle (0, 2, 3)
+  expect_vec3(s.positions[2], {1, 1, 0}, 0.0f, "vertex 2 (not substituted)");
+
+  // A substitution naming an element past the accessor is refused by name.
+  which[1] = 9;
+  GltfBuilder bad = b;
+  bad.bin.clear();
+  bad.doc = json{{"asset", {{"version", "2.0"}}}};
+  add_quad(bad);
+  bad.doc["accessors"][0]["sparse"] = {{"count", 2},
+                                       {"indices", {{"bufferView", bad.add_view(which, sizeof which)}, {"componentType", kUnsignedByte}}},
+                                       {"values", {{"bufferView", bad.add_view(moved, sizeof moved)}}}};
+  bad.doc["nodes"] = json::array({{{"mesh", 0}}});
+  EXPECT_THROW(load(bad, "sparse_bad"), Error);
+}
+
+TEST(GltfConformance, MorphTargetsAtTheDefaultWeights) {
+  GltfBuilder b;
+  add_quad(b);
+  float delta[] = {0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0};  // vertex 1 moves along +z
+  int target = b.add_accessor(b.add_view(delta, sizeof delta), kFloat, 4, "VEC3");
+  b.doc["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", target}}});
+  b.doc["meshes"][0]["weights"] = {0.5};
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"mesh", 0}, {"weights", {0.25}}, {"translation", {5, 0, 0}}}});
+  Scene s = load(b, "morph");
+  ASSERT_EQ(s.triangle_count(), 4u);
+  expect_vec3(s.positions[1], {1, 0, 1.0f}, 1e-6f, "mesh weight 0.5");
+  expect_vec3(s.positions[7], {6, 0, 0.5f}, 1e-6f, "node weight 0.25 overrides the mesh's");
+}
+
+TEST(GltfConformance, SkinnedMeshIsPosedByItsJoints) {
+  GltfBuilder b;
+  uint8_t joints[] = {0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+  float weights[] = {1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0};
+  add_quad(b, {{"JOINTS_0", b.add_accessor(b.add_view(joints, sizeof joints), kUnsignedByte, 4, "VEC4")},
+               {"WEIGHTS_0", b.add_accessor(b.add_view(weights, sizeof weights), kFloat, 4, "VEC4")}});
+  // Joint 1 (node 2) sits at y = 2 with an inverse bind of identity; joint 0 (node 1) at the origin. The mesh node's
+  // own translation must be ignored, as the specification says.
+  b.doc["skins"] = json::array({{{"joints", {1, 2}}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}, {"skin", 0}, {"translation", {100, 0, 0}}},
+                                {{"children", {2}}},
+                                {{"translation", {0, 2, 0}}}});
+  b.doc["scenes"] = json::array({{{"nodes", {0, 1}}}});
+  Scene s = load(b, "skin");
+  ASSERT_EQ(s.triangle_count(), 2u);
+  expect_vec3(s.positions[0], {0, 0, 0}, 1e-6f, "vertex 0 on joint 0");
+  expect_vec3(s.positions[1], {1, 2, 0}, 1e-6f, "vertex 1 on joint 1");
+  expect_vec3(s.positions[2], {1, 2, 0}, 1e-6f, "vertex 2 half on each: (1,1,0) + 0.5 * (0,2,0)");
+}
+
+TEST(GltfConformance, NormalizedIntegerTexcoordsAndTextureTransform) {
+  GltfBuilder b;
+  uint16_t uv[] = {0, 0, 65535, 0, 65535, 65535, 0, 32768};
+  int t = b.add_accessor(b.add_view(uv, sizeof uv), kUnsignedShort, 4, "VEC2");
+  b.doc["accessors"][size_t(t)]["normalized"] = true;
+  add_quad(b, {{"TEXCOORD_0", t}}, 0);
+  b.doc["materials"] = json::array(
+      {{{"pbrMetallicRoughness",
+         {{"metallicFactor", 0.0},
+          {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform",
+                                                               {{"offset", {0.5, 0.25}}, {"scale", {2.0, 3.0}},
+                                                                {"rotation", 1.5707963267948966}}}}}}}}}}});
+  // A 1x1 texture (a data URI PNG would need an encoder; an undecodable image is fine for the UVs).
+  b.doc["textures"] = json::array({{{"source", 0}}});
+  b.doc["images"] = json::array({{{"uri", "missing.png"}}});
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  Scene s;
+  try {
+    s = load(b, "uv");
+  } catch (const Error& e) {
+    GTEST_SKIP() << "tinygltf refused the missing image: " << e.what();
+  }
+  // uv' = T * R(pi/2) * S * uv with R's columns (c, s) and (-s, c): (u, v) -> (0.5 - 3 v, 0.25 + 2 u).
+  auto expected = [](float u, float v) { return glm::vec2(0.5f - 3.0f * v, 0.25f + 2.0f * u); };
+  glm::vec2 want[] = {expected(0, 0), expected(1, 0), expected(1, 1), expected(0, 0), expected(1, 1),
+                      expected(0, 32768.0f / 65535.0f)};
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(s.uvs[size_t(k)].x, want[k].x, 1e-5f) << "corner " << k;
+    EXPECT_NEAR(s.uvs[size_t(k)].y, want[k].y, 1e-5f) << "corner " << k;
+  }
+  EXPECT_TRUE(s.unsupported.empty()) << s.unsupported.front();
+}
+
+TEST(GltfConformance, VertexColorMultipliesTheBaseColor) {
+  GltfBuilder b;
+  uint8_t rgba[] = {255, 128, 0, 255, 255, 128, 0, 255, 255, 128, 0, 255, 255, 128, 0, 255};
+  int c = b.add_accessor(b.add_view(rgba, sizeof rgba), kUnsignedByte, 4, "VEC4");
+  b.doc["accessors"][size_t(c)]["normalized"] = true;
+  add_quad(b, {{"COLOR_0", c}}, 0);
+  b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  Scene scene = load(b, "colors");
+  ASSERT_TRUE(scene.has_vertex_colors());
+  add_view_defaults(scene, 0, {});
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.gi = GiMethod::none;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  size_t centre = size_t(8 * 16 + 8);
+  ASSERT_GE(img.triangle[centre], 0);
+  // Linear vertex colour (1, 128/255, 0), stored with 10 bits a channel, times the base colour.
+  EXPECT_NEAR(img.albedo[3 * centre], 0.8f, 1e-6f);
+  EXPECT_NEAR(img.albedo[3 * centre + 1], 0.8f * 128.0f / 255.0f, 0.8f / 1023.0f);
+  EXPECT_NEAR(img.albedo[3 * centre + 2], 0.0f, 1e-7f);
+}
+
+// A quad seen from behind through --eye: the default light must sit above the camera actually used, or the side the
+// camera sees is unlit; and no warning may claim a default camera the user replaced.
+TEST(GltfConformance, DefaultLightFollowsTheCameraTheUserGave) {
+  GltfBuilder b;
+  add_quad(b);
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  std::string path = b.write(test::scratch_dir(), "bare_quad");
+  CameraOverrides view;
+  view.eye = glm::vec3(0.5f, 0.5f, -3.0f);
+  view.target = glm::vec3(0.5f, 0.5f, 0.0f);
+  testing::internal::CaptureStderr();
+  Scene scene = load_scene(path, 0, view);
+  std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(warnings.find("default camera"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("default point light"), std::string::npos) << warnings;
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_LT(scene.lights[0].position.z, 0.0f) << "the light should be on the side of the camera at z = -3";
+
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.gi = GiMethod::none;
+  settings.camera_overrides = view;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  size_t centre = size_t(8 * 16 + 8);
+  ASSERT_GE(img.triangle[centre], 0);
+  EXPECT_GT(img.direct[3 * centre], 0.0f) << "the far side of the quad, seen through --eye, is lit";
+}
+
+TEST(GltfConformance, CameraErrorsListTheFilesCameras) {
+  GltfBuilder b;
+  add_quad(b);
+  b.doc["cameras"] = json::array({{{"name", "Front"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}},
+                                  {{"name", "Plan"}, {"type", "orthographic"},
+                                   {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"camera", 0}, {"translation", {0.5, 0.5, 3}}},
+                                {{"camera", 1}, {"translation", {0.5, 0.5, 3}}}});
+  Scene scene = load(b, "cameras");
+  ASSERT_EQ(scene.cameras.size(), 2u);
+  for (int index : {1, 5}) {
+    try {
+      choose_camera(scene, index, {});
+      ADD_FAILURE() << "camera " << index << " was accepted";
+    } catch (const Error& e) {
+      std::string message = e.what();
+      EXPECT_NE(message.find("0 'Front' (perspective)"), std::string::npos) << message;
+      EXPECT_NE(message.find("1 'Plan' (orthographic)"), std::string::npos) << message;
+    }
+  }
+  EXPECT_NO_THROW(choose_camera(scene, 0, {}));
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_NE(scene.unsupported[0].find("orthographic"), std::string::npos);
+}
+
+TEST(GltfConformance, FeaturesNotSimulatedAreNamedOnce) {
+  GltfBuilder b;
+  add_quad(b, json::object(), 0);
+  b.doc["meshes"].push_back(b.doc["meshes"][0]);
+  b.doc["meshes"][1]["primitives"][0]["material"] = 1;
+  b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"metallicFactor", 1.0}}}, {"alphaMode", "BLEND"}},
+                                    {{"pbrMetallicRoughness", {{"metallicFactor", 0.5}}}, {"alphaMode", "BLEND"}}});
+  b.doc["extensionsUsed"] = {"KHR_materials_transmission"};
+  b.doc["animations"] = json::array({{{"channels", json::array()}, {"samplers", json::array()}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"mesh", 1}}});
+  Scene scene = load(b, "unsupported");
+  std::vector<std::string> keys = {"metallic materials", "alphaMode BLEND", "KHR_materials_transmission", "animation"};
+  for (const std::string& key : keys) {
+    size_t found = 0;
+    for (const std::string& line : scene.unsupported) found += line.find(key) != std::string::npos;
+    EXPECT_EQ(found, 1u) << key;
+  }
+  EXPECT_EQ(scene.unsupported.size(), keys.size());
+}
+
+}  // namespace
+}  // namespace rcsplat
