@@ -76,8 +76,9 @@ inline float fixed_point_irradiance_scale(float largest, float accuracy) {
   return rc_fmin(largest * (3.0f + accuracy), FLT_MAX);
 }
 
-// World size of one pixel at the point p (at its distance along the view axis).
+// World size of one pixel at the point p (at its distance along the view axis; the same everywhere when orthographic).
 inline float pixel_world_size(RC_GLOBAL const CameraParams* cam, rc_float3 p) {
+  if (cam->orthographic) return 2.0f * cam->half_height / (float)cam->height;
   float z = rc_dot(p - rc_load3(0, cam->eye), rc_load3(0, cam->forward));
   return 2.0f * rc_fabs(z) * cam->tan_half_fov_y / (float)cam->height;
 }

@@ -9,21 +9,30 @@ typedef struct {
 } PixelRect;
 
 // A conservative screen rectangle of the sphere (center, radius): the projection of its camera-aligned bounding cube,
-// plus a pixel of margin for rounding. The whole screen when the cube reaches behind the eye.
+// plus a pixel of margin for rounding. The whole screen when the cube reaches behind a perspective camera's eye.
 inline PixelRect sphere_footprint(__global const CameraParams* cam, float3 center, float radius) {
   PixelRect rect = {0, 0, cam->width - 1, cam->height - 1};
   float3 rel = center - vload3(0, cam->eye);
   float cx = dot(rel, vload3(0, cam->right)), cy = dot(rel, vload3(0, cam->up));
-  float cz = dot(rel, vload3(0, cam->forward));
-  float z_near = cz - radius, z_far = cz + radius;
-  if (!(z_near > 1e-6f * z_far) || !isfinite(z_far)) return rect;
-  float tx = cam->tan_half_fov_y * cam->aspect, ty = cam->tan_half_fov_y;
-  // x / z over the cube is extreme at one of its z faces, chosen by the sign of x.
   float x_lo = cx - radius, x_hi = cx + radius, y_lo = cy - radius, y_hi = cy + radius;
-  float sx_min = x_lo / (x_lo < 0.0f ? z_near : z_far) / tx;
-  float sx_max = x_hi / (x_hi > 0.0f ? z_near : z_far) / tx;
-  float sy_min = y_lo / (y_lo < 0.0f ? z_near : z_far) / ty;
-  float sy_max = y_hi / (y_hi > 0.0f ? z_near : z_far) / ty;
+  float sx_min, sx_max, sy_min, sy_max;  // the cube's extent in screen coordinates, -1 .. 1 across the image
+  if (cam->orthographic) {  // parallel projection: no division by depth
+    float half_width = cam->half_height * cam->aspect;
+    sx_min = x_lo / half_width;
+    sx_max = x_hi / half_width;
+    sy_min = y_lo / cam->half_height;
+    sy_max = y_hi / cam->half_height;
+  } else {
+    float cz = dot(rel, vload3(0, cam->forward));
+    float z_near = cz - radius, z_far = cz + radius;
+    if (!(z_near > 1e-6f * z_far) || !isfinite(z_far)) return rect;
+    float tx = cam->tan_half_fov_y * cam->aspect, ty = cam->tan_half_fov_y;
+    // x / z over the cube is extreme at one of its z faces, chosen by the sign of x.
+    sx_min = x_lo / (x_lo < 0.0f ? z_near : z_far) / tx;
+    sx_max = x_hi / (x_hi > 0.0f ? z_near : z_far) / tx;
+    sy_min = y_lo / (y_lo < 0.0f ? z_near : z_far) / ty;
+    sy_max = y_hi / (y_hi > 0.0f ? z_near : z_far) / ty;
+  }
   if (!isfinite(sx_min + sx_max + sy_min + sy_max)) return rect;
   // Pixel x has its centre at s = 2 (x + 0.5) / width - 1; pixel y at s = 1 - 2 (y + 0.5) / height.
   float px_min = (sx_min + 1.0f) * 0.5f * (float)cam->width - 0.5f;

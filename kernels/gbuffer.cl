@@ -10,12 +10,19 @@ inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int 
   return normalize(vload3(0, cam->forward) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up));
 }
 
+// An orthographic camera's ray through pixel (x, y) starts on the plane through the eye, at the pixel's centre.
+inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, int y) {
+  float sx = (2.0f * ((float)x + 0.5f) / (float)cam->width - 1.0f) * cam->half_height * cam->aspect;
+  float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)cam->height) * cam->half_height;
+  return vload3(0, cam->eye) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up);
+}
+
 // Writes the G-buffer the other passes read through GBUFFER_ARGS.
 __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
-  float3 org = vload3(0, camera->eye);
-  float3 dir = camera_ray_direction(camera, x, y);
+  float3 org = camera->orthographic ? orthographic_ray_origin(camera, x, y) : vload3(0, camera->eye);
+  float3 dir = camera->orthographic ? vload3(0, camera->forward) : camera_ray_direction(camera, x, y);
   RayPrecomp r = ray_precompute(org, dir);
   TraceHit hit;
   GBufferSample g;

@@ -93,15 +93,20 @@ typedef struct {
   rc_int double_sided;
 } EmissiveTriangle;
 
+// Perspective: rays from eye through the image plane at distance 1 (half height tan_half_fov_y). Orthographic: parallel
+// rays along forward from the plane through eye, half_height world units above and below the centre.
 typedef struct {
   float eye[3];
-  float tan_half_fov_y;
+  float tan_half_fov_y;  // perspective
   float right[3];  // unit
   float aspect;    // width / height
   float up[3];     // unit
   rc_int width;
   float forward[3];  // unit
   rc_int height;
+  rc_int orthographic;  // 0: perspective, 1: orthographic
+  float half_height;    // orthographic: half the view's height in world units (glTF's ymag)
+  float pad[2];
 } CameraParams;
 
 // The G-buffer: what the primary ray through each pixel's centre sees.
@@ -225,7 +230,7 @@ static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);
-static_assert(sizeof(CameraParams) == 64);
+static_assert(sizeof(CameraParams) == 80);
 static_assert(sizeof(GBufferSample) == 80);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);

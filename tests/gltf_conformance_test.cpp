@@ -198,7 +198,7 @@ TEST(GltfConformance, CameraErrorsListTheFilesCameras) {
                                 {{"camera", 1}, {"translation", {0.5, 0.5, 3}}}});
   Scene scene = load(b, "cameras");
   ASSERT_EQ(scene.cameras.size(), 2u);
-  for (int index : {1, 5}) {
+  for (int index : {2, 5}) {
     try {
       choose_camera(scene, index, {});
       ADD_FAILURE() << "camera " << index << " was accepted";
@@ -209,8 +209,38 @@ TEST(GltfConformance, CameraErrorsListTheFilesCameras) {
     }
   }
   EXPECT_NO_THROW(choose_camera(scene, 0, {}));
-  ASSERT_EQ(scene.unsupported.size(), 1u);
-  EXPECT_NE(scene.unsupported[0].find("orthographic"), std::string::npos);
+  EXPECT_TRUE(choose_camera(scene, 1, {}).orthographic);
+  EXPECT_TRUE(scene.unsupported.empty()) << scene.unsupported.front();
+}
+
+// An orthographic camera's rays start on the plane through its eye, one per pixel centre, and run along its axis:
+// on the plane z = 0 seen from z = 3, pixel (x, y) sees (eye.x + (2 (x + 0.5) / w - 1) xmag, eye.y + ..., 0).
+TEST(GltfConformance, OrthographicCameraRaysAreParallel) {
+  GltfBuilder b;
+  add_quad(b);
+  b.doc["cameras"] = json::array({{{"name", "Plan"}, {"type", "orthographic"},
+                                   {"orthographic", {{"xmag", 0.4}, {"ymag", 0.2}, {"znear", 0.1}, {"zfar", 10.0}}}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"camera", 0}, {"translation", {0.5, 0.5, 3}}}});
+  Scene scene = load(b, "orthographic");
+  add_view_defaults(scene, 0, {});
+  RenderSettings settings;
+  settings.width = 32;  // the height follows xmag / ymag: 16
+  settings.gi = GiMethod::none;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  ASSERT_EQ(img.height, 16);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      size_t i = size_t(y * img.width + x);
+      ASSERT_GE(img.triangle[i], 0) << x << "," << y;
+      float px = 0.5f + (2.0f * (float(x) + 0.5f) / float(img.width) - 1.0f) * 0.4f;
+      float py = 0.5f + (1.0f - 2.0f * (float(y) + 0.5f) / float(img.height)) * 0.2f;
+      ASSERT_NEAR(img.position[3 * i], px, 1e-6f) << x << "," << y;
+      ASSERT_NEAR(img.position[3 * i + 1], py, 1e-6f) << x << "," << y;
+      ASSERT_NEAR(img.depth[i], 3.0f, 1e-5f);
+    }
+  CameraOverrides fov;
+  fov.fov_degrees = 30.0f;
+  EXPECT_THROW(choose_camera(scene, 0, fov), Error);
 }
 
 TEST(GltfConformance, FeaturesNotSimulatedAreNamedOnce) {

@@ -48,10 +48,10 @@ bool ambiguous(const CacheRecord& r, const GBufferSample& g, float accuracy) {
          (std::abs(glm::dot(n, nk)) < 1e-6f || std::abs(in_front) < 1e-6f * (r.radius + glm::length(p - pk)));
 }
 
-TEST(Splat, FootprintHoldsEveryReachedPixelAndValuesMatchDirectEvaluation) {
-  test::TwinScene twin(make_cornell_box());
+// For a camera (perspective or orthographic), random records over its G-buffer: every pixel a record reaches lies in
+// its footprint, and the splat's values are Ward's formula evaluated directly.
+void check_footprints_and_values(test::TwinScene& twin, const SceneCamera& cam) {
   GpuContext& gpu = test::gpu();
-  SceneCamera cam = choose_camera(twin.scene, 0, {});
   const int w = 96, h = 72;
   GBufferPass gbuffer(gpu, twin.device);
   gbuffer.run(camera_params(cam, w, h));
@@ -119,6 +119,16 @@ TEST(Splat, FootprintHoldsEveryReachedPixelAndValuesMatchDirectEvaluation) {
     EXPECT_GT(reached, g.size() / 10) << "the random records should reach many pixels";
     EXPECT_LT(skipped, g.size() / 100) << skipped << " pixels at a threshold";
   }
+}
+
+TEST(Splat, FootprintHoldsEveryReachedPixelAndValuesMatchDirectEvaluation) {
+  test::TwinScene twin(make_cornell_box());
+  SceneCamera cam = choose_camera(twin.scene, 0, {});
+  check_footprints_and_values(twin, cam);
+  SceneCamera ortho = cam;  // the same view, orthographic, framing most of the box
+  ortho.orthographic = true;
+  ortho.ymag = 0.35f * glm::length(twin.scene.bounds_max() - twin.scene.bounds_min());
+  check_footprints_and_values(twin, ortho);
 }
 
 RenderSettings small_splat(int size) {
@@ -209,6 +219,14 @@ void expect_same_placement(const Scene& scene, RenderSettings settings) {
 
 TEST(Splat, OctreeMethodPlacesTheSameRecords) {
   expect_same_placement(make_cornell_box(), small_splat(96));
+  Scene orthographic = make_cornell_box();  // records sized by an orthographic camera's constant pixel size
+  SceneCamera plan = orthographic.cameras.front();
+  plan.orthographic = true;
+  plan.ymag = 0.3f * glm::length(orthographic.bounds_max() - orthographic.bounds_min());
+  orthographic.cameras.push_back(plan);
+  RenderSettings plan_settings = small_splat(64);
+  plan_settings.camera = 1;
+  expect_same_placement(orthographic, plan_settings);
   // Finer accuracy and a wider reach range: more neighbour clamping, so the repair rounds at spacing 1 place records.
   RenderSettings fine = small_splat(64);
   fine.cache.accuracy = 0.15f;

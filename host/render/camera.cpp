@@ -23,9 +23,6 @@ SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& 
                 " camera(s): " + describe_cameras(scene));
   }
   SceneCamera c = scene.cameras[size_t(index)];
-  if (c.orthographic)
-    throw Error("--camera " + std::to_string(index) + ": camera '" + c.name + "' of " + scene.source +
-                " is orthographic, which rcsplat does not render yet; its cameras: " + describe_cameras(scene));
   if (o.eye || o.target) {
     glm::vec3 forward = glm::normalize(c.target - c.eye);
     glm::vec3 eye = o.eye.value_or(c.eye);
@@ -33,6 +30,8 @@ SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& 
     c.eye = eye;
   }
   if (o.up) c.up = *o.up;
+  if (o.fov_degrees && c.orthographic)
+    throw Error("--fov: camera " + std::to_string(index) + " ('" + c.name + "') is orthographic, it has no field of view");
   if (o.fov_degrees) {
     if (!(*o.fov_degrees > 0.0f && *o.fov_degrees < 179.0f)) throw Error("--fov must be between 0 and 179 degrees");
     c.yfov = glm::radians(*o.fov_degrees);
@@ -80,7 +79,9 @@ CameraParams camera_params(const SceneCamera& camera, int width, int height) {
     p.right[i] = right[i];
     p.up[i] = up[i];
   }
-  p.tan_half_fov_y = std::tan(0.5f * camera.yfov);
+  p.tan_half_fov_y = camera.orthographic ? 0.0f : std::tan(0.5f * camera.yfov);
+  p.orthographic = camera.orthographic ? 1 : 0;
+  p.half_height = camera.orthographic ? camera.ymag : 0.0f;
   p.aspect = float(width) / float(height);
   p.width = width;
   p.height = height;

@@ -13,8 +13,8 @@ struct CameraOverrides {
   std::optional<float> fov_degrees;  // vertical
 };
 
-// The scene's camera `index` with the overrides applied. Throws rcsplat::Error for a bad index, an orthographic camera
-// (not rendered yet) or a degenerate view; the message lists the scene's cameras.
+// The scene's camera `index` with the overrides applied. Throws rcsplat::Error for a bad index (the message lists the
+// scene's cameras), --fov on an orthographic camera, or a degenerate view.
 SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& overrides);
 // "0 'Front' (perspective), 1 'Top' (orthographic)".
 std::string describe_cameras(const Scene& scene);

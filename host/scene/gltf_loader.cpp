@@ -585,20 +585,25 @@ class GltfReader {
     const tinygltf::Camera& cam = model_.cameras[size_t(index)];
     SceneCamera c;
     c.name = cam.name.empty() ? "camera " + std::to_string(index) : cam.name;
-    if (cam.type != "perspective") {
-      // Kept in the list, so that --camera numbers the file's cameras as the file does; choosing it is an error.
+    if (cam.type == "orthographic") {
       c.orthographic = true;
-      note_unsupported("orthographic cameras", "not rendered yet; --camera must name a perspective camera");
-      scene_.cameras.push_back(c);
-      return;
+      c.xmag = float(std::abs(cam.orthographic.xmag));
+      c.ymag = float(std::abs(cam.orthographic.ymag));
+      if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
+        fail("camera " + std::to_string(index) + " ('" + c.name + "') has an invalid xmag or ymag");
+      c.aspect = c.xmag / c.ymag;
+    } else if (cam.type != "perspective") {
+      fail("camera " + std::to_string(index) + " ('" + c.name + "') has unknown type '" + cam.type + "'");
     }
     c.eye = glm::vec3(world * glm::vec4(0, 0, 0, 1));
     glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
     c.target = c.eye + forward;
     c.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
-    c.yfov = float(cam.perspective.yfov);
-    if (!(c.yfov > 0.0f && c.yfov < 3.1f)) fail("camera " + std::to_string(index) + " has an invalid yfov");
-    if (cam.perspective.aspectRatio > 0.0) c.aspect = float(cam.perspective.aspectRatio);
+    if (!c.orthographic) {
+      c.yfov = float(cam.perspective.yfov);
+      if (!(c.yfov > 0.0f && c.yfov < 3.1f)) fail("camera " + std::to_string(index) + " has an invalid yfov");
+      if (cam.perspective.aspectRatio > 0.0) c.aspect = float(cam.perspective.aspectRatio);
+    }
     scene_.cameras.push_back(c);
   }
 

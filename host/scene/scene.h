@@ -38,9 +38,10 @@ struct SceneLight {
 
 struct SceneCamera {
   std::string name;
-  bool orthographic = false;  // not rendered yet: choosing one is an error that lists the cameras
+  bool orthographic = false;
   glm::vec3 eye{0.0f}, target{0.0f, 0.0f, -1.0f}, up{0.0f, 1.0f, 0.0f};
   float yfov = 0.8f;               // radians (perspective)
+  float xmag = 1.0f, ymag = 1.0f;  // half width and half height of the view in world units (orthographic)
   std::optional<float> aspect;     // width / height, if the scene states one
 };
 
