@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -55,6 +56,14 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
   for (const std::string& out : outputs) std::printf("wrote        %s\n", out.c_str());
 }
 
+// Non-finite values in the layers a user looks at (colour, direct, indirect): zero, by the renderer's promise.
+size_t nonfinite_values(const RenderedImage& image) {
+  size_t count = 0;
+  for (const std::vector<float>* layer : {&image.color, &image.direct, &image.indirect})
+    for (float v : *layer) count += !std::isfinite(v);
+  return count;
+}
+
 nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, const RenderSettings& settings,
                             const std::vector<std::string>& outputs) {
   const RenderStats& s = image.stats;
@@ -68,7 +77,7 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                    {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
                    {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
                    {"path", s.path_s}, {"total", s.total_s}}},
-      {"outputs", outputs}, {"not_simulated", scene.unsupported}};
+      {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)}};
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     nlohmann::json levels = nlohmann::json::array();
