@@ -61,10 +61,11 @@ typedef struct {
 #define WRAP_REPEAT 0
 #define WRAP_CLAMP 1
 #define WRAP_MIRROR 2
+#define TEXTURE_NEAREST (1u << 16)  // in TextureInfo.wrap: the nearest texel instead of bilinear filtering
 typedef struct {
   rc_uint first_texel;  // offset into the RGBA8 (sRGB-encoded) texel array
   rc_uint width, height;
-  rc_uint wrap;  // wrap_s | wrap_t << 8
+  rc_uint wrap;  // wrap_s | wrap_t << 8, | TEXTURE_NEAREST
 } TextureInfo;
 
 #define LIGHT_POINT 0

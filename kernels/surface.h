@@ -58,16 +58,21 @@ inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x,
                   (float)(p >> 24) * (1.0f / 255.0f));
 }
 
-// Bilinear lookup in linear space; texture coordinates wrap as the sampler says.
+// Bilinear (or, as the sampler says, nearest) lookup in linear space; texture coordinates wrap as the sampler says.
 inline float4 sample_texture(__global const TextureInfo* infos, __global const uint* texels, int index, float2 uv) {
   TextureInfo info = infos[index];
   int w = (int)info.width, h = (int)info.height;
+  uint ws = info.wrap & 255u, wt = (info.wrap >> 8) & 255u;
+  if (info.wrap & TEXTURE_NEAREST) {
+    float nx = floor(uv.x * (float)w), ny = floor(uv.y * (float)h);
+    if (!isfinite(nx) || !isfinite(ny) || fabs(nx) > 1e8f || fabs(ny) > 1e8f) nx = ny = 0.0f;
+    return texel_linear(texels, info, wrap_texel((int)nx, w, ws), wrap_texel((int)ny, h, wt));
+  }
   float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)h - 0.5f;
   if (!isfinite(fx) || !isfinite(fy) || fabs(fx) > 1e8f || fabs(fy) > 1e8f) fx = fy = 0.0f;
   float x0f = floor(fx), y0f = floor(fy);
   float ax = fx - x0f, ay = fy - y0f;
   int x0 = (int)x0f, y0 = (int)y0f;
-  uint ws = info.wrap & 255u, wt = info.wrap >> 8;
   int xa = wrap_texel(x0, w, ws), xb = wrap_texel(x0 + 1, w, ws);
   int ya = wrap_texel(y0, h, wt), yb = wrap_texel(y0 + 1, h, wt);
   float4 top = mix(texel_linear(texels, info, xa, ya), texel_linear(texels, info, xb, ya), ax);

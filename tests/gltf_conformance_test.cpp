@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cli/commands.h"
+#include "image/image_io.h"
 #include "gltf_builder.h"
 #include "render/camera.h"
 #include "render/renderer.h"
@@ -135,6 +136,35 @@ TEST(GltfConformance, NormalizedIntegerTexcoordsAndTextureTransform) {
     EXPECT_NEAR(s.uvs[size_t(k)].y, want[k].y, 1e-5f) << "corner " << k;
   }
   EXPECT_TRUE(s.unsupported.empty()) << s.unsupported.front();
+}
+
+// A 2 x 1 texture, black then white, on a unit quad filling an orthographic view: with the sampler's NEAREST filter a
+// pixel at u = 0.28 is the black texel exactly, with LINEAR a sixteenth of the white one.
+float albedo_at_quarter(bool nearest) {
+  GltfBuilder b;
+  std::string dir = test::scratch_dir();
+  write_png_display(dir + "/two.png", 2, 1, {0, 0, 0, 1, 1, 1});
+  float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  int t = b.add_accessor(b.add_view(uv, sizeof uv), kFloat, 4, "VEC2");
+  add_quad(b, {{"TEXCOORD_0", t}}, 0);
+  b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["samplers"] = json::array({{{"magFilter", nearest ? 9728 : 9729}, {"wrapS", 33071}, {"wrapT", 33071}}});
+  b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  b.doc["images"] = json::array({{{"uri", "two.png"}}});
+  b.doc["cameras"] = json::array({{{"type", "orthographic"}, {"orthographic", {{"xmag", 0.5}, {"ymag", 0.5}, {"znear", 0.1}, {"zfar", 10.0}}}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"camera", 0}, {"translation", {0.5, 0.5, 3}}}});
+  Scene scene = load_gltf(b.write(dir, nearest ? "nearest" : "linear"));
+  add_view_defaults(scene, 0, {});
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.gi = GiMethod::none;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  return img.albedo[3 * size_t(8 * 16 + 4)];  // pixel (4, 8): u = 4.5 / 16
+}
+
+TEST(GltfConformance, SamplerFilterNearestOrLinear) {
+  EXPECT_EQ(albedo_at_quarter(true), 0.0f);
+  EXPECT_NEAR(albedo_at_quarter(false), 0.0625f, 1e-4f);
 }
 
 TEST(GltfConformance, VertexColorMultipliesTheBaseColor) {

@@ -41,19 +41,29 @@ glm::dvec3 HostShading::albedo(int triangle, double u, double v) const {
     double tu = w * t.uv0[0] + u * t.uv1[0] + v * t.uv2[0], tv = w * t.uv0[1] + u * t.uv1[1] + v * t.uv2[1];
     const TextureInfo& info = scene_.textures[size_t(m.base_color_texture)];
     int width = int(info.width), height = int(info.height);
-    double fx = tu * width - 0.5, fy = tv * height - 0.5;
-    if (!std::isfinite(fx) || !std::isfinite(fy) || std::abs(fx) > 1e8 || std::abs(fy) > 1e8) fx = fy = 0.0;
-    double x0 = std::floor(fx), y0 = std::floor(fy), ax = fx - x0, ay = fy - y0;
-    dvec3 sum(0.0);
-    for (int dy = 0; dy < 2; ++dy)
-      for (int dx = 0; dx < 2; ++dx) {
-        int x = wrap(int(x0) + dx, width, info.wrap & 255u), y = wrap(int(y0) + dy, height, info.wrap >> 8);
-        uint32_t p = scene_.texels[info.first_texel + uint32_t(y) * info.width + uint32_t(x)];
-        dvec3 c(srgb_to_linear((p & 255u) / 255.0), srgb_to_linear(((p >> 8) & 255u) / 255.0),
-                srgb_to_linear(((p >> 16) & 255u) / 255.0));
-        sum += c * ((dx ? ax : 1.0 - ax) * (dy ? ay : 1.0 - ay));
-      }
-    color *= sum;
+    uint32_t wrap_s = info.wrap & 255u, wrap_t = (info.wrap >> 8) & 255u;
+    auto texel = [&](double x, double y) {  // the texel at integer coordinates, wrapped, in linear RGB
+      uint32_t p = scene_.texels[info.first_texel + uint32_t(wrap(int(y), height, wrap_t)) * info.width +
+                                 uint32_t(wrap(int(x), width, wrap_s))];
+      return dvec3(srgb_to_linear((p & 255u) / 255.0), srgb_to_linear(((p >> 8) & 255u) / 255.0),
+                   srgb_to_linear(((p >> 16) & 255u) / 255.0));
+    };
+    auto sane = [](double& x, double& y) {
+      if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e8 || std::abs(y) > 1e8) x = y = 0.0;
+    };
+    if (info.wrap & TEXTURE_NEAREST) {
+      double nx = std::floor(tu * width), ny = std::floor(tv * height);
+      sane(nx, ny);
+      color *= texel(nx, ny);
+    } else {
+      double fx = tu * width - 0.5, fy = tv * height - 0.5;
+      sane(fx, fy);
+      double x0 = std::floor(fx), y0 = std::floor(fy), ax = fx - x0, ay = fy - y0;
+      dvec3 sum(0.0);
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) sum += texel(x0 + dx, y0 + dy) * ((dx ? ax : 1.0 - ax) * (dy ? ay : 1.0 - ay));
+      color *= sum;
+    }
   }
   double w = 1.0 - u - v;  // vertex colours, from the same 10-bit values the device reads
   color *= w * dvec3(unpack_vertex_color(t.color[0])) + u * dvec3(unpack_vertex_color(t.color[1])) +

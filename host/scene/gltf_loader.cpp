@@ -568,8 +568,11 @@ class GltfReader {
             const tinygltf::Sampler& sampler = model_.samplers[size_t(tex.sampler)];
             out.wrap_s = wrap_mode(sampler.wrapS);
             out.wrap_t = wrap_mode(sampler.wrapT);
-            if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST)
-              note_unsupported("texture filter NEAREST", "textures are filtered bilinearly");
+            out.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+            int min = sampler.minFilter;
+            if (min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST || min == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST ||
+                min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR || min == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
+              note_unsupported("mipmapped minification", "textures are sampled at full resolution, one sample per pixel");
           }
           slot = int(scene_.textures.size());
           scene_.textures.push_back(std::move(out));

@@ -110,7 +110,7 @@ PackedScene pack_scene(const Scene& scene) {
     info.first_texel = uint32_t(p.texels.size());
     info.width = uint32_t(t.width);
     info.height = uint32_t(t.height);
-    info.wrap = uint32_t(t.wrap_s) | uint32_t(t.wrap_t) << 8;
+    info.wrap = uint32_t(t.wrap_s) | uint32_t(t.wrap_t) << 8 | (t.nearest ? TEXTURE_NEAREST : 0u);
     size_t start = p.texels.size();
     p.texels.resize(start + t.rgba.size() / 4);
     std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());

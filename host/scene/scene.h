@@ -22,6 +22,7 @@ struct SceneTexture {
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;  // sRGB-encoded RGBA8, rows top to bottom
   int wrap_s = 0, wrap_t = 0;  // WRAP_REPEAT, WRAP_CLAMP or WRAP_MIRROR (shared_types.h)
+  bool nearest = false;        // the sampler's NEAREST magnification filter: no bilinear interpolation
 };
 
 enum class LightType { point, spot, directional };
