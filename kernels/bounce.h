@@ -14,7 +14,7 @@ inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, fl
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
   ++*rays;
-  if (!bvh_trace(nodes, blocks, &r, 0.0f, INFINITY, false, &hit)) {
+  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
     *distance = INFINITY;
     return (float3)(0.0f);
   }
@@ -25,7 +25,7 @@ inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, fl
   float3 ns = back ? -s.shading_normal : s.shading_normal;
   if (dot(ns, ng) <= 0.0f) ns = ng;
   float3 albedo = surface_albedo(materials, textures, texels, &s);
-  float3 e = direct_irradiance(nodes, blocks, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
+  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
                                s.position, ns, ng, u, v, rays);
   return finite_or_zero(albedo * RC_INV_PI * e);
 }

@@ -17,7 +17,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
     float3 origin = offset_ray_origin(p, ng);
     float3 irradiance = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
-    for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(nodes, blocks, lights[i], p, origin, n, ng, &rays);
+    for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, &rays);
 #endif
 #if HAS_EMITTERS
     if (emitter_count > 0 && strata_per_axis > 0) {
@@ -29,7 +29,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
           uint s = j * strata_per_axis + i;
           float u = ((float)i + random01(key, s, 0u)) * inv;
           float v = ((float)j + random01(key, s, 1u)) * inv;
-          sum += emitter_sample(nodes, blocks, emitters, emitter_count, u, v, p, origin, n, ng, &rays);
+          sum += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &rays);
         }
       }
       irradiance += sum * (inv * inv);

@@ -27,7 +27,7 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   TraceHit hit;
   GBufferSample g;
   g.pad0 = g.pad1 = 0.0f;
-  if (!bvh_trace(nodes, blocks, &r, 0.0f, INFINITY, false, &hit)) {
+  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
     vstore3((float3)(0.0f), 0, g.position);
     vstore3((float3)(0.0f), 0, g.normal);
     vstore3((float3)(0.0f), 0, g.geometric_normal);

@@ -6,24 +6,24 @@
 #include "sampling.h"
 
 // Counts every shadow ray it casts in *rays, for the summary's ray count.
-inline bool visible(__global const float8* nodes, __global const float8* blocks, float3 from, float3 to_offset,
+inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
                     float tmax, uint* rays) {
   ++*rays;
   RayPrecomp r = ray_precompute(from, to_offset);
   TraceHit h;
-  return !bvh_trace(nodes, blocks, &r, 0.0f, tmax, true, &h);
+  return !bvh_trace(BVH, &r, 0.0f, tmax, true, &h);
 }
 
 #if HAS_PUNCTUAL_LIGHTS
 // Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed.
-inline float3 punctual_irradiance(__global const float8* nodes, __global const float8* blocks, PunctualLight light,
+inline float3 punctual_irradiance(BVH_ARGS, PunctualLight light,
                                   float3 p, float3 origin, float3 n, float3 ng, uint* rays) {
   float3 intensity = vload3(0, light.intensity);
   if (light.type == LIGHT_DIRECTIONAL) {
     float3 wi = -vload3(0, light.direction);
     float cos_n = dot(n, wi);
     if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
-    return visible(nodes, blocks, origin, wi, INFINITY, rays) ? intensity * cos_n : (float3)(0.0f);
+    return visible(BVH, origin, wi, INFINITY, rays) ? intensity * cos_n : (float3)(0.0f);
   }
   float3 to_light = vload3(0, light.position) - p;
   float d2 = dot(to_light, to_light);
@@ -44,7 +44,7 @@ inline float3 punctual_irradiance(__global const float8* nodes, __global const f
   }
   if (attenuation <= 0.0f) return (float3)(0.0f);
   float3 to = vload3(0, light.position) - origin;
-  return visible(nodes, blocks, origin, to, 1.0f, rays) ? intensity * (attenuation * cos_n) : (float3)(0.0f);
+  return visible(BVH, origin, to, 1.0f, rays) ? intensity * (attenuation * cos_n) : (float3)(0.0f);
 }
 #endif
 
@@ -61,7 +61,7 @@ inline int pick_emitter(__global const EmissiveTriangle* emitters, uint count, f
 }
 
 // One light sample's irradiance estimate at p from the point the stratified pair (u, v) picks on the emitters.
-inline float3 emitter_sample(__global const float8* nodes, __global const float8* blocks,
+inline float3 emitter_sample(BVH_ARGS,
                              __global const EmissiveTriangle* emitters, uint count, float u, float v, float3 p,
                              float3 origin, float3 n, float3 ng, uint* rays) {
   int i = pick_emitter(emitters, count, u);
@@ -82,24 +82,24 @@ inline float3 emitter_sample(__global const float8* nodes, __global const float8
   if (cos_x <= 0.0f || cos_y <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
   float3 toward_p = dot(nl, wi) < 0.0f ? nl : -nl;
   float3 target = offset_ray_origin(y, toward_p);
-  if (!visible(nodes, blocks, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
+  if (!visible(BVH, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
   return vload3(0, e.radiance) * (cos_x * cos_y / (d2 * pdf_area));
 }
 #endif
 
 // Irradiance at p from every punctual light plus one emitter sample at the uniform pair (u, v).
-inline float3 direct_irradiance(__global const float8* nodes, __global const float8* blocks,
+inline float3 direct_irradiance(BVH_ARGS,
                                 __global const PunctualLight* lights, uint light_count,
                                 __global const EmissiveTriangle* emitters, uint emitter_count, float3 p, float3 n,
                                 float3 ng, float u, float v, uint* rays) {
   float3 origin = offset_ray_origin(p, ng);
   float3 irradiance = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
-  for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(nodes, blocks, lights[i], p, origin, n, ng, rays);
+  for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, rays);
 #endif
 #if HAS_EMITTERS
-  if (emitter_count > 0) irradiance += emitter_sample(nodes, blocks, emitters, emitter_count, u, v, p, origin, n, ng, rays);
+  if (emitter_count > 0) irradiance += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, rays);
 #endif
   return irradiance;
 }

@@ -10,7 +10,7 @@ __kernel void cast_closest(SCENE_ARGS, __global const RayDesc* rays, RayCastPara
   RayDesc ray = rays[i];
   RayPrecomp r = load_ray(ray);
   TraceHit h;
-  bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, false, &h);
+  bvh_trace(BVH, &r, ray.tmin, ray.tmax, false, &h);
   HitDesc out;
   out.t = h.t;
   out.u = h.prim >= 0 ? h.u : 0.0f;
@@ -25,5 +25,5 @@ __kernel void cast_occlusion(SCENE_ARGS, __global const RayDesc* rays, RayCastPa
   RayDesc ray = rays[i];
   RayPrecomp r = load_ray(ray);
   TraceHit h;
-  occluded[i] = bvh_trace(nodes, blocks, &r, ray.tmin, ray.tmax, true, &h) ? 1 : 0;
+  occluded[i] = bvh_trace(BVH, &r, ray.tmin, ray.tmax, true, &h) ? 1 : 0;
 }

@@ -55,7 +55,8 @@ typedef struct {
   float emission[3];    // emissiveFactor x emissive strength, linear RGB radiance
   rc_int base_color_texture;  // index into the texture table or TEXTURE_NONE
   rc_int double_sided;
-  rc_int pad[3];
+  float alpha_cutoff;  // glTF alpha mode MASK: alpha below it is a hole; 0 for opaque materials
+  rc_int pad[2];
 } Material;
 
 #define WRAP_REPEAT 0

@@ -9,6 +9,19 @@
 // differently from its mirror image on the neighbouring triangle (cracks), and would make the empty lanes' zero
 // determinant non-zero.
 #pragma OPENCL FP_CONTRACT OFF
+#include "surface.h"
+
+// The traversal's view of the scene: the BVH, and with alpha-masked materials (HAS_ALPHA_MASK) what a hit needs to
+// know whether it landed in a hole. Every function that traces takes BVH_ARGS and passes BVH on.
+#if HAS_ALPHA_MASK
+#define BVH_ARGS                                                                                                     \
+  __global const float8 *nodes, __global const float8 *blocks, __global const TriangleShading *triangles,           \
+      __global const Material *materials, __global const TextureInfo *textures, __global const uint *texels
+#define BVH nodes, blocks, triangles, materials, textures, texels
+#else
+#define BVH_ARGS __global const float8 *nodes, __global const float8 *blocks
+#define BVH nodes, blocks
+#endif
 
 #define NODE_ROWS 7
 #define BLOCK_ROWS 10
@@ -132,10 +145,44 @@ typedef struct {
   int prim;
 } TraceHit;
 
+#if HAS_ALPHA_MASK
+// glTF's alpha mode MASK: a surface whose alpha (base colour factor times texture) is below its material's cutoff is
+// a hole, for every kind of ray (a leaf is a leaf, not a quad).
+inline bool is_hole(BVH_ARGS, int prim, float u, float v) {
+  __global const TriangleShading* t = triangles + prim;
+  __global const Material* m = materials + t->material;
+  if (!(m->alpha_cutoff > 0.0f)) return false;
+  float alpha = m->base_color[3];
+#if HAS_TEXTURES
+  if (m->base_color_texture >= 0) {
+    float w = 1.0f - u - v;
+    float2 uv = w * vload2(0, t->uv0) + u * vload2(0, t->uv1) + v * vload2(0, t->uv2);
+    alpha *= sample_texture(textures, texels, m->base_color_texture, uv).w;
+  }
+#endif
+  return alpha < m->alpha_cutoff;
+}
+
+// The lanes of a block's hit mask that did not land in a hole.
+inline uint solid_lanes(BVH_ARGS, uint mask, __global const float8* block, float8 uu, float8 vv) {
+  float us[8], vs[8];
+  int prims[8];
+  vstore8(uu, 0, us);
+  vstore8(vv, 0, vs);
+  vstore8(as_int8(block[9]), 0, prims);
+  uint solid = mask;
+  while (mask) {
+    int i = lowest_bit(mask);
+    mask &= mask - 1;
+    if (is_hole(BVH, prims[i], us[i], vs[i])) solid &= ~(1u << i);
+  }
+  return solid;
+}
+#endif
+
 // Visits the BVH for one ray. ANY_HIT stops at the first hit within range (shadow rays); otherwise the closest hit wins.
 // Returns whether anything was hit; on a closest hit *hit holds it.
-inline bool bvh_trace(__global const float8* nodes, __global const float8* blocks, const RayPrecomp* r, float t_min,
-                      float t_max, bool any_hit, TraceHit* hit) {
+inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, bool any_hit, TraceHit* hit) {
   int stack_ref[BVH_STACK_SIZE];
   float stack_t[BVH_STACK_SIZE];
   int sp = 0;
@@ -205,6 +252,9 @@ inline bool bvh_trace(__global const float8* nodes, __global const float8* block
         __global const float8* block = blocks + (size_t)(first + b) * BLOCK_ROWS;
         float8 tt, uu, vv;
         uint mask = block_hit_mask(block, r, t_min, t_max, &tt, &uu, &vv);
+#if HAS_ALPHA_MASK
+        if (mask) mask = solid_lanes(BVH, mask, block, uu, vv);
+#endif
         if (mask) {
           if (any_hit) return true;
           float ts[8], us[8], vs[8];

@@ -4,12 +4,17 @@
 // the file's cameras; features not simulated named once.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
 
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "gltf_builder.h"
 #include "render/camera.h"
+#include "bvh/bvh8.h"
+#include "cl/device_scene.h"
+#include "passes/ray_cast_pass.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "util/error.h"
@@ -165,6 +170,63 @@ float albedo_at_quarter(bool nearest) {
 TEST(GltfConformance, SamplerFilterNearestOrLinear) {
   EXPECT_EQ(albedo_at_quarter(true), 0.0f);
   EXPECT_NEAR(albedo_at_quarter(false), 0.0625f, 1e-4f);
+}
+
+// Alpha mode MASK: a unit quad at z = 0 whose texture is transparent on its left half (alpha 0) and opaque on its
+// right, in front of an opaque wall at z = -1, lit by a point light in front. Through the hole, the primary ray sees
+// the wall, the wall's shadow ray reaches the light, and a cast ray (as hemisphere rays trace) hits the wall.
+TEST(GltfConformance, AlphaMaskMakesHolesForEveryRay) {
+  std::string dir = test::scratch_dir();
+  {
+    unsigned char texels[] = {255, 255, 255, 0, 255, 255, 255, 255};
+    auto out = OIIO::ImageOutput::create(dir + "/half.png");
+    ASSERT_TRUE(out && out->open(dir + "/half.png", OIIO::ImageSpec(2, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels));
+    out->close();
+  }
+  GltfBuilder b;
+  float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  int t = b.add_accessor(b.add_view(uv, sizeof uv), kFloat, 4, "VEC2");
+  add_quad(b, {{"TEXCOORD_0", t}}, 0);  // mesh 0: the masked quad
+  add_quad(b, json::object(), 1);        // mesh 1: the wall
+  b.doc["materials"] = json::array(
+      {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true},
+        {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"baseColorTexture", {{"index", 0}}}}}},
+       {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}}});
+  b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33071}}});
+  b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  b.doc["images"] = json::array({{{"uri", "half.png"}}});
+  b.doc["cameras"] = json::array({{{"type", "orthographic"}, {"orthographic", {{"xmag", 0.5}, {"ymag", 0.5}, {"znear", 0.1}, {"zfar", 10.0}}}}});
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  b.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", json::array({{{"type", "point"}, {"intensity", 10.0}}})}}}};
+  b.doc["nodes"] = json::array({{{"mesh", 0}},
+                                {{"mesh", 1}, {"translation", {-1, -1, -1}}, {"scale", {3, 3, 1}}},
+                                {{"camera", 0}, {"translation", {0.5, 0.5, 3}}},
+                                {{"translation", {0.5, 0.5, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}});
+  Scene scene = load_gltf(b.write(dir, "masked"));
+  EXPECT_TRUE(scene.unsupported.empty()) << scene.unsupported.front();
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.gi = GiMethod::none;
+  RenderedImage img = render(test::gpu(), scene, settings);
+  size_t hole = size_t(8 * 16 + 4), solid = size_t(8 * 16 + 11);  // u = 0.28 and u = 0.72
+  EXPECT_NEAR(img.position[3 * hole + 2], -1.0f, 1e-5f) << "the primary ray passes the hole";
+  EXPECT_NEAR(img.position[3 * solid + 2], 0.0f, 1e-5f) << "the opaque half is solid";
+  EXPECT_GT(img.direct[3 * hole], 0.0f) << "the wall behind the hole sees the light through it";
+
+  Bvh8 bvh = build_bvh8(scene.positions);
+  DeviceScene device(test::gpu(), scene, bvh);
+  RayCastPass caster(test::gpu(), device);
+  caster.set_rays({RayDesc{{0.25f, 0.5f, 1.0f}, 0.0f, {0.0f, 0.0f, -1.0f}, 10.0f},
+                   RayDesc{{0.75f, 0.5f, 1.0f}, 0.0f, {0.0f, 0.0f, -1.0f}, 10.0f},
+                   RayDesc{{0.25f, 0.5f, 1.0f}, 0.0f, {0.0f, 0.0f, -1.0f}, 1.5f}});
+  caster.cast_closest();
+  std::vector<HitDesc> hits = caster.closest_hits();
+  EXPECT_GE(hits[0].prim, 2) << "through the hole: the wall (triangles 2 and 3)";
+  EXPECT_NEAR(hits[0].t, 2.0f, 1e-5f);
+  EXPECT_LT(hits[1].prim, 2) << "the opaque half: the quad (triangles 0 and 1)";
+  caster.cast_occlusion();
+  EXPECT_EQ(caster.occlusion()[2], 0) << "a shadow ray through the hole that stops short of the wall is not occluded";
 }
 
 TEST(GltfConformance, VertexColorMultipliesTheBaseColor) {

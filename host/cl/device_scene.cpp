@@ -17,6 +17,9 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) :
   for (const Material& m : p.materials) textured |= m.base_color_texture >= 0;
   defines_["HAS_TEXTURES"] = textured ? "1" : "0";
   defines_["HAS_VERTEX_COLORS"] = scene.has_vertex_colors() ? "1" : "0";
+  bool masked = false;
+  for (const Material& m : p.materials) masked |= m.alpha_cutoff > 0.0f;
+  defines_["HAS_ALPHA_MASK"] = masked ? "1" : "0";
   defines_["HAS_PUNCTUAL_LIGHTS"] = counts_.light_count ? "1" : "0";
   defines_["HAS_EMITTERS"] = counts_.emitter_count ? "1" : "0";
   bvh_.add_defines(defines_);

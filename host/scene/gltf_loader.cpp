@@ -529,8 +529,13 @@ class GltfReader {
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail("material '" + src.name + "': invalid emission");
       if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
       if (pbr.metallicFactor > 0.0) note_unsupported("metallic materials", "shaded as Lambertian with their base colour");
-      if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
-        note_unsupported("alphaMode " + src.alphaMode, "surfaces are opaque");
+      if (src.alphaMode == "MASK") {
+        // A cutoff of 0 would make every hit solid: keep the smallest positive one instead.
+        m.alpha_cutoff = std::max(float(src.alphaCutoff), 1e-6f);
+        if (!std::isfinite(m.alpha_cutoff)) fail("material '" + src.name + "': invalid alphaCutoff");
+      } else if (src.alphaMode == "BLEND") {
+        note_unsupported("alphaMode BLEND", "surfaces are opaque (no transparency)");
+      }
       scene_.materials.push_back(m);
     }
   }

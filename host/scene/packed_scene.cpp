@@ -103,6 +103,7 @@ PackedScene pack_scene(const Scene& scene) {
     put3(out.emission, m.emission);
     out.base_color_texture = m.base_color_texture;
     out.double_sided = m.double_sided ? 1 : 0;
+    out.alpha_cutoff = m.alpha_cutoff;
     p.materials.push_back(out);
   }
   for (const SceneTexture& t : scene.textures) {

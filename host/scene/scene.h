@@ -15,6 +15,7 @@ struct SceneMaterial {
   int base_color_texture = -1;
   glm::vec3 emission{0.0f};  // emissiveFactor x strength: linear radiance
   bool double_sided = false;
+  float alpha_cutoff = 0.0f;  // glTF alpha mode MASK: where alpha is below it the surface is a hole; 0: opaque
 };
 
 struct SceneTexture {
