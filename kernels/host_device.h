@@ -18,6 +18,9 @@ typedef float3 rc_float3;
 #define rc_fmin fmin
 #define rc_fmax fmax
 #define rc_fabs fabs
+#define rc_sqrt sqrt
+#define rc_cos cos
+#define rc_sin sin
 // Row `row` of three floats starting at p.
 #define rc_load3(row, p) vload3(row, p)
 #define rc_max_zero(v) max(v, (float3)(0.0f))
@@ -35,6 +38,9 @@ inline rc_float3 rc_cross(rc_float3 a, rc_float3 b) { return glm::cross(a, b); }
 inline float rc_fmin(float a, float b) { return std::fmin(a, b); }
 inline float rc_fmax(float a, float b) { return std::fmax(a, b); }
 inline float rc_fabs(float a) { return std::fabs(a); }
+inline float rc_sqrt(float a) { return std::sqrt(a); }
+inline float rc_cos(float a) { return std::cos(a); }
+inline float rc_sin(float a) { return std::sin(a); }
 inline rc_float3 rc_load3(int row, const float* p) { return rc_float3(p[3 * row], p[3 * row + 1], p[3 * row + 2]); }
 inline rc_float3 rc_max_zero(rc_float3 v) { return glm::max(v, rc_float3(0.0f)); }
 #endif
