@@ -17,26 +17,20 @@
 
 inline int hsh_index(int l, int m) { return l * (l + 1) + m; }
 
-// All order^2 basis functions at the direction (cos_theta, phi), cos_theta in [0, 1], into out[0 .. order^2 - 1].
-inline void hsh_basis(float cos_theta, float phi, int order, float* out) {
+// N_l^m = K_l^m P_l^m(2 cos(theta) - 1) for 0 <= m <= l < order, into out[hsh_index(l, m)] (the m < 0 slots are
+// left alone).
+inline void hsh_legendre(float cos_theta, int order, float* out) {
   float c = rc_fmin(rc_fmax(cos_theta, 0.0f), 1.0f);
   float x = 2.0f * c - 1.0f;
   // sqrt(1 - x^2) = 2 sqrt(c (1 - c)), from c itself: near the horizon x = 2c - 1 has lost c's low bits.
   float s = 2.0f * rc_sqrt(c * (1.0f - c));
-  // N_l^m = K_l^m P_l^m is sqrt(2) times the usual spherical-harmonic normalisation, so it follows the same
-  // recurrences: N_0^0 = 1 / sqrt(2 pi), N_m^m = sqrt((2m + 1) / (2m)) s N_{m-1}^{m-1}.
+  // N_l^m is sqrt(2) times the usual spherical-harmonic normalisation, so it follows the same recurrences:
+  // N_0^0 = 1 / sqrt(2 pi), N_m^m = sqrt((2m + 1) / (2m)) s N_{m-1}^{m-1}, and up in l for each m
+  // N_l = sqrt((4 l^2 - 1) / (l^2 - m^2)) (x N_{l-1} - sqrt(((l - 1)^2 - m^2) / (4 (l - 1)^2 - 1)) N_{l-2}),
+  // whose second term vanishes at l = m + 1.
   float pmm = 0.3989422804014327f;
-  float cos_m = 1.0f, sin_m = 0.0f;  // cos(m phi), sin(m phi) by the angle-sum recurrence
-  float cos_phi = rc_cos(phi), sin_phi = rc_sin(phi);
   for (int m = 0; m < order; ++m) {
-    if (m > 0) {
-      pmm *= rc_sqrt((2.0f * (float)m + 1.0f) / (2.0f * (float)m)) * s;
-      float c = cos_m * cos_phi - sin_m * sin_phi;
-      sin_m = sin_m * cos_phi + cos_m * sin_phi;
-      cos_m = c;
-    }
-    // Up in l for this m: N_l = sqrt((4 l^2 - 1) / (l^2 - m^2)) (x N_{l-1} - sqrt(((l - 1)^2 - m^2) /
-    // (4 (l - 1)^2 - 1)) N_{l-2}), whose second term vanishes at l = m + 1.
+    if (m > 0) pmm *= rc_sqrt((2.0f * (float)m + 1.0f) / (2.0f * (float)m)) * s;
     float p_prev = 0.0f, p = pmm;
     for (int l = m; l < order; ++l) {
       if (l > m) {
@@ -47,14 +41,80 @@ inline void hsh_basis(float cos_theta, float phi, int order, float* out) {
         p_prev = p;
         p = next;
       }
-      if (m == 0) {
-        out[hsh_index(l, 0)] = p;
-      } else {
-        out[hsh_index(l, m)] = 1.41421356f * p * cos_m;
-        out[hsh_index(l, -m)] = 1.41421356f * p * sin_m;
-      }
+      out[hsh_index(l, m)] = p;
     }
   }
+}
+
+// All order^2 basis functions at the direction (cos_theta, phi), cos_theta in [0, 1], into out[0 .. order^2 - 1].
+inline void hsh_basis(float cos_theta, float phi, int order, float* out) {
+  hsh_legendre(cos_theta, order, out);
+  float cos_phi = rc_cos(phi), sin_phi = rc_sin(phi);
+  float cos_m = cos_phi, sin_m = sin_phi;  // cos(m phi), sin(m phi) by the angle-sum recurrence
+  for (int m = 1; m < order; ++m) {
+    for (int l = m; l < order; ++l) {
+      float n = out[hsh_index(l, m)];
+      out[hsh_index(l, m)] = 1.41421356f * n * cos_m;
+      out[hsh_index(l, -m)] = 1.41421356f * n * sin_m;
+    }
+    float c = cos_m * cos_phi - sin_m * sin_phi;
+    sin_m = sin_m * cos_phi + cos_m * sin_phi;
+    cos_m = c;
+  }
+}
+
+// Projection of incident radiance from a record's M x N strata (equal in sin^2(theta) and phi, ALGORITHM.md
+// section 5), with the radiance taken constant in each stratum and the basis integrated over it exactly, so that a
+// constant projects exactly and no sample carries the 1 / cos(theta) weight of the cosine-weighted pdf (unbounded
+// variance at the horizon). Separable: lambda_l^m = sum_rows R_row^{l|m|} sum_columns L Phi_column^m, with
+// Phi the integral of sqrt(2) cos(m phi) (m > 0), 1 (m = 0) or sqrt(2) sin(|m| phi) (m < 0) over the column.
+
+// R_row^{lm} = integral over the row of N_l^m sin(theta) d theta = integral of N_l^m d(cos theta) over the row,
+// by 8-point Gauss-Legendre, into out[hsh_index(l, m)] for m >= 0.
+inline void hsh_row_integrals(int row, int rows, int order, float* out) {
+  const float node[4] = {0.1834346424956498f, 0.5255324099163290f, 0.7966664774136267f, 0.9602898564975363f};
+  const float weight[4] = {0.3626837833783620f, 0.3137066458778873f, 0.2223810344533745f, 0.1012285362903763f};
+  float cos_lo = rc_sqrt(1.0f - (float)row / (float)rows);
+  float cos_hi = rc_sqrt(rc_fmax(1.0f - (float)(row + 1) / (float)rows, 0.0f));
+  float mid = 0.5f * (cos_lo + cos_hi), half_span = 0.5f * (cos_lo - cos_hi);  // in cos(theta): d omega = d cos dphi
+  for (int l = 0; l < order; ++l)
+    for (int m = 0; m <= l; ++m) out[hsh_index(l, m)] = 0.0f;
+  float n[HSH_MAX_COEFFICIENTS];
+  for (int g = 0; g < 8; ++g) {
+    float t = g < 4 ? node[g] : -node[g - 4], w = weight[g < 4 ? g : g - 4] * half_span;
+    hsh_legendre(mid + half_span * t, order, n);
+    for (int l = 0; l < order; ++l)
+      for (int m = 0; m <= l; ++m) out[hsh_index(l, m)] += w * n[hsh_index(l, m)];
+  }
+}
+
+// Phi for column `column` of `columns`, into out[hsh_index(m, m)] style slots by m: out[order - 1 + m] for
+// m = -(order - 1) .. order - 1.
+inline void hsh_column_integrals(int column, int columns, int order, float* out) {
+  float phi0 = 2.0f * RC_PI * (float)column / (float)columns, phi1 = 2.0f * RC_PI * (float)(column + 1) / (float)columns;
+  out[order - 1] = phi1 - phi0;
+  for (int m = 1; m < order; ++m) {
+    float mf = (float)m;
+    out[order - 1 + m] = 1.41421356f * (rc_sin(mf * phi1) - rc_sin(mf * phi0)) / mf;
+    out[order - 1 - m] = 1.41421356f * (rc_cos(mf * phi0) - rc_cos(mf * phi1)) / mf;
+  }
+}
+
+// coefficients[hsh_index(l, m)] += R_row^{l|m|} * row_sums[order - 1 + m], where row_sums[order - 1 + m] =
+// sum over the row's columns of L * Phi_column^m.
+inline void hsh_add_row(float* coefficients, int order, const float* row_integrals, const float* row_sums) {
+  for (int l = 0; l < order; ++l)
+    for (int m = -l; m <= l; ++m)
+      coefficients[hsh_index(l, m)] += row_integrals[hsh_index(l, m < 0 ? -m : m)] * row_sums[order - 1 + m];
+}
+
+// The radiance the coefficients describe in the direction (cos_theta, phi).
+inline float hsh_evaluate(const float* coefficients, int order, float cos_theta, float phi) {
+  float basis[HSH_MAX_COEFFICIENTS];
+  hsh_basis(cos_theta, phi, order, basis);
+  float sum = 0.0f;
+  for (int k = 0; k < order * order; ++k) sum += coefficients[k] * basis[k];
+  return sum;
 }
 
 #endif

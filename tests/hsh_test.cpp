@@ -3,11 +3,14 @@
 // offered (by Gauss-Legendre quadrature, exact for these polynomials), and stable at theta = pi/2 and at the pole.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <vector>
 
+#include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "test_support.h"
 
@@ -154,6 +157,99 @@ TEST(Hsh, OrthonormalOverTheHemisphereUpToTheHighestOrder) {
   // float precision of the directions.
   EXPECT_LT(worst_reference, 1e-5) << "the definition or the quadrature is wrong";
   EXPECT_LT(worst_device, 1e-5) << "the device basis is not orthonormal";
+}
+
+// Projects L from M x N strata drawn as the record pass draws them (cosine-weighted and jittered within each stratum,
+// the same counter-based random numbers), with the stratum-integrated basis of kernels/hsh.h.
+template <typename Radiance>
+std::vector<float> project_strata(int order, int rows, int columns, Radiance radiance) {
+  std::vector<float> coefficients(size_t(order * order), 0.0f), row_integrals(HSH_MAX_COEFFICIENTS);
+  std::vector<float> row_sums(size_t(2 * order - 1)), phi_integrals(size_t(2 * order - 1));
+  uint32_t key = hash_u32(12345u);
+  for (int j = 0; j < rows; ++j) {
+    std::fill(row_sums.begin(), row_sums.end(), 0.0f);
+    for (int k = 0; k < columns; ++k) {
+      uint32_t s = uint32_t(j * columns + k);
+      float sin2 = (float(j) + random01(key, s, 0)) / float(rows);
+      float phi = 2.0f * RC_PI * (float(k) + random01(key, s, 1)) / float(columns);
+      float l = radiance(std::sqrt(1.0f - sin2), phi);
+      hsh_column_integrals(k, columns, order, phi_integrals.data());
+      for (size_t m = 0; m < row_sums.size(); ++m) row_sums[m] += l * phi_integrals[m];
+    }
+    hsh_row_integrals(j, rows, order, row_integrals.data());
+    hsh_add_row(coefficients.data(), order, row_integrals.data(), row_sums.data());
+  }
+  return coefficients;
+}
+
+// The exact coefficients of L (by the quadrature of the orthonormality test, in double).
+template <typename Radiance>
+std::vector<double> exact_coefficients(int order, Radiance radiance) {
+  HemisphereQuadrature q;
+  std::vector<double> c(size_t(order * order), 0.0);
+  for (size_t i = 0; i < q.weight.size(); ++i)
+    for (int l = 0; l < order; ++l)
+      for (int m = -l; m <= l; ++m)
+        c[size_t(hsh_index(l, m))] +=
+            q.weight[i] * radiance(q.cos_theta[i], q.phi[i]) * reference_hsh(l, m, q.cos_theta[i], q.phi[i]);
+  return c;
+}
+
+template <typename Radiance>
+double projection_error(int order, int rows, int columns, Radiance radiance) {
+  std::vector<double> want = exact_coefficients(order, radiance);
+  std::vector<float> got = project_strata(order, rows, columns, radiance);
+  double norm = 0.0, err = 0.0;
+  for (size_t k = 0; k < want.size(); ++k) {
+    norm += want[k] * want[k];
+    err += (got[k] - want[k]) * (got[k] - want[k]);
+  }
+  return std::sqrt(err / norm);
+}
+
+// Projection from a record's strata (issue 9): a constant projects exactly (all of it in H_0^0 = sqrt(2 pi)), where
+// weighting each ray by its stratum's solid angle left 17% error at 32 x 64; cos(theta) and a smooth off-axis lobe
+// converge as the strata multiply; the sum lambda H reproduces the lobe.
+TEST(Hsh, ProjectionFromRecordStrata) {
+  const int order = 6;
+  auto constant = [](float, float) { return 1.0f; };
+  auto cosine = [](float c, float) { return c; };
+  auto lobe = [](float c, float phi) {  // (omega . d)^8 about d at 30 degrees from the normal, zero behind it
+    float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+    float d = c * 0.8660254f + s * std::cos(phi - 1.0f) * 0.5f;
+    return d > 0.0f ? std::pow(d, 8.0f) : 0.0f;
+  };
+  std::vector<float> flat = project_strata(order, 8, 16, constant);
+  EXPECT_NEAR(flat[0], std::sqrt(2.0 * std::numbers::pi), 1e-5);
+  for (size_t k = 1; k < flat.size(); ++k) EXPECT_NEAR(flat[k], 0.0f, 2e-5f) << "coefficient " << k;
+  double cosine_coarse = projection_error(order, 8, 16, cosine), cosine_fine = projection_error(order, 32, 64, cosine);
+  double lobe_coarse = projection_error(order, 8, 16, lobe), lobe_default = projection_error(order, 16, 32, lobe);
+  double lobe_fine = projection_error(order, 32, 64, lobe);
+  // Measured (PoCL-independent, host arithmetic, fixed random numbers): cos(theta) 13.6% at 8 x 16 and 3.8% at
+  // 32 x 64; the lobe 6.9%, 2.5% and 0.58% at 8 x 16, 16 x 32, 32 x 64. The error is the radiance's variation
+  // inside a stratum around the jittered sample, first order in the stratum's size; the bounds leave 1.5x margin.
+  EXPECT_LT(cosine_fine, 0.06);
+  EXPECT_LT(cosine_fine, cosine_coarse / 2.0);
+  EXPECT_LT(lobe_default, 0.04);
+  EXPECT_LT(lobe_fine, 0.01);
+  EXPECT_LT(lobe_fine, lobe_default);
+  EXPECT_LT(lobe_default, lobe_coarse);
+  RecordProperty("errors", "cos " + std::to_string(cosine_coarse) + " " + std::to_string(cosine_fine) + "; lobe " +
+                               std::to_string(lobe_coarse) + " " + std::to_string(lobe_default) + " " +
+                               std::to_string(lobe_fine));
+  std::printf("projection error: cos(theta) %.2e (8x16) %.2e (32x64); lobe %.2e (8x16) %.2e (16x32) %.2e (32x64)\n",
+              cosine_coarse, cosine_fine, lobe_coarse, lobe_default, lobe_fine);
+
+  // The lobe rebuilt from the default 16 x 32 projection against the lobe rebuilt from the exact coefficients: the
+  // projection's own error, apart from the truncation to order 6 that both share.
+  std::vector<float> projected = project_strata(order, 16, 32, lobe);
+  std::vector<double> exact = exact_coefficients(order, lobe);
+  std::vector<float> exact_f(exact.begin(), exact.end());
+  for (float cos_theta : {0.95f, 0.7f, 0.4f, 0.1f})
+    for (float phi : {0.0f, 1.0f, 2.5f, 4.0f})
+      EXPECT_NEAR(hsh_evaluate(projected.data(), order, cos_theta, phi), hsh_evaluate(exact_f.data(), order, cos_theta, phi),
+                  0.02f)
+          << "cos(theta) " << cos_theta << ", phi " << phi;
 }
 
 }  // namespace
