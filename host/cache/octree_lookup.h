@@ -42,7 +42,9 @@ inline Interpolation interpolate(const RecordOctree& octree, const std::vector<C
   return out;
 }
 
-// Whether some record is usable at the pixel: the placement's coverage test.
+// Whether some record is usable at the pixel: the placement's coverage test. Not interpolate(...).weight > 0: this
+// stops evaluating weights at the first usable record (measured: sharing interpolate's loop made Sponza's octree
+// placement 45% slower).
 inline bool covered(const RecordOctree& octree, const std::vector<CacheRecord>& records, const PixelGeometry& g,
                     float accuracy) {
   bool any = false;
