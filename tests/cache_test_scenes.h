@@ -6,6 +6,7 @@
 #include "bvh/embree_scene.h"
 #include "cache/host_shading.h"
 #include "cl/device_scene.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 #include "test_support.h"
 
@@ -50,7 +51,7 @@ inline Scene floor_and_wall(bool occluder) {
   light.position = {0.2f, 0.0f, 3.0f};
   light.intensity = glm::vec3(4.0f);
   s.lights.push_back(light);
-  s.add_defaults_where_missing();
+  add_view_defaults(s, 0, {});
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include "bvh/embree_scene.h"
 #include "bvh/embree_device.h"
 #include "cl/device_scene.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/cornell_box.h"
@@ -55,7 +56,7 @@ Scene triangle_soup(const std::vector<glm::vec3>& positions) {
   s.source = "triangle soup";
   s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
   for (size_t i = 0; i + 2 < positions.size(); i += 3) s.add_triangle(positions[i], positions[i + 1], positions[i + 2], 0);
-  s.add_defaults_where_missing();
+  add_view_defaults(s, 0, {});
   return s;
 }
 

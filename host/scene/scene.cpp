@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "util/log.h"
 
 namespace rcsplat {
 
@@ -67,17 +66,6 @@ SceneLight Scene::default_light(const SceneCamera& view) const {
   float d = glm::length(light.position - 0.5f * (bounds_min() + bounds_max()));
   light.intensity = glm::vec3(std::max(d * d, 1e-6f) * 3.0f);
   return light;
-}
-
-void Scene::add_defaults_where_missing() {
-  if (cameras.empty()) {
-    cameras.push_back(default_camera());
-    log_warning(source + ": the scene has no camera; using a default camera looking at the scene's centre along -z");
-  }
-  if (lights.empty() && !has_emissive_triangles()) {
-    lights.push_back(default_light(cameras.front()));
-    log_warning(source + ": the scene has no light; using a default point light above the camera");
-  }
 }
 
 }  // namespace rcsplat

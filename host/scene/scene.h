@@ -71,12 +71,10 @@ struct Scene {
   void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint32_t material);
 
   float bounding_radius() const;
-  // What a scene without a camera or light gets: a camera looking at the centre along -z, and a point light a scene
-  // radius above the given view (render/camera.h add_view_defaults places it above the camera actually used).
+  // What a scene without a camera or light gets (render/camera.h add_view_defaults adds them, with a warning): a
+  // camera looking at the centre along -z, and a point light a scene radius above the camera actually used.
   SceneCamera default_camera() const;
   SceneLight default_light(const SceneCamera& view) const;
-  // A camera and a light for scenes that lack them (with a warning each), so that every scene renders something.
-  void add_defaults_where_missing();
 };
 
 }  // namespace rcsplat
