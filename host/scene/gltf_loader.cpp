@@ -162,14 +162,24 @@ class GltfReader {
 
   // bytes at offset within buffer view `view`, checked to lie inside it and its buffer.
   const unsigned char* view_range(int view, size_t offset, size_t bytes, const std::string& name) const {
-    if (view < 0 || size_t(view) >= model_.bufferViews.size()) fail(name + " refer to a missing buffer view");
-    const tinygltf::BufferView& v = model_.bufferViews[size_t(view)];
-    if (v.buffer < 0 || size_t(v.buffer) >= model_.buffers.size()) fail(name + " refer to a missing buffer");
-    const tinygltf::Buffer& buffer = model_.buffers[size_t(v.buffer)];
-    if (v.byteOffset > buffer.data.size() || v.byteLength > buffer.data.size() - v.byteOffset ||
-        offset > v.byteLength || bytes > v.byteLength - offset)
-      fail(name + " run past the end of buffer view " + std::to_string(view));
-    return buffer.data.data() + v.byteOffset + offset;
+    const tinygltf::BufferView& v = buffer_view(view, name);
+    if (offset > v.byteLength || bytes > v.byteLength - offset)
+      fail(name + ": reads past the end of buffer view " + std::to_string(view));
+    return model_.buffers[size_t(v.buffer)].data.data() + v.byteOffset + offset;
+  }
+
+  // Buffer view `index`, checked to exist and to lie inside its buffer.
+  const tinygltf::BufferView& buffer_view(int index, const std::string& name) const {
+    if (index < 0 || size_t(index) >= model_.bufferViews.size()) fail(name + " refers to a missing buffer view");
+    const tinygltf::BufferView& view = model_.bufferViews[size_t(index)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
+    const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
+    if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
+      fail(name + ": buffer view " + std::to_string(index) + " runs past the end of buffer " +
+           std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) +
+           " bytes): the buffer is truncated or missing");
+    }
+    return view;
   }
 
   std::vector<uint32_t> read_indices(int accessor_index, const std::string& what) const {
@@ -214,15 +224,8 @@ class GltfReader {
       if (acc.count > (size_t(1) << 26)) fail(name + " has no buffer view and an implausible count");
       return;
     }
-    if (size_t(acc.bufferView) >= model_.bufferViews.size()) fail(name + " refers to a missing buffer view");
-    const tinygltf::BufferView& view = model_.bufferViews[size_t(acc.bufferView)];
-    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
+    const tinygltf::BufferView& view = buffer_view(acc.bufferView, name);
     const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
-    if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
-      fail(name + ": buffer view " + std::to_string(acc.bufferView) + " runs past the end of buffer " +
-           std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) +
-           " bytes): the buffer is truncated or missing");
-    }
     size_t element = size_t(component_size) * size_t(components);
     *stride = view.byteStride ? view.byteStride : element;
     if (*stride < element) fail(name + ": byteStride is smaller than one element");
