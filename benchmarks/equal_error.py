@@ -40,6 +40,8 @@ def _render(args, extra, tmp, tag):
     exr, summary = os.path.join(tmp, tag + ".exr"), os.path.join(tmp, tag + ".json")
     cmd = [args.rcsplat, "render", "-q", "--width", str(args.width), "--height", str(args.height),
            "--light-samples", "1", "-o", exr, "--json", summary] + ([args.scene] if args.scene else []) + extra
+    if args.device:
+        cmd += ["--device", args.device]
     run(cmd)
     compare = os.path.join(tmp, tag + ".cmp.json")
     run([args.rcsplat, "compare", exr, args.reference, "--json", compare])
@@ -92,6 +94,7 @@ def main():
     p.add_argument("--start-spp", type=int, default=1, help="first path sample count (then doubled)")
     p.add_argument("--max-spp", type=int, default=4096)
     p.add_argument("--rcsplat", default=os.path.join(os.path.dirname(__file__), "..", "build", "rcsplat"))
+    p.add_argument("--device", help="OpenCL device (index or name substring); default: rcsplat's choice")
     p.add_argument("--json", help="also write the table as JSON")
     args = p.parse_args()
     table = []

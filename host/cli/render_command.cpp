@@ -97,7 +97,7 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
 int run_render(const RenderOptions& options) {
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
-    if (!is_output_format(out)) throw Error(out + ": unknown output format (use .exr or .png)");
+    if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
   }
   Scene scene = load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides);
   DeviceInfo device = select_device(options.device);

@@ -1,103 +1,82 @@
+// EXR layers and attributes on top of the build's EXR implementation (exr_file.h), and choosing an output format by
+// extension. PNG and the EXR implementations are in image_io_openimageio.cpp or image_io_without_openimageio.cpp.
 #include "image/image_io.h"
 
-#include <OpenImageIO/imageio.h>
-#include <unistd.h>
-
-#include <algorithm>
 #include <cmath>
-#include <filesystem>
 
+#include "image/exr_file.h"
 #include "util/error.h"
 #include "util/paths.h"
 
 namespace rcsplat {
-namespace fs = std::filesystem;
-namespace {
 
-// Writes through OpenImageIO to a temporary file beside the target, then renames it into place.
-void write_pixels(const std::string& path, OIIO::ImageSpec spec, const void* pixels) {
-  fs::path target(path);
-  fs::path temp = target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) +
-                                          target.extension().string());
-  auto out = OIIO::ImageOutput::create(temp.string());
-  if (!out) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
-  if (!out->open(temp.string(), spec)) throw Error(path + ": cannot open for writing: " + out->geterror());
-  bool ok = out->write_image(spec.format, pixels);
-  ok = out->close() && ok;
-  std::error_code ec;
-  if (!ok) {
-    fs::remove(temp, ec);
-    throw Error(path + ": writing failed: " + out->geterror());
-  }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw Error(path + ": cannot move the finished image into place: " + ec.message());
-  }
+std::string output_formats() { return have_openimageio() ? ".exr or .png" : ".exr (this build has no PNG)"; }
+
+bool is_output_format(const std::string& path) {
+  std::string ext = lower_extension(path);
+  return ext == ".exr" || (have_openimageio() && ext == ".png");
 }
-
-float tone_map(float x) {
-  // Narkowicz 2015, a fit of the ACES filmic curve.
-  x = std::max(x, 0.0f);
-  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-}
-
-float srgb_encode(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; }
-
-}  // namespace
 
 void write_exr(const std::string& path, int width, int height, const std::vector<ImageLayer>& layers,
                const ExrAttributes& attributes) {
-  size_t pixels = size_t(width) * size_t(height);
-  std::vector<std::string> names;
+  ExrPixels image{width, height, {}, {}, attributes};
+  image.text["Software"] = "rcsplat " RCSPLAT_VERSION;
   for (const ImageLayer& l : layers)
-    for (const std::string& c : l.channels) names.push_back(l.name.empty() ? c : l.name + "." + c);
-  std::vector<float> interleaved(pixels * names.size());
+    for (const std::string& c : l.channels) image.channels.push_back(l.name.empty() ? c : l.name + "." + c);
+  size_t pixels = size_t(width) * size_t(height), stride = image.channels.size();
+  image.values.resize(pixels * stride);
   size_t offset = 0;
   for (const ImageLayer& l : layers) {
     size_t n = l.channels.size();
     for (size_t i = 0; i < pixels; ++i)
       for (size_t c = 0; c < n; ++c) {
         float v = (*l.data)[i * n + c];
-        interleaved[i * names.size() + offset + c] = std::isfinite(v) ? v : 0.0f;  // every pixel finite
+        image.values[i * stride + offset + c] = std::isfinite(v) ? v : 0.0f;  // every pixel finite
       }
     offset += n;
   }
-  OIIO::ImageSpec spec(width, height, int(names.size()), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.attribute("compression", "zip");
-  spec.attribute("Software", "rcsplat " RCSPLAT_VERSION);
-  for (const auto& [name, value] : attributes) spec.attribute(name, value);
-  write_pixels(path, spec, interleaved.data());
+  write_exr_file(path, image);
 }
 
-void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops) {
-  float scale = std::exp2(exposure_stops);
-  std::vector<uint8_t> bytes(rgb.size());
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    float v = std::isfinite(rgb[i]) ? rgb[i] : 0.0f;
-    bytes[i] = uint8_t(std::lround(255.0f * srgb_encode(tone_map(v * scale))));
-  }
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  write_pixels(path, spec, bytes.data());
+std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height) {
+  ExrPixels image = read_exr_file(path);
+  width = image.width;
+  height = image.height;
+  std::string prefix = layer.empty() ? "" : layer + ".";
+  size_t stride = image.channels.size();
+  size_t channel[3] = {stride, stride, stride};
+  for (size_t c = 0; c < stride; ++c)
+    for (size_t k = 0; k < 3; ++k)
+      if (image.channels[c] == prefix + std::string(1, "RGB"[k])) channel[k] = c;
+  if (channel[0] == stride || channel[1] == stride || channel[2] == stride)
+    throw Error(path + ": has no " + prefix + "R, " + prefix + "G, " + prefix + "B channels");
+  std::vector<float> rgb(size_t(width) * size_t(height) * 3);
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
+    for (size_t k = 0; k < 3; ++k) rgb[i * 3 + k] = image.values[i * stride + channel[k]];
+  return rgb;
 }
 
-void write_png_display(const std::string& path, int width, int height, const std::vector<float>& rgb) {
-  std::vector<uint8_t> bytes(rgb.size());
-  for (size_t i = 0; i < rgb.size(); ++i)
-    bytes[i] = uint8_t(std::lround(255.0f * std::clamp(std::isfinite(rgb[i]) ? rgb[i] : 0.0f, 0.0f, 1.0f)));
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  write_pixels(path, spec, bytes.data());
+std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {
+  return read_exr_layer(path, "", width, height);
 }
 
-bool is_output_format(const std::string& path) {
-  std::string ext = lower_extension(path);
-  return ext == ".png" || ext == ".exr";
+ExrAttributes read_exr_attributes(const std::string& path) {
+  ExrAttributes out;
+  for (const auto& [name, value] : read_exr_file(path).text)
+    if (name.rfind("rcsplat:", 0) == 0) out[name] = value;
+  return out;
+}
+
+bool exr_has_layer(const std::string& path, const std::string& layer) {
+  for (const std::string& name : read_exr_file(path).channels)
+    if (name == layer + ".R") return true;
+  return false;
 }
 
 void write_render(const std::string& path, const RenderedImage& image, float exposure_stops,
                   const ExrAttributes& attributes) {
   std::string ext = lower_extension(path);
+  if (!is_output_format(path)) throw Error(path + ": unknown output format '" + ext + "' (use " + output_formats() + ")");
   if (ext == ".png") {
     write_png(path, image.width, image.height, image.color, exposure_stops);
   } else if (ext == ".exr") {
@@ -120,54 +99,7 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     add("records", {"Y"}, image.records_per_pixel);
     add("record_positions", {"Y"}, image.record_positions);
     write_exr(path, image.width, image.height, layers, attributes);
-  } else {
-    throw Error(path + ": unknown output format '" + ext + "' (use .exr or .png)");
   }
-}
-
-std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  width = spec.width;
-  height = spec.height;
-  std::string prefix = layer.empty() ? "" : layer + ".";
-  int channel[3] = {-1, -1, -1};
-  for (int c = 0; c < spec.nchannels; ++c)
-    for (int k = 0; k < 3; ++k)
-      if (spec.channelnames[size_t(c)] == prefix + std::string(1, "RGB"[k])) channel[k] = c;
-  if (channel[0] < 0 || channel[1] < 0 || channel[2] < 0)
-    throw Error(path + ": has no " + prefix + "R, " + prefix + "G, " + prefix + "B channels");
-  std::vector<float> all(size_t(width) * size_t(height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-    throw Error(path + ": cannot be read: " + in->geterror());
-  std::vector<float> rgb(size_t(width) * size_t(height) * 3);
-  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-    for (int k = 0; k < 3; ++k) rgb[i * 3 + size_t(k)] = all[i * size_t(spec.nchannels) + size_t(channel[k])];
-  return rgb;
-}
-
-std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {
-  return read_exr_layer(path, "", width, height);
-}
-
-ExrAttributes read_exr_attributes(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
-  ExrAttributes out;
-  for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
-    std::string name = p.name().string();
-    if (name.rfind("rcsplat:", 0) == 0) out[name] = p.get_string();
-  }
-  return out;
-}
-
-bool exr_has_layer(const std::string& path, const std::string& layer) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
-  for (const std::string& name : in->spec().channelnames)
-    if (name == layer + ".R") return true;
-  return false;
 }
 
 }  // namespace rcsplat

@@ -25,10 +25,15 @@ void write_png(const std::string& path, int width, int height, const std::vector
 // Display values in [0, 1] straight to 8 bits (false-colour images).
 void write_png_display(const std::string& path, int width, int height, const std::vector<float>& rgb);
 
+// False in a build without OpenImageIO (RCSPLAT_WITH_OPENIMAGEIO=OFF): then PNG functions throw rcsplat::Error, and
+// EXR files are written uncompressed and read only when uncompressed (exr_file.h).
+bool have_openimageio();
+// The extensions write_render accepts in this build, for messages (".exr or .png").
+std::string output_formats();
 // Whether write_render can write this path (.exr or .png, any case).
 bool is_output_format(const std::string& path);
 
-// Writes the render to a .exr or .png file chosen by the path's extension.
+// Writes the render to a .exr (all layers) or .png (tone-mapped) file chosen by the path's extension.
 void write_render(const std::string& path, const RenderedImage& image, float exposure_stops,
                   const ExrAttributes& attributes = {});
 // The string attributes of an EXR whose names start with "rcsplat:".

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Runs on a lent GPU machine from the repository root, with .gpu/ from bundle.sh carried. Sets up OpenCL on NVIDIA's
+# driver, then measures on the GPU and, as the anchor in the same run, on PoCL over the machine's own CPU cores:
+#   - the traversal benchmark (OpenCL against Embree on the same rays), Sponza;
+#   - timed renders (1024x768, a = 0.3 and 0.5) of the Cornell box, Sponza and Sibenik, RUNS each for medians, with a
+#     bit comparison of repeated runs and the GPU image's error against PoCL's;
+#   - benchmarks/equal_error.py on the GPU against GPU-rendered references (Cornell box and Sponza).
+# Writes $OUT/results.tar (summaries as JSON, the log).
+# Usage: RUNS=3 PARTS="bench renders equal_error" CPU_DEVICE=cpu bash benchmarks/gpu/device_run.sh
+# (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
+set -u
+G=$PWD/.gpu
+OUT=${OUT:-/tmp/out}
+runs=${RUNS:-3}
+parts=${PARTS:-bench renders equal_error}
+cpu=${CPU_DEVICE:-cpu}
+work=/tmp/rcsplat-gpu && rm -rf $work && mkdir -p $work/ocl $work/res $OUT
+for d in $G/*.deb; do dpkg -x "$d" $work/ocl; done
+tar -xJf $G/lib.tar.xz -C $work
+# NVIDIA's OpenCL library ships with the driver; the ICD loader finds it through this file.
+nv=$(find /usr/local/nvidia /usr/lib /usr/lib64 /lib -name 'libnvidia-opencl.so.1' 2>/dev/null | head -1)
+mkdir -p /etc/OpenCL/vendors && echo "$nv" > /etc/OpenCL/vendors/nvidia.icd
+export LD_LIBRARY_PATH=$work/ocl/usr/lib/x86_64-linux-gnu:$work/lib:${LD_LIBRARY_PATH:-}
+export RCSPLAT_CACHE_DIR=$work/kernel-cache
+R=$work/res
+exec > >(tee -a $R/log.txt) 2>&1
+trap 'tar -C $work -cf $OUT/results.tar res' EXIT
+echo "NVIDIA OpenCL library: ${nv:-none found}"
+nvidia-smi -L; lscpu | grep -E 'Model name|^CPU\(s\)'
+$work/ocl/usr/bin/clinfo -l
+rc=$G/rcsplat
+$rc devices
+S=$G/scenes/sponza_dabrovic/sponza.gltf
+B=$G/scenes/sibenik/sibenik_textured.gltf
+[[ $parts == *bench* ]] && for dev in NVIDIA $cpu; do $rc -q bench $S --device $dev --repeats 5 --json $R/bench_sponza_$dev.json; done
+
+render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
+  local dev=$1 tag=$2; shift 2
+  for i in $(seq 1 $runs); do
+    $rc -q render "$@" --device $dev --width 1024 --height 768 -o $work/$tag.run$i.exr --json $R/$tag.run$i.json \
+      >/dev/null || echo "FAILED: $tag $*"
+  done
+  for i in $(seq 2 $runs); do  # same input, same device: same bits
+    [ -f $work/$tag.run$i.exr ] || continue
+    cmp -s $work/$tag.run1.exr $work/$tag.run$i.exr && echo "$tag run $i: identical" || echo "$tag run $i: DIFFERS"
+    rm -f $work/$tag.run$i.exr
+  done
+}
+[[ $parts == *renders* ]] && for a in 0.3 0.5; do
+  for scene in cornell:"" sponza:$S sibenik:$B; do
+    tag=${scene%%:*}_a$a; file=${scene#*:}
+    render NVIDIA gpu_$tag $file --accuracy $a
+    render $cpu pocl_$tag $file --accuracy $a
+    $rc compare $work/gpu_$tag.run1.exr $work/pocl_$tag.run1.exr --json $R/gpu_vs_pocl_$tag.json | sed "s/^/$tag GPU vs PoCL: /"
+  done
+done
+rm -f $work/*.exr
+[[ $parts == *equal_error* ]] || exit 0
+
+# Equal error on the GPU (benchmarks/RESULTS.md has the same on PoCL): references first.
+timeout 120 $rc -q reference $S --device NVIDIA --width 1024 --height 768 --spp 8192 --light-samples 64 -o $work/spref.exr \
+  --json $R/sponza_reference.json
+timeout 60 $rc -q reference --device NVIDIA --width 1024 --height 768 --spp 16384 --light-samples 1024 -o $work/cbref.exr \
+  --json $R/cornell_reference.json
+timeout 150 python3 benchmarks/equal_error.py $S --rcsplat $rc --device NVIDIA --reference $work/spref.exr --accuracy 0.5 0.3 \
+  --start-spp 256 --max-spp 8192 --json $R/equal_error_sponza_gpu.json
+timeout 90 python3 benchmarks/equal_error.py --rcsplat $rc --device NVIDIA --reference $work/cbref.exr --accuracy 0.3 0.5 \
+  --start-spp 256 --max-spp 16384 --json $R/equal_error_cornell_gpu.json

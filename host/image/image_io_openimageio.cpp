@@ -1,0 +1,81 @@
+// The image formats through OpenImageIO: EXR (zip-compressed on writing, any EXR on reading) and PNG. Built when
+// RCSPLAT_WITH_OPENIMAGEIO is on (the default); image_io_without_openimageio.cpp replaces it otherwise.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "image/exr_file.h"
+#include "image/image_io.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+// Writes through OpenImageIO, atomically (util/atomic_file.h).
+void write_pixels(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+  write_file_atomically(path, [&](const std::string& temp) -> std::string {
+    auto out = OIIO::ImageOutput::create(temp);
+    if (!out) return "cannot write this image format: " + OIIO::geterror();
+    if (!out->open(temp, spec)) return "cannot open for writing: " + out->geterror();
+    bool ok = out->write_image(spec.format, pixels);
+    ok = out->close() && ok;
+    return ok ? "" : "writing failed: " + out->geterror();
+  });
+}
+
+float tone_map(float x) {
+  // Narkowicz 2015, a fit of the ACES filmic curve.
+  x = std::max(x, 0.0f);
+  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+
+float srgb_encode(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; }
+
+}  // namespace
+
+bool have_openimageio() { return true; }
+
+void write_exr_file(const std::string& path, const ExrPixels& image) {
+  OIIO::ImageSpec spec(image.width, image.height, int(image.channels.size()), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = image.channels;
+  spec.attribute("compression", "zip");
+  for (const auto& [name, value] : image.text) spec.attribute(name, value);
+  write_pixels(path, spec, image.values.data());
+}
+
+ExrPixels read_exr_file(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  ExrPixels image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.channelnames;
+  image.values.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
+    throw Error(path + ": cannot be read: " + in->geterror());
+  for (const OIIO::ParamValue& p : spec.extra_attribs)
+    if (p.type() == OIIO::TypeDesc::STRING) image.text[p.name().string()] = p.get_string();
+  return image;
+}
+
+void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops) {
+  float scale = std::exp2(exposure_stops);
+  std::vector<uint8_t> bytes(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    float v = std::isfinite(rgb[i]) ? rgb[i] : 0.0f;
+    bytes[i] = uint8_t(std::lround(255.0f * srgb_encode(tone_map(v * scale))));
+  }
+  write_pixels(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), bytes.data());
+}
+
+void write_png_display(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  std::vector<uint8_t> bytes(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i)
+    bytes[i] = uint8_t(std::lround(255.0f * std::clamp(std::isfinite(rgb[i]) ? rgb[i] : 0.0f, 0.0f, 1.0f)));
+  write_pixels(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), bytes.data());
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,13 @@
+// Output files appear only when complete: each writer writes a temporary file beside the target and renames it into
+// place, so an interrupted or failed run never leaves a truncated image that looks like a result.
+#pragma once
+#include <functional>
+#include <string>
+
+namespace rcsplat {
+
+// Calls write(temporary_path); on success renames the temporary file to path. write returns "" on success or an error
+// message, which is thrown as rcsplat::Error naming path (the temporary file is removed).
+void write_file_atomically(const std::string& path, const std::function<std::string(const std::string&)>& write);
+
+}  // namespace rcsplat
