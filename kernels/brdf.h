@@ -1,0 +1,142 @@
+// The one BRDF of the renderer: glTF 2.0's metallic-roughness model (specification, appendix B), a Lambertian base
+// and a GGX microfacet lobe with height-correlated Smith masking-shadowing and Schlick's Fresnel:
+//   f = (1 - metallic) * dielectric + metallic * metal,
+//   dielectric = (1 - F_d(n.v)) * base / pi + F_d(v.h) * spec,   F_d(c) = specular * (0.04 + 0.96 (1 - c)^5),
+//   metal = (base + (1 - base) (1 - v.h)^5) * spec,    spec = D(h) V(l, v),
+//   D = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2),          a = roughness^2,
+//   V = G2 / (4 n.l n.v) = 0.5 / (n.l sqrt((n.v)^2 (1 - a^2) + a^2) + n.v sqrt((n.l)^2 (1 - a^2) + a^2)).
+// The one departure from appendix B: the diffuse base is weighted by the Fresnel of the view angle, not of each
+// microfacet (v.h). Appendix B's per-microfacet weight reflects more than it receives at grazing view (a white
+// dielectric's albedo reaches 1.37 at cos 0.17, tests/brdf_test.cpp); the view-angle weight keeps the white furnace
+// at or below 1, and makes the diffuse part a constant times base / pi at each pixel, which an irradiance cache needs.
+// `specular` is KHR_materials_specular's factor (1 by default); 0 with metallic 0 leaves exactly base / pi, the
+// Lambertian surfaces rcsplat shaded before. Vectors are in the local frame of the shading normal (+z).
+// Sampling mixes a cosine lobe and GGX's distribution of visible normals (Heitz 2018), chosen by their estimated
+// weights; brdf_pdf is the mixture's density, so callers weigh light samples against it (multiple importance).
+#ifndef RCSPLAT_BRDF_H
+#define RCSPLAT_BRDF_H
+#include "host_device.h"
+
+#define DIELECTRIC_F0 0.04f
+// a = roughness^2 is kept above this: a smaller lobe is a near-mirror whose peak float cannot hold (D ~ 1 / a^2).
+#define MIN_GGX_ALPHA 1.0e-3f
+
+typedef struct {
+  float3 base_color;
+  float metallic;
+  float alpha;     // GGX a = roughness^2, at least MIN_GGX_ALPHA
+  float specular;  // weight of the dielectric's specular layer, 0..1
+} BrdfInputs;
+
+inline BrdfInputs brdf_inputs(float3 base_color, float metallic, float roughness, float specular) {
+  BrdfInputs in;
+  in.base_color = base_color;
+  in.metallic = clamp(metallic, 0.0f, 1.0f);
+  in.alpha = fmax(roughness * roughness, MIN_GGX_ALPHA);
+  in.specular = clamp(specular, 0.0f, 1.0f);
+  return in;
+}
+
+inline float schlick_weight(float v_dot_h) {
+  float m = clamp(1.0f - v_dot_h, 0.0f, 1.0f);
+  float m2 = m * m;
+  return m2 * m2 * m;
+}
+
+// D for the unit half vector h. (n.h)^2 (a^2 - 1) + 1 is written as sin^2 + cos^2 a^2 with sin^2 = h.x^2 + h.y^2: the
+// textbook form cancels near the peak of a sharp lobe, where D is largest (1% error at roughness 0.05 in float).
+inline float ggx_d(float3 h, float a2) {
+  float d = h.x * h.x + h.y * h.y + h.z * h.z * a2;
+  return a2 / (RC_PI * d * d);
+}
+
+// Smith's G1 for GGX (the masking of one direction).
+inline float ggx_g1(float n_dot_v, float a2) {
+  return 2.0f * n_dot_v / (n_dot_v + sqrt(a2 + (1.0f - a2) * n_dot_v * n_dot_v));
+}
+
+// V = G2 / (4 n.l n.v), height-correlated.
+inline float ggx_visibility(float n_dot_l, float n_dot_v, float a2) {
+  float gv = n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
+  float gl = n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
+  return 0.5f / (gv + gl);
+}
+
+// The dielectric's diffuse weight 1 - F_d(n.v) (without the (1 - metallic) factor).
+inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
+  return 1.0f - in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * schlick_weight(n_dot_v));
+}
+
+// f(wo, wi), both in the local frame; zero unless both lie above the surface.
+inline float3 brdf_eval(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
+  float3 h = normalize(wo + wi);
+  float v_dot_h = fmax(dot(wo, h), 0.0f);
+  float a2 = in.alpha * in.alpha;
+  float spec = ggx_d(h, a2) * ggx_visibility(wi.z, wo.z, a2);
+  float fw = schlick_weight(v_dot_h);
+  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
+  float3 dielectric = brdf_diffuse_weight(in, wo.z) * RC_INV_PI * in.base_color + (float3)(fd * spec);
+  float3 metal = (in.base_color + ((float3)(1.0f) - in.base_color) * fw) * spec;
+  return (1.0f - in.metallic) * dielectric + in.metallic * metal;
+}
+
+// Probability of sampling the GGX lobe rather than the cosine lobe, from the lobes' weights seen from wo.
+inline float brdf_specular_probability(BrdfInputs in, float3 wo) {
+  float fw = schlick_weight(wo.z);
+  float gray = (in.base_color.x + in.base_color.y + in.base_color.z) * (1.0f / 3.0f);
+  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
+  float spec = (1.0f - in.metallic) * fd + in.metallic * (gray + (1.0f - gray) * fw);
+  float diffuse = (1.0f - in.metallic) * brdf_diffuse_weight(in, wo.z) * gray;
+  if (spec <= 0.0f) return 0.0f;
+  if (diffuse <= 0.0f) return 1.0f;
+  return clamp(spec / (spec + diffuse), 0.1f, 0.9f);  // neither lobe starved where both contribute
+}
+
+// Density of brdf_sample's directions (solid angle) at wi.
+inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  float p_spec = brdf_specular_probability(in, wo);
+  float pdf = (1.0f - p_spec) * wi.z * RC_INV_PI;
+  if (p_spec > 0.0f) {
+    float3 h = normalize(wo + wi);
+    float a2 = in.alpha * in.alpha;
+    // Visible normals: D(h) G1(wo) (wo.h) / wo.z, times the reflection's Jacobian 1 / (4 wo.h).
+    pdf += p_spec * ggx_d(h, a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
+  }
+  return pdf;
+}
+
+// A direction drawn from the visible normals of the GGX lobe (Heitz 2018), for uniform (u1, u2).
+inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
+  float3 vh = normalize((float3)(alpha * wo.x, alpha * wo.y, wo.z));
+  float len2 = vh.x * vh.x + vh.y * vh.y;
+  float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
+  float3 t2 = cross(vh, t1);
+  float r = sqrt(u1), phi = 2.0f * RC_PI * u2;
+  float p1 = r * cos(phi), p2 = r * sin(phi);
+  float s = 0.5f * (1.0f + vh.z);
+  p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
+  float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
+  return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
+}
+
+// Draws wi for wo from (u_lobe, u1, u2). Returns f cos(wi) / pdf, or zero when the direction falls below the surface;
+// *pdf is brdf_pdf(wo, wi).
+inline float3 brdf_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, float u2, float3* wi, float* pdf) {
+  *pdf = 0.0f;
+  if (wo.z <= 0.0f) return (float3)(0.0f);
+  if (u_lobe < brdf_specular_probability(in, wo)) {
+    float3 h = ggx_sample_visible_normal(wo, in.alpha, u1, u2);
+    *wi = 2.0f * dot(wo, h) * h - wo;
+  } else {
+    float sin_t = sqrt(u1), phi = 2.0f * RC_PI * u2;
+    *wi = (float3)(cos(phi) * sin_t, sin(phi) * sin_t, sqrt(fmax(1.0f - u1, 0.0f)));
+  }
+  if (wi->z <= 0.0f) return (float3)(0.0f);
+  *pdf = brdf_pdf(in, wo, *wi);
+  if (!(*pdf > 0.0f)) return (float3)(0.0f);
+  return brdf_eval(in, wo, *wi) * (wi->z / *pdf);
+}
+
+#endif
