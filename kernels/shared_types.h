@@ -191,6 +191,27 @@ typedef struct {
   rc_uint seed;
 } PathParams;
 
+// A material's BRDF parameters (kernels/brdf.h), for the BRDF's HSH table (kernels/brdf_table.cl).
+typedef struct {
+  float base_color[3];
+  float metallic;
+  float roughness;
+  float specular;  // KHR_materials_specular's factor, 1 by default
+  float pad[2];
+} BrdfMaterial;
+
+// The BRDF table's layout: per material, angle_count view angles (cos(theta_o) at the bin centres (i + 0.5) /
+// angle_count), each projected by chunk_count work items of samples_per_chunk BRDF samples.
+typedef struct {
+  rc_uint material_count;
+  rc_uint angle_count;
+  rc_uint chunk_count;
+  rc_uint samples_per_chunk;
+  rc_uint order;  // HSH order n: n^2 coefficients a colour channel
+  rc_uint seed;
+  rc_uint pad[2];
+} BrdfTableParams;
+
 // A batch of records: candidates[0 .. candidate_count - 1] become records first_record and up.
 typedef struct {
   HemisphereParams hemisphere;
@@ -238,6 +259,8 @@ static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 32);
+static_assert(sizeof(BrdfMaterial) == 32);
+static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 16);
 static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 16);

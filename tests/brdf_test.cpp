@@ -7,12 +7,16 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
+#include <string>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <vector>
 
 #include "cl/named_kernel.h"
+#include "kernels/hsh.h"
+#include "passes/brdf_table_pass.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -259,6 +263,89 @@ TEST(Brdf, WithoutItsSpecularLayerTheModelIsLambertian) {
   gpu.queue().finish();
   std::vector<float> device = gpu.download<float>(out, 4);
   for (size_t c = 0; c < 3; ++c) EXPECT_EQ(device[c], float(cases[c]) * 0.318309886183791f);
+}
+
+}  // namespace
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+BrdfMaterial table_material(double r, double g, double b, double metallic, double roughness, double specular) {
+  BrdfMaterial m{};
+  m.base_color[0] = float(r);
+  m.base_color[1] = float(g);
+  m.base_color[2] = float(b);
+  m.metallic = float(metallic);
+  m.roughness = float(roughness);
+  m.specular = float(specular);
+  return m;
+}
+
+// The BRDF's HSH table (passes/brdf_table_pass.h). A white Lambertian surface has known coefficients: f cos = cos / pi
+// projects onto H_0^0 and H_1^0 alone (1 / sqrt(2 pi) and sqrt(3 / (2 pi)) / 3), and those two hold all of its
+// energy. For every material, sqrt(2 pi) F_0^0 is the directional albedo (constant incident radiance 1 has the single
+// coefficient sqrt(2 pi)), checked against the quadrature above.
+TEST(BrdfTable, CoefficientsMatchKnownProjectionsAndAlbedos) {
+  std::vector<BrdfMaterial> materials = {table_material(1, 1, 1, 0, 1, 0), table_material(1, 1, 1, 0, 0.5, 1),
+                                         table_material(0.9, 0.6, 0.2, 1, 0.3, 1)};
+  const int angles = 4;
+  const unsigned samples = 65536;
+  BrdfTablePass pass(test::gpu());
+  BrdfTable table = pass.compute(materials, HSH_MAX_ORDER, angles, samples);
+  // Cosine sampling of a white Lambertian surface weighs every sample 1: a coefficient's noise is that of H_k's mean,
+  // whose standard deviation is at most sqrt(1 / pi) / sqrt(samples).
+  const double tolerance = 5.0 * std::sqrt(1.0 / kPi) / std::sqrt(double(samples));
+  for (int a = 0; a < angles; ++a)
+    for (int l = 0; l < HSH_MAX_ORDER; ++l)
+      for (int m = -l; m <= l; ++m) {
+        double want = 0.0;
+        if (l == 0 && m == 0) want = 1.0 / std::sqrt(2.0 * kPi);
+        if (l == 1 && m == 0) want = std::sqrt(3.0 / (2.0 * kPi)) / 3.0;
+        ASSERT_NEAR(table.coefficient(0, a, hsh_index(l, m), 0), want, tolerance) << "l " << l << " m " << m;
+      }
+  EXPECT_NEAR(table.captured_energy(0, 1, 2, 0), 1.0, 0.02);
+  for (size_t i = 1; i < materials.size(); ++i)
+    for (int a = 0; a < angles; ++a) {
+      double cos_o = (a + 0.5) / angles;
+      Material m{{materials[i].base_color[0], materials[i].base_color[1], materials[i].base_color[2]},
+                 materials[i].metallic, materials[i].roughness, materials[i].specular};
+      std::array<double, 3> albedo = reference_albedo(m, direction(float(cos_o), 0.0));
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(std::sqrt(2.0 * kPi) * table.coefficient(i, a, 0, c), albedo[size_t(c)], 0.02 * albedo[size_t(c)])
+            << "material " << i << " cos(theta_o) " << cos_o << " channel " << c;
+    }
+  // Same seed, same bits.
+  BrdfTable again = pass.compute(materials, HSH_MAX_ORDER, angles, samples);
+  EXPECT_EQ(again.coefficients, table.coefficients);
+}
+
+// How much of a white metal's lobe (view at 60 degrees) each order holds: rises with the order, all of a rough lobe
+// and too little of a sharp one. The measured table is in docs/NOTES.md; it sets where HSH stops and path tracing
+// takes over (issue 9, items 4 and 5).
+TEST(BrdfTable, SharpLobesNeedHigherOrders) {
+  std::vector<double> roughness = {0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
+  std::vector<BrdfMaterial> materials;
+  for (double r : roughness) materials.push_back(table_material(1, 1, 1, 1, r, 1));
+  BrdfTablePass pass(test::gpu());
+  const int angles = 4;  // bin 1: cos(theta_o) = 0.375, about 68 degrees
+  BrdfTable table = pass.compute(materials, HSH_MAX_ORDER, angles, 16384);
+  std::string report;
+  for (size_t i = 0; i < roughness.size(); ++i) {
+    report += "roughness " + std::to_string(roughness[i]).substr(0, 4) + ":";
+    double previous = 0.0;
+    for (int n = 1; n <= HSH_MAX_ORDER; ++n) {
+      double captured = table.captured_energy(i, 1, n, 0);
+      report += " " + std::to_string(captured).substr(0, 5);
+      EXPECT_GE(captured, previous - 1e-6) << "roughness " << roughness[i] << " order " << n;
+      previous = captured;
+    }
+    report += "\n";
+  }
+  EXPECT_GT(table.captured_energy(6, 1, 3, 0), 0.95) << report;  // roughness 1 at order 3
+  EXPECT_LT(table.captured_energy(0, 1, HSH_MAX_ORDER, 0), 0.5) << report;  // roughness 0.05 even at order 10
+  RecordProperty("captured_energy", report);
+  std::printf("%s", report.c_str());
 }
 
 }  // namespace

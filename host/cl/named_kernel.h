@@ -48,6 +48,8 @@ RCSPLAT_CL_TYPE_NAME(RecordBatchParams, "RecordBatchParams")
 RCSPLAT_CL_TYPE_NAME(PlacementParams, "PlacementParams")
 RCSPLAT_CL_TYPE_NAME(SplatParams, "SplatParams")
 RCSPLAT_CL_TYPE_NAME(RayCastParams, "RayCastParams")
+RCSPLAT_CL_TYPE_NAME(BrdfMaterial, "BrdfMaterial")
+RCSPLAT_CL_TYPE_NAME(BrdfTableParams, "BrdfTableParams")
 #undef RCSPLAT_CL_TYPE_NAME
 
 inline size_t round_up(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }

@@ -1,0 +1,64 @@
+#include "passes/brdf_table_pass.h"
+
+#include <algorithm>
+
+#include "kernels/hsh.h"
+#include "util/error.h"
+
+namespace rcsplat {
+
+float BrdfTable::coefficient(size_t material, int angle, int k, int channel) const {
+  size_t row = material * size_t(angle_count) + size_t(angle);
+  return coefficients[(row * size_t(order * order) + size_t(k)) * 3 + size_t(channel)];
+}
+
+double BrdfTable::captured_energy(size_t material, int angle, int order_used, int channel) const {
+  double sum = 0.0;
+  for (int k = 0; k < std::min(order_used, order) * std::min(order_used, order); ++k) {
+    double c = coefficient(material, angle, k, channel);
+    sum += c * c;
+  }
+  double e = energy[(material * size_t(angle_count) + size_t(angle)) * 3 + size_t(channel)];
+  return e > 0.0 ? sum / e : 1.0;
+}
+
+BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel("brdf_table.cl", "project_brdf")) {}
+
+BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int order, int angle_count,
+                                 unsigned samples, unsigned seed) {
+  if (order < 1 || order > HSH_MAX_ORDER) throw Error("HSH order must be 1.." + std::to_string(HSH_MAX_ORDER));
+  if (angle_count < 1 || samples < 1) throw Error("BRDF table: need at least one view angle and one sample");
+  BrdfTable table;
+  table.order = order;
+  table.angle_count = angle_count;
+  size_t n2 = size_t(order) * size_t(order), rows = materials.size() * size_t(angle_count);
+  table.coefficients.assign(rows * n2 * 3, 0.0f);
+  table.energy.assign(rows * 3, 0.0f);
+  if (materials.empty()) return table;
+
+  BrdfTableParams params{};
+  params.material_count = cl_uint(materials.size());
+  params.angle_count = cl_uint(angle_count);
+  params.samples_per_chunk = std::min(samples, 1024u);
+  params.chunk_count = (samples + params.samples_per_chunk - 1) / params.samples_per_chunk;
+  params.order = cl_uint(order);
+  params.seed = seed;
+  size_t items = rows * params.chunk_count, stride = 3 * n2 + 3;
+  cl::Buffer input = gpu_.upload(materials);
+  cl::Buffer partial(gpu_.context(), CL_MEM_WRITE_ONLY, items * stride * sizeof(float));
+  kernel_.set_buffer<BrdfMaterial>("materials", input).set("params", params).set_buffer<cl_float>("partial", partial);
+  kernel_.launch(items, 16);
+  gpu_.queue().finish();
+  std::vector<float> sums = gpu_.download<float>(partial, items * stride);
+  // Chunks are equal in size: their means average in a fixed order, the same bits on every run.
+  for (size_t row = 0; row < rows; ++row) {
+    std::vector<double> total(stride, 0.0);
+    for (size_t chunk = 0; chunk < params.chunk_count; ++chunk)
+      for (size_t i = 0; i < stride; ++i) total[i] += sums[(row * params.chunk_count + chunk) * stride + i];
+    for (size_t i = 0; i < 3 * n2; ++i) table.coefficients[row * n2 * 3 + i] = float(total[i] / params.chunk_count);
+    for (size_t c = 0; c < 3; ++c) table.energy[row * 3 + c] = float(total[3 * n2 + c] / params.chunk_count);
+  }
+  return table;
+}
+
+}  // namespace rcsplat
