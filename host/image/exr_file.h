@@ -16,13 +16,15 @@ struct ExrPixels {
   std::map<std::string, std::string> text;  // string attributes ("rcsplat:path_samples" and the like)
 };
 
-// The build's EXR implementation. Both throw rcsplat::Error naming the file.
+// The build's EXR implementation. All throw rcsplat::Error naming the file.
 void write_exr_file(const std::string& path, const ExrPixels& image);
 ExrPixels read_exr_file(const std::string& path);
+// Size, channel names and attributes without the pixels (values stays empty).
+ExrPixels read_exr_header(const std::string& path);
 
 // rcsplat's own: writes uncompressed float scanlines (channels in the alphabetical order the format requires); reads
 // single-part scanline files of that kind (FLOAT channels, no compression) and rejects others, saying why.
 void write_uncompressed_exr(const std::string& path, const ExrPixels& image);
-ExrPixels read_uncompressed_exr(const std::string& path);
+ExrPixels read_uncompressed_exr(const std::string& path, bool with_pixels = true);
 
 }  // namespace rcsplat

@@ -148,7 +148,7 @@ void write_uncompressed_exr(const std::string& path, const ExrPixels& image) {
   });
 }
 
-ExrPixels read_uncompressed_exr(const std::string& path) {
+ExrPixels read_uncompressed_exr(const std::string& path, bool with_pixels) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot be read");
   std::ostringstream contents;
@@ -190,6 +190,7 @@ ExrPixels read_uncompressed_exr(const std::string& path) {
     }
   }
   if (!have_window || !have_channels || image.channels.empty()) r.fail("no channels or no data window in the header");
+  if (!with_pixels) return image;
 
   size_t n_channels = image.channels.size();
   size_t row_floats = size_t(image.width) * n_channels;

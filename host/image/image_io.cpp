@@ -62,13 +62,13 @@ std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height
 
 ExrAttributes read_exr_attributes(const std::string& path) {
   ExrAttributes out;
-  for (const auto& [name, value] : read_exr_file(path).text)
+  for (const auto& [name, value] : read_exr_header(path).text)
     if (name.rfind("rcsplat:", 0) == 0) out[name] = value;
   return out;
 }
 
 bool exr_has_layer(const std::string& path, const std::string& layer) {
-  for (const std::string& name : read_exr_file(path).channels)
+  for (const std::string& name : read_exr_header(path).channels)
     if (name == layer + ".R") return true;
   return false;
 }

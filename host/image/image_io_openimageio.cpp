@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "image/exr_file.h"
 #include "image/image_io.h"
@@ -45,19 +46,36 @@ void write_exr_file(const std::string& path, const ExrPixels& image) {
   write_pixels(path, spec, image.values.data());
 }
 
-ExrPixels read_exr_file(const std::string& path) {
+namespace {
+
+// Opens path and copies its header into *image; the caller reads the pixels if it wants them.
+std::unique_ptr<OIIO::ImageInput> open_exr(const std::string& path, ExrPixels* image) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw Error(path + ": cannot be read: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  ExrPixels image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.channelnames;
-  image.values.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
-    throw Error(path + ": cannot be read: " + in->geterror());
+  image->width = spec.width;
+  image->height = spec.height;
+  image->channels = spec.channelnames;
   for (const OIIO::ParamValue& p : spec.extra_attribs)
-    if (p.type() == OIIO::TypeDesc::STRING) image.text[p.name().string()] = p.get_string();
+    if (p.type() == OIIO::TypeDesc::STRING) image->text[p.name().string()] = p.get_string();
+  return in;
+}
+
+}  // namespace
+
+ExrPixels read_exr_header(const std::string& path) {
+  ExrPixels image;
+  open_exr(path, &image);
+  return image;
+}
+
+ExrPixels read_exr_file(const std::string& path) {
+  ExrPixels image;
+  auto in = open_exr(path, &image);
+  int channels = int(image.channels.size());
+  image.values.resize(size_t(image.width) * size_t(image.height) * size_t(channels));
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.values.data()))
+    throw Error(path + ": cannot be read: " + in->geterror());
   return image;
 }
 

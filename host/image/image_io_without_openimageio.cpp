@@ -10,6 +10,7 @@ bool have_openimageio() { return false; }
 
 void write_exr_file(const std::string& path, const ExrPixels& image) { write_uncompressed_exr(path, image); }
 ExrPixels read_exr_file(const std::string& path) { return read_uncompressed_exr(path); }
+ExrPixels read_exr_header(const std::string& path) { return read_uncompressed_exr(path, false); }
 
 void write_png(const std::string& path, int, int, const std::vector<float>&, float) {
   throw Error(path + ": PNG needs OpenImageIO, and this rcsplat was built without it (RCSPLAT_WITH_OPENIMAGEIO=OFF)");
