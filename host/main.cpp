@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
                              shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));
   render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
       ->check(CLI::Range(1u, 1u << 20));
+  render_cmd->add_option("--glossy-samples", render.settings.glossy_samples,
+                         "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
+                         "(stratified; default 16)")
+      ->check(CLI::Range(1u, 1u << 16));
   render_cmd->add_flag("--stratified", render.settings.path.stratified,
                        "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
 

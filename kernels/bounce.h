@@ -6,10 +6,13 @@
 #include "lighting.h"
 #include "scene_args.h"
 #include "surface.h"
+#if HAS_SPECULAR_BRDF
+#include "reflected_light.h"
+#endif
 
-// Radiance arriving at origin from direction dir after one reflection; (u, v) pick the light sample at the hit.
-// *distance is the hit distance, INFINITY on a miss.
-inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float* distance,
+// Radiance arriving at origin from direction dir after one reflection; (u, v) pick the light sample at the hit, and
+// u_lobe the lobe of its BRDF sample where the hit is glossy. *distance is the hit distance, INFINITY on a miss.
+inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe, float* distance,
                               uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
@@ -25,18 +28,14 @@ inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, fl
   float3 ns = back ? -s.shading_normal : s.shading_normal;
   if (dot(ns, ng) <= 0.0f) ns = ng;
   float3 albedo = surface_albedo(materials, textures, texels, &s);
+#if HAS_SPECULAR_BRDF
+  SurfaceLobe lobe = surface_lobe(materials, textures, texels, &s);
+  if (lobe.lobe != LOBE_NONE)
+    return direct_reflected(SCENE, surface_brdf(albedo, lobe), lobe.lobe, s.position, ns, ng, -dir, u, v, u_lobe, rays);
+#endif
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
                                s.position, ns, ng, u, v, rays);
   return finite_or_zero(albedo * RC_INV_PI * e);
-}
-
-// An orthonormal frame around the unit vector n (Duff et al. 2017, branch-free).
-inline void tangent_frame(float3 n, float3* t, float3* b) {
-  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
-  float a = -1.0f / (sign + n.z);
-  float c = n.x * n.y * a;
-  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
 }
 
 #endif

@@ -67,18 +67,41 @@ inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
   return 1.0f - in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * schlick_weight(n_dot_v));
 }
 
+// The specular lobe's Fresnel colour at v.h: the dielectric layer's and the metal's, mixed by metallic.
+inline float3 brdf_specular_fresnel(BrdfInputs in, float v_dot_h) {
+  float fw = schlick_weight(v_dot_h);
+  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
+  float3 metal = in.base_color + ((float3)(1.0f) - in.base_color) * fw;
+  return (1.0f - in.metallic) * (float3)(fd) + in.metallic * metal;
+}
+
+// The diffuse base alone: (1 - metallic) (1 - F_d(n.v)) base / pi, a constant over wi.
+inline float3 brdf_eval_diffuse(BrdfInputs in, float n_dot_v) {
+  return ((1.0f - in.metallic) * brdf_diffuse_weight(in, n_dot_v) * RC_INV_PI) * in.base_color;
+}
+
+// The specular lobe alone, F D V; zero unless both directions lie above the surface.
+inline float3 brdf_eval_specular(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
+  float3 h = normalize(wo + wi);
+  float a2 = in.alpha * in.alpha;
+  return brdf_specular_fresnel(in, fmax(dot(wo, h), 0.0f)) * (ggx_d(h, a2) * ggx_visibility(wi.z, wo.z, a2));
+}
+
 // f(wo, wi), both in the local frame; zero unless both lie above the surface.
 inline float3 brdf_eval(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
+  return brdf_eval_diffuse(in, wo.z) + brdf_eval_specular(in, wo, wi);
+}
+
+// f_specular cos(wi) / (density of sampling wi through the visible normals) = F G2 / G1(wo), for wi the reflection of
+// wo about a visible normal: the weight of one sample of the lobe alone.
+inline float3 brdf_specular_weight(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
   float3 h = normalize(wo + wi);
-  float v_dot_h = fmax(dot(wo, h), 0.0f);
   float a2 = in.alpha * in.alpha;
-  float spec = ggx_d(h, a2) * ggx_visibility(wi.z, wo.z, a2);
-  float fw = schlick_weight(v_dot_h);
-  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
-  float3 dielectric = brdf_diffuse_weight(in, wo.z) * RC_INV_PI * in.base_color + (float3)(fd * spec);
-  float3 metal = (in.base_color + ((float3)(1.0f) - in.base_color) * fw) * spec;
-  return (1.0f - in.metallic) * dielectric + in.metallic * metal;
+  float g2_over_g1 = 4.0f * wi.z * wo.z * ggx_visibility(wi.z, wo.z, a2) / ggx_g1(wo.z, a2);
+  return brdf_specular_fresnel(in, fmax(dot(wo, h), 0.0f)) * g2_over_g1;
 }
 
 // Probability of sampling the GGX lobe rather than the cosine lobe, from the lobes' weights seen from wo.

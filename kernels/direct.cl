@@ -1,8 +1,44 @@
 // Direct light at each G-buffer point: punctual lights (point, spot, directional) with shadow rays, and emissive
-// triangles sampled as area lights with stratified samples. Lambertian reflection; emission itself is not included.
+// triangles sampled as area lights with stratified samples. Lambertian pixels reflect albedo / pi times the
+// irradiance; pixels with a specular lobe (HAS_SPECULAR_BRDF) evaluate the BRDF toward the camera per light sample,
+// glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission itself is not included.
 // Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
 #include "lighting.h"
 #include "scene_args.h"
+#if HAS_SPECULAR_BRDF
+#include "reflected_light.h"
+#endif
+
+#if HAS_SPECULAR_BRDF
+// Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters
+// with the same stratified light samples as a Lambertian pixel, each paired with a BRDF sample where the lobe is
+// glossy.
+inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world, uint strata_per_axis, uint key,
+                                    uint* rays) {
+  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  float3 origin = offset_ray_origin(p, ng);
+  BrdfInputs in = gbuffer_brdf(g);
+  ShadingFrame frame = shading_frame(n);
+  float3 wo = view_local(frame, wo_world);
+  float3 result = punctual_reflected(SCENE, in, frame, wo, p, origin, ng, rays);
+#if HAS_EMITTERS
+  if (scene_counts.emitter_count > 0 && strata_per_axis > 0) {
+    float3 sum = (float3)(0.0f);
+    float inv = 1.0f / (float)strata_per_axis;
+    for (uint j = 0; j < strata_per_axis; ++j) {
+      for (uint i = 0; i < strata_per_axis; ++i) {
+        uint s = j * strata_per_axis + i;
+        float u = ((float)i + random01(key, s, 0u)) * inv;
+        float v = ((float)j + random01(key, s, 1u)) * inv;
+        sum += emitters_reflected(SCENE, in, g.lobe, frame, wo, p, origin, ng, u, v, random01(key, s, 2u), rays);
+      }
+    }
+    result += sum * (inv * inv);
+  }
+#endif
+  return finite_or_zero(result);
+}
+#endif
 
 __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __global float4* direct_out) {
   uint pixel = get_global_id(0);
@@ -12,12 +48,21 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
   GBufferSample g = gbuffer[pixel];
   float3 result = (float3)(0.0f);
   uint rays = 0;
+#if HAS_SPECULAR_BRDF
+  if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
+    float3 wo = camera_view_direction(camera, vload3(0, g.position));
+    result = direct_specular_pixel(SCENE, g, wo, strata_per_axis, hash_u32(pixel ^ hash_u32(params.seed)), &rays);
+    direct_out[pixel] = (float4)(result, (float)rays);
+    return;
+  }
+#endif
   if (g.triangle >= 0) {
     float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
     float3 origin = offset_ray_origin(p, ng);
     float3 irradiance = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
-    for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, &rays);
+    float3 wi;
+    for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, &wi, &rays);
 #endif
 #if HAS_EMITTERS
     if (emitter_count > 0 && strata_per_axis > 0) {
@@ -29,7 +74,9 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
           uint s = j * strata_per_axis + i;
           float u = ((float)i + random01(key, s, 0u)) * inv;
           float v = ((float)j + random01(key, s, 1u)) * inv;
-          sum += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &rays);
+          float3 wi;
+          float pdf;
+          sum += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, &rays);
         }
       }
       irradiance += sum * (inv * inv);

@@ -26,7 +26,11 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   RayPrecomp r = ray_precompute(org, dir);
   TraceHit hit;
   GBufferSample g;
-  g.pad0 = g.pad1 = 0.0f;
+  g.pad[0] = g.pad[1] = 0.0f;
+  g.metallic = 0.0f;
+  g.roughness = 1.0f;
+  g.specular = 0.0f;
+  g.lobe = LOBE_NONE;
   if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
     vstore3((float3)(0.0f), 0, g.position);
     vstore3((float3)(0.0f), 0, g.normal);
@@ -51,6 +55,13 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     vstore3(emission, 0, g.emission);
     g.triangle = hit.prim;
     g.material = (int)s.material;
+#if HAS_SPECULAR_BRDF
+    SurfaceLobe lobe = surface_lobe(materials, textures, texels, &s);
+    g.metallic = lobe.metallic;
+    g.roughness = lobe.roughness;
+    g.specular = lobe.specular;
+    g.lobe = lobe.lobe;
+#endif
     g.depth = hit.t;
   }
   gbuffer[y * camera->width + x] = g;

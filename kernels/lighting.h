@@ -15,21 +15,25 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
 }
 
 #if HAS_PUNCTUAL_LIGHTS
-// Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed.
+// Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed; *wi is the unit direction
+// toward the light.
 inline float3 punctual_irradiance(BVH_ARGS, PunctualLight light,
-                                  float3 p, float3 origin, float3 n, float3 ng, uint* rays) {
+                                  float3 p, float3 origin, float3 n, float3 ng, float3* wi_out, uint* rays) {
   float3 intensity = vload3(0, light.intensity);
   if (light.type == LIGHT_DIRECTIONAL) {
     float3 wi = -vload3(0, light.direction);
+    *wi_out = wi;
     float cos_n = dot(n, wi);
     if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
     return visible(BVH, origin, wi, INFINITY, rays) ? intensity * cos_n : (float3)(0.0f);
   }
   float3 to_light = vload3(0, light.position) - p;
   float d2 = dot(to_light, to_light);
+  *wi_out = n;
   if (!(d2 > 0.0f)) return (float3)(0.0f);
   float d = sqrt(d2);
   float3 wi = to_light / d;
+  *wi_out = wi;
   float cos_n = dot(n, wi);
   if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
   float attenuation = 1.0f / d2;
@@ -60,10 +64,19 @@ inline int pick_emitter(__global const EmissiveTriangle* emitters, uint count, f
   return lo;
 }
 
-// One light sample's irradiance estimate at p from the point the stratified pair (u, v) picks on the emitters.
+// The density, per solid angle at a point d2 away, of the light sampler choosing a point on emitter e seen at cos_y.
+inline float emitter_solid_angle_pdf(EmissiveTriangle e, float d2, float cos_y) {
+  return e.pdf_select / e.area * d2 / cos_y;
+}
+
+// One light sample's irradiance estimate at p from the point the stratified pair (u, v) picks on the emitters;
+// *wi is the sample's direction and *pdf its density per solid angle (0 where the estimate is 0), for weighing it
+// against BRDF samples.
 inline float3 emitter_sample(BVH_ARGS,
                              __global const EmissiveTriangle* emitters, uint count, float u, float v, float3 p,
-                             float3 origin, float3 n, float3 ng, uint* rays) {
+                             float3 origin, float3 n, float3 ng, float3* wi_out, float* pdf, uint* rays) {
+  *pdf = 0.0f;
+  *wi_out = n;
   int i = pick_emitter(emitters, count, u);
   EmissiveTriangle e = emitters[i];
   float cdf_before = e.cdf - e.pdf_select;
@@ -76,6 +89,7 @@ inline float3 emitter_sample(BVH_ARGS,
   float d2 = dot(to, to);
   if (!(d2 > 0.0f)) return (float3)(0.0f);
   float3 wi = to * rsqrt(d2);
+  *wi_out = wi;
   float cos_x = dot(n, wi);
   float cos_y = -dot(nl, wi);
   if (e.double_sided) cos_y = fabs(cos_y);
@@ -84,6 +98,7 @@ inline float3 emitter_sample(BVH_ARGS,
   float3 target = offset_ray_origin(y, toward_p);
   if (!visible(BVH, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
+  *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
   return vload3(0, e.radiance) * (cos_x * cos_y / (d2 * pdf_area));
 }
 #endif
@@ -95,11 +110,13 @@ inline float3 direct_irradiance(BVH_ARGS,
                                 float3 ng, float u, float v, uint* rays) {
   float3 origin = offset_ray_origin(p, ng);
   float3 irradiance = (float3)(0.0f);
+  float3 wi;
 #if HAS_PUNCTUAL_LIGHTS
-  for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, rays);
+  for (uint i = 0; i < light_count; ++i) irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, &wi, rays);
 #endif
 #if HAS_EMITTERS
-  if (emitter_count > 0) irradiance += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, rays);
+  float pdf;
+  if (emitter_count > 0) irradiance += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, rays);
 #endif
   return irradiance;
 }

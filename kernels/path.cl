@@ -1,6 +1,6 @@
 // The path tracer that serves as ground truth and competitor: through the same pixel centres as the G-buffer, one
-// cosine-weighted bounce per sample, the bounce's hit lit directly (kernels/bounce.h): the same integral the cache
-// estimates, with the same bounce count. Accumulates the indirect radiance and its square per pixel (for the variance).
+// bounce per sample (cosine-weighted at Lambertian pixels, drawn from the BRDF where there is a specular lobe), the
+// bounce's hit lit directly (kernels/bounce.h): the same integral the cache estimates, with the same bounce count. Accumulates the indirect radiance and its square per pixel (for the variance).
 // Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
@@ -20,6 +20,12 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
   uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x5bd1e995u));
   float3 s1 = (float3)(0.0f), s2 = (float3)(0.0f);
   uint rays = 0;
+#if HAS_SPECULAR_BRDF
+  bool specular = g.lobe != LOBE_NONE;
+  ShadingFrame frame = shading_frame(n);
+  BrdfInputs in = gbuffer_brdf(g);
+  float3 wo = view_local(frame, camera_view_direction(camera, p));
+#endif
   for (uint s = first_sample; s < first_sample + sample_count; ++s) {
     float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
     if (s < grid_side * grid_side) {  // stratified: this sample's cell of the grid
@@ -28,11 +34,20 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
     }
     float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
     float3 dir = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
+    float3 throughput = albedo;  // cosine-weighted sampling: f cos / pdf = albedo
+#if HAS_SPECULAR_BRDF
+    if (specular) {
+      float3 wi;
+      float pdf;
+      throughput = brdf_sample(in, wo, random01(key, s, 4u), u1, u2, &wi, &pdf);
+      dir = to_world(frame, wi);
+    }
+#endif
     float3 c = (float3)(0.0f);
-    if (dot(dir, ng) > 0.0f) {
+    if (dot(dir, ng) > 0.0f && (throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) {
       float r;
-      // Cosine-weighted sampling: f cos / pdf = albedo.
-      c = albedo * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+      c = throughput * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
+                                       random01(key, s, 5u), &r, &rays);
     }
     s1 += c;
     s2 += c * c;

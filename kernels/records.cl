@@ -75,7 +75,8 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
       float r = INFINITY;
       float3 l = (float3)(0.0f);
       if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
-        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), &r, &rays);
+        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u), &r,
+                            &rays);
       }
       e += l;
       inverse_distances += 1.0f / r;

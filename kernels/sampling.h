@@ -22,4 +22,13 @@ inline float3 finite_or_zero(float3 c) {
   return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);
 }
 
+// An orthonormal frame around the unit vector n (Duff et al. 2017, branch-free).
+inline void tangent_frame(float3 n, float3* t, float3* b) {
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (sign + n.z);
+  float c = n.x * n.y * a;
+  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+}
+
 #endif

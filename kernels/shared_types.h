@@ -42,7 +42,7 @@ typedef struct {
   float normal0[3], normal1[3], normal2[3];  // unit shading normals at the vertices
   float uv0[2], uv1[2], uv2[2];
   rc_uint color[3];  // vertex colours (glTF COLOR_0), linear RGB, 10 bits each (VERTEX_COLOR_*): read under HAS_VERTEX_COLORS
-  float pad;
+  rc_int emitter;    // index into the emissive triangles, -1 if this triangle emits nothing (BRDF samples that hit it)
 } TriangleShading;
 
 // A vertex colour channel c in [0, 1] is stored as round(c * VERTEX_COLOR_MAX) in bits 10k .. 10k + 9.
@@ -50,13 +50,41 @@ typedef struct {
 #define VERTEX_COLOR_MAX 1023
 
 #define TEXTURE_NONE (-1)
+
+// How the cache shades a surface's specular lobe (docs/NOTES.md "Material kinds"; host/scene/material_kind.h decides):
+// LOBE_NONE: Lambertian (metallic 0 and no specular layer), exactly base / pi: the irradiance cache is exact for it.
+// LOBE_ROUGH: a wide lobe; its indirect light is taken from the cached irradiance, E / pi times the lobe's albedo.
+// LOBE_GLOSSY: a narrower lobe; its indirect light is estimated per pixel by sampling the lobe (kernels/glossy.cl).
+#define LOBE_NONE 0
+#define LOBE_ROUGH 1
+#define LOBE_GLOSSY 2
+// A lobe with roughness at or above this is LOBE_ROUGH for a dielectric; metals (metallic >= 0.5) need
+// ROUGH_METAL_MIN_ROUGHNESS, since their whole reflection is the lobe.
+#define ROUGH_MIN_ROUGHNESS 0.6f
+#define ROUGH_METAL_MIN_ROUGHNESS 0.9f
+
+// The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at (i + 0.5) / size.
+#define SPECULAR_ALBEDO_TABLE_SIZE 32
+
+// The LOBE_* of a surface with these parameters (the host for a material's factors, the G-buffer per pixel).
+inline rc_int material_lobe(float metallic, float roughness, float specular) {
+  if (!(metallic > 0.0f) && !(specular > 0.0f)) return LOBE_NONE;
+  float rough_from = metallic >= 0.5f ? ROUGH_METAL_MIN_ROUGHNESS : ROUGH_MIN_ROUGHNESS;
+  return roughness >= rough_from ? LOBE_ROUGH : LOBE_GLOSSY;
+}
+
 typedef struct {
   float base_color[4];  // linear RGBA factor
   float emission[3];    // emissiveFactor x emissive strength, linear RGB radiance
   rc_int base_color_texture;  // index into the texture table or TEXTURE_NONE
   rc_int double_sided;
   float alpha_cutoff;  // glTF alpha mode MASK: alpha below it is a hole; 0 for opaque materials
-  rc_int pad[2];
+  float metallic;      // glTF metallicFactor
+  float roughness;     // glTF roughnessFactor
+  float specular;      // KHR_materials_specular's specularFactor: weight of a dielectric's specular layer (glTF: 1)
+  rc_int metallic_roughness_texture;  // glTF's metallicRoughnessTexture (B: metallic, G: roughness) or TEXTURE_NONE
+  rc_int lobe;         // LOBE_* for the factors; a texture's roughness is classified again per pixel
+  rc_int pad;
 } Material;
 
 #define WRAP_REPEAT 0
@@ -119,10 +147,13 @@ typedef struct {
   rc_int material;
   float geometric_normal[3];  // facing the camera
   float depth;                // distance along the primary ray
-  float albedo[3];
-  float pad0;
+  float albedo[3];    // base colour (textured, times vertex colour)
+  float metallic;     // at the pixel (texture times factor); 0 for Lambertian surfaces
   float emission[3];  // radiance emitted toward the camera
-  float pad1;
+  float roughness;    // at the pixel
+  float specular;     // the material's specular layer weight
+  rc_int lobe;        // LOBE_* at the pixel
+  float pad[2];
 } GBufferSample;
 
 // A ray for the generic ray-casting kernel (tests, benchmarks) and its result.
@@ -249,12 +280,12 @@ typedef struct {
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
 static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
 static_assert(sizeof(TriangleShading) == 128);
-static_assert(sizeof(Material) == 48);
+static_assert(sizeof(Material) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);
 static_assert(sizeof(CameraParams) == 80);
-static_assert(sizeof(GBufferSample) == 80);
+static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);

@@ -1,6 +1,6 @@
 // The splat (ALGORITHM.md section 3): each record adds w * E_k(P) and w to every pixel of its screen footprint where its
 // full Ward weight exceeds 1/a, into 64-bit fixed-point sums that come out the same whatever order records land in.
-// Then the normalisation divides, and the composition adds the indirect light to emission and direct light.
+// Then the normalisation divides (kernels/compose.cl composes).
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "footprint.h"
 #include "sampling.h"
@@ -51,21 +51,16 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
   }
 }
 
-// Normalisation and composition: E = sum(w E) / sum(w); indirect = albedo / pi * E; color = emission + direct +
-// indirect. Uncovered pixels (no usable record) get no indirect light and coverage 0.
+// Normalisation: E = sum(w E) / sum(w), with the weight sum in A (0 where no usable record reached the pixel: no
+// indirect light there). kernels/compose.cl turns it into the pixel's indirect light.
 __kernel void resolve_indirect(GBUFFER_ARGS, __global const long* sums, SplatParams params,
-                               __global const float4* direct, __global float4* irradiance_out,
-                               __global float4* indirect_out, __global float4* color_out) {
+                               __global float4* irradiance_out) {
   uint i = get_global_id(0);
   if (i >= (uint)(camera->width * camera->height)) return;
   long4 s = vload4(i, sums);
-  GBufferSample g = gbuffer[i];
   float3 e = (float3)(0.0f);
   float weight = (float)s.w / FIXED_POINT_ONE;
   if (s.w > 0) e = convert_float3(s.xyz) / (float)s.w * params.irradiance_scale;
   e = finite_or_zero(e);
-  float3 indirect = vload3(0, g.albedo) * RC_INV_PI * e;
   irradiance_out[i] = (float4)(e, weight);
-  indirect_out[i] = (float4)(indirect, s.w > 0 ? 1.0f : 0.0f);
-  color_out[i] = (float4)(finite_or_zero(vload3(0, g.emission) + direct[i].xyz + indirect), 1.0f);
 }

@@ -52,21 +52,31 @@ inline int wrap_texel(int i, int n, uint mode) {
   return m < 0 ? m + n : m;
 }
 
-inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x, int y) {
+// A texel's RGBA: colour decoded from sRGB, or (data textures such as metallic-roughness) taken as stored.
+inline float4 texel_value(__global const uint* texels, TextureInfo info, int x, int y, bool srgb) {
   uint p = texels[info.first_texel + (uint)y * info.width + (uint)x];
+  const float to_unit = 1.0f / 255.0f;
+  if (!srgb)
+    return (float4)((float)(p & 255u), (float)((p >> 8) & 255u), (float)((p >> 16) & 255u), (float)(p >> 24)) * to_unit;
   return (float4)(SRGB_TO_LINEAR[p & 255u], SRGB_TO_LINEAR[(p >> 8) & 255u], SRGB_TO_LINEAR[(p >> 16) & 255u],
-                  (float)(p >> 24) * (1.0f / 255.0f));
+                  (float)(p >> 24) * to_unit);
 }
 
-// Bilinear (or, as the sampler says, nearest) lookup in linear space; texture coordinates wrap as the sampler says.
-inline float4 sample_texture(__global const TextureInfo* infos, __global const uint* texels, int index, float2 uv) {
+inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x, int y) {
+  return texel_value(texels, info, x, y, true);
+}
+
+// Bilinear (or, as the sampler says, nearest) lookup; texture coordinates wrap as the sampler says. Colour textures
+// (srgb) are filtered in linear space.
+inline float4 sample_texture_encoded(__global const TextureInfo* infos, __global const uint* texels, int index,
+                                     float2 uv, bool srgb) {
   TextureInfo info = infos[index];
   int w = (int)info.width, h = (int)info.height;
   uint ws = info.wrap & 255u, wt = (info.wrap >> 8) & 255u;
   if (info.wrap & TEXTURE_NEAREST) {
     float nx = floor(uv.x * (float)w), ny = floor(uv.y * (float)h);
     if (!isfinite(nx) || !isfinite(ny) || fabs(nx) > 1e8f || fabs(ny) > 1e8f) nx = ny = 0.0f;
-    return texel_linear(texels, info, wrap_texel((int)nx, w, ws), wrap_texel((int)ny, h, wt));
+    return texel_value(texels, info, wrap_texel((int)nx, w, ws), wrap_texel((int)ny, h, wt), srgb);
   }
   float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)h - 0.5f;
   if (!isfinite(fx) || !isfinite(fy) || fabs(fx) > 1e8f || fabs(fy) > 1e8f) fx = fy = 0.0f;
@@ -75,9 +85,13 @@ inline float4 sample_texture(__global const TextureInfo* infos, __global const u
   int x0 = (int)x0f, y0 = (int)y0f;
   int xa = wrap_texel(x0, w, ws), xb = wrap_texel(x0 + 1, w, ws);
   int ya = wrap_texel(y0, h, wt), yb = wrap_texel(y0 + 1, h, wt);
-  float4 top = mix(texel_linear(texels, info, xa, ya), texel_linear(texels, info, xb, ya), ax);
-  float4 bottom = mix(texel_linear(texels, info, xa, yb), texel_linear(texels, info, xb, yb), ax);
+  float4 top = mix(texel_value(texels, info, xa, ya, srgb), texel_value(texels, info, xb, ya, srgb), ax);
+  float4 bottom = mix(texel_value(texels, info, xa, yb, srgb), texel_value(texels, info, xb, yb, srgb), ax);
   return mix(top, bottom, ay);
+}
+
+inline float4 sample_texture(__global const TextureInfo* infos, __global const uint* texels, int index, float2 uv) {
+  return sample_texture_encoded(infos, texels, index, uv, true);
 }
 #endif
 
@@ -92,6 +106,32 @@ inline float3 surface_albedo(__global const Material* materials, __global const 
   albedo *= s->color;
 #endif
   return clamp(albedo, 0.0f, 1.0f);
+}
+
+// The specular lobe's parameters at a surface point: the material's factors times its metallic-roughness texture
+// (glTF: B metallic, G roughness), and the lobe kind they make there.
+typedef struct {
+  float metallic, roughness, specular;
+  int lobe;  // LOBE_*
+} SurfaceLobe;
+
+inline SurfaceLobe surface_lobe(__global const Material* materials, __global const TextureInfo* textures,
+                                __global const uint* texels, const SurfacePoint* s) {
+  __global const Material* m = materials + s->material;
+  SurfaceLobe l;
+  l.metallic = m->metallic;
+  l.roughness = m->roughness;
+  l.specular = m->specular;
+  l.lobe = m->lobe;
+#if HAS_TEXTURES
+  if (m->lobe != LOBE_NONE && m->metallic_roughness_texture >= 0) {
+    float4 mr = sample_texture_encoded(textures, texels, m->metallic_roughness_texture, s->uv, false);
+    l.metallic *= mr.z;
+    l.roughness *= mr.y;
+    l.lobe = material_lobe(l.metallic, l.roughness, l.specular);
+  }
+#endif
+  return l;
 }
 
 #endif

@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "gltf_builder.h"
 #include "scene/gltf_loader.h"
+#include "scene/packed_scene.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -116,6 +117,50 @@ TEST(GltfLoader, ReadsMaterialsEmissionAndTransforms) {
   EXPECT_FLOAT_EQ(m.base_color.y, 0.25f);
   EXPECT_FLOAT_EQ(m.emission.x, 4.0f);
   EXPECT_FLOAT_EQ(m.emission.y, 2.0f);
+}
+
+// metallicFactor and roughnessFactor default to 1 (glTF 2.0), the dielectric's specular layer to 1
+// (KHR_materials_specular); the lobe kind follows docs/NOTES.md "Material kinds". A factor outside [0, 1] is an error
+// naming the material.
+TEST(GltfLoader, ReadsTheBrdfParameters) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"roughnessFactor", 0.3}};
+  b.doc["materials"].push_back({{"name", "matte"},
+                                {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+                                {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
+  b.doc["materials"].push_back({{"name", "plaster"}, {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}});
+  b.doc["meshes"].push_back(b.doc["meshes"][0]);
+  b.doc["meshes"][1]["primitives"][0]["material"] = 1;
+  b.doc["meshes"].push_back(b.doc["meshes"][0]);
+  b.doc["meshes"][2]["primitives"][0]["material"] = 2;
+  b.doc["meshes"].push_back(b.doc["meshes"][0]);
+  b.doc["meshes"][3]["primitives"][0].erase("material");
+  b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"mesh", 1}}, {{"mesh", 2}}, {{"mesh", 3}}});
+  b.doc["scenes"] = json::array({{{"nodes", {0, 1, 2, 3}}}});
+  b.doc["extensionsUsed"].push_back("KHR_materials_specular");
+  Scene s = load_gltf(b.write(test::scratch_dir(), "brdf"));
+  ASSERT_EQ(s.triangle_count(), 8u);
+  const SceneMaterial& metal = s.materials[s.triangle_material[0]];
+  EXPECT_FLOAT_EQ(metal.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(metal.roughness, 0.3f);
+  EXPECT_FLOAT_EQ(metal.specular, 1.0f);
+  const SceneMaterial& matte = s.materials[s.triangle_material[2]];
+  EXPECT_FLOAT_EQ(matte.metallic, 0.0f);
+  EXPECT_FLOAT_EQ(matte.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(matte.specular, 0.0f);
+  const SceneMaterial& fallback = s.materials[s.triangle_material[6]];
+  EXPECT_EQ(fallback.name, "default");
+  EXPECT_FLOAT_EQ(fallback.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(fallback.roughness, 1.0f);
+
+  PackedScene packed = pack_scene(s);
+  EXPECT_EQ(packed.materials[s.triangle_material[0]].lobe, LOBE_GLOSSY);  // a metal at roughness 0.3
+  EXPECT_EQ(packed.materials[s.triangle_material[2]].lobe, LOBE_NONE);    // no specular layer: Lambertian
+  EXPECT_EQ(packed.materials[s.triangle_material[4]].lobe, LOBE_ROUGH);   // glTF's plaster: a 4% lobe at roughness 1
+  EXPECT_EQ(packed.materials[s.triangle_material[6]].lobe, LOBE_ROUGH);   // a metal at roughness 1
+
+  b.doc["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"] = 1.5;
+  expect_load_error(b.write(test::scratch_dir(), "brdf_bad"), "'matte': metallicFactor, roughnessFactor");
 }
 
 TEST(GltfLoader, MirroringTransformKeepsFacesFacingOut) {

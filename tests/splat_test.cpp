@@ -83,7 +83,7 @@ void check_footprints_and_values(test::TwinScene& twin, const SceneCamera& cam) 
     }
     SplatPass splat(gpu);
     splat.splat_all(gbuffer.view(), gpu.upload(records), uint32_t(records.size()), accuracy);
-    splat.resolve(gbuffer.view(), gpu.upload(std::vector<float>(g.size() * 4, 0.0f)));
+    splat.resolve(gbuffer.view());
     std::vector<uint32_t> counts = splat.records_per_pixel();
     std::vector<float> irradiance = splat.irradiance_rgbw();
 

@@ -2,7 +2,8 @@
 
 namespace rcsplat {
 
-DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) : bvh_(gpu, bvh) {
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf)
+    : bvh_(gpu, bvh) {
   PackedScene p = pack_scene(scene);
   triangles_ = gpu.upload(p.triangles);
   materials_ = gpu.upload(p.materials);
@@ -20,6 +21,9 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh) :
   bool masked = false;
   for (const Material& m : p.materials) masked |= m.alpha_cutoff > 0.0f;
   defines_["HAS_ALPHA_MASK"] = masked ? "1" : "0";
+  for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
+  bool specular = force_specular_brdf || lobe_counts_[LOBE_ROUGH] + lobe_counts_[LOBE_GLOSSY] > 0;
+  defines_["HAS_SPECULAR_BRDF"] = specular ? "1" : "0";
   defines_["HAS_PUNCTUAL_LIGHTS"] = counts_.light_count ? "1" : "0";
   defines_["HAS_EMITTERS"] = counts_.emitter_count ? "1" : "0";
   bvh_.add_defines(defines_);

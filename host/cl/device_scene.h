@@ -2,6 +2,8 @@
 // materials, textures, lights (kernels/scene_args.h SCENE_ARGS). Also the one place that decides the kernels'
 // compile-time switches from the scene.
 #pragma once
+#include <array>
+
 #include "bvh/bvh8.h"
 #include "cl/device_bvh.h"
 #include "cl/gpu_context.h"
@@ -11,19 +13,26 @@ namespace rcsplat {
 
 class DeviceScene {
  public:
-  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh);
+  // force_specular_brdf compiles the BRDF code (HAS_SPECULAR_BRDF) even for an all-Lambertian scene, which must not
+  // change a bit of its image (tests).
+  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf = false);
 
   // Sets a kernel's SCENE_ARGS.
   void bind(NamedKernel& kernel) const;
 
-  // HAS_TEXTURES, HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, BVH_STACK_SIZE: a scene compiles only the code it needs.
+  // HAS_TEXTURES, HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, HAS_SPECULAR_BRDF, BVH_STACK_SIZE: a scene compiles only the
+  // code it needs.
   const KernelDefines& defines() const { return defines_; }
+  // Materials by LOBE_* (index), from their factors.
+  const std::array<unsigned, 3>& lobe_counts() const { return lobe_counts_; }
+  bool has_specular_brdf() const { return defines_.at("HAS_SPECULAR_BRDF") == "1"; }
 
  private:
   DeviceBvh bvh_;
   cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_;
   SceneCounts counts_{};
   KernelDefines defines_;
+  std::array<unsigned, 3> lobe_counts_{};
 };
 
 }  // namespace rcsplat

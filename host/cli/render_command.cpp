@@ -24,6 +24,10 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
               s.light_samples, gi_method_name(s.gi));
+  std::printf("materials    %u Lambertian, %u rough (specular indirect light from the cached irradiance), %u glossy "
+              "(specular indirect light sampled per pixel); BRDF code %s\n",
+              s.lambertian_materials, s.rough_materials, s.glossy_materials,
+              s.specular_brdf ? "compiled" : "not compiled (every material is Lambertian)");
   std::printf("triangles    %zu (BVH: %zu nodes, %zu triangle blocks, depth %d)\n", s.triangles, s.bvh_nodes,
               s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
@@ -46,6 +50,11 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
                 mrays_per_second(s.record_rays, s.records_s));
     std::printf("time         records %.3f s, placement %.3f s, splat %.3f s, resolve %.3f s\n", s.records_s,
                 s.placement_s, s.splat_s, s.resolve_s);
+    if (s.rough_pixels || s.glossy_pixels)
+      std::printf("specular     %llu rough pixels from the irradiance; %llu glossy pixels, %u lobe samples each: %llu "
+                  "rays, %.3f s (%.2f Mrays/s)\n",
+                  (unsigned long long)s.rough_pixels, (unsigned long long)s.glossy_pixels, s.glossy_samples,
+                  (unsigned long long)s.glossy_rays, s.glossy_s, mrays_per_second(s.glossy_rays, s.glossy_s));
   }
   if (s.gi == GiMethod::path) {
     std::printf("path         %u samples per pixel%s, %llu rays, %.3f s (%.2f Mrays/s)\n", s.path_samples,
@@ -77,7 +86,9 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                    {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
                    {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
                    {"path", s.path_s}, {"total", s.total_s}}},
-      {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)}};
+      {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)},
+      {"materials", {{"lambertian", s.lambertian_materials}, {"rough", s.rough_materials},
+                     {"glossy", s.glossy_materials}, {"brdf_compiled", s.specular_brdf}}}};
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     nlohmann::json levels = nlohmann::json::array();
@@ -87,6 +98,8 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                   {"spacing", {c.min_reach_pixels, c.max_reach_pixels}}, {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius}};
+    j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
+                     {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
   }
   if (s.gi == GiMethod::path) j["path"] = {{"samples", s.path_samples}, {"stratified", settings.path.stratified}};
   return j;

@@ -23,8 +23,7 @@ void SplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records,
     size_t slots = std::max<size_t>(pixels_, 1);
     sums_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long));
     counts_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * sizeof(cl_uint));
-    for (cl::Buffer* b : {&irradiance_, &indirect_, &color_})
-      *b = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(float));
+    irradiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(float));
   }
   gbuffer.bind(clear_);
   clear_.set_buffer<cl_long>("sums", sums_).set_buffer<cl_uint>("counts", counts_);
@@ -49,21 +48,14 @@ void SplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records,
   queue.finish();
 }
 
-void SplatPass::resolve(const GBufferView& gbuffer, const cl::Buffer& direct_rgba) {
+void SplatPass::resolve(const GBufferView& gbuffer) {
   gbuffer.bind(resolve_);
-  resolve_.set_buffer<cl_long>("sums", sums_)
-      .set("params", params_)
-      .set_buffer<cl_float4>("direct", direct_rgba)
-      .set_buffer<cl_float4>("irradiance_out", irradiance_)
-      .set_buffer<cl_float4>("indirect_out", indirect_)
-      .set_buffer<cl_float4>("color_out", color_);
+  resolve_.set_buffer<cl_long>("sums", sums_).set("params", params_).set_buffer<cl_float4>("irradiance_out", irradiance_);
   resolve_.launch(pixels_, gpu_.groups().per_item);
   gpu_.queue().finish();
 }
 
 std::vector<float> SplatPass::irradiance_rgbw() { return gpu_.download<float>(irradiance_, pixels_ * 4); }
-std::vector<float> SplatPass::indirect_rgba() { return gpu_.download<float>(indirect_, pixels_ * 4); }
-std::vector<float> SplatPass::color_rgba() { return gpu_.download<float>(color_, pixels_ * 4); }
 std::vector<uint32_t> SplatPass::records_per_pixel() { return gpu_.download<uint32_t>(counts_, pixels_); }
 
 }  // namespace rcsplat

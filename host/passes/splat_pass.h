@@ -1,5 +1,5 @@
-// The splat, normalisation and composition (kernels/splat.cl): owns the fixed-point accumulation buffers and the
-// resolved images.
+// The splat and normalisation (kernels/splat.cl): owns the fixed-point accumulation buffers and the resolved
+// irradiance (ComposePass makes the pixels' light of it).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -17,18 +17,17 @@ class SplatPass {
   // Clears the sums and splats records 0 .. count - 1 at accuracy a, at the frame's fixed-point scale; blocks until
   // done.
   void splat_all(const GBufferView& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
-  // Divides and composes with the direct light (RGBA, as DirectPass writes it).
-  void resolve(const GBufferView& gbuffer, const cl::Buffer& direct_rgba);
+  // Divides: the irradiance per pixel.
+  void resolve(const GBufferView& gbuffer);
 
-  std::vector<float> irradiance_rgbw();  // E.rgb, sum w
-  std::vector<float> indirect_rgba();    // albedo / pi * E, A = covered
-  std::vector<float> color_rgba();
+  const cl::Buffer& irradiance() const { return irradiance_; }  // float4: E.rgb, sum w
+  std::vector<float> irradiance_rgbw();
   std::vector<uint32_t> records_per_pixel();
 
  private:
   GpuContext& gpu_;
   NamedKernel clear_, max_irradiance_, splat_, resolve_;
-  cl::Buffer sums_, counts_, max_bits_, irradiance_, indirect_, color_;
+  cl::Buffer sums_, counts_, max_bits_, irradiance_;
   SplatParams params_{};
   size_t pixels_ = 0;
 };

@@ -23,6 +23,13 @@ struct RenderStats {
   unsigned light_samples = 0;
   double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
   uint64_t primary_rays = 0, shadow_rays = 0;
+  // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
+  unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0;
+  bool specular_brdf = false;
+  // Cache methods: glossy pixels' specular light, sampled per pixel (kernels/glossy.cl); rough pixels' from E.
+  uint64_t glossy_pixels = 0, rough_pixels = 0, glossy_rays = 0;
+  unsigned glossy_samples = 0;
+  double glossy_s = 0;
   // Irradiance cache
   std::vector<PlacementLevel> levels;
   uint64_t records = 0, record_rays = 0, uncovered_pixels = 0;
@@ -46,7 +53,7 @@ struct RenderedImage {
   std::vector<float> depth;     // distance along the primary ray; 0 where nothing was hit
   std::vector<int> triangle;    // the primary hit's triangle, -1 where nothing was hit
   // Indirect light; empty when not computed.
-  std::vector<float> indirect;           // albedo / pi * E
+  std::vector<float> indirect;           // what each pixel's BRDF reflects of the indirect light
   std::vector<float> irradiance;         // E (cache methods)
   std::vector<float> coverage;           // sum of record weights, 0 where uncovered (cache methods)
   std::vector<float> records_per_pixel;  // records that reach each pixel (cache methods)

@@ -27,4 +27,9 @@ void octree_indirect(IndirectFrame& frame);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);
 
+// The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
+// a glossy material), then composition (ComposePass) of the cached irradiance (float4 per pixel: E, weight) into the
+// image's indirect and colour layers.
+void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance);
+
 }  // namespace rcsplat

@@ -103,11 +103,11 @@ void octree_indirect(IndirectFrame& f) {
   place_records(index, records, f.gbuffer.view(), cs, f.settings.seed, st);
 
   auto t = Clock::now();
-  img.indirect.assign(pixels * 3, 0.0f);
   img.irradiance.assign(pixels * 3, 0.0f);
   img.coverage.assign(pixels, 0.0f);
   img.records_per_pixel.assign(pixels, 0.0f);
   img.record_positions.assign(pixels, 0.0f);
+  std::vector<cl_float4> irradiance(pixels, cl_float4{{0, 0, 0, 0}});
   parallel_for(pixels, [&](size_t i) {
     if (!geo[i].valid) return;
     Interpolation in = interpolate(index.octree(), index.records(), geo[i], cs.accuracy);
@@ -117,15 +117,16 @@ void octree_indirect(IndirectFrame& f) {
     dvec3 e = in.weighted / in.weight;
     for (int c = 0; c < 3; ++c) {
       img.irradiance[3 * i + size_t(c)] = float(e[c]);
-      img.indirect[3 * i + size_t(c)] = float(img.albedo[3 * i + size_t(c)] * std::numbers::inv_pi * e[c]);
+      irradiance[i].s[c] = float(e[c]);
     }
+    irradiance[i].s[3] = float(in.weight);
   }, 256);
   st.resolve_s = seconds_since(t);
   for (size_t i = 0; i < pixels; ++i) {
     if (index.record_at_pixel()[i] >= 0) img.record_positions[i] = 1.0f;
     if (geo[i].valid && img.coverage[i] == 0.0f) ++st.uncovered_pixels;
-    for (size_t c = 0; c < 3; ++c) img.color[3 * i + c] += img.indirect[3 * i + c];
   }
+  compose_cached_indirect(f, f.gpu.upload(irradiance));
   img.records = std::move(index.records());
   count_clamped_radii(img.records, cs, st);
 }

@@ -52,17 +52,17 @@ void splat_indirect(IndirectFrame& f) {
   splat.splat_all(gbuffer, records.records(), total, cs.accuracy);
   st.splat_s += seconds_since(t);
   t = Clock::now();
-  splat.resolve(gbuffer, f.direct.radiance());
+  splat.resolve(gbuffer);
   st.resolve_s = seconds_since(t);
+  compose_cached_indirect(f, splat.irradiance());
   img.records = records.download(0, total);  // once per frame, for the summary and the tests
   count_clamped_radii(img.records, cs, st);
 
   // Download the layers the EXR carries.
   size_t pixels = size_t(img.width) * size_t(img.height);
-  std::vector<float> irr = splat.irradiance_rgbw(), ind = splat.indirect_rgba(), color = splat.color_rgba();
+  std::vector<float> irr = splat.irradiance_rgbw();
   std::vector<uint32_t> counts = splat.records_per_pixel();
   std::vector<int32_t> at_pixel = index.record_at_pixel();
-  img.indirect.resize(pixels * 3);
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);
   img.records_per_pixel.resize(pixels);
@@ -70,13 +70,11 @@ void splat_indirect(IndirectFrame& f) {
   for (size_t i = 0; i < pixels; ++i) {
     for (size_t c = 0; c < 3; ++c) {
       img.irradiance[3 * i + c] = irr[4 * i + c];
-      img.indirect[3 * i + c] = ind[4 * i + c];
-      img.color[3 * i + c] = color[4 * i + c];
     }
     img.coverage[i] = irr[4 * i + 3];
     img.records_per_pixel[i] = float(counts[i]);
     img.record_positions[i] = at_pixel[i] >= 0 ? 1.0f : 0.0f;
-    if (img.triangle[i] >= 0 && ind[4 * i + 3] == 0.0f) ++st.uncovered_pixels;
+    if (img.triangle[i] >= 0 && irr[4 * i + 3] == 0.0f) ++st.uncovered_pixels;
   }
 }
 

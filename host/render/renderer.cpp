@@ -46,7 +46,11 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   st.bvh_depth = bvh.depth;
 
   auto t = Clock::now();
-  DeviceScene device_scene(gpu, scene, bvh);
+  DeviceScene device_scene(gpu, scene, bvh, settings.force_specular_brdf);
+  st.lambertian_materials = device_scene.lobe_counts()[LOBE_NONE];
+  st.rough_materials = device_scene.lobe_counts()[LOBE_ROUGH];
+  st.glossy_materials = device_scene.lobe_counts()[LOBE_GLOSSY];
+  st.specular_brdf = device_scene.has_specular_brdf();
   st.upload_s = seconds_since(t);
   double program_before = gpu.program_seconds();
   log_info("compiling kernels for " + st.device);
@@ -76,6 +80,10 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   for (size_t i = 0; i < pixels; ++i) {
     const GBufferSample& s = g[i];
     img.triangle[i] = s.triangle;
+    if (s.triangle >= 0) {
+      st.rough_pixels += s.lobe == LOBE_ROUGH;
+      st.glossy_pixels += s.lobe == LOBE_GLOSSY;
+    }
     img.depth[i] = s.triangle >= 0 ? s.depth : 0.0f;
     st.shadow_rays += uint64_t(d[4 * i + 3]);
     for (int c = 0; c < 3; ++c) {

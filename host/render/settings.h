@@ -18,8 +18,11 @@ struct RenderSettings {
   int camera = 0;
   CameraOverrides camera_overrides;
   unsigned light_samples = 16;  // per pixel on emissive triangles; rounded up to a square number of strata
+  // Cache methods: samples of each glossy pixel's specular lobe (kernels/glossy.cl), stratified over a square grid.
+  unsigned glossy_samples = 16;
   unsigned seed = 0;
   GiMethod gi = GiMethod::splat;
+  bool force_specular_brdf = false;  // tests: compile the BRDF code for a Lambertian scene too (DeviceScene)
   CacheSettings cache;
   PathSettings path;
 };

@@ -22,7 +22,7 @@ namespace rcsplat {
 namespace {
 
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                    "KHR_texture_transform"};
+                                                    "KHR_materials_specular", "KHR_texture_transform"};
 
 class GltfReader {
  public:
@@ -35,7 +35,7 @@ class GltfReader {
       bool required = std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), ext) !=
                       model_.extensionsRequired.end();
       note_unsupported("extension " + ext + (required ? " (required)" : ""),
-                       ext.rfind("KHR_materials_", 0) == 0 ? "ignored: surfaces are shaded as opaque Lambertian"
+                       ext.rfind("KHR_materials_", 0) == 0 ? "ignored: surfaces are opaque, shaded with the metallic-roughness BRDF"
                                                            : "ignored; the image may differ from the author's");
     }
     if (!model_.animations.empty())
@@ -470,6 +470,7 @@ class GltfReader {
     if (default_material_ < 0) {
       SceneMaterial m;
       m.name = "default";
+      m.metallic = m.roughness = m.specular = 1.0f;  // the specification's default material
       default_material_ = int(scene_.materials.size());
       scene_.materials.push_back(m);
     }
@@ -482,10 +483,9 @@ class GltfReader {
     int tex_coord = 0;
     glm::mat3 transform{1.0f};
   };
-  UvMapping base_color_uv_mapping(int index) const {
+  // The mapping a texture reference asks for: its TEXCOORD set and KHR_texture_transform.
+  static UvMapping uv_mapping_of(const tinygltf::TextureInfo& info) {
     UvMapping m;
-    if (index < 0 || size_t(index) >= model_.materials.size()) return m;
-    const tinygltf::TextureInfo& info = model_.materials[size_t(index)].pbrMetallicRoughness.baseColorTexture;
     m.tex_coord = info.texCoord;
     auto ext = info.extensions.find("KHR_texture_transform");
     if (ext == info.extensions.end()) return m;
@@ -509,17 +509,58 @@ class GltfReader {
     return m;
   }
 
+  // The one texture-coordinate mapping a material's triangles carry: the base colour texture's, else the
+  // metallic-roughness texture's (a metallic-roughness texture mapped differently is dropped in read_materials).
+  UvMapping base_color_uv_mapping(int index) const {
+    if (index < 0 || size_t(index) >= model_.materials.size()) return UvMapping{};
+    const auto& pbr = model_.materials[size_t(index)].pbrMetallicRoughness;
+    if (pbr.baseColorTexture.index < 0 && pbr.metallicRoughnessTexture.index >= 0)
+      return uv_mapping_of(pbr.metallicRoughnessTexture);
+    return uv_mapping_of(pbr.baseColorTexture);
+  }
+
+  static bool same_mapping(const UvMapping& a, const UvMapping& b) {
+    return a.tex_coord == b.tex_coord && a.transform == b.transform;
+  }
+
+  int texture_slot(int tex, const std::string& material) const {
+    if (tex < 0) return -1;
+    if (size_t(tex) >= texture_slots_.size()) fail("material '" + material + "': texture " + std::to_string(tex) + " does not exist");
+    return texture_slots_[size_t(tex)];
+  }
+
+  // metallicFactor, roughnessFactor (glTF defaults 1 and 1), their texture, and KHR_materials_specular's factor.
+  void read_brdf(const tinygltf::Material& src, SceneMaterial& m) {
+    const auto& pbr = src.pbrMetallicRoughness;
+    m.metallic = float(pbr.metallicFactor);
+    m.roughness = float(pbr.roughnessFactor);
+    m.specular = 1.0f;
+    auto ext = src.extensions.find("KHR_materials_specular");
+    if (ext != src.extensions.end()) {
+      const tinygltf::Value& v = ext->second;
+      if (v.Has("specularFactor")) m.specular = float(v.Get("specularFactor").GetNumberAsDouble());
+      if (v.Has("specularColorFactor") || v.Has("specularColorTexture") || v.Has("specularTexture"))
+        note_unsupported("KHR_materials_specular colour and textures", "specularFactor alone is used");
+    }
+    for (float f : {m.metallic, m.roughness, m.specular})
+      if (!std::isfinite(f) || f < 0.0f || f > 1.0f)
+        fail("material '" + src.name + "': metallicFactor, roughnessFactor and specularFactor must lie in [0, 1]");
+    m.metallic_roughness_texture = texture_slot(pbr.metallicRoughnessTexture.index, src.name);
+    if (m.metallic_roughness_texture >= 0 && pbr.baseColorTexture.index >= 0 &&
+        !same_mapping(uv_mapping_of(pbr.baseColorTexture), uv_mapping_of(pbr.metallicRoughnessTexture))) {
+      note_unsupported("metallicRoughnessTexture mapped unlike the base colour texture", "the factors alone are used");
+      m.metallic_roughness_texture = -1;
+    }
+  }
+
   void read_materials() {
     for (const tinygltf::Material& src : model_.materials) {
       SceneMaterial m;
       m.name = src.name;
       const auto& pbr = src.pbrMetallicRoughness;
       for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) m.base_color[i] = float(pbr.baseColorFactor[size_t(i)]);
-      int tex = pbr.baseColorTexture.index;
-      if (tex >= 0) {
-        if (size_t(tex) >= texture_slots_.size()) fail("material '" + src.name + "': texture " + std::to_string(tex) + " does not exist");
-        m.base_color_texture = texture_slots_[size_t(tex)];
-      }
+      m.base_color_texture = texture_slot(pbr.baseColorTexture.index, src.name);
+      read_brdf(src, m);
       float strength = 1.0f;
       auto ext = src.extensions.find("KHR_materials_emissive_strength");
       if (ext != src.extensions.end() && ext->second.Has("emissiveStrength"))
@@ -531,7 +572,6 @@ class GltfReader {
       for (int i = 0; i < 3; ++i)
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail("material '" + src.name + "': invalid emission");
       if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
-      if (pbr.metallicFactor > 0.0) note_unsupported("metallic materials", "shaded as Lambertian with their base colour");
       if (src.alphaMode == "MASK") {
         // A cutoff of 0 would make every hit solid: keep the smallest positive one instead.
         m.alpha_cutoff = std::max(float(src.alphaCutoff), 1e-6f);

@@ -65,6 +65,7 @@ PackedScene pack_scene(const Scene& scene) {
     put3(s.v1, v[1]);
     put3(s.v2, v[2]);
     s.material = scene.triangle_material[t];
+    s.emitter = -1;
     put3(s.normal0, scene.normals[3 * t]);
     put3(s.normal1, scene.normals[3 * t + 1]);
     put3(s.normal2, scene.normals[3 * t + 2]);
@@ -88,6 +89,7 @@ PackedScene pack_scene(const Scene& scene) {
       total_power += power;
       e.cdf = float(total_power);   // normalised below
       e.pdf_select = float(power);
+      s.emitter = int(p.emitters.size());
       p.emitters.push_back(e);
     }
   }
@@ -104,6 +106,13 @@ PackedScene pack_scene(const Scene& scene) {
     out.base_color_texture = m.base_color_texture;
     out.double_sided = m.double_sided ? 1 : 0;
     out.alpha_cutoff = m.alpha_cutoff;
+    out.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+    out.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    out.specular = std::clamp(m.specular, 0.0f, 1.0f);
+    out.metallic_roughness_texture = m.metallic_roughness_texture;
+    out.lobe = material_lobe(out.metallic, out.roughness, out.specular);
+    // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
+    if (out.lobe != LOBE_NONE && m.metallic_roughness_texture >= 0) out.lobe = material_lobe(out.metallic, 0.0f, out.specular);
     p.materials.push_back(out);
   }
   for (const SceneTexture& t : scene.textures) {

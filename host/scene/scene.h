@@ -16,6 +16,12 @@ struct SceneMaterial {
   glm::vec3 emission{0.0f};  // emissiveFactor x strength: linear radiance
   bool double_sided = false;
   float alpha_cutoff = 0.0f;  // glTF alpha mode MASK: where alpha is below it the surface is a hole; 0: opaque
+  // The BRDF (kernels/brdf.h). A scene built in code is Lambertian unless it says otherwise; the glTF loader sets
+  // glTF's defaults (metallic 1, roughness 1, specular 1).
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  float specular = 0.0f;  // KHR_materials_specular's specularFactor: the dielectric's specular layer
+  int metallic_roughness_texture = -1;  // B: metallic, G: roughness (linear), times the factors
 };
 
 struct SceneTexture {

@@ -1,0 +1,42 @@
+#include "passes/compose_pass.h"
+
+namespace rcsplat {
+
+namespace {
+constexpr size_t kTableEntries = SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
+}
+
+ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene)
+    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", scene.defines())) {
+  specular_albedo_table_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2));
+  if (scene.has_specular_brdf()) {
+    NamedKernel table = gpu.kernel("compose.cl", "specular_albedo_table", scene.defines());
+    table.set_buffer<cl_float2>("table", specular_albedo_table_);
+    table.launch(kTableEntries, gpu_.groups().per_item);
+  }
+}
+
+void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
+                      const cl::Buffer* glossy) {
+  if (gbuffer.pixel_count() != pixels_ || !indirect_()) {
+    pixels_ = gbuffer.pixel_count();
+    size_t bytes = std::max<size_t>(pixels_, 1) * 4 * sizeof(float);
+    indirect_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, bytes);
+    color_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, bytes);
+  }
+  gbuffer.bind(kernel_);
+  // Without glossy pixels the kernel never reads "glossy": any float4 buffer of the frame's size stands in.
+  kernel_.set_buffer<cl_float4>("irradiance", irradiance)
+      .set_buffer<cl_float4>("direct", direct)
+      .set_buffer<cl_float4>("glossy", glossy ? *glossy : irradiance)
+      .set_buffer<cl_float2>("specular_albedo_terms", specular_albedo_table_)
+      .set_buffer<cl_float4>("indirect_out", indirect_)
+      .set_buffer<cl_float4>("color_out", color_);
+  kernel_.launch(pixels_, gpu_.groups().per_item);
+  gpu_.queue().finish();
+}
+
+std::vector<float> ComposePass::indirect_rgba() { return gpu_.download<float>(indirect_, pixels_ * 4); }
+std::vector<float> ComposePass::color_rgba() { return gpu_.download<float>(color_, pixels_ * 4); }
+
+}  // namespace rcsplat

@@ -1,0 +1,29 @@
+// The specular indirect light of glossy pixels (kernels/glossy.cl), sampled from each pixel's own lobe; the cache
+// carries the rest. Compiled and run only for scenes with a glossy material (DeviceScene's HAS_SPECULAR_BRDF).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/device_scene.h"
+#include "cl/gpu_context.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+class GlossyPass {
+ public:
+  GlossyPass(GpuContext& gpu, const DeviceScene& scene);
+  // samples lobe samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; blocks until done.
+  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed);
+  const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
+  std::vector<float> download_rgba();
+
+ private:
+  GpuContext& gpu_;
+  const DeviceScene& scene_;
+  NamedKernel kernel_;
+  cl::Buffer radiance_;
+  size_t pixels_ = 0;
+};
+
+}  // namespace rcsplat

@@ -1,0 +1,44 @@
+// The cache methods' composition: glossy pixels' specular light, then each pixel's BRDF applied to the cached
+// irradiance (kernels/glossy.cl, kernels/compose.cl).
+#include <optional>
+
+#include "passes/compose_pass.h"
+#include "passes/glossy_pass.h"
+#include "render/indirect.h"
+
+namespace rcsplat {
+
+void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance) {
+  RenderedImage& img = f.image;
+  RenderStats& st = img.stats;
+  const GBufferView& gbuffer = f.gbuffer.view();
+  double program_before = f.gpu.program_seconds();
+  std::optional<GlossyPass> glossy;
+  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0) glossy.emplace(f.gpu, f.device_scene);
+  ComposePass compose(f.gpu, f.device_scene);
+  st.program_s += f.gpu.program_seconds() - program_before;
+
+  if (glossy) {
+    auto t = Clock::now();
+    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed);
+    st.glossy_s = seconds_since(t);
+    st.glossy_samples = f.settings.glossy_samples;
+    std::vector<float> g = glossy->download_rgba();
+    for (size_t i = 3; i < g.size(); i += 4) st.glossy_rays += uint64_t(g[i]);
+  }
+  auto t = Clock::now();
+  compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr);
+  st.resolve_s += seconds_since(t);
+
+  std::vector<float> indirect = compose.indirect_rgba(), color = compose.color_rgba();
+  size_t pixels = gbuffer.pixel_count();
+  img.indirect.resize(pixels * 3);
+  for (size_t i = 0; i < pixels; ++i) {
+    for (size_t c = 0; c < 3; ++c) {
+      img.indirect[3 * i + c] = indirect[4 * i + c];
+      img.color[3 * i + c] = color[4 * i + c];
+    }
+  }
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,45 @@
+// Composition, shared by every cache method: the pixel's indirect light from the cached irradiance E (its weight in
+// A, 0 where no record reached), and the final colour = emission + direct + indirect.
+// A Lambertian pixel reflects albedo / pi * E. With a specular lobe (HAS_SPECULAR_BRDF) the irradiance carries the
+// diffuse base, (1 - metallic) (1 - F(n.v)) base / pi * E, exact because that part of the BRDF is constant over the
+// incident directions; a rough lobe adds its directional albedo times E / pi (the incident light taken as uniform over
+// the lobe: an approximation, docs/NOTES.md "Material kinds"), a glossy lobe the light sampled from it (glossy.cl).
+#include "sampling.h"
+#include "scene_args.h"
+#if HAS_SPECULAR_BRDF
+#include "brdf_frame.h"
+#endif
+
+#if HAS_SPECULAR_BRDF
+// The rough lobes' albedo table (brdf_frame.h), one entry per work item.
+__kernel void specular_albedo_table(__global float2* table) {
+  uint i = get_global_id(0);
+  const uint n = SPECULAR_ALBEDO_TABLE_SIZE;
+  if (i >= n * n) return;
+  table[i] = specular_albedo_terms(((float)(i % n) + 0.5f) / (float)n, ((float)(i / n) + 0.5f) / (float)n);
+}
+#endif
+
+__kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global const float4* direct,
+                      __global const float4* glossy, __global const float2* specular_albedo_terms,
+                      __global float4* indirect_out, __global float4* color_out) {
+  uint i = get_global_id(0);
+  if (i >= (uint)(camera->width * camera->height)) return;
+  GBufferSample g = gbuffer[i];
+  float4 cached = irradiance[i];
+  float3 e = cached.xyz;
+  float3 indirect = vload3(0, g.albedo) * RC_INV_PI * e;
+#if HAS_SPECULAR_BRDF
+  if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
+    BrdfInputs in = gbuffer_brdf(g);
+    ShadingFrame frame = shading_frame(vload3(0, g.normal));
+    float3 wo = view_local(frame, camera_view_direction(camera, vload3(0, g.position)));
+    indirect = brdf_eval_diffuse(in, wo.z) * e;
+    if (g.lobe == LOBE_ROUGH) indirect += specular_albedo(specular_albedo_terms, in, wo) * RC_INV_PI * e;
+    else indirect += glossy[i].xyz;
+    indirect = finite_or_zero(indirect);
+  }
+#endif
+  indirect_out[i] = (float4)(indirect, cached.w > 0.0f ? 1.0f : 0.0f);
+  color_out[i] = (float4)(finite_or_zero(vload3(0, g.emission) + direct[i].xyz + indirect), 1.0f);
+}

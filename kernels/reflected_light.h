@@ -1,0 +1,99 @@
+// Direct light reflected toward a viewer by the full BRDF (kernels/brdf.h), for surfaces with a specular lobe; compiled
+// only for scenes that have one (HAS_SPECULAR_BRDF). Punctual lights count through their delta. Emissive triangles:
+// a rough lobe takes one light sample; a glossy lobe adds one BRDF sample and weighs the two by the power heuristic
+// (Veach 1997), so that a sharp lobe's reflection of an area light converges as fast as a wide lobe's.
+#ifndef RCSPLAT_REFLECTED_LIGHT_H
+#define RCSPLAT_REFLECTED_LIGHT_H
+#include "brdf_frame.h"
+#include "lighting.h"
+#include "scene_args.h"
+#include "surface.h"
+
+inline BrdfInputs surface_brdf(float3 base_color, SurfaceLobe lobe) {
+  return brdf_inputs(base_color, lobe.metallic, lobe.roughness, lobe.specular);
+}
+
+// The power heuristic's weight for a sample of the technique with density a against one with density b.
+inline float power_heuristic(float a, float b) {
+  float a2 = a * a, b2 = b * b;
+  return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+#if HAS_EMITTERS
+// What a ray from origin along the unit dir finds first, if that is the emitting side of an emissive triangle: its
+// radiance, and in *light_pdf the density (per solid angle) with which emitter_sample would have chosen that direction.
+inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pdf, uint* rays) {
+  *light_pdf = 0.0f;
+  RayPrecomp r = ray_precompute(origin, dir);
+  TraceHit hit;
+  ++*rays;
+  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) return (float3)(0.0f);
+  int index = triangles[hit.prim].emitter;
+  if (index < 0) return (float3)(0.0f);
+  EmissiveTriangle e = emitters[index];
+  float cos_y = -dot(vload3(0, triangles[hit.prim].geometric_normal), dir);
+  if (e.double_sided) cos_y = fabs(cos_y);
+  if (!(cos_y > 0.0f)) return (float3)(0.0f);
+  *light_pdf = emitter_solid_angle_pdf(e, hit.t * hit.t, cos_y);
+  return vload3(0, e.radiance);
+}
+#endif
+
+// Punctual lights' radiance reflected toward wo (world, unit) at p.
+inline float3 punctual_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local, float3 p,
+                                 float3 origin, float3 ng, uint* rays) {
+  float3 sum = (float3)(0.0f);
+#if HAS_PUNCTUAL_LIGHTS
+  for (uint i = 0; i < scene_counts.light_count; ++i) {
+    float3 wi;
+    float3 e = punctual_irradiance(BVH, lights[i], p, origin, frame.n, ng, &wi, rays);
+    if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) sum += brdf_eval(in, wo_local, to_local(frame, wi)) * e;
+  }
+#endif
+  return sum;
+}
+
+// One estimate of the emitters' radiance reflected toward wo: a light sample at (u, v), and for a glossy lobe also a
+// BRDF sample at (u_lobe, u, v), the two weighed by multiple importance sampling. Reusing (u, v) keeps each technique
+// unbiased on its own, and the weights sum to one at every direction, so their sum is too.
+inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFrame frame, float3 wo_local, float3 p,
+                                 float3 origin, float3 ng, float u, float v, float u_lobe, uint* rays) {
+  float3 sum = (float3)(0.0f);
+#if HAS_EMITTERS
+  if (scene_counts.emitter_count == 0) return sum;
+  float3 wi;
+  float light_pdf;
+  float3 e = emitter_sample(BVH, emitters, scene_counts.emitter_count, u, v, p, origin, frame.n, ng, &wi, &light_pdf,
+                            rays);
+  if (light_pdf > 0.0f) {
+    float3 wi_local = to_local(frame, wi);
+    float weight = lobe == LOBE_GLOSSY ? power_heuristic(light_pdf, brdf_pdf(in, wo_local, wi_local)) : 1.0f;
+    sum += brdf_eval(in, wo_local, wi_local) * e * weight;
+  }
+  if (lobe == LOBE_GLOSSY) {
+    float3 wi_local;
+    float brdf_pdf_value;
+    float3 throughput = brdf_sample(in, wo_local, u_lobe, u, v, &wi_local, &brdf_pdf_value);
+    float3 dir = to_world(frame, wi_local);
+    if (brdf_pdf_value > 0.0f && dot(dir, ng) > 0.0f) {
+      float pdf_of_light;
+      float3 radiance = emitter_hit(SCENE, origin, dir, &pdf_of_light, rays);
+      sum += throughput * radiance * power_heuristic(brdf_pdf_value, pdf_of_light);
+    }
+  }
+#endif
+  return finite_or_zero(sum);
+}
+
+// Direct light reflected toward wo_world (unit, pointing away from p) by a surface with a specular lobe: every
+// punctual light and one emitter estimate.
+inline float3 direct_reflected(SCENE_ARGS, BrdfInputs in, int lobe, float3 p, float3 n, float3 ng, float3 wo_world,
+                               float u, float v, float u_lobe, uint* rays) {
+  ShadingFrame frame = shading_frame(n);
+  float3 wo_local = view_local(frame, wo_world);
+  float3 origin = offset_ray_origin(p, ng);
+  return finite_or_zero(punctual_reflected(SCENE, in, frame, wo_local, p, origin, ng, rays) +
+                        emitters_reflected(SCENE, in, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays));
+}
+
+#endif
