@@ -52,13 +52,15 @@ inline void specular_fresnel_terms(BrdfInputs in, float3* c0, float3* c1) {
         in.metallic * ((float3)(1.0f) - in.base_color);
 }
 
-// Entry (T0, T1) for cos(theta_o) and roughness, by a 16 x 16 midpoint rule over the visible normals.
+// Entry (T0, T1) for cos(theta_o) and roughness, by a 64 x 64 midpoint rule over the visible normals (the integrand
+// jumps where reflections fall below the horizon: 16 x 16 left 2% errors at roughness 1).
 inline float2 specular_albedo_terms(float cos_o, float roughness) {
+  cos_o = fmax(cos_o, 1e-3f);  // the grazing node: G1 vanishes at 0
   BrdfInputs in = brdf_inputs((float3)(1.0f), 1.0f, roughness, 1.0f);
   float3 wo = (float3)(sqrt(fmax(1.0f - cos_o * cos_o, 0.0f)), 0.0f, cos_o);
   float a2 = in.alpha * in.alpha;
   float2 sum = (float2)(0.0f);
-  const int side = 16;
+  const int side = 64;
   for (int j = 0; j < side; ++j) {
     for (int i = 0; i < side; ++i) {
       float3 h = ggx_sample_visible_normal(wo, in.alpha, ((float)j + 0.5f) / side, ((float)i + 0.5f) / side);
@@ -75,7 +77,7 @@ inline float2 specular_albedo_terms(float cos_o, float roughness) {
 // The specular lobe's directional albedo toward wo (local frame), from the table.
 inline float3 specular_albedo(__global const float2* table, BrdfInputs in, float3 wo) {
   const int n = SPECULAR_ALBEDO_TABLE_SIZE;
-  float x = clamp(wo.z * n - 0.5f, 0.0f, (float)(n - 1)), y = clamp(sqrt(in.alpha) * n - 0.5f, 0.0f, (float)(n - 1));
+  float x = clamp(wo.z, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
   int x0 = min((int)x, n - 2), y0 = min((int)y, n - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
   float2 bottom = mix(table[y0 * n + x0], table[y0 * n + x0 + 1], fx);

@@ -16,7 +16,7 @@ __kernel void specular_albedo_table(__global float2* table) {
   uint i = get_global_id(0);
   const uint n = SPECULAR_ALBEDO_TABLE_SIZE;
   if (i >= n * n) return;
-  table[i] = specular_albedo_terms(((float)(i % n) + 0.5f) / (float)n, ((float)(i / n) + 0.5f) / (float)n);
+  table[i] = specular_albedo_terms((float)(i % n) / (float)(n - 1), (float)(i / n) / (float)(n - 1));
 }
 #endif
 

@@ -63,7 +63,7 @@ typedef struct {
 #define ROUGH_MIN_ROUGHNESS 0.6f
 #define ROUGH_METAL_MIN_ROUGHNESS 0.9f
 
-// The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at (i + 0.5) / size.
+// The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at i / (size - 1).
 #define SPECULAR_ALBEDO_TABLE_SIZE 32
 
 // The LOBE_* of a surface with these parameters (the host for a material's factors, the G-buffer per pixel).
