@@ -60,6 +60,25 @@ double indirect_rel_mse(const RenderedImage& img, const RenderedImage& ref) {
   return image_error(img.indirect, ref.indirect).rel_mse;
 }
 
+// A stratified path-traced reference of `samples` per pixel (settings' frame and light samples) and its own noise:
+// the relMSE its per-pixel variance adds to every error measured against it in expectation, to be subtracted.
+struct PathReference {
+  RenderedImage image;
+  double noise = 0.0;
+};
+
+PathReference path_reference(const Scene& scene, RenderSettings settings, unsigned samples) {
+  settings.gi = GiMethod::path;
+  settings.path.samples = samples;
+  settings.path.stratified = true;
+  PathReference ref{render(test::gpu(), scene, settings)};
+  const RenderedImage& r = ref.image;
+  for (size_t i = 0; i < r.indirect.size(); ++i)
+    ref.noise += r.indirect_variance[i] / (double(r.indirect[i]) * r.indirect[i] + kRelMseOffset) /
+                 double(r.indirect.size());
+  return ref;
+}
+
 // The default Cornell box, one bounce, 64 x 64, against a stratified path-traced reference of 4096 samples per pixel.
 // The reference's own noise adds its expected relMSE (from its per-pixel variance) to every measured one: it is
 // subtracted. Measured on PoCL (indirect layer, exposure 1, 16 x 32 rays, record spacing 3..20 px): a = 0.8: 1.3e-3,
@@ -69,14 +88,9 @@ TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
   RenderSettings settings;
   settings.width = settings.height = 64;
   settings.light_samples = 4;
-  settings.gi = GiMethod::path;
-  settings.path.samples = 4096;
-  settings.path.stratified = true;
-  RenderedImage ref = render(test::gpu(), scene, settings);
-  double ref_noise = 0.0;
-  for (size_t i = 0; i < ref.indirect.size(); ++i)
-    ref_noise += ref.indirect_variance[i] / (double(ref.indirect[i]) * ref.indirect[i] + kRelMseOffset) /
-                 double(ref.indirect.size());
+  PathReference reference = path_reference(scene, settings, 4096);
+  const RenderedImage& ref = reference.image;
+  const double ref_noise = reference.noise;
 
   settings.gi = GiMethod::splat;
   const float accuracies[] = {0.8f, 0.4f, 0.2f};
@@ -141,14 +155,9 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
   RenderSettings settings;
   settings.width = settings.height = 48;
   settings.light_samples = 4;
-  settings.gi = GiMethod::path;
-  settings.path.samples = 4096;
-  settings.path.stratified = true;
-  RenderedImage ref = render(test::gpu(), scene, settings);
-  double ref_noise = 0.0;
-  for (size_t i = 0; i < ref.indirect.size(); ++i)
-    ref_noise += ref.indirect_variance[i] / (double(ref.indirect[i]) * ref.indirect[i] + kRelMseOffset) /
-                 double(ref.indirect.size());
+  PathReference reference = path_reference(scene, settings, 4096);
+  const RenderedImage& ref = reference.image;
+  const double ref_noise = reference.noise;
 
   settings.gi = GiMethod::splat;
   settings.glossy_samples = 64;
