@@ -67,12 +67,23 @@ inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
   return 1.0f - in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * schlick_weight(n_dot_v));
 }
 
-// The specular lobe's Fresnel colour at v.h: the dielectric layer's and the metal's, mixed by metallic.
+// The specular lobe's Fresnel colour is c0 + c1 (1 - v.h)^5: the dielectric layer's and the metal's Schlick terms,
+// mixed by metallic. Split so that the lobe's albedo can be tabulated once for all materials (kernels/brdf_frame.h).
+inline void specular_fresnel_terms(BrdfInputs in, float3* c0, float3* c1) {
+  *c0 = (float3)((1.0f - in.metallic) * in.specular * DIELECTRIC_F0) + in.metallic * in.base_color;
+  *c1 = (float3)((1.0f - in.metallic) * in.specular * (1.0f - DIELECTRIC_F0)) +
+        in.metallic * ((float3)(1.0f) - in.base_color);
+}
+
 inline float3 brdf_specular_fresnel(BrdfInputs in, float v_dot_h) {
-  float fw = schlick_weight(v_dot_h);
-  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
-  float3 metal = in.base_color + ((float3)(1.0f) - in.base_color) * fw;
-  return (1.0f - in.metallic) * (float3)(fd) + in.metallic * metal;
+  float3 c0, c1;
+  specular_fresnel_terms(in, &c0, &c1);
+  return c0 + c1 * schlick_weight(v_dot_h);
+}
+
+// G2(l, v) / G1(v) = 4 n.l n.v V / G1(v): the weight of a reflection drawn through the visible normals, without F.
+inline float ggx_g2_over_g1(float n_dot_l, float n_dot_v, float a2) {
+  return 4.0f * n_dot_l * n_dot_v * ggx_visibility(n_dot_l, n_dot_v, a2) / ggx_g1(n_dot_v, a2);
 }
 
 // The diffuse base alone: (1 - metallic) (1 - F_d(n.v)) base / pi, a constant over wi.
@@ -99,9 +110,7 @@ inline float3 brdf_eval(BrdfInputs in, float3 wo, float3 wi) {
 inline float3 brdf_specular_weight(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
   float3 h = normalize(wo + wi);
-  float a2 = in.alpha * in.alpha;
-  float g2_over_g1 = 4.0f * wi.z * wo.z * ggx_visibility(wi.z, wo.z, a2) / ggx_g1(wo.z, a2);
-  return brdf_specular_fresnel(in, fmax(dot(wo, h), 0.0f)) * g2_over_g1;
+  return brdf_specular_fresnel(in, fmax(dot(wo, h), 0.0f)) * ggx_g2_over_g1(wi.z, wo.z, in.alpha * in.alpha);
 }
 
 // Probability of sampling the GGX lobe rather than the cosine lobe, from the lobes' weights seen from wo.

@@ -42,15 +42,9 @@ inline BrdfInputs gbuffer_brdf(GBufferSample g) {
 }
 
 // The specular lobe's directional albedo, through a table shared by all materials. The lobe's Fresnel colour is
-// c0 + c1 (1 - v.h)^5 (brdf_specular_fresnel), so its albedo toward wo is c0 T0 + c1 T1 with
+// c0 + c1 (1 - v.h)^5 (specular_fresnel_terms), so its albedo toward wo is c0 T0 + c1 T1 with
 // T0 = integral of G2 / G1 and T1 = integral of (1 - v.h)^5 G2 / G1 over the visible normals: two numbers per view angle
 // and roughness, tabulated once (kernels/compose.cl specular_albedo_table) and read bilinearly.
-
-inline void specular_fresnel_terms(BrdfInputs in, float3* c0, float3* c1) {
-  *c0 = (float3)((1.0f - in.metallic) * in.specular * DIELECTRIC_F0) + in.metallic * in.base_color;
-  *c1 = (float3)((1.0f - in.metallic) * in.specular * (1.0f - DIELECTRIC_F0)) +
-        in.metallic * ((float3)(1.0f) - in.base_color);
-}
 
 // Entry (T0, T1) for cos(theta_o) and roughness, by a 64 x 64 midpoint rule over the visible normals (the integrand
 // jumps where reflections fall below the horizon: 16 x 16 left 2% errors at roughness 1).
@@ -66,7 +60,7 @@ inline float2 specular_albedo_terms(float cos_o, float roughness) {
       float3 h = ggx_sample_visible_normal(wo, in.alpha, ((float)j + 0.5f) / side, ((float)i + 0.5f) / side);
       float3 wi = 2.0f * dot(wo, h) * h - wo;
       if (wi.z <= 0.0f) continue;
-      float g2_over_g1 = 4.0f * wi.z * wo.z * ggx_visibility(wi.z, wo.z, a2) / ggx_g1(wo.z, a2);
+      float g2_over_g1 = ggx_g2_over_g1(wi.z, wo.z, a2);
       float fw = schlick_weight(fmax(dot(wo, h), 0.0f));
       sum += (float2)(g2_over_g1, fw * g2_over_g1);
     }

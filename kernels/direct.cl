@@ -9,6 +9,13 @@
 #include "reflected_light.h"
 #endif
 
+// The light sample of stratum (i, j) of a strata x strata grid over the emitters' unit square, sample s = j * strata + i.
+inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
+  uint s = j * strata + i;
+  float inv = 1.0f / (float)strata;
+  return (float2)(((float)i + random01(key, s, 0u)) * inv, ((float)j + random01(key, s, 1u)) * inv);
+}
+
 #if HAS_SPECULAR_BRDF
 // Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters
 // with the same stratified light samples as a Lambertian pixel, each paired with a BRDF sample where the lobe is
@@ -27,10 +34,9 @@ inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world
     float inv = 1.0f / (float)strata_per_axis;
     for (uint j = 0; j < strata_per_axis; ++j) {
       for (uint i = 0; i < strata_per_axis; ++i) {
-        uint s = j * strata_per_axis + i;
-        float u = ((float)i + random01(key, s, 0u)) * inv;
-        float v = ((float)j + random01(key, s, 1u)) * inv;
-        sum += emitters_reflected(SCENE, in, g.lobe, frame, wo, p, origin, ng, u, v, random01(key, s, 2u), rays);
+        float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
+        sum += emitters_reflected(SCENE, in, g.lobe, frame, wo, p, origin, ng, uv.x, uv.y,
+                                  random01(key, j * strata_per_axis + i, 2u), rays);
       }
     }
     result += sum * (inv * inv);
@@ -71,12 +77,10 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
       uint key = hash_u32(pixel ^ hash_u32(params.seed));
       for (uint j = 0; j < strata_per_axis; ++j) {
         for (uint i = 0; i < strata_per_axis; ++i) {
-          uint s = j * strata_per_axis + i;
-          float u = ((float)i + random01(key, s, 0u)) * inv;
-          float v = ((float)j + random01(key, s, 1u)) * inv;
+          float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
           float3 wi;
           float pdf;
-          sum += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, &rays);
+          sum += emitter_sample(BVH, emitters, emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, &rays);
         }
       }
       irradiance += sum * (inv * inv);

@@ -1,6 +1,7 @@
 // The path tracer that serves as ground truth and competitor: through the same pixel centres as the G-buffer, one
 // bounce per sample (cosine-weighted at Lambertian pixels, drawn from the BRDF where there is a specular lobe), the
-// bounce's hit lit directly (kernels/bounce.h): the same integral the cache estimates, with the same bounce count. Accumulates the indirect radiance and its square per pixel (for the variance).
+// bounce's hit lit directly (kernels/bounce.h): the same integral the cache estimates, with the same bounce count.
+// Accumulates the indirect radiance and its square per pixel (for the variance).
 // Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
