@@ -53,6 +53,9 @@ inline float3 punctual_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, 
   return sum;
 }
 
+// Glossy lobes (sampled or radiance-cached) pair each light sample with a BRDF sample; rough ones take light samples.
+inline bool lobe_takes_brdf_samples(int lobe) { return lobe == LOBE_GLOSSY || lobe == LOBE_HSH; }
+
 // One estimate of the emitters' radiance reflected toward wo: a light sample at (u, v), and for a glossy lobe also a
 // BRDF sample at (u_lobe, u, v), the two weighed by multiple importance sampling. Reusing (u, v) keeps each technique
 // unbiased on its own, and the weights sum to one at every direction, so their sum is too.
@@ -67,10 +70,10 @@ inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFra
                             rays);
   if (light_pdf > 0.0f) {
     float3 wi_local = to_local(frame, wi);
-    float weight = lobe == LOBE_GLOSSY ? power_heuristic(light_pdf, brdf_pdf(in, wo_local, wi_local)) : 1.0f;
+    float weight = lobe_takes_brdf_samples(lobe) ? power_heuristic(light_pdf, brdf_pdf(in, wo_local, wi_local)) : 1.0f;
     sum += brdf_eval(in, wo_local, wi_local) * e * weight;
   }
-  if (lobe == LOBE_GLOSSY) {
+  if (lobe_takes_brdf_samples(lobe)) {
     float3 wi_local;
     float brdf_pdf_value;
     float3 throughput = brdf_sample(in, wo_local, u_lobe, u, v, &wi_local, &brdf_pdf_value);

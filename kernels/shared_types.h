@@ -54,14 +54,24 @@ typedef struct {
 // How the cache shades a surface's specular lobe (docs/NOTES.md "Material kinds"; host/scene/material_kind.h decides):
 // LOBE_NONE: Lambertian (metallic 0 and no specular layer), exactly base / pi: the irradiance cache is exact for it.
 // LOBE_ROUGH: a wide lobe; its indirect light is taken from the cached irradiance, E / pi times the lobe's albedo.
-// LOBE_GLOSSY: a narrower lobe; its indirect light is estimated per pixel by sampling the lobe (kernels/glossy.cl).
+// LOBE_GLOSSY: a lobe too sharp for the highest HSH order; its indirect light is estimated per pixel by sampling the
+// lobe (kernels/glossy.cl).
+// LOBE_HSH: a glossy lobe that HSH_MAX_ORDER holds: radiance caching (records of incident radiance in hemispherical
+// harmonics, kernels/hsh_records.cl, splatted with each pixel's view by kernels/radiance_splat.cl).
 #define LOBE_NONE 0
 #define LOBE_ROUGH 1
 #define LOBE_GLOSSY 2
+#define LOBE_HSH 3
+#define LOBE_KINDS 4
 // A lobe with roughness at or above this is LOBE_ROUGH for a dielectric; metals (metallic >= 0.5) need
 // ROUGH_METAL_MIN_ROUGHNESS, since their whole reflection is the lobe.
 #define ROUGH_MIN_ROUGHNESS 0.6f
 #define ROUGH_METAL_MIN_ROUGHNESS 0.9f
+// A glossy lobe with roughness at or above this is radiance-cached (LOBE_HSH): order 10 holds 80% of its energy seen
+// at 72 degrees, two thirds at the most grazing view (passes/brdf_table_pass.h captured_energy; docs/NOTES.md
+// "Radiance caching" has the measured table). Only roughness shapes the lobe's table, so the bound is the same for
+// metals and dielectrics. Sharper lobes are sampled per pixel (LOBE_GLOSSY).
+#define HSH_MIN_ROUGHNESS 0.45f
 
 // The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at i / (size - 1).
 #define SPECULAR_ALBEDO_TABLE_SIZE 32
@@ -70,7 +80,8 @@ typedef struct {
 inline rc_int material_lobe(float metallic, float roughness, float specular) {
   if (!(metallic > 0.0f) && !(specular > 0.0f)) return LOBE_NONE;
   float rough_from = metallic >= 0.5f ? ROUGH_METAL_MIN_ROUGHNESS : ROUGH_MIN_ROUGHNESS;
-  return roughness >= rough_from ? LOBE_ROUGH : LOBE_GLOSSY;
+  if (roughness >= rough_from) return LOBE_ROUGH;
+  return roughness >= HSH_MIN_ROUGHNESS ? LOBE_HSH : LOBE_GLOSSY;
 }
 
 typedef struct {

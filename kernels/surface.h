@@ -129,6 +129,8 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
     l.metallic *= mr.z;
     l.roughness *= mr.y;
     l.lobe = material_lobe(l.metallic, l.roughness, l.specular);
+    // The HSH table is the material's, at its roughness factor: a lobe whose roughness a texture varies is sampled.
+    if (l.lobe == LOBE_HSH) l.lobe = LOBE_GLOSSY;
   }
 #endif
   return l;

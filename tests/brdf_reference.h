@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 namespace rcsplat::brdf_reference {
 
@@ -59,9 +60,17 @@ inline std::array<double, 3> reference_brdf(const Material& m, Vec wo, Vec wi, b
   return f;
 }
 
-// The radiance reflected toward wo from incident radiance incident(cos theta_i) (the same from every azimuth): the
+// Incident radiance given as a function of the direction, or of cos(theta) alone.
+template <typename Incident>
+double incident_radiance(const Incident& incident, Vec wi) {
+  if constexpr (std::is_invocable_v<Incident, Vec>) return incident(wi);
+  else return incident(wi.z);
+}
+
+// The radiance reflected toward wo from incident radiance `incident` (of the direction, or of cos theta_i): the
 // diffuse part over cosine-weighted directions, the specular part over half vectors drawn from D(h) cos(theta_h) (so
 // the integrand stays smooth however narrow the lobe), both by the midpoint rule on an n x n grid.
+
 template <typename Incident>
 std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident incident, bool per_microfacet_diffuse,
                                           int n) {
@@ -74,7 +83,7 @@ std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident in
       double s = std::sqrt(u);
       Vec wi{s * std::cos(phi), s * std::sin(phi), std::sqrt(1.0 - u)};
       std::array<double, 3> fd = reference_brdf(m, wo, wi, true, false, per_microfacet_diffuse);
-      double l_diffuse = incident(wi.z);
+      double l_diffuse = incident_radiance(incident, wi);
       // Specular: h with pdf D cos(theta_h); wi = reflect(wo, h) has pdf D cos(theta_h) / (4 wo.h).
       double tan2 = a * a * u / (1.0 - u);
       double ch = 1.0 / std::sqrt(1.0 + tan2), sh = std::sqrt(1.0 - ch * ch);
@@ -85,7 +94,7 @@ std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident in
       double pdf = d_ggx(ch, a) * ch / (4.0 * wo_h);
       bool above = wo_h > 0.0 && wr.z > 0.0;
       if (above) fs = reference_brdf(m, wo, wr, false, true);
-      double l_specular = above ? incident(wr.z) : 0.0;
+      double l_specular = above ? incident_radiance(incident, wr) : 0.0;
       for (size_t c = 0; c < 3; ++c)
         sum[c] += fd[c] * kPi * l_diffuse + (above ? fs[c] * wr.z / pdf * l_specular : 0.0);
     }

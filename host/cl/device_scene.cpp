@@ -7,6 +7,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, b
   PackedScene p = pack_scene(scene);
   triangles_ = gpu.upload(p.triangles);
   materials_ = gpu.upload(p.materials);
+  materials_host_ = p.materials;
   textures_ = gpu.upload(p.textures);
   texels_ = gpu.upload(p.texels);
   lights_ = gpu.upload(p.lights);
@@ -22,7 +23,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, b
   for (const Material& m : p.materials) masked |= m.alpha_cutoff > 0.0f;
   defines_["HAS_ALPHA_MASK"] = masked ? "1" : "0";
   for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
-  bool specular = force_specular_brdf || lobe_counts_[LOBE_ROUGH] + lobe_counts_[LOBE_GLOSSY] > 0;
+  bool specular = force_specular_brdf || lobe_counts_[LOBE_ROUGH] + lobe_counts_[LOBE_GLOSSY] + lobe_counts_[LOBE_HSH] > 0;
   defines_["HAS_SPECULAR_BRDF"] = specular ? "1" : "0";
   defines_["HAS_PUNCTUAL_LIGHTS"] = counts_.light_count ? "1" : "0";
   defines_["HAS_EMITTERS"] = counts_.emitter_count ? "1" : "0";

@@ -3,6 +3,7 @@
 // compile-time switches from the scene.
 #pragma once
 #include <array>
+#include <vector>
 
 #include "bvh/bvh8.h"
 #include "cl/device_bvh.h"
@@ -24,15 +25,19 @@ class DeviceScene {
   // code it needs.
   const KernelDefines& defines() const { return defines_; }
   // Materials by LOBE_* (index), from their factors.
-  const std::array<unsigned, 3>& lobe_counts() const { return lobe_counts_; }
+  const std::array<unsigned, LOBE_KINDS>& lobe_counts() const { return lobe_counts_; }
   bool has_specular_brdf() const { return defines_.at("HAS_SPECULAR_BRDF") == "1"; }
+  // Radiance caching runs (and its kernels compile) only for a scene with a LOBE_HSH material.
+  bool has_radiance_cache() const { return lobe_counts_[LOBE_HSH] > 0; }
+  const std::vector<Material>& materials() const { return materials_host_; }
 
  private:
   DeviceBvh bvh_;
   cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_;
   SceneCounts counts_{};
   KernelDefines defines_;
-  std::array<unsigned, 3> lobe_counts_{};
+  std::array<unsigned, LOBE_KINDS> lobe_counts_{};
+  std::vector<Material> materials_host_;
 };
 
 }  // namespace rcsplat

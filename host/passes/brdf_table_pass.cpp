@@ -7,19 +7,27 @@
 
 namespace rcsplat {
 
-float BrdfTable::coefficient(size_t material, int angle, int k, int channel) const {
+float BrdfTable::coefficient(size_t material, int angle, int term, int k) const {
   size_t row = material * size_t(angle_count) + size_t(angle);
-  return coefficients[(row * size_t(order * order) + size_t(k)) * 3 + size_t(channel)];
+  return lobe[(row * 2 + size_t(term)) * size_t(order * order) + size_t(k)];
 }
 
-double BrdfTable::captured_energy(size_t material, int angle, int order_used, int channel) const {
+double BrdfTable::captured_energy(size_t material, int angle, int order_used) const {
   double sum = 0.0;
-  for (int k = 0; k < std::min(order_used, order) * std::min(order_used, order); ++k) {
-    double c = coefficient(material, angle, k, channel);
+  int n = std::min(order_used, order);
+  for (int k = 0; k < n * n; ++k) {
+    double c = coefficient(material, angle, 0, k);
     sum += c * c;
   }
-  double e = energy[(material * size_t(angle_count) + size_t(angle)) * 3 + size_t(channel)];
+  double e = energy[material * size_t(angle_count) + size_t(angle)];
   return e > 0.0 ? sum / e : 1.0;
+}
+
+double BrdfTable::worst_captured_energy(size_t material, int order_used) const {
+  double worst = 1.0;
+  for (int a = angle_count > 1 ? 1 : 0; a < angle_count; ++a)
+    worst = std::min(worst, captured_energy(material, a, order_used));
+  return worst;
 }
 
 BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel("brdf_table.cl", "project_brdf")) {}
@@ -32,8 +40,8 @@ BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int
   table.order = order;
   table.angle_count = angle_count;
   size_t n2 = size_t(order) * size_t(order), rows = materials.size() * size_t(angle_count);
-  table.coefficients.assign(rows * n2 * 3, 0.0f);
-  table.energy.assign(rows * 3, 0.0f);
+  table.lobe.assign(rows * 2 * n2, 0.0f);
+  table.energy.assign(rows, 0.0f);
   if (materials.empty()) return table;
 
   BrdfTableParams params{};
@@ -43,7 +51,7 @@ BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int
   params.chunk_count = (samples + params.samples_per_chunk - 1) / params.samples_per_chunk;
   params.order = cl_uint(order);
   params.seed = seed;
-  size_t items = rows * params.chunk_count, stride = 3 * n2 + 3;
+  size_t items = rows * params.chunk_count, stride = 2 * n2 + 1;
   cl::Buffer input = gpu_.upload(materials);
   cl::Buffer partial(gpu_.context(), CL_MEM_WRITE_ONLY, items * stride * sizeof(float));
   kernel_.set_buffer<BrdfMaterial>("materials", input).set("params", params).set_buffer<cl_float>("partial", partial);
@@ -55,8 +63,8 @@ BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int
     std::vector<double> total(stride, 0.0);
     for (size_t chunk = 0; chunk < params.chunk_count; ++chunk)
       for (size_t i = 0; i < stride; ++i) total[i] += sums[(row * params.chunk_count + chunk) * stride + i];
-    for (size_t i = 0; i < 3 * n2; ++i) table.coefficients[row * n2 * 3 + i] = float(total[i] / params.chunk_count);
-    for (size_t c = 0; c < 3; ++c) table.energy[row * 3 + c] = float(total[3 * n2 + c] / params.chunk_count);
+    for (size_t i = 0; i < 2 * n2; ++i) table.lobe[row * 2 * n2 + i] = float(total[i] / params.chunk_count);
+    table.energy[row] = float(total[2 * n2] / params.chunk_count);
   }
   return table;
 }
