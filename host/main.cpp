@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "kernels/hsh.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -94,6 +95,10 @@ int main(int argc, char** argv) {
                          "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
                          "(stratified; default 16)")
       ->check(CLI::Range(1u, 1u << 16));
+  render_cmd->add_option("--hsh-order", render.settings.hsh_order,
+                         "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
+                         "channel, 1.." + std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
+      ->check(CLI::Range(1u, unsigned(HSH_MAX_ORDER)));
   render_cmd->add_flag("--stratified", render.settings.path.stratified,
                        "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
 

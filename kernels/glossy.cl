@@ -2,14 +2,16 @@
 // the cache's irradiance carries the diffuse base (kernels/splat.cl), and a glossy lobe is too narrow for irradiance
 // to stand in for the light it reflects. Each sample reflects the view about a visible normal of the GGX lobe
 // (Heitz 2018), drawn from a grid_side x grid_side grid, and weighs the directly lit radiance its ray finds
-// (kernels/bounce.h) by F G2 / G1. Writes RGB = the mean, A = the rays the pixel cast.
+// (kernels/bounce.h) by F G2 / G1. Writes RGB = the mean, A = the rays the pixel cast. With SAMPLE_HSH_LOBES the
+// radiance-cacheable lobes (LOBE_HSH) are sampled too, for cache methods that do not radiance-cache them.
 #include "bounce.h"
 
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];
-  if (g.triangle < 0 || g.lobe != LOBE_GLOSSY) {
+  bool sampled = g.lobe == LOBE_GLOSSY || (SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH);
+  if (g.triangle < 0 || !sampled) {
     glossy_out[pixel] = (float4)(0.0f);
     return;
   }

@@ -6,7 +6,9 @@
 #include "cache_math.h"
 
 // The host compiles this kernel with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
-// HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M.
+// HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M. With
+// STORE_STRATA = 1 (radiance caching) each stratum's radiance and hit distance are also kept, for the HSH projection
+// of kernels/hsh_records.cl.
 
 // gradient[axis] += direction[axis] * value, for a world-space direction and an RGB value.
 inline void add_outer(float3* gradient, float3 direction, float3 value) {
@@ -23,7 +25,11 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 }
 
 __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
-                              __global CacheRecord* records, __global ulong* ray_total) {
+                              __global CacheRecord* records,
+#if STORE_STRATA
+                              __global float4* strata,
+#endif
+                              __global ulong* ray_total) {
   uint i = get_global_id(0);
   if (i >= batch.candidate_count) return;
   const HemisphereParams hp = batch.hemisphere;
@@ -78,6 +84,9 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
         l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u), &r,
                             &rays);
       }
+#if STORE_STRATA
+      strata[((size_t)i * M + j) * N + k] = (float4)(l, r);
+#endif
       e += l;
       inverse_distances += 1.0f / r;
       rotation += rotation_weight[j] * l;

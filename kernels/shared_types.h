@@ -254,6 +254,35 @@ typedef struct {
   rc_uint pad[2];
 } BrdfTableParams;
 
+// Radiance records (kernels/hsh_records.cl): each holds, per coefficient k of order n and colour channel, five parts
+// of n^2 RGB triples: the incident radiance's HSH coefficients lambda, their translational gradients along the
+// record's tangent t and bitangent b (kernels/sampling.h tangent_frame), and D_x lambda, D_y lambda for the
+// small-angle tilt (host/cache/hsh_rotation.h). Floats per record: HSH_RECORD_PARTS * 3 * n^2.
+#define HSH_RECORD_PARTS 5
+#define HSH_PART_COEFFICIENTS 0
+#define HSH_PART_GRADIENT_T 1
+#define HSH_PART_GRADIENT_B 2
+#define HSH_PART_TILT_X 3
+#define HSH_PART_TILT_Y 4
+typedef struct {
+  rc_uint first_record;  // the batch: records first_record .. first_record + record_count - 1
+  rc_uint record_count;
+  rc_uint order;         // n
+  rc_uint theta_strata;  // the batch's M x N strata
+  rc_uint phi_strata;
+  rc_uint pad[3];
+} HshRecordParams;
+
+// The radiance splat's constants for one frame (kernels/radiance_splat.cl).
+typedef struct {
+  float accuracy;         // the radiance records' a, stricter than the irradiance cache's
+  float radiance_scale;   // fixed-point unit of w * L_o (the largest stratum radiance: no lobe reflects more)
+  rc_uint record_count;
+  rc_uint order;
+  rc_uint angle_count;    // the BRDF table's view angles
+  rc_uint pad[3];
+} RadianceSplatParams;
+
 // A batch of records: candidates[0 .. candidate_count - 1] become records first_record and up.
 typedef struct {
   HemisphereParams hemisphere;
@@ -307,6 +336,8 @@ static_assert(sizeof(SceneCounts) == 16);
 static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 16);
 static_assert(sizeof(RecordBatchParams) == 48);
+static_assert(sizeof(HshRecordParams) == 32);
+static_assert(sizeof(RadianceSplatParams) == 32);
 static_assert(sizeof(PlacementParams) == 32);
 static_assert(sizeof(SplatParams) == 16);
 static_assert(sizeof(RayCastParams) == 16);

@@ -7,6 +7,7 @@
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
+#include "kernels/hsh.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -24,10 +25,12 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
               s.light_samples, gi_method_name(s.gi));
-  std::printf("materials    %u Lambertian, %u rough (specular indirect light from the cached irradiance), %u glossy "
-              "(specular indirect light sampled per pixel); BRDF code %s\n",
-              s.lambertian_materials, s.rough_materials, s.glossy_materials,
-              s.specular_brdf ? "compiled" : "not compiled (every material is Lambertian)");
+  std::printf("materials    %u Lambertian, %u rough (specular indirect light from the cached irradiance), %u "
+              "radiance-cached (roughness %.2f and up: HSH records), %u glossy (too sharp for HSH order %d: specular "
+              "indirect light sampled per pixel); BRDF code %s, HSH code %s\n",
+              s.lambertian_materials, s.rough_materials, s.hsh_materials, double(HSH_MIN_ROUGHNESS), s.glossy_materials,
+              HSH_MAX_ORDER, s.specular_brdf ? "compiled" : "not compiled (every material is Lambertian)",
+              s.hsh_materials ? "compiled" : "not compiled (no radiance-cached material)");
   std::printf("triangles    %zu (BVH: %zu nodes, %zu triangle blocks, depth %d)\n", s.triangles, s.bvh_nodes,
               s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
@@ -55,6 +58,15 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
                   "rays, %.3f s (%.2f Mrays/s)\n",
                   (unsigned long long)s.rough_pixels, (unsigned long long)s.glossy_pixels, s.glossy_samples,
                   (unsigned long long)s.glossy_rays, s.glossy_s, mrays_per_second(s.glossy_rays, s.glossy_s));
+    if (s.hsh_order)
+      std::printf("radiance     %llu radiance-cached pixels: HSH order %u (%u coefficients a channel, holds %.0f%% of the "
+                  "sharpest cached lobe), a = %g, %llu records, %llu rays (%.2f Mrays/s)\n"
+                  "time         lobe table %.3f s, records %.3f s, placement %.3f s, splat %.3f s\n",
+                  (unsigned long long)s.hsh_pixels, s.hsh_order, s.hsh_order * s.hsh_order,
+                  100.0 * s.hsh_captured_energy, double(s.radiance_accuracy), (unsigned long long)s.radiance_records,
+                  (unsigned long long)s.radiance_record_rays,
+                  mrays_per_second(s.radiance_record_rays, s.radiance_records_s), s.hsh_table_s, s.radiance_records_s,
+                  s.radiance_placement_s, s.radiance_splat_s);
   }
   if (s.gi == GiMethod::path) {
     std::printf("path         %u samples per pixel%s, %llu rays, %.3f s (%.2f Mrays/s)\n", s.path_samples,
@@ -88,7 +100,9 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                    {"path", s.path_s}, {"total", s.total_s}}},
       {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)},
       {"materials", {{"lambertian", s.lambertian_materials}, {"rough", s.rough_materials},
-                     {"glossy", s.glossy_materials}, {"brdf_compiled", s.specular_brdf}}}};
+                     {"radiance_cached", s.hsh_materials}, {"glossy", s.glossy_materials},
+                     {"brdf_compiled", s.specular_brdf}, {"hsh_compiled", s.hsh_materials > 0},
+                     {"radiance_cached_min_roughness", HSH_MIN_ROUGHNESS}}}};
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     nlohmann::json levels = nlohmann::json::array();
@@ -100,6 +114,12 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                   {"at_max_radius", s.records_at_max_radius}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
                      {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
+    if (s.hsh_order)
+      j["radiance_cache"] = {{"pixels", s.hsh_pixels}, {"order", s.hsh_order}, {"captured_energy", s.hsh_captured_energy},
+                             {"accuracy", s.radiance_accuracy}, {"records", s.radiance_records},
+                             {"rays", s.radiance_record_rays},
+                             {"seconds", {{"lobe_table", s.hsh_table_s}, {"records", s.radiance_records_s},
+                                          {"placement", s.radiance_placement_s}, {"splat", s.radiance_splat_s}}}};
   }
   if (s.gi == GiMethod::path) j["path"] = {{"samples", s.path_samples}, {"stratified", settings.path.stratified}};
   return j;

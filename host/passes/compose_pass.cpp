@@ -3,21 +3,30 @@
 namespace rcsplat {
 
 namespace {
+
 constexpr size_t kTableEntries = SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
+
+
+KernelDefines compose_defines(const DeviceScene& scene, bool radiance_cached) {
+  KernelDefines defines = scene.defines();
+  defines["RADIANCE_CACHED"] = radiance_cached ? "1" : "0";
+  return defines;
 }
 
-ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", scene.defines())) {
+}  // namespace
+
+ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
+    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", compose_defines(scene, radiance_cached))) {
   specular_albedo_table_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2));
   if (scene.has_specular_brdf()) {
-    NamedKernel table = gpu.kernel("compose.cl", "specular_albedo_table", scene.defines());
+    NamedKernel table = gpu.kernel("compose.cl", "specular_albedo_table", compose_defines(scene, radiance_cached));
     table.set_buffer<cl_float2>("table", specular_albedo_table_);
     table.launch(kTableEntries, gpu_.groups().per_item);
   }
 }
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
-                      const cl::Buffer* glossy) {
+                      const cl::Buffer* glossy, const cl::Buffer* cached_lobes) {
   if (gbuffer.pixel_count() != pixels_ || !indirect_()) {
     pixels_ = gbuffer.pixel_count();
     size_t bytes = std::max<size_t>(pixels_, 1) * 4 * sizeof(float);
@@ -25,10 +34,12 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
     color_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, bytes);
   }
   gbuffer.bind(kernel_);
-  // Without glossy pixels the kernel never reads "glossy": any float4 buffer of the frame's size stands in.
+  // Without glossy (radiance-cached) pixels the kernel never reads "glossy" ("cached_lobes"): any float4 buffer of
+  // the frame's size stands in.
   kernel_.set_buffer<cl_float4>("irradiance", irradiance)
       .set_buffer<cl_float4>("direct", direct)
       .set_buffer<cl_float4>("glossy", glossy ? *glossy : irradiance)
+      .set_buffer<cl_float4>("cached_lobes", cached_lobes ? *cached_lobes : irradiance)
       .set_buffer<cl_float2>("specular_albedo_terms", specular_albedo_table_)
       .set_buffer<cl_float4>("indirect_out", indirect_)
       .set_buffer<cl_float4>("color_out", color_);

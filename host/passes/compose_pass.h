@@ -11,10 +11,13 @@ namespace rcsplat {
 
 class ComposePass {
  public:
-  ComposePass(GpuContext& gpu, const DeviceScene& scene);
+  // radiance_cached: the LOBE_HSH pixels' lobes come from the radiance cache, not from GlossyPass.
+  ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached);
   // irradiance: float4 per pixel (E.rgb, weight; 0 where uncovered); direct: DirectPass's RGBA; glossy: GlossyPass's
-  // RGBA, or nullptr where the scene has no glossy pixel. Blocks until done.
-  void run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct, const cl::Buffer* glossy);
+  // RGBA, or nullptr where no pixel is sampled; cached_lobes: RadianceSplatPass's lobe radiance, or nullptr without
+  // radiance caching. Blocks until done.
+  void run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct, const cl::Buffer* glossy,
+           const cl::Buffer* cached_lobes);
 
   std::vector<float> indirect_rgba();  // A = 1 where a record reached the pixel
   std::vector<float> color_rgba();

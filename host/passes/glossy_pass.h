@@ -12,7 +12,8 @@ namespace rcsplat {
 
 class GlossyPass {
  public:
-  GlossyPass(GpuContext& gpu, const DeviceScene& scene);
+  // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
+  GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
   // samples lobe samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; blocks until done.
   void run(const GBufferView& gbuffer, unsigned samples, unsigned seed);
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast

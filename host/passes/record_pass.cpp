@@ -1,26 +1,30 @@
 #include "passes/record_pass.h"
 
+#include <algorithm>
+
 #include "util/error.h"
 
 namespace rcsplat {
 namespace {
 
 // The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata) {
+KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
   KernelDefines defines = scene.defines();
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
+  defines["STORE_STRATA"] = store_strata ? "1" : "0";
   return defines;
 }
 
 }  // namespace
 
-RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata)
+RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata)
     : gpu_(gpu),
       scene_(scene),
       theta_capacity_(theta_strata),
-      kernel_(gpu.kernel("records.cl", "compute_records", record_defines(scene, theta_strata))) {
+      store_strata_(store_strata),
+      kernel_(gpu.kernel("records.cl", "compute_records", record_defines(scene, theta_strata, store_strata))) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
   reserve(1024);
 }
@@ -53,6 +57,14 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
       .set("batch", batch)
       .set_buffer<CacheRecord>("records", records_)
       .set_buffer<cl_ulong>("ray_total", ray_total_);
+  if (store_strata_) {
+    size_t strata = size_t(count) * params.theta_strata * params.phi_strata;
+    if (strata > strata_capacity_) {
+      strata_capacity_ = std::max(strata, strata_capacity_ * 2);
+      strata_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, strata_capacity_ * sizeof(cl_float4));
+    }
+    kernel_.set_buffer<cl_float4>("strata", strata_);
+  }
   kernel_.launch(count, gpu_.groups().per_record);
   gpu_.queue().finish();
 }

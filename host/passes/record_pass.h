@@ -13,14 +13,17 @@ namespace rcsplat {
 
 class RecordPass {
  public:
-  // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA).
-  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata);
+  // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
+  // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them).
+  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false);
 
   // Computes records first .. first + count - 1 at the G-buffer pixels listed in candidates (a device array of pixel
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
   void compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
                const HemisphereParams& params);
   const cl::Buffer& records() const { return records_; }
+  // float4 (L.rgb, hit distance) per stratum of the last batch: [(i * M + row) * N + column] for its record i.
+  const cl::Buffer& strata() const { return strata_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t first, size_t count);
 
@@ -30,9 +33,10 @@ class RecordPass {
   GpuContext& gpu_;
   const DeviceScene& scene_;
   unsigned theta_capacity_;
+  bool store_strata_;
   NamedKernel kernel_;
-  cl::Buffer records_, ray_total_;
-  size_t capacity_ = 0;
+  cl::Buffer records_, ray_total_, strata_;
+  size_t capacity_ = 0, strata_capacity_ = 0;
 };
 
 }  // namespace rcsplat

@@ -24,12 +24,18 @@ struct RenderStats {
   double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
   uint64_t primary_rays = 0, shadow_rays = 0;
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
-  unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0;
+  unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0, hsh_materials = 0;
   bool specular_brdf = false;
   // Cache methods: glossy pixels' specular light, sampled per pixel (kernels/glossy.cl); rough pixels' from E.
   uint64_t glossy_pixels = 0, rough_pixels = 0, glossy_rays = 0;
   unsigned glossy_samples = 0;
   double glossy_s = 0;
+  // Radiance caching (LOBE_HSH pixels): order, the radiance records (placed on those pixels alone, at a stricter
+  // accuracy), what the lobe table and the splat cost, and the smallest share of a cached lobe the order holds.
+  uint64_t hsh_pixels = 0, radiance_records = 0, radiance_record_rays = 0;
+  unsigned hsh_order = 0;
+  float radiance_accuracy = 0, hsh_captured_energy = 0;
+  double hsh_table_s = 0, radiance_records_s = 0, radiance_placement_s = 0, radiance_splat_s = 0;
   // Irradiance cache
   std::vector<PlacementLevel> levels;
   uint64_t records = 0, record_rays = 0, uncovered_pixels = 0;

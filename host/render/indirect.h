@@ -1,9 +1,12 @@
 // The three ways rcsplat computes indirect light for a frame whose G-buffer and direct light are done. Each fills the
 // image's indirect layers and the colour, and its part of the statistics.
 #pragma once
+#include <memory>
+
 #include "cl/device_scene.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/radiance_splat_pass.h"
 #include "render/frame.h"
 #include "render/timing.h"
 
@@ -27,9 +30,15 @@ void octree_indirect(IndirectFrame& frame);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);
 
+// Radiance caching of the LOBE_HSH pixels (kernels/hsh_records.cl, kernels/radiance_splat.cl): the pass that holds
+// their lobes' indirect light, or nothing when the scene has no radiance-cached material. Fills its statistics.
+std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& frame);
+
 // The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
-// a glossy material), then composition (ComposePass) of the cached irradiance (float4 per pixel: E, weight) into the
-// image's indirect and colour layers.
-void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance);
+// a glossy material; also the LOBE_HSH pixels when radiance_cached is null), then composition (ComposePass) of the
+// cached irradiance (float4 per pixel: E, weight) and the radiance-cached lobes into the image's indirect and colour
+// layers.
+void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance,
+                             const RadianceSplatPass* radiance_cached = nullptr);
 
 }  // namespace rcsplat

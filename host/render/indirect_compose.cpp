@@ -8,14 +8,15 @@
 
 namespace rcsplat {
 
-void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance) {
+void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
   double program_before = f.gpu.program_seconds();
   std::optional<GlossyPass> glossy;
-  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0) glossy.emplace(f.gpu, f.device_scene);
-  ComposePass compose(f.gpu, f.device_scene);
+  bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
+  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh) glossy.emplace(f.gpu, f.device_scene, sample_hsh);
+  ComposePass compose(f.gpu, f.device_scene, radiance_cached != nullptr);
   st.program_s += f.gpu.program_seconds() - program_before;
 
   if (glossy) {
@@ -27,7 +28,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance) {
     for (size_t i = 3; i < g.size(); i += 4) st.glossy_rays += uint64_t(g[i]);
   }
   auto t = Clock::now();
-  compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr);
+  compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
+              radiance_cached ? &radiance_cached->lobe_radiance() : nullptr);
   st.resolve_s += seconds_since(t);
 
   std::vector<float> indirect = compose.indirect_rgba(), color = compose.color_rgba();

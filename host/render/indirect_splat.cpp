@@ -1,39 +1,13 @@
 // Radiance cache splatting (Gautron et al. 2005) as the paper's algorithm box: place records coarse to fine where no
 // record reaches, compute each level's records as one batch, clamp radii against neighbours, splat, and finally
 // normalise and compose.
-#include "passes/placement_pass.h"
 #include "passes/record_pass.h"
 #include "passes/splat_pass.h"
+#include "render/device_record_index.h"
 #include "render/indirect.h"
 #include "render/placement.h"
 
 namespace rcsplat {
-namespace {
-
-// Placement's coverage and clamping on the device (kernels/placement.cl).
-class DeviceRecordIndex final : public RecordIndex {
- public:
-  DeviceRecordIndex(GpuContext& gpu, const GBufferView& gbuffer, const CacheSettings& cache)
-      : pass_(gpu, gbuffer), accuracy_(cache.accuracy), min_radius_pixels_(min_radius_pixels(cache)) {}
-
-  uint32_t find_uncovered(RecordPass& records, uint32_t record_count, int spacing, uint32_t unchanged_before) override {
-    return pass_.find_uncovered(records.records(), record_count, accuracy_, spacing, unchanged_before);
-  }
-  const cl::Buffer& candidates() const override { return pass_.candidates(); }
-  void add_records(RecordPass& records, uint32_t first, uint32_t count) override {
-    pass_.mark(records.records(), first, count);
-  }
-  void clamp_neighbours(RecordPass& records, uint32_t count, uint32_t first_new, bool clamp_older) override {
-    pass_.clamp_neighbours(records.records(), count, first_new, clamp_older, min_radius_pixels_);
-  }
-  std::vector<int32_t> record_at_pixel() { return pass_.record_at_pixel(); }
-
- private:
-  PlacementPass pass_;
-  float accuracy_, min_radius_pixels_;
-};
-
-}  // namespace
 
 void splat_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
@@ -54,7 +28,8 @@ void splat_indirect(IndirectFrame& f) {
   t = Clock::now();
   splat.resolve(gbuffer);
   st.resolve_s = seconds_since(t);
-  compose_cached_indirect(f, splat.irradiance());
+  std::unique_ptr<RadianceSplatPass> radiance = radiance_cached_lobes(f);
+  compose_cached_indirect(f, splat.irradiance(), radiance.get());
   img.records = records.download(0, total);  // once per frame, for the summary and the tests
   count_clamped_radii(img.records, cs, st);
 

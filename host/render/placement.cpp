@@ -16,9 +16,9 @@ void count_placed(RenderStats& st, int spacing, uint32_t records) {
 }  // namespace
 
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
-                       unsigned seed, RenderStats& st) {
+                       unsigned seed, RenderStats& st, const RecordBatchHook& after_batch, const char* progress_label) {
   int coarsest = coarsest_placement_spacing(cache);
-  Progress progress("irradiance cache", size_t(std::log2(coarsest)) + 1);
+  Progress progress(progress_label, size_t(std::log2(coarsest)) + 1);
   uint32_t total = 0;
   for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
     uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
@@ -28,7 +28,9 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
       st.placement_s += seconds_since(t);
       if (!count) break;
       t = Clock::now();
-      records.compute(gbuffer, index.candidates(), count, total, hemisphere_params(cache, seed, spacing));
+      HemisphereParams hemisphere = hemisphere_params(cache, seed, spacing);
+      records.compute(gbuffer, index.candidates(), count, total, hemisphere);
+      if (after_batch) after_batch(total, count, hemisphere);
       st.records_s += seconds_since(t);
       t = Clock::now();
       index.add_records(records, total, count);

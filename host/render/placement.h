@@ -4,6 +4,7 @@
 // record pass for both, so the two methods place the same records at the same pixels.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "cache/cache_settings.h"
@@ -34,10 +35,16 @@ class RecordIndex {
 // symmetric clamp would uncover pixels again, cascading along corners for dozens of rounds).
 constexpr int kRoundsAtFinestSpacing = 5;
 
+// Called after each batch of records first .. first + count - 1 is computed with these hemisphere parameters (radiance
+// caching projects the batch's strata there).
+using RecordBatchHook = std::function<void(uint32_t first, uint32_t count, const HemisphereParams& hemisphere)>;
+
 // Places records level after level: find the grid's uncovered pixels, compute them as one batch, let them cover,
-// clamp radii against neighbours. Fills the statistics' per-level counts and times; returns the number of records.
+// clamp radii against neighbours. Fills the statistics' per-level counts and times (the hook's time counts as the
+// records'); returns the number of records.
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
-                       unsigned seed, RenderStats& stats);
+                       unsigned seed, RenderStats& stats, const RecordBatchHook& after_batch = {},
+                       const char* progress_label = "irradiance cache");
 
 // Counts the records whose reach sits at a screen-space clamp, for the summary.
 void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RenderStats& stats);

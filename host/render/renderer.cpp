@@ -50,6 +50,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   st.lambertian_materials = device_scene.lobe_counts()[LOBE_NONE];
   st.rough_materials = device_scene.lobe_counts()[LOBE_ROUGH];
   st.glossy_materials = device_scene.lobe_counts()[LOBE_GLOSSY];
+  st.hsh_materials = device_scene.lobe_counts()[LOBE_HSH];
   st.specular_brdf = device_scene.has_specular_brdf();
   st.upload_s = seconds_since(t);
   double program_before = gpu.program_seconds();
@@ -83,6 +84,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
     if (s.triangle >= 0) {
       st.rough_pixels += s.lobe == LOBE_ROUGH;
       st.glossy_pixels += s.lobe == LOBE_GLOSSY;
+      st.hsh_pixels += s.lobe == LOBE_HSH;
     }
     img.depth[i] = s.triangle >= 0 ? s.depth : 0.0f;
     st.shadow_rays += uint64_t(d[4 * i + 3]);

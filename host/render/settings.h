@@ -20,6 +20,9 @@ struct RenderSettings {
   unsigned light_samples = 16;  // per pixel on emissive triangles; rounded up to a square number of strata
   // Cache methods: samples of each glossy pixel's specular lobe (kernels/glossy.cl), stratified over a square grid.
   unsigned glossy_samples = 16;
+  // Radiance caching of LOBE_HSH pixels: the HSH order (n^2 coefficients a channel), 0 = chosen from the cached
+  // materials' roughness (the smallest order holding 95% of what order 10 holds of every cached lobe).
+  unsigned hsh_order = 0;
   unsigned seed = 0;
   GiMethod gi = GiMethod::splat;
   bool force_specular_brdf = false;  // tests: compile the BRDF code for a Lambertian scene too (DeviceScene)

@@ -1,0 +1,37 @@
+// Radiance records' hemispherical harmonics (kernels/hsh_records.cl): projects each batch's strata (RecordPass with
+// store_strata) onto the basis with translational gradients, then the tilt derivatives for the splat. Owns the
+// coefficient array (HSH_RECORD_PARTS * 3 * n^2 floats a record, indexed like the record array) and the derivative
+// matrices on the device.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/gpu_context.h"
+#include "cl/named_kernel.h"
+#include "kernels/shared_types.h"
+
+namespace rcsplat {
+
+class HshRecordPass {
+ public:
+  HshRecordPass(GpuContext& gpu, int order);
+
+  // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each); blocks.
+  void project(const cl::Buffer& strata, uint32_t first, uint32_t count, unsigned theta_strata, unsigned phi_strata);
+  const cl::Buffer& coefficients() const { return coefficients_; }
+  int order() const { return order_; }
+  float largest_radiance();  // the brightest stratum any record saw (a bound on what a lobe can reflect)
+  // Record i's floats (HSH_RECORD_PARTS parts of n^2 RGB triples), for tests and the summary.
+  std::vector<float> download(uint32_t first, uint32_t count);
+
+ private:
+  void reserve(size_t records);
+
+  GpuContext& gpu_;
+  int order_;
+  NamedKernel project_, tilt_;
+  cl::Buffer coefficients_, tilt_x_, tilt_y_, largest_bits_;
+  size_t capacity_ = 0;
+};
+
+}  // namespace rcsplat

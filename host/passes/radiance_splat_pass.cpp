@@ -1,0 +1,76 @@
+#include "passes/radiance_splat_pass.h"
+
+#include <algorithm>
+
+namespace rcsplat {
+
+RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
+                                     const std::vector<int>& table_row_of_material)
+    : gpu_(gpu),
+      keep_(gpu.kernel("radiance_splat.cl", "keep_radiance_cached_pixels")),
+      clear_(gpu.kernel("radiance_splat.cl", "clear_radiance_sums")),
+      splat_(gpu.kernel("radiance_splat.cl", "splat_radiance")),
+      resolve_(gpu.kernel("radiance_splat.cl", "resolve_radiance")) {
+  std::vector<float> lobe = table.lobe;
+  if (lobe.empty()) lobe.push_back(0.0f);
+  std::vector<int> rows = table_row_of_material;
+  if (rows.empty()) rows.push_back(-1);
+  table_ = gpu_.upload(lobe);
+  table_rows_ = gpu_.upload(rows);
+  params_.order = cl_uint(table.order);
+  params_.angle_count = cl_uint(table.angle_count);
+}
+
+void RadianceSplatPass::size_for(const GBufferView& gbuffer) {
+  if (gbuffer.pixel_count() == pixels_ && sums_()) return;
+  pixels_ = gbuffer.pixel_count();
+  size_t slots = std::max<size_t>(pixels_, 1);
+  kept_samples_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * sizeof(GBufferSample));
+  sums_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long));
+  lobe_radiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(float));
+}
+
+const GBufferView& RadianceSplatPass::radiance_cached_pixels(const GBufferView& gbuffer) {
+  size_for(gbuffer);
+  gbuffer.bind(keep_);
+  keep_.set_buffer<GBufferSample>("kept", kept_samples_);
+  keep_.launch(pixels_, gpu_.groups().per_item);
+  gpu_.queue().finish();
+  kept_ = gbuffer;
+  kept_.samples = kept_samples_;
+  return kept_;
+}
+
+void RadianceSplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records,
+                                  const cl::Buffer& coefficients, uint32_t count, float accuracy,
+                                  float radiance_scale) {
+  size_for(gbuffer);
+  gbuffer.bind(clear_);
+  clear_.set_buffer<cl_long>("sums", sums_);
+  clear_.launch(pixels_, gpu_.groups().per_item);
+  params_.accuracy = accuracy;
+  params_.radiance_scale = radiance_scale > 0.0f ? radiance_scale : 1.0f;
+  params_.record_count = count;
+  if (count) {
+    gbuffer.bind(splat_);
+    splat_.set_buffer<CacheRecord>("records", records)
+        .set_buffer<cl_float>("coefficients", coefficients)
+        .set_buffer<cl_float>("lobe_table", table_)
+        .set_buffer<cl_int>("table_row_of_material", table_rows_)
+        .set("params", params_)
+        .set_buffer<cl_long>("sums", sums_);
+    splat_.launch(count, gpu_.groups().per_record);
+  }
+  gpu_.queue().finish();
+}
+
+void RadianceSplatPass::resolve(const GBufferView& gbuffer) {
+  gbuffer.bind(resolve_);
+  resolve_.set_buffer<cl_long>("sums", sums_).set("params", params_).set_buffer<cl_float4>("lobe_out", lobe_radiance_);
+  resolve_.launch(pixels_, gpu_.groups().per_item);
+  gpu_.queue().finish();
+}
+
+std::vector<float> RadianceSplatPass::lobe_radiance_rgbw() { return gpu_.download<float>(lobe_radiance_, pixels_ * 4); }
+
+}  // namespace rcsplat

@@ -1,0 +1,114 @@
+// Radiance caching of the LOBE_HSH pixels (Křivánek et al. 2005), splatted as Gautron et al. 2005 splat irradiance:
+// the lobe table of the cached materials, then records placed by the same coarse-to-fine loop on those pixels alone
+// at a stricter accuracy, each projecting its strata onto HSH, then one splat of w * L_o with each pixel's view.
+#include <algorithm>
+
+#include "kernels/hsh.h"
+#include "passes/brdf_table_pass.h"
+#include "passes/hsh_record_pass.h"
+#include "passes/record_pass.h"
+#include "render/device_record_index.h"
+#include "render/indirect.h"
+#include "render/placement.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+constexpr int kTableAngles = 32;         // view angles of the lobe table, cos(theta_o) at bin centres
+constexpr unsigned kTableSamples = 4096;  // stratified reflections per (material, angle)
+constexpr double kOrderShare = 0.95;     // the automatic order holds this much of what order 10 holds
+
+BrdfTable truncated(const BrdfTable& full, int order) {
+  BrdfTable t;
+  t.order = order;
+  t.angle_count = full.angle_count;
+  t.energy = full.energy;
+  size_t rows = full.energy.size(), n2 = size_t(order) * size_t(order);
+  t.lobe.resize(rows * 2 * n2);
+  for (size_t row = 0; row < rows; ++row)
+    for (int term = 0; term < 2; ++term)
+      for (size_t k = 0; k < n2; ++k)
+        t.lobe[(row * 2 + size_t(term)) * n2 + k] = full.coefficient(row / size_t(full.angle_count),
+                                                                    int(row % size_t(full.angle_count)), term, int(k));
+  return t;
+}
+
+// The smallest order that holds kOrderShare of what the highest order holds of every cached lobe.
+int automatic_order(const BrdfTable& full, size_t materials) {
+  int order = 1;
+  for (size_t m = 0; m < materials; ++m) {
+    double best = full.worst_captured_energy(m, HSH_MAX_ORDER);
+    int n = 1;
+    while (n < HSH_MAX_ORDER && full.worst_captured_energy(m, n) < kOrderShare * best) ++n;
+    order = std::max(order, n);
+  }
+  return order;
+}
+
+}  // namespace
+
+std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
+  if (!f.device_scene.has_radiance_cache()) return nullptr;
+  RenderStats& st = f.image.stats;
+  const GBufferView& gbuffer = f.gbuffer.view();
+
+  // The lobe table of the cached materials, at the highest order; the frame's order from it.
+  auto t = Clock::now();
+  std::vector<BrdfMaterial> cached;
+  std::vector<int> row_of_material;
+  float sharpest = 1.0f;
+  for (const Material& m : f.device_scene.materials()) {
+    row_of_material.push_back(m.lobe == LOBE_HSH ? int(cached.size()) : -1);
+    if (m.lobe != LOBE_HSH) continue;
+    BrdfMaterial b{};
+    for (int c = 0; c < 3; ++c) b.base_color[c] = m.base_color[c];
+    b.metallic = m.metallic;
+    b.roughness = m.roughness;
+    b.specular = m.specular;
+    cached.push_back(b);
+    sharpest = std::min(sharpest, m.roughness);
+  }
+  double program_before = f.gpu.program_seconds();
+  BrdfTable full = BrdfTablePass(f.gpu).compute(cached, HSH_MAX_ORDER, kTableAngles, kTableSamples, f.settings.seed);
+  int order = f.settings.hsh_order ? int(f.settings.hsh_order) : automatic_order(full, cached.size());
+  st.hsh_order = unsigned(order);
+  st.hsh_captured_energy = 1.0f;
+  for (size_t m = 0; m < cached.size(); ++m)
+    st.hsh_captured_energy = std::min(st.hsh_captured_energy, float(full.worst_captured_energy(m, order)));
+  BrdfTable table = truncated(full, order);
+
+  // Radiance caching's stricter accuracy for glossier lobes: a times the sharpest cached roughness (the lobe's
+  // angular width goes as roughness^2 = alpha; roughness itself keeps records from crowding), at least a / 2.
+  CacheSettings cs = f.settings.cache;
+  cs.accuracy = f.settings.cache.accuracy * std::max(0.5f, sharpest);
+  st.radiance_accuracy = cs.accuracy;
+
+  auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, row_of_material);
+  const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
+  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), true);
+  HshRecordPass hsh(f.gpu, order);
+  DeviceRecordIndex index(f.gpu, kept, cs);
+  st.program_s += f.gpu.program_seconds() - program_before;
+  st.hsh_table_s = seconds_since(t);
+
+  RenderStats placed;
+  uint32_t total = place_records(
+      index, records, kept, cs, f.settings.seed ^ 0x68736831u, placed,
+      [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
+        hsh.project(records.strata(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
+      },
+      "radiance cache");
+  st.radiance_records = total;
+  st.radiance_record_rays = placed.record_rays;
+  st.radiance_records_s = placed.records_s;
+  st.radiance_placement_s = placed.placement_s;
+
+  t = Clock::now();
+  splat->splat_all(gbuffer, records.records(), hsh.coefficients(), total, cs.accuracy, hsh.largest_radiance());
+  splat->resolve(gbuffer);
+  st.radiance_splat_s = seconds_since(t);
+  return splat;
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,158 @@
+// Radiance records (Křivánek et al. 2005; ALGORITHM.md sections 5 and 6): the incident radiance a record's M x N
+// strata saw (kernels/records.cl with STORE_STRATA) projected onto hemispherical harmonics in the record's frame
+// (tangent_frame of its normal), with the translational gradient of every coefficient, then the tilt derivatives
+// D_x lambda and D_y lambda that the splat needs to turn the coefficients into each pixel's frame.
+//
+// Projection (kernels/hsh.h): radiance constant in each stratum, basis integrated exactly over it, separable in rows
+// and columns. Gradients: Ward and Heckbert's translational gradient generalised from irradiance to each coefficient
+// (Křivánek et al. 2005): moving the point by d in the tangent plane moves the walls between strata; the wall
+// between rows j - 1 and j (at theta_j) sweeps d . u(phi) cos(theta_j) / r of angle per unit length, the wall between
+// columns k - 1 and k (at phi_k) d . v(phi_k) / (r sin theta), where r is the nearer of the two hits. Each moving wall
+// trades the radiance on one side for the other's, weighted by H_k on the wall:
+//   dlambda_k += (L_j - L_{j-1}) / r * sin(theta_j) cos(theta_j) * integral over the column of u(phi) H_k(theta_j, phi)
+//   dlambda_k += (L_k - L_{k-1}) / r * v(phi_k) * integral over the row of H_k(theta, phi_k) d theta.
+// With H = cos(theta) these are the irradiance gradient of kernels/records.cl.
+#include "hsh.h"
+#include "shared_types.h"
+
+// The integrals of cos(a phi) and sin(a phi) over [phi0, phi1], for an integer a >= 0.
+inline float integral_cos(int a, float phi0, float phi1) {
+  if (a == 0) return phi1 - phi0;
+  return (sin((float)a * phi1) - sin((float)a * phi0)) / (float)a;
+}
+inline float integral_sin(int a, float phi0, float phi1) {
+  if (a == 0) return 0.0f;
+  return (cos((float)a * phi0) - cos((float)a * phi1)) / (float)a;
+}
+
+// The integral over [phi0, phi1] of u(phi) = (cos phi, sin phi) times the azimuthal factor of H^m (sqrt(2) cos(m phi)
+// for m > 0, 1 for m = 0, sqrt(2) sin(|m| phi) for m < 0), by the products' sums and differences.
+inline float2 column_wall_integral(int m, float phi0, float phi1) {
+  int am = m < 0 ? -m : m;
+  if (m == 0) return (float2)(integral_cos(1, phi0, phi1), integral_sin(1, phi0, phi1));
+  float2 r;
+  if (m > 0) {  // cos(phi) cos(m phi), sin(phi) cos(m phi)
+    r = 0.5f * (float2)(integral_cos(am - 1, phi0, phi1) + integral_cos(am + 1, phi0, phi1),
+                        integral_sin(am + 1, phi0, phi1) - integral_sin(am - 1, phi0, phi1));
+  } else {  // cos(phi) sin(m phi), sin(phi) sin(m phi)
+    r = 0.5f * (float2)(integral_sin(am + 1, phi0, phi1) + integral_sin(am - 1, phi0, phi1),
+                        integral_cos(am - 1, phi0, phi1) - integral_cos(am + 1, phi0, phi1));
+  }
+  return 1.41421356f * r;
+}
+
+// The azimuthal factor of H^m at phi.
+inline float azimuthal_factor(int m, float phi) {
+  if (m == 0) return 1.0f;
+  return m > 0 ? 1.41421356f * cos((float)m * phi) : 1.41421356f * sin((float)(-m) * phi);
+}
+
+// out[hsh_index(l, m)] (m >= 0) = integral over the row of N_l^m(cos theta) d theta, by 8-point Gauss-Legendre in
+// theta (the row's walls are equal in sin^2 theta).
+inline void row_theta_integrals(int row, int rows, int order, float* out) {
+  const float node[4] = {0.1834346424956498f, 0.5255324099163290f, 0.7966664774136267f, 0.9602898564975363f};
+  const float weight[4] = {0.3626837833783620f, 0.3137066458778873f, 0.2223810344533745f, 0.1012285362903763f};
+  float theta_lo = asin(sqrt((float)row / (float)rows)), theta_hi = asin(sqrt((float)(row + 1) / (float)rows));
+  float mid = 0.5f * (theta_lo + theta_hi), half_span = 0.5f * (theta_hi - theta_lo);
+  for (int l = 0; l < order; ++l)
+    for (int m = 0; m <= l; ++m) out[hsh_index(l, m)] = 0.0f;
+  float n[HSH_MAX_COEFFICIENTS];
+  for (int g = 0; g < 8; ++g) {
+    float t = g < 4 ? node[g] : -node[g - 4], w = weight[g < 4 ? g : g - 4] * half_span;
+    hsh_legendre(cos(mid + half_span * t), order, n);
+    for (int l = 0; l < order; ++l)
+      for (int m = 0; m <= l; ++m) out[hsh_index(l, m)] += w * n[hsh_index(l, m)];
+  }
+}
+
+// part[k] += factor[hsh_index(l, |m|)] * by_m[order - 1 + m] for every (l, m): the separable sums' last step.
+inline void add_separable(__global float* part, int order, const float* factor, const float3* by_m) {
+  for (int l = 0; l < order; ++l)
+    for (int m = -l; m <= l; ++m) {
+      int k = hsh_index(l, m);
+      vstore3(vload3(k, part) + factor[hsh_index(l, m < 0 ? -m : m)] * by_m[order - 1 + m], k, part);
+    }
+}
+
+// One work item per record of the batch.
+__kernel void project_radiance_records(__global const float4* strata, HshRecordParams params,
+                                       __global float* coefficients, __global uint* max_radiance_bits) {
+  uint i = get_global_id(0);
+  if (i >= params.record_count) return;
+  const int order = (int)params.order, n2 = order * order, width = 2 * order - 1;
+  const int M = (int)params.theta_strata, N = (int)params.phi_strata;
+  __global float* block = coefficients + (size_t)(params.first_record + i) * (size_t)(HSH_RECORD_PARTS * 3 * n2);
+  __global float* lambda = block + HSH_PART_COEFFICIENTS * 3 * n2;
+  __global float* grad_t = block + HSH_PART_GRADIENT_T * 3 * n2;
+  __global float* grad_b = block + HSH_PART_GRADIENT_B * 3 * n2;
+  for (int k = 0; k < 3 * 3 * n2; ++k) block[k] = 0.0f;
+  __global const float4* s = strata + (size_t)i * (size_t)(M * N);
+  const float dphi = 2.0f * RC_PI / (float)N;
+  float largest = 0.0f;
+
+  float row_integrals[HSH_MAX_COEFFICIENTS], wall_legendre[HSH_MAX_COEFFICIENTS], theta_integrals[HSH_MAX_COEFFICIENTS];
+  float3 row_sums[2 * HSH_MAX_ORDER - 1], wall_t[2 * HSH_MAX_ORDER - 1], wall_b[2 * HSH_MAX_ORDER - 1];
+  float3 side_t[2 * HSH_MAX_ORDER - 1], side_b[2 * HSH_MAX_ORDER - 1];
+  for (int j = 0; j < M; ++j) {
+    for (int m = 0; m < width; ++m) {
+      row_sums[m] = wall_t[m] = wall_b[m] = side_t[m] = side_b[m] = (float3)(0.0f);
+    }
+    float column_phi[2 * HSH_MAX_ORDER - 1];
+    for (int k = 0; k < N; ++k) {
+      float4 here = s[j * N + k];
+      float3 l = here.xyz;
+      largest = fmax(largest, fmax(fmax(l.x, l.y), l.z));
+      hsh_column_integrals(k, N, order, column_phi);
+      float phi0 = (float)k * dphi, phi1 = (float)(k + 1) * dphi;
+      // The wall toward the previous row (j > 0) and toward the previous column (wrapping at phi = 0).
+      float4 below = j > 0 ? s[(j - 1) * N + k] : here;
+      float4 before = s[j * N + (k + N - 1) % N];
+      float3 theta_step = (l - below.xyz) / fmin(here.w, below.w);
+      float3 phi_step = (l - before.xyz) / fmin(here.w, before.w);
+      float cos_wall = cos(phi0), sin_wall = sin(phi0);  // v(phi_k) = (-sin, cos)
+      for (int m = -(order - 1); m < order; ++m) {
+        row_sums[order - 1 + m] += l * column_phi[order - 1 + m];
+        float2 u = column_wall_integral(m, phi0, phi1);
+        wall_t[order - 1 + m] += u.x * theta_step;
+        wall_b[order - 1 + m] += u.y * theta_step;
+        float a = azimuthal_factor(m, phi0);
+        side_t[order - 1 + m] += (-sin_wall * a) * phi_step;
+        side_b[order - 1 + m] += (cos_wall * a) * phi_step;
+      }
+    }
+    hsh_row_integrals(j, M, order, row_integrals);
+    add_separable(lambda, order, row_integrals, row_sums);
+    if (j > 0) {
+      float sin2 = (float)j / (float)M, sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
+      hsh_legendre(cos_t, order, wall_legendre);
+      for (int k = 0; k < n2; ++k) wall_legendre[k] *= sin_t * cos_t;
+      add_separable(grad_t, order, wall_legendre, wall_t);
+      add_separable(grad_b, order, wall_legendre, wall_b);
+    }
+    row_theta_integrals(j, M, order, theta_integrals);
+    add_separable(grad_t, order, theta_integrals, side_t);
+    add_separable(grad_b, order, theta_integrals, side_b);
+  }
+  for (int k = 0; k < 3 * 3 * n2; ++k) block[k] = isfinite(block[k]) ? block[k] : 0.0f;
+  if (isfinite(largest)) atomic_max(max_radiance_bits, as_uint(largest));
+}
+
+// D_x lambda and D_y lambda (host/cache/hsh_rotation.h), one work item per (record, coefficient).
+__kernel void tilt_radiance_records(__global const float* tilt_x, __global const float* tilt_y, HshRecordParams params,
+                                    __global float* coefficients) {
+  const int n2 = (int)(params.order * params.order);
+  uint item = get_global_id(0);
+  if (item >= params.record_count * (uint)n2) return;
+  uint i = item / (uint)n2;
+  int k = (int)(item % (uint)n2);
+  __global float* block = coefficients + (size_t)(params.first_record + i) * (size_t)(HSH_RECORD_PARTS * 3 * n2);
+  __global const float* lambda = block + HSH_PART_COEFFICIENTS * 3 * n2;
+  float3 dx = (float3)(0.0f), dy = (float3)(0.0f);
+  for (int q = 0; q < n2; ++q) {
+    float3 c = vload3(q, lambda);
+    dx += tilt_x[k * n2 + q] * c;
+    dy += tilt_y[k * n2 + q] * c;
+  }
+  vstore3(dx, k, block + HSH_PART_TILT_X * 3 * n2);
+  vstore3(dy, k, block + HSH_PART_TILT_Y * 3 * n2);
+}

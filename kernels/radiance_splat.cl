@@ -1,0 +1,94 @@
+// The radiance splat (Gautron et al. 2005 with Křivánek et al.'s radiance caching): each radiance record adds
+// w * L_o and w to every pixel of its footprint whose lobe it caches (LOBE_HSH) and where its Ward weight exceeds
+// 1/a, with L_o the pixel's own lobe, for its own view, dotted with the record's coefficients moved to the pixel
+// (kernels/hsh_frame.h); 64-bit fixed-point sums, the same whatever order records land in. Then the normalisation.
+// Also the G-buffer copy placement works on: only the radiance-cached pixels see geometry there.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+#include "brdf_frame.h"
+#include "footprint.h"
+#include "hsh_frame.h"
+#include "scene_args.h"
+
+__kernel void keep_radiance_cached_pixels(GBUFFER_ARGS, __global GBufferSample* kept) {
+  uint i = get_global_id(0);
+  if (i >= (uint)(camera->width * camera->height)) return;
+  GBufferSample g = gbuffer[i];
+  if (g.lobe != LOBE_HSH) g.triangle = -1;
+  kept[i] = g;
+}
+
+__kernel void clear_radiance_sums(GBUFFER_ARGS, __global long* sums) {
+  uint i = get_global_id(0);
+  if (i >= (uint)(camera->width * camera->height)) return;
+  vstore4((long4)(0), i, sums);
+}
+
+// The pixel's lobe coefficients at its view angle, linear between the table's bins (cos(theta_o) at bin centres).
+inline void lobe_at_view(__global const float* table, int row, int angle_count, int n2, float cos_o, float* a,
+                         float* b) {
+  float x = clamp(cos_o * (float)angle_count - 0.5f, 0.0f, (float)(angle_count - 1));
+  int i0 = min((int)x, angle_count - 1), i1 = min(i0 + 1, angle_count - 1);
+  float f = x - (float)i0;
+  __global const float* r0 = table + (size_t)(row * angle_count + i0) * (size_t)(2 * n2);
+  __global const float* r1 = table + (size_t)(row * angle_count + i1) * (size_t)(2 * n2);
+  for (int k = 0; k < n2; ++k) {
+    a[k] = mix(r0[k], r1[k], f);
+    b[k] = mix(r0[n2 + k], r1[n2 + k], f);
+  }
+}
+
+// One work-item per record, visiting its footprint.
+__kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, __global const float* coefficients,
+                             __global const float* lobe_table, __global const int* table_row_of_material,
+                             RadianceSplatParams params, __global long* sums) {
+  uint r = get_global_id(0);
+  if (r >= params.record_count) return;
+  __global const CacheRecord* rec = records + r;
+  const int order = (int)params.order, n2 = order * order;
+  __global const float* block = coefficients + (size_t)r * (size_t)(HSH_RECORD_PARTS * 3 * n2);
+  float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
+  float3 tk, bk;
+  tangent_frame(nk, &tk, &bk);
+  float radius = rec->radius;
+  PixelRect rect = sphere_footprint(camera, pk, params.accuracy * radius);
+  float to_fixed = FIXED_POINT_ONE / params.radiance_scale;
+  float lobe_a[HSH_MAX_COEFFICIENTS], lobe_b[HSH_MAX_COEFFICIENTS];
+  for (int y = rect.y0; y <= rect.y1; ++y) {
+    for (int x = rect.x0; x <= rect.x1; ++x) {
+      uint pixel = (uint)(y * camera->width + x);
+      __global const GBufferSample* g = gbuffer + pixel;
+      if (g->triangle < 0 || g->lobe != LOBE_HSH) continue;
+      int row = table_row_of_material[g->material];
+      if (row < 0) continue;
+      float3 p = vload3(0, g->position), n = vload3(0, g->normal);
+      float w = ward_weight(p, n, pk, nk, radius);
+      if (!record_usable(w, params.accuracy, p, n, pk, nk, radius)) continue;
+      float3 view = camera_view_direction(camera, p);
+      HshFrameChange change = hsh_frame_change(nk, n, view);
+      float3 delta = p - pk;
+      lobe_at_view(lobe_table, row, (int)params.angle_count, n2, fmax(dot(n, view), 0.0f), lobe_a, lobe_b);
+      float3 c0, c1;
+      specular_fresnel_terms(gbuffer_brdf(*g), &c0, &c1);
+      float3 radiance = hsh_reflected(block, order, dot(delta, tk), dot(delta, bk), change, lobe_a, lobe_b, c0, c1);
+      // Truncation rings: a lobe reflects neither less than nothing nor more than the brightest stratum.
+      radiance = clamp(finite_or_zero(radiance), 0.0f, params.radiance_scale);
+      float3 wl = (w * to_fixed) * radiance;
+      __global long* sum = sums + 4 * (size_t)pixel;
+      atom_add(sum + 0, convert_long(wl.x));
+      atom_add(sum + 1, convert_long(wl.y));
+      atom_add(sum + 2, convert_long(wl.z));
+      atom_add(sum + 3, convert_long(w * FIXED_POINT_ONE));
+    }
+  }
+}
+
+// L_o = sum(w L_o) / sum(w) (RGB) and the weight sum (A); zero where no radiance record reached.
+__kernel void resolve_radiance(GBUFFER_ARGS, __global const long* sums, RadianceSplatParams params,
+                               __global float4* lobe_out) {
+  uint i = get_global_id(0);
+  if (i >= (uint)(camera->width * camera->height)) return;
+  long4 s = vload4(i, sums);
+  float3 l = (float3)(0.0f);
+  if (s.w > 0) l = convert_float3(s.xyz) / (float)s.w * params.radiance_scale;
+  lobe_out[i] = (float4)(finite_or_zero(l), (float)s.w / FIXED_POINT_ONE);
+}
