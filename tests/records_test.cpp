@@ -8,7 +8,9 @@
 
 #include "cache/host_records.h"
 #include "cache_test_scenes.h"
+#include "kernels/hsh.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/hsh_record_pass.h"
 #include "passes/record_pass.h"
 #include "render/camera.h"
 #include "scene/cornell_box.h"
@@ -181,6 +183,57 @@ void check_gradients(bool occluder, vec3 p) {
     translation[axis].expect_consistent("translation along axis " + std::to_string(axis));
     rotation[axis].expect_consistent("rotation about axis " + std::to_string(axis));
   }
+}
+
+// Radiance records: the translational gradient of each HSH coefficient (kernels/hsh_records.cl) against central
+// finite differences of the coefficient itself, paired per seed as above. The record's frame at n = +z is the world's
+// (tangent_frame), so its gradient along t and b is the one along x and y.
+void check_hsh_gradients(bool occluder, vec3 p) {
+  test::TwinScene twin(test::floor_and_wall(occluder));
+  RecordPass pass(test::gpu(), twin.device, 32, true);
+  const int order = 4, n2 = order * order;
+  HshRecordPass hsh(test::gpu(), order);
+  const vec3 n(0, 0, 1);
+  const float h = 0.01f;
+  // lambda_k (red) of a record at q, and the record's floats.
+  auto coefficients_at = [&](vec3 q, const HemisphereParams& hp) {
+    device_record(pass, q, n, hp);
+    hsh.project(pass.strata(), 0, 1, hp.theta_strata, hp.phi_strata);
+    return hsh.download(0, 1);
+  };
+  const int checked[] = {hsh_index(0, 0), hsh_index(1, -1), hsh_index(1, 0), hsh_index(1, 1), hsh_index(2, 2),
+                         hsh_index(3, -1)};
+  std::vector<PairedDifferences> translation(2 * std::size(checked));
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    HemisphereParams hp = hemisphere(32, 128);
+    hp.seed = seed;
+    hp.max_radius_pixels = 1e4f;
+    std::vector<float> at = coefficients_at(p, hp);
+    for (int axis = 0; axis < 2; ++axis) {
+      vec3 d(0.0f);
+      d[axis] = h;
+      std::vector<float> plus = coefficients_at(p + d, hp), minus = coefficients_at(p - d, hp);
+      for (size_t c = 0; c < std::size(checked); ++c) {
+        size_t k = size_t(checked[c]);
+        double fd = (plus[3 * k] - minus[3 * k]) / (2.0 * h);
+        double analytic = at[size_t(3 * n2 * (axis == 0 ? HSH_PART_GRADIENT_T : HSH_PART_GRADIENT_B)) + 3 * k];
+        PairedDifferences& pd = translation[2 * c + size_t(axis)];
+        pd.add(analytic, fd);
+        pd.scale += std::hypot(at[size_t(3 * n2 * HSH_PART_GRADIENT_T) + 3 * k],
+                               at[size_t(3 * n2 * HSH_PART_GRADIENT_B) + 3 * k]) / 12.0;
+      }
+    }
+  }
+  for (size_t c = 0; c < std::size(checked); ++c)
+    for (int axis = 0; axis < 2; ++axis)
+      translation[2 * c + size_t(axis)].expect_consistent("coefficient " + std::to_string(checked[c]) + " along axis " +
+                                                          std::to_string(axis));
+}
+
+TEST(HshRecordGradients, MatchFiniteDifferencesNearALitWall) { check_hsh_gradients(false, vec3(-0.3f, 0.3f, 0.0f)); }
+
+TEST(HshRecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) {
+  check_hsh_gradients(true, vec3(0.3f, 0.0f, 0.0f));
 }
 
 // The kernel keeps a column of M strata in an array sized when it is compiled: a larger M is refused, never clamped.

@@ -49,38 +49,26 @@ HshRotationDerivatives compute(int order) {
   HshRotationDerivatives d;
   d.order = order;
   std::vector<double> dx(size_t(n2) * size_t(n2), 0.0), dy(dx.size(), 0.0);
-  // Over the hemisphere with cos(theta) = sin^2(psi): then sqrt(cos theta) = sin(psi) and sqrt(1 - cos theta) =
-  // cos(psi), the square roots the basis holds, and d omega = 2 sin(psi) cos(psi) d psi d phi, so the integrand is
-  // smooth in psi (in cos theta it is not, at the horizon and the pole) and Gauss-Legendre converges fast.
-  std::vector<double> psi, w_psi;
-  gauss_legendre(64, 0.0, kPi / 2.0, psi, w_psi);
-  const int phis = 64;
+  HemisphereQuadrature q = hemisphere_quadrature(64, 64);
   // Central differences of the rotated basis, in double. The step moves a direction by far less than the lowest
   // node's height above the horizon (cos theta ~ 1e-7), so no difference reaches below it.
-  const double eps = 1e-9;
+  const double eps = 1e-9, ce = std::cos(eps), se = std::sin(eps);
   const size_t count = size_t(n2);
   std::vector<double> at(count), xp(count), xm(count), yp(count), ym(count);
-  for (size_t i = 0; i < psi.size(); ++i) {
-    double c = std::sin(psi[i]) * std::sin(psi[i]), s = std::sqrt(1.0 - c * c);
-    double weight = w_psi[i] * 2.0 * std::sin(psi[i]) * std::cos(psi[i]) * (2.0 * kPi / phis);
-    for (int j = 0; j < phis; ++j) {
-      double phi = 2.0 * kPi * (j + 0.5) / phis;
-      double x = s * std::cos(phi), y = s * std::sin(phi), z = c;
-      basis_at(order, x, y, z, at);
-      // The frame turned by a about its x axis sees direction (x, y, z) of its own where the old frame saw
-      // R_x(a) (x, y, z): lambda'_k = integral of H_k(w) L(R w), so d/da at 0 needs H_j(R_x(+-eps) w).
-      double ce = std::cos(eps), se = std::sin(eps);
-      basis_at(order, x, ce * y - se * z, se * y + ce * z, xp);
-      basis_at(order, x, ce * y + se * z, -se * y + ce * z, xm);
-      basis_at(order, ce * x + se * z, y, -se * x + ce * z, yp);
-      basis_at(order, ce * x - se * z, y, se * x + ce * z, ym);
-      for (int k = 0; k < n2; ++k) {
-        double hk = weight * at[size_t(k)];
-        if (hk == 0.0) continue;
-        for (int q = 0; q < n2; ++q) {
-          dx[size_t(k) * size_t(n2) + size_t(q)] += hk * (xp[size_t(q)] - xm[size_t(q)]) / (2.0 * eps);
-          dy[size_t(k) * size_t(n2) + size_t(q)] += hk * (yp[size_t(q)] - ym[size_t(q)]) / (2.0 * eps);
-        }
+  for (size_t i = 0; i < q.weight.size(); ++i) {
+    double x = q.x[i], y = q.y[i], z = q.z[i];
+    basis_at(order, x, y, z, at);
+    // The frame turned by a about its x axis sees direction (x, y, z) of its own where the old frame saw
+    // R_x(a) (x, y, z): lambda'_k = integral of H_k(w) L(R w), so d/da at 0 needs H_j(R_x(+-eps) w).
+    basis_at(order, x, ce * y - se * z, se * y + ce * z, xp);
+    basis_at(order, x, ce * y + se * z, -se * y + ce * z, xm);
+    basis_at(order, ce * x + se * z, y, -se * x + ce * z, yp);
+    basis_at(order, ce * x - se * z, y, se * x + ce * z, ym);
+    for (int k = 0; k < n2; ++k) {
+      double hk = q.weight[i] * at[size_t(k)];
+      for (int j = 0; j < n2; ++j) {
+        dx[size_t(k) * count + size_t(j)] += hk * (xp[size_t(j)] - xm[size_t(j)]) / (2.0 * eps);
+        dy[size_t(k) * count + size_t(j)] += hk * (yp[size_t(j)] - ym[size_t(j)]) / (2.0 * eps);
       }
     }
   }
@@ -90,6 +78,25 @@ HshRotationDerivatives compute(int order) {
 }
 
 }  // namespace
+
+HemisphereQuadrature hemisphere_quadrature(int psi_nodes, int phi_steps) {
+  std::vector<double> psi, w_psi;
+  gauss_legendre(psi_nodes, 0.0, kPi / 2.0, psi, w_psi);
+  HemisphereQuadrature q;
+  for (size_t i = 0; i < psi.size(); ++i) {
+    double c = std::sin(psi[i]) * std::sin(psi[i]), s = std::sqrt(1.0 - c * c);
+    // d omega = d cos(theta) d phi = 2 sin(psi) cos(psi) d psi d phi
+    double weight = w_psi[i] * 2.0 * std::sin(psi[i]) * std::cos(psi[i]) * (2.0 * kPi / phi_steps);
+    for (int j = 0; j < phi_steps; ++j) {
+      double phi = 2.0 * kPi * (j + 0.5) / phi_steps;
+      q.x.push_back(s * std::cos(phi));
+      q.y.push_back(s * std::sin(phi));
+      q.z.push_back(c);
+      q.weight.push_back(weight);
+    }
+  }
+  return q;
+}
 
 double hsh_basis_double(int l, int m, double cos_theta, double phi) {
   int am = std::abs(m);

@@ -14,6 +14,14 @@ namespace rcsplat {
 // reference the float basis (kernels/hsh.h) is checked against, and what the derivative matrices are built from.
 double hsh_basis_double(int l, int m, double cos_theta, double phi);
 
+// Directions over the hemisphere (+z) and their solid-angle weights: Gauss-Legendre in psi with cos(theta) =
+// sin^2(psi), where the basis' square roots sqrt(cos theta) and sqrt(1 - cos theta) are sin(psi) and cos(psi), so
+// the integrands stay smooth (in cos theta they are not, at the horizon and the pole), and equal steps in phi.
+struct HemisphereQuadrature {
+  std::vector<double> x, y, z, weight;
+};
+HemisphereQuadrature hemisphere_quadrature(int psi_nodes, int phi_steps);
+
 struct HshRotationDerivatives {
   int order = 0;
   // Row-major n^2 x n^2, indexed by hsh_index: d lambda'_k / d alpha = sum_j d[k * n^2 + j] lambda_j, for a frame
