@@ -67,7 +67,8 @@ inline void hsh_basis(float cos_theta, float phi, int order, float* out) {
 // section 5), with the radiance taken constant in each stratum and the basis integrated over it exactly, so that a
 // constant projects exactly and no sample carries the 1 / cos(theta) weight of the cosine-weighted pdf (unbounded
 // variance at the horizon). Separable: lambda_l^m = sum_rows R_row^{l|m|} sum_columns L Phi_column^m, with
-// Phi the integral of sqrt(2) cos(m phi) (m > 0), 1 (m = 0) or sqrt(2) sin(|m| phi) (m < 0) over the column.
+// Phi the integral of sqrt(2) cos(m phi) (m > 0), 1 (m = 0) or sqrt(2) sin(|m| phi) (m < 0) over the column
+// (tabulated by the host: passes/hsh_record_pass.h hsh_column_table).
 
 // R_row^{lm} = integral over the row of N_l^m sin(theta) d theta = integral of N_l^m d(cos theta) over the row,
 // by 8-point Gauss-Legendre, into out[hsh_index(l, m)] for m >= 0.
@@ -86,26 +87,6 @@ inline void hsh_row_integrals(int row, int rows, int order, float* out) {
     for (int l = 0; l < order; ++l)
       for (int m = 0; m <= l; ++m) out[hsh_index(l, m)] += w * n[hsh_index(l, m)];
   }
-}
-
-// Phi for column `column` of `columns`, into out[hsh_index(m, m)] style slots by m: out[order - 1 + m] for
-// m = -(order - 1) .. order - 1.
-inline void hsh_column_integrals(int column, int columns, int order, float* out) {
-  float phi0 = 2.0f * RC_PI * (float)column / (float)columns, phi1 = 2.0f * RC_PI * (float)(column + 1) / (float)columns;
-  out[order - 1] = phi1 - phi0;
-  for (int m = 1; m < order; ++m) {
-    float mf = (float)m;
-    out[order - 1 + m] = 1.41421356f * (rc_sin(mf * phi1) - rc_sin(mf * phi0)) / mf;
-    out[order - 1 - m] = 1.41421356f * (rc_cos(mf * phi0) - rc_cos(mf * phi1)) / mf;
-  }
-}
-
-// coefficients[hsh_index(l, m)] += R_row^{l|m|} * row_sums[order - 1 + m], where row_sums[order - 1 + m] =
-// sum over the row's columns of L * Phi_column^m.
-inline void hsh_add_row(float* coefficients, int order, const float* row_integrals, const float* row_sums) {
-  for (int l = 0; l < order; ++l)
-    for (int m = -l; m <= l; ++m)
-      coefficients[hsh_index(l, m)] += row_integrals[hsh_index(l, m < 0 ? -m : m)] * row_sums[order - 1 + m];
 }
 
 // The radiance the coefficients describe in the direction (cos_theta, phi).

@@ -15,37 +15,17 @@
 #include "hsh.h"
 #include "shared_types.h"
 
-// The integrals of cos(a phi) and sin(a phi) over [phi0, phi1], for an integer a >= 0.
-inline float integral_cos(int a, float phi0, float phi1) {
-  if (a == 0) return phi1 - phi0;
-  return (sin((float)a * phi1) - sin((float)a * phi0)) / (float)a;
-}
-inline float integral_sin(int a, float phi0, float phi1) {
-  if (a == 0) return 0.0f;
-  return (cos((float)a * phi0) - cos((float)a * phi1)) / (float)a;
-}
-
-// The integral over [phi0, phi1] of u(phi) = (cos phi, sin phi) times the azimuthal factor of H^m (sqrt(2) cos(m phi)
-// for m > 0, 1 for m = 0, sqrt(2) sin(|m| phi) for m < 0), by the products' sums and differences.
-inline float2 column_wall_integral(int m, float phi0, float phi1) {
-  int am = m < 0 ? -m : m;
-  if (m == 0) return (float2)(integral_cos(1, phi0, phi1), integral_sin(1, phi0, phi1));
-  float2 r;
-  if (m > 0) {  // cos(phi) cos(m phi), sin(phi) cos(m phi)
-    r = 0.5f * (float2)(integral_cos(am - 1, phi0, phi1) + integral_cos(am + 1, phi0, phi1),
-                        integral_sin(am + 1, phi0, phi1) - integral_sin(am - 1, phi0, phi1));
-  } else {  // cos(phi) sin(m phi), sin(phi) sin(m phi)
-    r = 0.5f * (float2)(integral_sin(am + 1, phi0, phi1) + integral_sin(am - 1, phi0, phi1),
-                        integral_cos(am - 1, phi0, phi1) - integral_cos(am + 1, phi0, phi1));
-  }
-  return 1.41421356f * r;
-}
-
-// The azimuthal factor of H^m at phi.
-inline float azimuthal_factor(int m, float phi) {
-  if (m == 0) return 1.0f;
-  return m > 0 ? 1.41421356f * cos((float)m * phi) : 1.41421356f * sin((float)(-m) * phi);
-}
+// Per column k and azimuthal index m (-(n - 1) .. n - 1, slot m + n - 1), five numbers that depend on neither the
+// record nor the row, tabulated by the host (passes/hsh_record_pass.cpp) for the batch's N:
+// COLUMN_PHI: the integral over the column of the azimuthal factor of H^m (sqrt(2) cos(m phi), 1, sqrt(2) sin(|m| phi));
+// COLUMN_WALL_T, _B: the integral over the column of u(phi) = (cos phi, sin phi) times that factor (theta walls);
+// COLUMN_SIDE_T, _B: v(phi_k) = (-sin phi_k, cos phi_k) times the factor at phi_k (the wall at the column's start).
+#define COLUMN_PHI 0
+#define COLUMN_WALL_T 1
+#define COLUMN_WALL_B 2
+#define COLUMN_SIDE_T 3
+#define COLUMN_SIDE_B 4
+#define COLUMN_TERMS 5
 
 // out[hsh_index(l, m)] (m >= 0) = integral over the row of N_l^m(cos theta) d theta, by 8-point Gauss-Legendre in
 // theta (the row's walls are equal in sin^2 theta).
@@ -75,8 +55,9 @@ inline void add_separable(__global float* part, int order, const float* factor, 
 }
 
 // One work item per record of the batch.
-__kernel void project_radiance_records(__global const float4* strata, HshRecordParams params,
-                                       __global float* coefficients, __global uint* max_radiance_bits) {
+__kernel void project_radiance_records(__global const float4* strata, __global const float* column_table,
+                                       HshRecordParams params, __global float* coefficients,
+                                       __global uint* max_radiance_bits) {
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
   const int order = (int)params.order, n2 = order * order, width = 2 * order - 1;
@@ -87,7 +68,6 @@ __kernel void project_radiance_records(__global const float4* strata, HshRecordP
   __global float* grad_b = block + HSH_PART_GRADIENT_B * 3 * n2;
   for (int k = 0; k < 3 * 3 * n2; ++k) block[k] = 0.0f;
   __global const float4* s = strata + (size_t)i * (size_t)(M * N);
-  const float dphi = 2.0f * RC_PI / (float)N;
   float largest = 0.0f;
 
   float row_integrals[HSH_MAX_COEFFICIENTS], wall_legendre[HSH_MAX_COEFFICIENTS], theta_integrals[HSH_MAX_COEFFICIENTS];
@@ -97,27 +77,23 @@ __kernel void project_radiance_records(__global const float4* strata, HshRecordP
     for (int m = 0; m < width; ++m) {
       row_sums[m] = wall_t[m] = wall_b[m] = side_t[m] = side_b[m] = (float3)(0.0f);
     }
-    float column_phi[2 * HSH_MAX_ORDER - 1];
     for (int k = 0; k < N; ++k) {
       float4 here = s[j * N + k];
       float3 l = here.xyz;
       largest = fmax(largest, fmax(fmax(l.x, l.y), l.z));
-      hsh_column_integrals(k, N, order, column_phi);
-      float phi0 = (float)k * dphi, phi1 = (float)(k + 1) * dphi;
       // The wall toward the previous row (j > 0) and toward the previous column (wrapping at phi = 0).
       float4 below = j > 0 ? s[(j - 1) * N + k] : here;
       float4 before = s[j * N + (k + N - 1) % N];
       float3 theta_step = (l - below.xyz) / fmin(here.w, below.w);
       float3 phi_step = (l - before.xyz) / fmin(here.w, before.w);
-      float cos_wall = cos(phi0), sin_wall = sin(phi0);  // v(phi_k) = (-sin, cos)
-      for (int m = -(order - 1); m < order; ++m) {
-        row_sums[order - 1 + m] += l * column_phi[order - 1 + m];
-        float2 u = column_wall_integral(m, phi0, phi1);
-        wall_t[order - 1 + m] += u.x * theta_step;
-        wall_b[order - 1 + m] += u.y * theta_step;
-        float a = azimuthal_factor(m, phi0);
-        side_t[order - 1 + m] += (-sin_wall * a) * phi_step;
-        side_b[order - 1 + m] += (cos_wall * a) * phi_step;
+      __global const float* column = column_table + (size_t)k * (size_t)(width * COLUMN_TERMS);
+      for (int m = 0; m < width; ++m) {
+        __global const float* c = column + m * COLUMN_TERMS;
+        row_sums[m] += l * c[COLUMN_PHI];
+        wall_t[m] += c[COLUMN_WALL_T] * theta_step;
+        wall_b[m] += c[COLUMN_WALL_B] * theta_step;
+        side_t[m] += c[COLUMN_SIDE_T] * phi_step;
+        side_b[m] += c[COLUMN_SIDE_B] * phi_step;
       }
     }
     hsh_row_integrals(j, M, order, row_integrals);

@@ -12,6 +12,7 @@
 
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
+#include "passes/hsh_record_pass.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -164,7 +165,8 @@ TEST(Hsh, OrthonormalOverTheHemisphereUpToTheHighestOrder) {
 template <typename Radiance>
 std::vector<float> project_strata(int order, int rows, int columns, Radiance radiance) {
   std::vector<float> coefficients(size_t(order * order), 0.0f), row_integrals(HSH_MAX_COEFFICIENTS);
-  std::vector<float> row_sums(size_t(2 * order - 1)), phi_integrals(size_t(2 * order - 1));
+  std::vector<float> row_sums(size_t(2 * order - 1));
+  std::vector<float> columns_table = hsh_column_table(order, unsigned(columns));
   uint32_t key = hash_u32(12345u);
   for (int j = 0; j < rows; ++j) {
     std::fill(row_sums.begin(), row_sums.end(), 0.0f);
@@ -173,11 +175,14 @@ std::vector<float> project_strata(int order, int rows, int columns, Radiance rad
       float sin2 = (float(j) + random01(key, s, 0)) / float(rows);
       float phi = 2.0f * RC_PI * (float(k) + random01(key, s, 1)) / float(columns);
       float l = radiance(std::sqrt(1.0f - sin2), phi);
-      hsh_column_integrals(k, columns, order, phi_integrals.data());
-      for (size_t m = 0; m < row_sums.size(); ++m) row_sums[m] += l * phi_integrals[m];
+      for (size_t m = 0; m < row_sums.size(); ++m)
+        row_sums[m] += l * columns_table[(size_t(k) * row_sums.size() + m) * 5];  // COLUMN_PHI
     }
     hsh_row_integrals(j, rows, order, row_integrals.data());
-    hsh_add_row(coefficients.data(), order, row_integrals.data(), row_sums.data());
+    for (int deg = 0; deg < order; ++deg)
+      for (int m = -deg; m <= deg; ++m)
+        coefficients[size_t(hsh_index(deg, m))] +=
+            row_integrals[size_t(hsh_index(deg, std::abs(m)))] * row_sums[size_t(order - 1 + m)];
   }
   return coefficients;
 }

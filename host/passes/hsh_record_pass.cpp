@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <numbers>
 
 #include "cache/hsh_rotation.h"
 #include "kernels/hsh.h"
@@ -12,7 +14,48 @@ namespace {
 
 size_t floats_per_record(int order) { return size_t(HSH_RECORD_PARTS) * 3 * size_t(order) * size_t(order); }
 
+// The integrals of cos(a phi) and sin(a phi) over [phi0, phi1], for an integer a >= 0.
+double integral_cos(int a, double phi0, double phi1) {
+  return a == 0 ? phi1 - phi0 : (std::sin(a * phi1) - std::sin(a * phi0)) / a;
+}
+double integral_sin(int a, double phi0, double phi1) {
+  return a == 0 ? 0.0 : (std::cos(a * phi0) - std::cos(a * phi1)) / a;
+}
+
 }  // namespace
+
+// With f_m the azimuthal factor (sqrt(2) cos(m phi), 1, sqrt(2) sin(|m| phi)), the products with cos phi and sin phi
+// are integrated by their sums and differences.
+std::vector<float> hsh_column_table(int order, unsigned columns) {
+  const double pi = std::numbers::pi, root2 = std::sqrt(2.0);
+  std::vector<float> table;
+  for (unsigned k = 0; k < columns; ++k) {
+    double phi0 = 2.0 * pi * k / columns, phi1 = 2.0 * pi * (k + 1) / columns;
+    for (int m = -(order - 1); m < order; ++m) {
+      int a = std::abs(m);
+      double phi, wall_t, wall_b, at_wall;
+      if (m == 0) {
+        phi = phi1 - phi0;
+        wall_t = integral_cos(1, phi0, phi1);
+        wall_b = integral_sin(1, phi0, phi1);
+        at_wall = 1.0;
+      } else if (m > 0) {  // cos(phi) cos(m phi), sin(phi) cos(m phi)
+        phi = root2 * integral_cos(a, phi0, phi1);
+        wall_t = root2 * 0.5 * (integral_cos(a - 1, phi0, phi1) + integral_cos(a + 1, phi0, phi1));
+        wall_b = root2 * 0.5 * (integral_sin(a + 1, phi0, phi1) - integral_sin(a - 1, phi0, phi1));
+        at_wall = root2 * std::cos(a * phi0);
+      } else {  // cos(phi) sin(|m| phi), sin(phi) sin(|m| phi)
+        phi = root2 * integral_sin(a, phi0, phi1);
+        wall_t = root2 * 0.5 * (integral_sin(a + 1, phi0, phi1) + integral_sin(a - 1, phi0, phi1));
+        wall_b = root2 * 0.5 * (integral_cos(a - 1, phi0, phi1) - integral_cos(a + 1, phi0, phi1));
+        at_wall = root2 * std::sin(a * phi0);
+      }
+      for (double v : {phi, wall_t, wall_b, -std::sin(phi0) * at_wall, std::cos(phi0) * at_wall})
+        table.push_back(float(v));
+    }
+  }
+  return table;
+}
 
 HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
     : gpu_(gpu),
@@ -48,7 +91,12 @@ void HshRecordPass::project(const cl::Buffer& strata, uint32_t first, uint32_t c
   params.order = cl_uint(order_);
   params.theta_strata = theta_strata;
   params.phi_strata = phi_strata;
+  if (phi_strata != table_columns_) {
+    column_table_ = gpu_.upload(hsh_column_table(order_, phi_strata));
+    table_columns_ = phi_strata;
+  }
   project_.set_buffer<cl_float4>("strata", strata)
+      .set_buffer<cl_float>("column_table", column_table_)
       .set("params", params)
       .set_buffer<cl_float>("coefficients", coefficients_)
       .set_buffer<cl_uint>("max_radiance_bits", largest_bits_);

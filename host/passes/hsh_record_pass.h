@@ -12,6 +12,11 @@
 
 namespace rcsplat {
 
+// kernels/hsh_records.cl's column table for N columns: per column k and m = -(order - 1) .. order - 1 (slot
+// m + order - 1), COLUMN_TERMS floats: the integral over the column of H^m's azimuthal factor, that of
+// (cos phi, sin phi) times it, and (-sin phi_k, cos phi_k) times it at the column's first wall.
+std::vector<float> hsh_column_table(int order, unsigned columns);
+
 class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
@@ -30,8 +35,9 @@ class HshRecordPass {
   GpuContext& gpu_;
   int order_;
   NamedKernel project_, tilt_;
-  cl::Buffer coefficients_, tilt_x_, tilt_y_, largest_bits_;
+  cl::Buffer coefficients_, tilt_x_, tilt_y_, largest_bits_, column_table_;
   size_t capacity_ = 0;
+  unsigned table_columns_ = 0;  // the N column_table_ was made for
 };
 
 }  // namespace rcsplat
