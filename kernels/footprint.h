@@ -48,4 +48,15 @@ inline PixelRect sphere_footprint(__global const CameraParams* cam, float3 cente
   return rect;
 }
 
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+// Adds w * value (at the fixed-point unit to_fixed, FIXED_POINT_ONE / scale) and w to a pixel's four 64-bit sums: the
+// same totals whatever order the splat's records land in.
+inline void add_weighted_fixed_point(__global long* sum, float w, float3 value, float to_fixed) {
+  float3 weighted = (w * to_fixed) * value;
+  atom_add(sum + 0, convert_long(weighted.x));
+  atom_add(sum + 1, convert_long(weighted.y));
+  atom_add(sum + 2, convert_long(weighted.z));
+  atom_add(sum + 3, convert_long(w * FIXED_POINT_ONE));
+}
+
 #endif

@@ -72,12 +72,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
       float3 radiance = hsh_reflected(block, order, dot(delta, tk), dot(delta, bk), change, lobe_a, lobe_b, c0, c1);
       // Truncation rings: a lobe reflects neither less than nothing nor more than the brightest stratum.
       radiance = clamp(finite_or_zero(radiance), 0.0f, params.radiance_scale);
-      float3 wl = (w * to_fixed) * radiance;
-      __global long* sum = sums + 4 * (size_t)pixel;
-      atom_add(sum + 0, convert_long(wl.x));
-      atom_add(sum + 1, convert_long(wl.y));
-      atom_add(sum + 2, convert_long(wl.z));
-      atom_add(sum + 3, convert_long(w * FIXED_POINT_ONE));
+      add_weighted_fixed_point(sums + 4 * (size_t)pixel, w, radiance, to_fixed);
     }
   }
 }

@@ -40,12 +40,7 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
       float w = ward_weight(p, n, pk, nk, radius);
       if (!record_usable(w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 e = fmin(extrapolated_irradiance(rec, p, n), (float3)(params.irradiance_scale));
-      float3 we = (w * to_fixed) * e;
-      __global long* sum = sums + 4 * (size_t)pixel;
-      atom_add(sum + 0, convert_long(we.x));
-      atom_add(sum + 1, convert_long(we.y));
-      atom_add(sum + 2, convert_long(we.z));
-      atom_add(sum + 3, convert_long(w * FIXED_POINT_ONE));
+      add_weighted_fixed_point(sums + 4 * (size_t)pixel, w, e, to_fixed);
       atomic_inc(counts + pixel);
     }
   }

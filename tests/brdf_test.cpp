@@ -17,6 +17,7 @@
 #include "brdf_reference.h"
 #include "cl/named_kernel.h"
 #include "kernels/hsh.h"
+#include "cache/hsh_rotation.h"
 #include "passes/brdf_table_pass.h"
 #include "test_support.h"
 
@@ -277,24 +278,7 @@ TEST(BrdfTable, LobeCoefficientsMatchTheDoublePrecisionModel) {
   auto incident = [](Vec w) { return w.z * (1.0 + w.x * w.x - w.y * w.y); };
   // lambda_k of that radiance by a product quadrature exact for it (Gauss-Legendre in cos(theta), equal phi steps).
   std::vector<double> nodes, weights;
-  {
-    const int n = 16;  // Gauss-Legendre on [0, 1] by Newton on P_n
-    for (int i = 0; i < n; ++i) {
-      double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = x;
-        for (int k = 2; k <= n; ++k) {
-          double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (x * p1 - p0) / (x * x - 1.0);
-        x -= p1 / dp;
-      }
-      nodes.push_back(0.5 * (x + 1.0));
-      weights.push_back(1.0 / ((1.0 - x * x) * dp * dp));
-    }
-  }
+  gauss_legendre(16, 0.0, 1.0, nodes, weights);
   std::vector<double> lambda(16, 0.0);
   const int phis = 32;
   for (size_t i = 0; i < nodes.size(); ++i)

@@ -130,6 +130,44 @@ TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
   }
 }
 
+// The built-in Cornell box with glTF's rough dielectric walls (a 4% lobe at roughness 1), a gold metal floor and a
+// dielectric tall box at the given roughnesses.
+Scene cornell_box_with_lobes(float floor_roughness, float box_roughness) {
+  Scene scene = make_cornell_box();
+  for (SceneMaterial& m : scene.materials) m.specular = 1.0f;
+  SceneMaterial floor = scene.materials[0];
+  floor.name = "gold floor";
+  floor.base_color = glm::vec4(0.9f, 0.7f, 0.4f, 1.0f);
+  floor.metallic = 1.0f;
+  floor.roughness = floor_roughness;
+  SceneMaterial box = scene.materials[0];
+  box.name = "glossy box";
+  box.roughness = box_roughness;
+  scene.materials.push_back(floor);
+  scene.materials.push_back(box);
+  scene.triangle_material[0] = scene.triangle_material[1] = uint32_t(scene.materials.size() - 2);
+  for (size_t t = 22; t < 32; ++t) scene.triangle_material[t] = uint32_t(scene.materials.size() - 1);
+  return scene;
+}
+
+// Indirect relMSE over the floor's and the tall box's pixels (cornell_box_with_lobes), less the reference's own
+// noise there.
+double lobe_pixel_error(const RenderedImage& img, const RenderedImage& ref) {
+  std::vector<float> a, b;
+  double noise = 0.0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    int t = img.triangle[i];
+    if (!(t == 0 || t == 1 || (t >= 22 && t < 32))) continue;
+    for (size_t c = 0; c < 3; ++c) {
+      a.push_back(img.indirect[3 * i + c]);
+      b.push_back(ref.indirect[3 * i + c]);
+      noise += ref.indirect_variance[3 * i + c] /
+               (double(ref.indirect[3 * i + c]) * ref.indirect[3 * i + c] + kRelMseOffset);
+    }
+  }
+  return image_error(a, b).rel_mse - noise / double(a.size());
+}
+
 // The Cornell box with a glossy metal floor (roughness 0.3), a glossy dielectric tall box (0.4) and glTF's rough
 // dielectric walls (a 4% lobe at roughness 1): the cache carries the diffuse part, the rough lobes take their light
 // from the irradiance and the glossy lobes sample theirs, against a path-traced reference that samples the whole BRDF.
@@ -137,20 +175,7 @@ TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
 // (bound: twice that), on the glossy pixels alone 7.2e-4 (bound 1.1e-3; composing half the sampled glossy light, a
 // planted bug, gives 1.5e-3 there and only 5.3e-4 over the whole image, hence the separate bound).
 TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
-  Scene scene = make_cornell_box();
-  for (SceneMaterial& m : scene.materials) m.specular = 1.0f;  // glTF's walls: a 4% lobe at roughness 1
-  SceneMaterial floor = scene.materials[0];
-  floor.name = "glossy floor";
-  floor.base_color = glm::vec4(0.9f, 0.7f, 0.4f, 1.0f);
-  floor.metallic = 1.0f;
-  floor.roughness = 0.3f;
-  SceneMaterial box = scene.materials[0];
-  box.name = "glossy box";
-  box.roughness = 0.4f;
-  scene.materials.push_back(floor);
-  scene.materials.push_back(box);
-  scene.triangle_material[0] = scene.triangle_material[1] = uint32_t(scene.materials.size() - 2);
-  for (size_t t = 22; t < 32; ++t) scene.triangle_material[t] = uint32_t(scene.materials.size() - 1);
+  Scene scene = cornell_box_with_lobes(0.3f, 0.4f);
 
   RenderSettings settings;
   settings.width = settings.height = 48;
@@ -166,20 +191,8 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
   EXPECT_GT(img.stats.glossy_pixels, 200u);
   EXPECT_GT(img.stats.rough_pixels, 1000u);
   double error = indirect_rel_mse(img, ref) - ref_noise;
-  // The glossy pixels alone (the floor's and the tall box's triangles), where the sampled lobes' light must add up.
-  std::vector<float> glossy_img, glossy_ref;
-  double glossy_noise = 0.0;
-  for (size_t i = 0; i < img.triangle.size(); ++i) {
-    int t = img.triangle[i];
-    if (!(t == 0 || t == 1 || (t >= 22 && t < 32))) continue;
-    for (size_t c = 0; c < 3; ++c) {
-      glossy_img.push_back(img.indirect[3 * i + c]);
-      glossy_ref.push_back(ref.indirect[3 * i + c]);
-      glossy_noise += ref.indirect_variance[3 * i + c] /
-                      (double(ref.indirect[3 * i + c]) * ref.indirect[3 * i + c] + kRelMseOffset);
-    }
-  }
-  double glossy_error = image_error(glossy_img, glossy_ref).rel_mse - glossy_noise / double(glossy_img.size());
+  // The glossy pixels alone, where the sampled lobes' light must add up.
+  double glossy_error = lobe_pixel_error(img, ref);
   std::printf("glossy Cornell box: %llu records, %llu glossy pixels, indirect relMSE %.3e (glossy pixels: %.3e) after "
               "subtracting the reference's own %.1e\n",
               (unsigned long long)img.stats.records, (unsigned long long)img.stats.glossy_pixels, error, glossy_error,
@@ -192,40 +205,13 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
 // radiance-cached (LOBE_HSH). The indirect relMSE on those pixels against a path-traced reference, for HSH orders 2
 // to 10: it must fall as the order rises, and order 10 must stay within the stated bound.
 TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
-  Scene scene = make_cornell_box();
-  for (SceneMaterial& m : scene.materials) m.specular = 1.0f;
-  SceneMaterial floor = scene.materials[0];
-  floor.name = "gold floor";
-  floor.base_color = glm::vec4(0.9f, 0.7f, 0.4f, 1.0f);
-  floor.metallic = 1.0f;
-  floor.roughness = 0.6f;
-  SceneMaterial box = scene.materials[0];
-  box.name = "glossy box";
-  box.roughness = 0.5f;
-  scene.materials.push_back(floor);
-  scene.materials.push_back(box);
-  scene.triangle_material[0] = scene.triangle_material[1] = uint32_t(scene.materials.size() - 2);
-  for (size_t t = 22; t < 32; ++t) scene.triangle_material[t] = uint32_t(scene.materials.size() - 1);
+  Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
 
   RenderSettings settings;
   settings.width = settings.height = 48;
   settings.light_samples = 4;
   PathReference reference = path_reference(scene, settings, 4096);
   const RenderedImage& ref = reference.image;
-  auto cached_error = [&](const RenderedImage& img) {
-    std::vector<float> a, b;
-    double noise = 0.0;
-    for (size_t i = 0; i < img.triangle.size(); ++i) {
-      int t = img.triangle[i];
-      if (!(t == 0 || t == 1 || (t >= 22 && t < 32))) continue;
-      for (size_t c = 0; c < 3; ++c) {
-        a.push_back(img.indirect[3 * i + c]);
-        b.push_back(ref.indirect[3 * i + c]);
-        noise += ref.indirect_variance[3 * i + c] / (double(ref.indirect[3 * i + c]) * ref.indirect[3 * i + c] + kRelMseOffset);
-      }
-    }
-    return image_error(a, b).rel_mse - noise / double(a.size());
-  };
   settings.gi = GiMethod::splat;
   std::vector<double> errors;
   for (unsigned order : {2u, 4u, 6u, 8u, 10u}) {
@@ -233,7 +219,7 @@ TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
     RenderedImage img = render(test::gpu(), scene, settings);
     EXPECT_EQ(img.stats.hsh_materials, 2u);
     EXPECT_EQ(img.stats.glossy_materials, 0u);
-    errors.push_back(cached_error(img));
+    errors.push_back(lobe_pixel_error(img, ref));
     std::printf("order %2u: %llu radiance records, %llu cached pixels, relMSE on them %.3e, whole image %.3e\n", order,
                 (unsigned long long)img.stats.radiance_records, (unsigned long long)img.stats.hsh_pixels,
                 errors.back(), indirect_rel_mse(img, ref) - reference.noise);

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "cache/hsh_rotation.h"
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/hsh_record_pass.h"
@@ -29,29 +30,6 @@ double reference_hsh(int l, int m, double cos_theta, double phi) {
   return std::sqrt(2.0) * k * p * (m > 0 ? std::cos(m * phi) : std::sin(am * phi));
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre polynomial).
-void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
-  nodes.resize(size_t(n));
-  weights.resize(size_t(n));
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      double step = p1 / dp;
-      x -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    nodes[size_t(i)] = x;
-    weights[size_t(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
-  }
-}
-
 // Directions of a quadrature over the hemisphere exact for products of two basis functions up to HSH_MAX_ORDER:
 // Gauss-Legendre in x = 2 cos(theta) - 1 (d omega = dx dphi / 2) and equal steps in phi.
 struct HemisphereQuadrature {
@@ -59,7 +37,7 @@ struct HemisphereQuadrature {
   std::vector<double> weight;
   HemisphereQuadrature() {
     std::vector<double> x, w;
-    gauss_legendre(HSH_MAX_ORDER + 2, x, w);
+    gauss_legendre(HSH_MAX_ORDER + 2, -1.0, 1.0, x, w);
     const int phis = 2 * HSH_MAX_ORDER + 2;
     for (size_t i = 0; i < x.size(); ++i)
       for (int j = 0; j < phis; ++j) {

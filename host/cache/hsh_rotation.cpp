@@ -14,29 +14,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Gauss-Legendre nodes and weights on [a, b].
-void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights) {
-  nodes.clear();
-  weights.clear();
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      double step = p1 / dp;
-      x -= step;
-      if (std::abs(step) < 1e-16) break;
-    }
-    nodes.push_back(0.5 * (a + b) + 0.5 * (b - a) * x);
-    weights.push_back((b - a) / ((1.0 - x * x) * dp * dp));
-  }
-}
-
 // All n^2 basis functions at a direction (x, y, z), z = cos(theta).
 void basis_at(int order, double x, double y, double z, std::vector<double>& out) {
   double phi = std::atan2(y, x);
@@ -78,6 +55,28 @@ HshRotationDerivatives compute(int order) {
 }
 
 }  // namespace
+
+void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.clear();
+  weights.clear();
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      double step = p1 / dp;
+      x -= step;
+      if (std::abs(step) < 1e-16) break;
+    }
+    nodes.push_back(0.5 * (a + b) + 0.5 * (b - a) * x);
+    weights.push_back((b - a) / ((1.0 - x * x) * dp * dp));
+  }
+}
 
 HemisphereQuadrature hemisphere_quadrature(int psi_nodes, int phi_steps) {
   std::vector<double> psi, w_psi;

@@ -14,6 +14,9 @@ namespace rcsplat {
 // reference the float basis (kernels/hsh.h) is checked against, and what the derivative matrices are built from.
 double hsh_basis_double(int l, int m, double cos_theta, double phi);
 
+// Gauss-Legendre nodes and weights on [a, b] (Newton on the Legendre polynomial).
+void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights);
+
 // Directions over the hemisphere (+z) and their solid-angle weights: Gauss-Legendre in psi with cos(theta) =
 // sin^2(psi), where the basis' square roots sqrt(cos theta) and sqrt(1 - cos theta) are sin(psi) and cos(psi), so
 // the integrands stay smooth (in cos theta they are not, at the horizon and the pole), and equal steps in phi.
