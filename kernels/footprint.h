@@ -3,6 +3,7 @@
 #ifndef RCSPLAT_FOOTPRINT_H
 #define RCSPLAT_FOOTPRINT_H
 #include "cache_math.h"
+#include "sampling.h"
 
 typedef struct {
   int x0, y0, x1, y1;  // inclusive; empty when x0 > x1 or y0 > y1
@@ -57,6 +58,13 @@ inline void add_weighted_fixed_point(__global long* sum, float w, float3 value, 
   atom_add(sum + 1, convert_long(weighted.y));
   atom_add(sum + 2, convert_long(weighted.z));
   atom_add(sum + 3, convert_long(w * FIXED_POINT_ONE));
+}
+
+// A pixel's sums back to (sum(w value) / sum(w), sum(w)) at the unit scale: zero value where no record reached.
+inline float4 normalized_fixed_point(long4 s, float scale) {
+  float3 value = (float3)(0.0f);
+  if (s.w > 0) value = convert_float3(s.xyz) / (float)s.w * scale;
+  return (float4)(finite_or_zero(value), (float)s.w / FIXED_POINT_ONE);
 }
 
 #endif

@@ -82,8 +82,5 @@ __kernel void resolve_radiance(GBUFFER_ARGS, __global const long* sums, Radiance
                                __global float4* lobe_out) {
   uint i = get_global_id(0);
   if (i >= (uint)(camera->width * camera->height)) return;
-  long4 s = vload4(i, sums);
-  float3 l = (float3)(0.0f);
-  if (s.w > 0) l = convert_float3(s.xyz) / (float)s.w * params.radiance_scale;
-  lobe_out[i] = (float4)(finite_or_zero(l), (float)s.w / FIXED_POINT_ONE);
+  lobe_out[i] = normalized_fixed_point(vload4(i, sums), params.radiance_scale);
 }

@@ -52,10 +52,5 @@ __kernel void resolve_indirect(GBUFFER_ARGS, __global const long* sums, SplatPar
                                __global float4* irradiance_out) {
   uint i = get_global_id(0);
   if (i >= (uint)(camera->width * camera->height)) return;
-  long4 s = vload4(i, sums);
-  float3 e = (float3)(0.0f);
-  float weight = (float)s.w / FIXED_POINT_ONE;
-  if (s.w > 0) e = convert_float3(s.xyz) / (float)s.w * params.irradiance_scale;
-  e = finite_or_zero(e);
-  irradiance_out[i] = (float4)(e, weight);
+  irradiance_out[i] = normalized_fixed_point(vload4(i, sums), params.irradiance_scale);
 }
