@@ -14,10 +14,9 @@ typedef struct {
   float cos_gamma, sin_gamma;  // then the turn about the pixel's normal onto the view's azimuth
 } HshFrameChange;
 
-// The frame change from the record (normal nk) to the pixel (normal n, unit view direction toward the camera).
-inline HshFrameChange hsh_frame_change(float3 nk, float3 n, float3 view) {
-  float3 t, b;
-  tangent_frame(nk, &t, &b);
+// The frame change from the record (normal nk, frame t, b = tangent_frame(nk), which the splat builds once per
+// record) to the pixel (normal n, unit view direction toward the camera).
+inline HshFrameChange hsh_frame_change(float3 nk, float3 t, float3 b, float3 n, float3 view) {
   float a = dot(n, t), bb = dot(n, b), c = dot(n, nk);
   float s = sqrt(a * a + bb * bb), angle = atan2(s, c);
   float per_sin = s > 1e-7f ? angle / s : 1.0f;

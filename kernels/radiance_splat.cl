@@ -64,7 +64,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
       float w = ward_weight(p, n, pk, nk, radius);
       if (!record_usable(w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 view = camera_view_direction(camera, p);
-      HshFrameChange change = hsh_frame_change(nk, n, view);
+      HshFrameChange change = hsh_frame_change(nk, tk, bk, n, view);
       float3 delta = p - pk;
       lobe_at_view(lobe_table, row, (int)params.angle_count, n2, fmax(dot(n, view), 0.0f), lobe_a, lobe_b);
       float3 c0, c1;

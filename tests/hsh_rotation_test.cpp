@@ -27,7 +27,9 @@ __kernel void reflect_through_frame(__global const float* blocks, __global const
   if (i >= count) return;
   const int n2 = (int)(order * order);
   float3 nk = vload3(0, geometry + 9 * i), n = vload3(1, geometry + 9 * i), view = vload3(2, geometry + 9 * i);
-  HshFrameChange f = hsh_frame_change(nk, n, view);
+  float3 tk, bk;
+  tangent_frame(nk, &tk, &bk);
+  HshFrameChange f = hsh_frame_change(nk, tk, bk, n, view);
   float a[HSH_MAX_COEFFICIENTS], b[HSH_MAX_COEFFICIENTS];
   for (int k = 0; k < n2; ++k) {
     a[k] = lobes[i * n2 + k];
