@@ -6,10 +6,12 @@
 #include <numbers>
 
 #include "image/error_metrics.h"
+#include "kernels/hsh.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "scene/procedural.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace rcsplat {
 namespace {
@@ -230,6 +232,19 @@ TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
   for (size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], errors[i - 1]) << "order step " << i;
   EXPECT_LT(errors.back(), 3e-4);
   EXPECT_GT(errors.front(), 1.5 * errors.back());
+}
+
+// An HSH order above the highest offered is refused before any work, in the command line's words.
+TEST(GlobalIllumination, RefusesAnHshOrderAboveTheHighest) {
+  RenderSettings settings;
+  settings.width = settings.height = 8;
+  settings.hsh_order = HSH_MAX_ORDER + 1;
+  try {
+    render(test::gpu(), make_cornell_box(), settings);
+    ADD_FAILURE() << "order " << settings.hsh_order << " was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--hsh-order"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

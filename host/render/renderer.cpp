@@ -4,9 +4,11 @@
 
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
+#include "kernels/hsh.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
+#include "util/error.h"
 #include "util/log.h"
 
 namespace rcsplat {
@@ -23,6 +25,9 @@ const char* gi_method_name(GiMethod method) {
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
   if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
+  // The command line refuses it too; a caller of the library gets the same words before any work.
+  if (settings.hsh_order > HSH_MAX_ORDER)
+    throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
   auto start = Clock::now();
   RenderedImage img;
   RenderStats& st = img.stats;
