@@ -14,6 +14,7 @@
 #include "passes/gbuffer_pass.h"
 #include "passes/splat_pass.h"
 #include "render/camera.h"
+#include "scene/scene_frame.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 
@@ -155,7 +156,8 @@ TEST(Splat, SameInputSameBits) {
 // Gautron et al.'s central claim: splatting each record over its footprint and normalising gives, pixel for pixel,
 // what Ward's lookup of every record with w > 1/a (through an octree) gives, for the same records.
 TEST(Splat, EqualsClassicOctreeLookupForTheSameRecords) {
-  Scene scene = make_cornell_box();
+  // In its own device frame, so that the records and positions the image gives back are the device's bits.
+  Scene scene = SceneFrame::fitted(make_cornell_box()).device_scene(make_cornell_box());
   RenderSettings settings = small_splat(96);
   RenderedImage img = render(test::gpu(), scene, settings);
   const std::vector<CacheRecord>& records = img.records;

@@ -2,9 +2,10 @@
 
 namespace rcsplat {
 
-DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf)
-    : bvh_(gpu, bvh) {
-  PackedScene p = pack_scene(scene);
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf,
+                         const SceneFrame& frame)
+    : bvh_(gpu, bvh), frame_(frame) {
+  PackedScene p = pack_scene(scene, frame);
   triangles_ = gpu.upload(p.triangles);
   materials_ = gpu.upload(p.materials);
   materials_host_ = p.materials;

@@ -16,7 +16,9 @@ class DeviceScene {
  public:
   // force_specular_brdf compiles the BRDF code (HAS_SPECULAR_BRDF) even for an all-Lambertian scene, which must not
   // change a bit of its image (tests).
-  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf = false);
+  // bvh and the uploaded positions and lights are in `frame`'s coordinates (render() uses SceneFrame::fitted).
+  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf = false,
+              const SceneFrame& frame = {});
 
   // Sets a kernel's SCENE_ARGS.
   void bind(NamedKernel& kernel) const;
@@ -30,6 +32,7 @@ class DeviceScene {
   // Radiance caching runs (and its kernels compile) only for a scene with a LOBE_HSH material.
   bool has_radiance_cache() const { return lobe_counts_[LOBE_HSH] > 0; }
   const std::vector<Material>& materials() const { return materials_host_; }
+  const SceneFrame& frame() const { return frame_; }
 
  private:
   DeviceBvh bvh_;
@@ -38,6 +41,7 @@ class DeviceScene {
   KernelDefines defines_;
   std::array<unsigned, LOBE_KINDS> lobe_counts_{};
   std::vector<Material> materials_host_;
+  SceneFrame frame_;
 };
 
 }  // namespace rcsplat

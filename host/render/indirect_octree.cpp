@@ -19,14 +19,14 @@ using glm::vec3;
 class OctreeRecordIndex final : public RecordIndex {
  public:
   OctreeRecordIndex(GpuContext& gpu, std::vector<PixelGeometry> pixels, int width, int height, const Scene& scene,
-                    const CacheSettings& cache)
+                    const SceneFrame& frame, const CacheSettings& cache)
       : gpu_(gpu),
         pixels_(std::move(pixels)),
         width_(width),
         height_(height),
         accuracy_(cache.accuracy),
         min_radius_pixels_(min_radius_pixels(cache)),
-        octree_(dvec3(scene.bounds_min()), dvec3(scene.bounds_max())),
+        octree_(dvec3(frame.to_device(scene.bounds_min())), dvec3(frame.to_device(scene.bounds_max()))),
         record_at_pixel_(pixels_.size(), -1),
         candidates_(gpu.context(), CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint)) {}
 
@@ -99,7 +99,7 @@ void octree_indirect(IndirectFrame& f) {
   double program_before = f.gpu.program_seconds();
   RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
   st.program_s += f.gpu.program_seconds() - program_before;
-  OctreeRecordIndex index(f.gpu, geo, img.width, img.height, f.scene, cs);
+  OctreeRecordIndex index(f.gpu, geo, img.width, img.height, f.scene, f.device_scene.frame(), cs);
   place_records(index, records, f.gbuffer.view(), cs, f.settings.seed, st);
 
   auto t = Clock::now();

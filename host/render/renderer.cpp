@@ -39,19 +39,22 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   img.width = settings.width;
   img.height = settings.height;
   resolve_resolution(cam, img.width, img.height);
-  CameraParams params = camera_params(cam, img.width, img.height);
+  // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
+  // position and depth layers and the records go back to world units below.
+  const SceneFrame scene_frame = SceneFrame::fitted(scene);
+  CameraParams params = camera_params(scene_frame.device_camera(cam), img.width, img.height);
   unsigned strata = settings.light_samples ? unsigned(std::ceil(std::sqrt(double(settings.light_samples)))) : 0;
   st.light_samples = strata * strata;
 
   log_info("building the BVH over " + std::to_string(st.triangles) + " triangles");
-  Bvh8 bvh = build_bvh8(scene.positions);
+  Bvh8 bvh = build_bvh8(scene_frame.device_positions(scene));
   st.bvh_build_s = bvh.build_seconds;
   st.bvh_nodes = bvh.nodes.size();
   st.bvh_blocks = bvh.blocks.size();
   st.bvh_depth = bvh.depth;
 
   auto t = Clock::now();
-  DeviceScene device_scene(gpu, scene, bvh, settings.force_specular_brdf);
+  DeviceScene device_scene(gpu, scene, bvh, settings.force_specular_brdf, scene_frame);
   st.lambertian_materials = device_scene.lobe_counts()[LOBE_NONE];
   st.rough_materials = device_scene.lobe_counts()[LOBE_ROUGH];
   st.glossy_materials = device_scene.lobe_counts()[LOBE_GLOSSY];
@@ -91,14 +94,16 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
       st.glossy_pixels += s.lobe == LOBE_GLOSSY;
       st.hsh_pixels += s.lobe == LOBE_HSH;
     }
-    img.depth[i] = s.triangle >= 0 ? s.depth : 0.0f;
+    img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
+    const glm::vec3 world = s.triangle >= 0 ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
+                                            : glm::vec3(0.0f);
     st.shadow_rays += uint64_t(d[4 * i + 3]);
     for (int c = 0; c < 3; ++c) {
       img.direct[3 * i + c] = d[4 * i + c];
       img.emission[3 * i + c] = s.emission[c];
       img.albedo[3 * i + c] = s.albedo[c];
       img.normal[3 * i + c] = s.normal[c];
-      img.position[3 * i + c] = s.position[c];
+      img.position[3 * i + c] = world[c];
       img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
     }
   }
@@ -110,6 +115,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
     case GiMethod::octree: octree_indirect(frame); break;
     case GiMethod::path: path_traced_indirect(frame); break;
   }
+  for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
   st.total_s = seconds_since(start);
   return img;
 }

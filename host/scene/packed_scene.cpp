@@ -48,7 +48,7 @@ PunctualLight pack_light(const SceneLight& l) {
 
 }  // namespace
 
-PackedScene pack_scene(const Scene& scene) {
+PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
   PackedScene p;
   size_t n = scene.triangle_count();
   p.triangles.resize(n);
@@ -56,7 +56,8 @@ PackedScene pack_scene(const Scene& scene) {
   for (size_t t = 0; t < n; ++t) {
     TriangleShading& s = p.triangles[t];
     std::memset(&s, 0, sizeof s);
-    const glm::vec3* v = &scene.positions[3 * t];
+    const glm::vec3 v[3] = {frame.to_device(scene.positions[3 * t]), frame.to_device(scene.positions[3 * t + 1]),
+                            frame.to_device(scene.positions[3 * t + 2])};
     glm::vec3 ng = glm::cross(v[1] - v[0], v[2] - v[0]);
     float twice_area = glm::length(ng);
     ng = twice_area > 0.0f ? ng / twice_area : glm::vec3(0, 0, 1);
@@ -126,7 +127,7 @@ PackedScene pack_scene(const Scene& scene) {
     std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());
     p.textures.push_back(info);
   }
-  for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(l));
+  for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(frame.device_light(l)));
   return p;
 }
 

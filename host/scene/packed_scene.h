@@ -6,6 +6,7 @@
 
 #include "kernels/shared_types.h"
 #include "scene/scene.h"
+#include "scene/scene_frame.h"
 
 namespace rcsplat {
 
@@ -19,7 +20,8 @@ struct PackedScene {
   std::vector<EmissiveTriangle> emitters;  // with a power-proportional selection CDF
 };
 
-PackedScene pack_scene(const Scene& scene);
+// Positions and lights in `frame`'s coordinates (render() passes the fitted one; the identity keeps world units).
+PackedScene pack_scene(const Scene& scene, const SceneFrame& frame = {});
 
 // A vertex colour in TriangleShading's 10-bit-per-channel form, and back.
 uint32_t pack_vertex_color(const glm::vec3& color);
