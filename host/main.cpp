@@ -1,7 +1,9 @@
 // rcsplat: global illumination by radiance cache splatting on OpenCL devices. Command-line entry point.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <new>
 
+#include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "kernels/hsh.h"
 #include "util/error.h"
@@ -158,7 +160,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   } catch (const cl::Error& e) {
-    std::fprintf(stderr, "error: OpenCL call %s failed with code %d\n", e.what(), e.err());
+    // Devices may allocate lazily: running out then shows at a launch or a transfer, not at the allocation.
+    if (is_out_of_memory(e.err()))
+      std::fprintf(stderr, "error: out of device memory: OpenCL call %s failed with code %d; render fewer pixels "
+                           "(--width, --height) or choose another --device\n", e.what(), e.err());
+    else
+      std::fprintf(stderr, "error: OpenCL call %s failed with code %d\n", e.what(), e.err());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of host memory; render fewer pixels (--width, --height)\n");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

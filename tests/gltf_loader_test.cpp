@@ -254,6 +254,40 @@ TEST(GltfLoader, RejectsNanPositions) {
   expect_load_error(b.write(test::scratch_dir(), "nan"), "vertex 1 has a non-finite position");
 }
 
+TEST(GltfLoader, RejectsNonFiniteNormals) {
+  GltfBuilder b = quad_scene(5125);
+  float nrm[] = {0, 0, 1, 0, 0, 1, 0, INFINITY, 1, 0, 0, 1};
+  int n = b.add_accessor(b.add_view(nrm, sizeof nrm), 5126, 4, "VEC3");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = n;
+  expect_load_error(b.write(test::scratch_dir(), "infnormal"), "vertex 2 has a non-finite normal");
+}
+
+// JSON has no NaN or infinity; a factor too large for single precision becomes one.
+TEST(GltfLoader, RejectsFactorsAndIntensitiesBeyondSinglePrecision) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1e40, 0.5, 0.5, 1.0};
+  expect_load_error(b.write(test::scratch_dir(), "hugecolor"), "invalid baseColorFactor");
+  b = quad_scene(5125);
+  b.doc["materials"][0]["emissiveFactor"] = {1.0, 1e39, 0.0};
+  expect_load_error(b.write(test::scratch_dir(), "hugeemission"), "invalid emission");
+  b = quad_scene(5125);
+  b.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 1e40}}}}}}};
+  b.doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  b.doc["scenes"][0]["nodes"].push_back(1);
+  expect_load_error(b.write(test::scratch_dir(), "hugelight"), "invalid colour, intensity");
+}
+
+TEST(GltfLoader, RejectsAMissingTextureAndAnImageThatIsNotOne) {
+  GltfBuilder b = quad_scene(5125);
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  b.doc["textures"] = json::array({{{"source", 0}}});
+  b.doc["images"] = json::array({{{"uri", "absent.png"}}});
+  expect_load_error(b.write(test::scratch_dir(), "notexture"), "'absent.png' is missing");
+  test::write_file(test::scratch_dir() + "/text.png", "this is not a PNG file");
+  b.doc["images"] = json::array({{{"uri", "text.png"}}});
+  expect_load_error(b.write(test::scratch_dir(), "textimage"), "image");
+}
+
 TEST(GltfLoader, SkipsNonTriangleModesAndRejectsAnEmptyResult) {
   GltfBuilder b = quad_scene(5125);
   b.doc["meshes"][0]["primitives"][0]["mode"] = 1;  // lines

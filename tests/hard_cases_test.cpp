@@ -2,13 +2,22 @@
 // origin or at another scale, ...
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <thread>
 
+#include "cli/commands.h"
 #include "image/error_metrics.h"
+#include "image/exr_file.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace rcsplat {
 namespace {
@@ -63,6 +72,54 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
     EXPECT_LT(indirect, seed_noise_indirect) << c.name;
     EXPECT_LT(direct, seed_noise_direct + 1e-6) << c.name;
     EXPECT_NEAR(double(img.stats.records), double(base.stats.records), 0.1 * double(base.stats.records)) << c.name;
+  }
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Same scene, options and device: the same bytes in every output file, however much time passes between the runs
+// (OpenImageIO would stamp the clock into the EXR header); SOURCE_DATE_EPOCH, when set, dates it instead.
+TEST(Determinism, OutputFilesAreTheSameBytesAcrossRuns) {
+  const std::string dir = test::scratch_dir();
+  RenderOptions options;
+  options.settings.width = options.settings.height = 40;
+  auto run = [&](const std::string& name) {
+    options.outputs = {dir + "/" + name + ".exr", dir + "/" + name + ".png"};
+    run_render(options);
+  };
+  unsetenv("SOURCE_DATE_EPOCH");
+  run("first");
+  // Into the next second, so that a clock time in the header would differ.
+  auto now = std::chrono::system_clock::now().time_since_epoch();
+  std::this_thread::sleep_for(std::chrono::seconds(1) - (now % std::chrono::seconds(1)) + std::chrono::milliseconds(20));
+  run("second");
+  for (const char* ext : {".exr", ".png"}) {
+    std::string a = file_bytes(dir + "/first" + ext), b = file_bytes(dir + "/second" + ext);
+    EXPECT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << ext << " files differ";
+  }
+  setenv("SOURCE_DATE_EPOCH", "86400", 1);
+  run("dated");
+  unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(read_exr_header(dir + "/dated.exr").text["DateTime"], "1970:01:02 00:00:00");
+}
+
+// A buffer larger than the device can hold is refused with the words "out of device memory", what it was for and the
+// size asked for, before OpenCL is asked.
+TEST(DeviceMemory, RefusalNamesWhatAndTheSizeAskedFor) {
+  GpuContext& gpu = test::gpu();
+  const uint64_t too_big = gpu.device_info().max_allocation + (uint64_t(1) << 30);
+  try {
+    gpu.buffer(CL_MEM_READ_WRITE, size_t(too_big), "test buffer");
+    ADD_FAILURE() << "a buffer of " << too_big << " bytes was allocated";
+  } catch (const Error& e) {
+    std::string message = e.what();
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f MiB", double(too_big) / (1024.0 * 1024.0));
+    EXPECT_NE(message.find("out of device memory: test buffer needs " + std::string(size)), std::string::npos) << message;
   }
 }
 

@@ -1,6 +1,7 @@
 #include "cl/gpu_context.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -192,6 +193,39 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
   }
   program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return *programs_.emplace(key, std::move(program)).first->second;
+}
+
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+std::string mebibytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
+}  // namespace
+
+bool is_out_of_memory(cl_int code) {
+  return code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES || code == CL_OUT_OF_HOST_MEMORY ||
+         code == CL_INVALID_BUFFER_SIZE;
+}
+
+cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::string& what) {
+  auto refuse = [&](const std::string& why) {
+    return Error("out of device memory: " + what + " needs " + mebibytes(bytes) + "; " + why + " (device '" +
+                 info_.name + "': " + mebibytes(info_.global_memory) + " in all, " + mebibytes(info_.max_allocation) +
+                 " in one buffer). Render fewer pixels (--width, --height) or choose another --device");
+  };
+  if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");
+  try {
+    return cl::Buffer(context_, flags, bytes);
+  } catch (const cl::Error& e) {
+    if (is_out_of_memory(e.err())) throw refuse(std::string("the allocation failed (") + e.what() + ")");
+    throw;
+  }
 }
 
 }  // namespace rcsplat

@@ -24,6 +24,9 @@ struct GroupSizes {
   size_t tile_side = 8;   // 2-D launches over the image, tile_side x tile_side pixels a group
 };
 
+// OpenCL error codes that mean the device (or the host, for it) ran out of memory.
+bool is_out_of_memory(cl_int code);
+
 class GpuContext {
  public:
   explicit GpuContext(const DeviceInfo& device);
@@ -52,11 +55,15 @@ class GpuContext {
   const std::map<std::string, bool>& launched_kernels() const { return launched_; }
   void note_launch(const std::string& kernel, bool all_in_order) { launched_[kernel] = all_in_order; }
 
+  // A device buffer of `bytes`; running out of device memory (or asking for more than one buffer may hold) throws
+  // rcsplat::Error naming `what`, the size asked for and what the device has.
+  cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
+
   template <typename T>
-  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY) {
+  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const std::string& what = "scene data") {
     // Zero-sized buffers are invalid in OpenCL: keep one element so a kernel argument is always valid.
     size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
-    cl::Buffer buffer(context_, flags, bytes);
+    cl::Buffer buffer = this->buffer(flags, bytes, what);
     if (!data.empty()) queue_.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
     return buffer;
   }

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "kernels/hsh.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -131,7 +132,9 @@ int run_render(const RenderOptions& options) {
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
+    check_writable_destination(out);
   }
+  if (!options.json_path.empty()) check_writable_destination(options.json_path);
   Scene scene = load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");

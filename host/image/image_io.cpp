@@ -3,6 +3,8 @@
 #include "image/image_io.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <ctime>
 
 #include "image/exr_file.h"
 #include "util/error.h"
@@ -21,6 +23,18 @@ void write_exr(const std::string& path, int width, int height, const std::vector
                const ExrAttributes& attributes) {
   ExrPixels image{width, height, {}, {}, attributes};
   image.text["Software"] = "rcsplat " RCSPLAT_VERSION;
+  // Same input, same bytes: the file carries no clock time unless the build asks for one (reproducible-builds.org's
+  // SOURCE_DATE_EPOCH, seconds since 1970, written in EXR's capDate form, UTC).
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    char* end = nullptr;
+    long long seconds = std::strtoll(epoch, &end, 10);
+    std::time_t t = std::time_t(seconds);
+    std::tm utc{};
+    char stamp[32];
+    if (*epoch && *end == 0 && seconds >= 0 && gmtime_r(&t, &utc) &&
+        std::strftime(stamp, sizeof stamp, "%Y:%m:%d %H:%M:%S", &utc))
+      image.text["DateTime"] = stamp;
+  }
   for (const ImageLayer& l : layers)
     for (const std::string& c : l.channels) image.channels.push_back(l.name.empty() ? c : l.name + "." + c);
   size_t pixels = size_t(width) * size_t(height), stride = image.channels.size();

@@ -42,6 +42,8 @@ void write_exr_file(const std::string& path, const ExrPixels& image) {
   OIIO::ImageSpec spec(image.width, image.height, int(image.channels.size()), OIIO::TypeDesc::FLOAT);
   spec.channelnames = image.channels;
   spec.attribute("compression", "zip");
+  // OpenImageIO stamps the current time into a file without a DateTime: an empty one keeps the bytes reproducible.
+  spec.attribute("DateTime", "");
   for (const auto& [name, value] : image.text) spec.attribute(name, value);
   write_pixels(path, spec, image.values.data());
 }

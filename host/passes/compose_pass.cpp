@@ -17,7 +17,7 @@ KernelDefines compose_defines(const DeviceScene& scene, bool radiance_cached) {
 
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
     : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", compose_defines(scene, radiance_cached))) {
-  specular_albedo_table_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2));
+  specular_albedo_table_ = gpu_.buffer(CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2), "compose specular albedo table");
   if (scene.has_specular_brdf()) {
     NamedKernel table = gpu.kernel("compose.cl", "specular_albedo_table", compose_defines(scene, radiance_cached));
     table.set_buffer<cl_float2>("table", specular_albedo_table_);
@@ -30,8 +30,8 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
   if (gbuffer.pixel_count() != pixels_ || !indirect_()) {
     pixels_ = gbuffer.pixel_count();
     size_t bytes = std::max<size_t>(pixels_, 1) * 4 * sizeof(float);
-    indirect_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, bytes);
-    color_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, bytes);
+    indirect_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "compose indirect");
+    color_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "compose color");
   }
   gbuffer.bind(kernel_);
   // Without glossy (radiance-cached) pixels the kernel never reads "glossy" ("cached_lobes"): any float4 buffer of

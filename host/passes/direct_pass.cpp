@@ -8,7 +8,7 @@ DirectPass::DirectPass(GpuContext& gpu, const DeviceScene& scene)
 void DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
-    radiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float));
+    radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "direct radiance");
   }
   DirectParams params{};
   params.strata_per_axis = strata_per_axis;

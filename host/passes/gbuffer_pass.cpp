@@ -12,7 +12,7 @@ GBufferPass::GBufferPass(GpuContext& gpu, const DeviceScene& scene)
 void GBufferPass::run(const CameraParams& camera) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);
   if (pixels != view_.pixel_count() || !view_.samples())
-    view_.samples = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample));
+    view_.samples = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample), "G-buffer");
   view_.width = camera.width;
   view_.height = camera.height;
   view_.camera = gpu_.upload(std::vector<CameraParams>{camera});

@@ -22,7 +22,7 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
-    radiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float));
+    radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
   }
   PathParams params{};
   params.sample_count = samples;

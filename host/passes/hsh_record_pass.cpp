@@ -74,7 +74,7 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
 void HshRecordPass::reserve(size_t records) {
   if (records <= capacity_) return;
   size_t grown = std::max(records, capacity_ * 2);
-  cl::Buffer bigger(gpu_.context(), CL_MEM_READ_WRITE, grown * floats_per_record(order_) * sizeof(float));
+  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * floats_per_record(order_) * sizeof(float), "radiance records");
   if (capacity_)
     gpu_.queue().enqueueCopyBuffer(coefficients_, bigger, 0, 0, capacity_ * floats_per_record(order_) * sizeof(float));
   coefficients_ = bigger;

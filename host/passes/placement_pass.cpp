@@ -13,13 +13,13 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
       clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
       apply_(gpu.kernel("placement.cl", "apply_radii")) {
   size_t pixels = gbuffer.pixel_count();
-  candidates_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint));
+  candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint), "placement candidates");
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
   record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE);
-  covered_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1));
+  covered_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1), "placement covered");
   auto tiles = [](int n) { return size_t((n + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE); };
   tiles_ = tiles(gbuffer.width) * tiles(gbuffer.height);
-  new_in_tile_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1));
+  new_in_tile_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1), "placement new in tile");
 }
 
 uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
@@ -66,7 +66,7 @@ void PlacementPass::clamp_neighbours(const cl::Buffer& records, uint32_t count, 
   if (!count) return;
   if (count > radii_capacity_) {
     radii_capacity_ = std::max<size_t>(count, radii_capacity_ * 2);
-    radii_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, radii_capacity_ * sizeof(float));
+    radii_ = gpu_.buffer(CL_MEM_READ_WRITE, radii_capacity_ * sizeof(float), "placement radii");
   }
   PlacementParams params{};
   params.record_count = count;

@@ -25,9 +25,9 @@ void RadianceSplatPass::size_for(const GBufferView& gbuffer) {
   if (gbuffer.pixel_count() == pixels_ && sums_()) return;
   pixels_ = gbuffer.pixel_count();
   size_t slots = std::max<size_t>(pixels_, 1);
-  kept_samples_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * sizeof(GBufferSample));
-  sums_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long));
-  lobe_radiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(float));
+  kept_samples_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(GBufferSample), "radiance splat kept samples");
+  sums_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long), "radiance splat sums");
+  lobe_radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * 4 * sizeof(float), "radiance splat lobe radiance");
 }
 
 const GBufferView& RadianceSplatPass::radiance_cached_pixels(const GBufferView& gbuffer) {

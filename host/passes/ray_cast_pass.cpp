@@ -31,8 +31,8 @@ RayCastPass::RayCastPass(GpuContext& gpu, const DeviceScene& scene)
 void RayCastPass::set_rays(const std::vector<RayDesc>& rays) {
   ray_count_ = rays.size();
   rays_ = gpu_.upload(rays);
-  hits_ = cl::Buffer(gpu_.context(), CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(HitDesc));
-  occluded_ = cl::Buffer(gpu_.context(), CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(int));
+  hits_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(HitDesc), "ray cast hits");
+  occluded_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(int), "ray cast occluded");
 }
 
 double RayCastPass::cast_closest() { return timed(gpu_, closest_, scene_, rays_, ray_count_, "hits", hits_, true); }

@@ -32,7 +32,7 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
 void RecordPass::reserve(size_t count) {
   if (count <= capacity_) return;
   size_t grown = std::max(count, capacity_ * 2);
-  cl::Buffer bigger(gpu_.context(), CL_MEM_READ_WRITE, grown * sizeof(CacheRecord));
+  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * sizeof(CacheRecord), "irradiance records");
   if (capacity_) gpu_.queue().enqueueCopyBuffer(records_, bigger, 0, 0, capacity_ * sizeof(CacheRecord));
   records_ = bigger;
   capacity_ = grown;
@@ -61,7 +61,7 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
     size_t strata = size_t(count) * params.theta_strata * params.phi_strata;
     if (strata > strata_capacity_) {
       strata_capacity_ = std::max(strata, strata_capacity_ * 2);
-      strata_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, strata_capacity_ * sizeof(cl_float4));
+      strata_ = gpu_.buffer(CL_MEM_READ_WRITE, strata_capacity_ * sizeof(cl_float4), "record strata");
     }
     kernel_.set_buffer<cl_float4>("strata", strata_);
   }

@@ -21,9 +21,9 @@ void SplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records,
   if (gbuffer.pixel_count() != pixels_ || !sums_()) {
     pixels_ = gbuffer.pixel_count();
     size_t slots = std::max<size_t>(pixels_, 1);
-    sums_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long));
-    counts_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * sizeof(cl_uint));
-    irradiance_ = cl::Buffer(gpu_.context(), CL_MEM_READ_WRITE, slots * 4 * sizeof(float));
+    sums_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * 4 * sizeof(cl_long), "splat sums");
+    counts_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "splat counts");
+    irradiance_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * 4 * sizeof(float), "splat irradiance");
   }
   gbuffer.bind(clear_);
   clear_.set_buffer<cl_long>("sums", sums_).set_buffer<cl_uint>("counts", counts_);

@@ -28,7 +28,7 @@ class OctreeRecordIndex final : public RecordIndex {
         min_radius_pixels_(min_radius_pixels(cache)),
         octree_(dvec3(frame.to_device(scene.bounds_min())), dvec3(frame.to_device(scene.bounds_max()))),
         record_at_pixel_(pixels_.size(), -1),
-        candidates_(gpu.context(), CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint)) {}
+        candidates_(gpu.buffer(CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint), "octree candidates")) {}
 
   uint32_t find_uncovered(RecordPass&, uint32_t, int spacing, uint32_t) override {
     std::vector<cl_uint> found;

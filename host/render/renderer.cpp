@@ -1,6 +1,10 @@
 #include "render/renderer.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
@@ -8,6 +12,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
+#include "scene/scene_frame.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -22,6 +27,33 @@ const char* gi_method_name(GiMethod method) {
   }
   return "?";
 }
+
+namespace {
+
+// Refuses, before any work, a frame that cannot fit: the per-pixel buffers every method allocates on the device
+// (G-buffer, direct light, composition, placement flags, splat sums) and the layers the host keeps and writes. A
+// lower bound: records and scene data come on top. Without it a huge --width would end in a failed allocation deep in
+// a pass, or on the host in the kernel's out-of-memory killer.
+void check_frame_fits(int width, int height, const DeviceInfo& device) {
+  const double pixels = double(width) * double(height);
+  const double device_bytes = pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52);
+  const double host_bytes = pixels * (sizeof(GBufferSample) + 16 + 116 + 104);
+  const double host_memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  auto gib = [](double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1u << 30));
+    return std::string(text);
+  };
+  const std::string frame = std::to_string(width) + "x" + std::to_string(height);
+  if (device.global_memory && device_bytes > double(device.global_memory))
+    throw Error("out of device memory: a " + frame + " frame needs at least " + gib(device_bytes) + " of device memory; '" +
+                device.name + "' has " + gib(double(device.global_memory)) + " (--width, --height)");
+  if (host_memory > 0.0 && host_bytes > host_memory)
+    throw Error("out of host memory: a " + frame + " frame needs at least " + gib(host_bytes) +
+                " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
+}
+
+}  // namespace
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
   if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
@@ -39,6 +71,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   img.width = settings.width;
   img.height = settings.height;
   resolve_resolution(cam, img.width, img.height);
+  check_frame_fits(img.width, img.height, gpu.device_info());
   // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
   // position and depth layers and the records go back to world units below.
   const SceneFrame scene_frame = SceneFrame::fitted(scene);

@@ -387,6 +387,8 @@ class GltfReader {
       if (node.skin >= 0) skin_matrix = apply_skin(node.skin, prim, what, pos, nrm);
       for (size_t i = 0; i < pos.size(); ++i)
         if (!std::isfinite(pos[i])) fail(what + ": vertex " + std::to_string(i / 3) + " has a non-finite position");
+      for (size_t i = 0; i < nrm.size(); ++i)
+        if (!std::isfinite(nrm[i])) fail(what + ": vertex " + std::to_string(i / 3) + " has a non-finite normal");
       glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
       // A mirroring transform flips the winding (for a skin, judged by its first vertex's matrix).
       bool mirrored = glm::determinant(glm::mat3(node.skin >= 0 ? skin_matrix : world)) < 0.0f;
@@ -424,8 +426,12 @@ class GltfReader {
                " is out of range (the primitive has " + std::to_string(vertex_count) + " vertices)");
         }
       }
+      size_t first = scene_.positions.size();
       for (size_t t = 0; t < idx.size(); t += 3)
         add_triangle(t, idx, {pos, nrm, uv, color}, world, normal_matrix, mirrored, material);
+      for (size_t i = first; i < scene_.positions.size(); ++i)
+        if (!std::isfinite(scene_.positions[i].x + scene_.positions[i].y + scene_.positions[i].z))
+          fail(what + ": the node's transform takes a vertex beyond the range of single precision");
     }
   }
 
@@ -447,8 +453,9 @@ class GltfReader {
       if (!nrm.empty()) {
         glm::vec3 n = normal_matrix * glm::vec3(nrm[3 * order[k]], nrm[3 * order[k] + 1], nrm[3 * order[k] + 2]);
         float len = glm::length(n);
-        // A zero or non-finite normal falls back to the geometric one rather than poisoning the shading.
-        scene_.normals[base + size_t(k)] = (len > 0.0f && std::isfinite(len)) ? n / len : geometric;
+        // A zero normal (common in exported meshes) falls back to the geometric one; non-finite ones are refused on
+        // reading.
+        scene_.normals[base + size_t(k)] = len > 0.0f && std::isfinite(len) ? n / len : geometric;
       }
       if (!uv.empty()) {
         glm::vec2 u(uv[2 * order[k]], uv[2 * order[k] + 1]);
@@ -589,7 +596,7 @@ class GltfReader {
     return WRAP_REPEAT;
   }
 
-  // glTF textures become scene textures (RGBA8); a texture whose image did not decode maps to -1 with a warning.
+  // glTF textures become scene textures (RGBA8); a texture whose image is missing or did not decode is an error.
   void read_textures() {
     for (size_t t = 0; t < model_.textures.size(); ++t) {
       const tinygltf::Texture& tex = model_.textures[t];
@@ -626,7 +633,14 @@ class GltfReader {
           scene_.textures.push_back(std::move(out));
         }
       }
-      if (slot < 0) warn("texture " + std::to_string(t) + " has no decodable image; its materials use their factors alone");
+      if (slot < 0) {
+        std::string image = "(none)";
+        if (tex.source >= 0 && size_t(tex.source) < model_.images.size()) {
+          const tinygltf::Image& img = model_.images[size_t(tex.source)];
+          image = "image " + std::to_string(tex.source) + " '" + (img.uri.empty() ? img.name : img.uri) + "'";
+        }
+        fail("texture " + std::to_string(t) + ": " + image + " is missing or is not a readable PNG, JPEG or other image");
+      }
       texture_slots_.push_back(slot);
     }
   }

@@ -1,6 +1,10 @@
 #include "util/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <filesystem>
 
@@ -8,6 +12,20 @@
 
 namespace rcsplat {
 namespace fs = std::filesystem;
+
+void check_writable_destination(const std::string& path) {
+  fs::path target(path);
+  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) throw Error(path + ": the directory " + dir.string() + " does not exist");
+  if (!fs::is_directory(dir, ec)) throw Error(path + ": " + dir.string() + " is not a directory");
+  if (fs::is_directory(target, ec)) throw Error(path + ": is a directory");
+  fs::path probe = dir / (".rcsplat-probe" + std::to_string(getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) throw Error(path + ": cannot create files in " + dir.string() + ": " + std::strerror(errno));
+  ::close(fd);
+  fs::remove(probe, ec);
+}
 
 void write_file_atomically(const std::string& path, const std::function<std::string(const std::string&)>& write) {
   fs::path target(path);
