@@ -6,6 +6,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libembree-dev libopenimageio-dev libtinygltf-dev libglm-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -288,6 +288,24 @@ TEST(GltfLoader, RejectsAMissingTextureAndAnImageThatIsNotOne) {
   expect_load_error(b.write(test::scratch_dir(), "textimage"), "image");
 }
 
+// Found by fuzzing (tests/fuzz/corpus/found_*): a buffer URI naming a directory made tinygltf ask for 2^63 bytes; a
+// scene of denormal size broke the default camera and light.
+TEST(GltfLoader, RejectsABufferThatIsADirectory) {
+  GltfBuilder b = quad_scene(5125);
+  std::string path = b.write(test::scratch_dir(), "dirbuffer");
+  b.doc["buffers"][0]["uri"] = ".";
+  test::write_file(path, b.doc.dump());
+  expect_load_error(path, "is not a regular file");
+}
+
+TEST(GltfLoader, RejectsAScaleBeyondWhatItRenders) {
+  for (double scale : {1e-20, 1e20}) {
+    GltfBuilder b = quad_scene(5125);
+    b.doc["nodes"][0]["scale"] = {scale, scale, scale};
+    expect_load_error(b.write(test::scratch_dir(), "scaled"), "is outside the range rcsplat renders");
+  }
+}
+
 TEST(GltfLoader, SkipsNonTriangleModesAndRejectsAnEmptyResult) {
   GltfBuilder b = quad_scene(5125);
   b.doc["meshes"][0]["primitives"][0]["mode"] = 1;  // lines

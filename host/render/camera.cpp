@@ -1,11 +1,24 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "util/error.h"
 #include "util/log.h"
 
 namespace rcsplat {
+namespace {
+
+// v / |v| without overflow or underflow in |v|^2 (scenes in any unit, found by fuzzing); zero stays zero.
+glm::vec3 unit(glm::vec3 v) {
+  float largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(largest > 0.0f) || !std::isfinite(largest)) return glm::vec3(0.0f);
+  v /= largest;
+  return v / glm::length(v);
+}
+
+}  // namespace
+
 
 std::string describe_cameras(const Scene& scene) {
   if (scene.cameras.empty()) return "no cameras";
@@ -36,8 +49,8 @@ SceneCamera choose_camera(const Scene& scene, int index, const CameraOverrides& 
     if (!(*o.fov_degrees > 0.0f && *o.fov_degrees < 179.0f)) throw Error("--fov must be between 0 and 179 degrees");
     c.yfov = glm::radians(*o.fov_degrees);
   }
-  glm::vec3 forward = c.target - c.eye;
-  if (!(glm::length(forward) > 0.0f) || !(glm::length(glm::cross(forward, c.up)) > 1e-6f * glm::length(forward) * glm::length(c.up)))
+  glm::vec3 forward = unit(c.target - c.eye), up = unit(c.up);
+  if (!(glm::length(forward) > 0.5f) || !(glm::length(up) > 0.5f) || !(glm::length(glm::cross(forward, up)) > 1e-6f))
     throw Error("the camera's eye, target and up do not define a view (target = eye, or up parallel to the view)");
   return c;
 }
@@ -69,8 +82,8 @@ void resolve_resolution(const SceneCamera& camera, int& width, int& height) {
 }
 
 CameraParams camera_params(const SceneCamera& camera, int width, int height) {
-  glm::vec3 forward = glm::normalize(camera.target - camera.eye);
-  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  glm::vec3 forward = unit(camera.target - camera.eye);
+  glm::vec3 right = unit(glm::cross(forward, unit(camera.up)));
   glm::vec3 up = glm::cross(right, forward);
   CameraParams p{};
   for (int i = 0; i < 3; ++i) {

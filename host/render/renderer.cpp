@@ -72,6 +72,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   img.height = settings.height;
   resolve_resolution(cam, img.width, img.height);
   check_frame_fits(img.width, img.height, gpu.device_info());
+  scene.check_extent();
   // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
   // position and depth layers and the records go back to world units below.
   const SceneFrame scene_frame = SceneFrame::fitted(scene);

@@ -3,8 +3,11 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -707,12 +710,35 @@ class GltfReader {
 
 }  // namespace
 
+namespace {
+
+// tinygltf's file reader, refusing what is not a regular file: its own asks a directory or a device named by a
+// buffer's or image's URI for its size and gets 2^63 (found by fuzzing).
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    if (err) *err += "'" + path + "' is not a regular file\n";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    if (err) *err += "'" + path + "' cannot be read\n";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Scene load_gltf(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such file");
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile,
+                         nullptr});
   std::string err, warn;
   std::string ext = lower_extension(path);
   bool ok;
@@ -732,7 +758,10 @@ Scene load_gltf(const std::string& path) {
   }
   Scene scene;
   scene.source = path;
+  // Every coordinate is finite, but their spread must be too: cameras, lights and the device frame are derived
+  // from the bounding box (found by fuzzing: a misaligned view read floats near 1e38, or 1e-38).
   GltfReader(path, model, scene).read();
+  scene.check_extent();
   return scene;
 }
 

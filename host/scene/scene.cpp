@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+
+#include "util/error.h"
 
 
 namespace rcsplat {
@@ -44,7 +47,21 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   triangle_material.push_back(material);
 }
 
-float Scene::bounding_radius() const { return std::max(0.5f * glm::length(bounds_max() - bounds_min()), 1e-3f); }
+float Scene::bounding_radius() const {
+  // A scene of one point has no size: give it one unit. Any other size stands, however small (a default camera at a
+  // millimetre from a micrometre-sized scene would see nothing; found by fuzzing).
+  float radius = float(0.5 * glm::length(glm::dvec3(bounds_max()) - glm::dvec3(bounds_min())));
+  return radius > 0.0f ? radius : 1.0f;
+}
+
+void Scene::check_extent() const {
+  const double radius = 0.5 * glm::length(glm::dvec3(bounds_max()) - glm::dvec3(bounds_min()));
+  if (radius == 0.0 || (radius >= 1e-15 && radius <= 1e15)) return;
+  char text[200];
+  std::snprintf(text, sizeof text, "the scene's bounding radius, %g units, is outside the range rcsplat renders "
+                "(1e-15 to 1e15 units): rescale it", radius);
+  throw Error(source + ": " + text);
+}
 
 SceneCamera Scene::default_camera() const {
   // Look at the scene's centre from the front (+z), far enough for its bounding sphere to fit a 45-degree view.
@@ -63,8 +80,9 @@ SceneLight Scene::default_light(const SceneCamera& view) const {
   light.name = "default";
   glm::vec3 up = glm::length(view.up) > 0.0f ? glm::normalize(view.up) : glm::vec3(0.0f, 1.0f, 0.0f);
   light.position = view.eye + up * bounding_radius();
-  float d = glm::length(light.position - 0.5f * (bounds_min() + bounds_max()));
-  light.intensity = glm::vec3(std::max(d * d, 1e-6f) * 3.0f);
+  // In double: the square of a distance leaves single precision long before the distance does.
+  double d = glm::length(glm::dvec3(light.position) - 0.5 * (glm::dvec3(bounds_min()) + glm::dvec3(bounds_max())));
+  light.intensity = glm::vec3(float(d > 0.0 ? 3.0 * d * d : 3.0));
   return light;
 }
 
