@@ -2,6 +2,7 @@
 // origin or at another scale, ...
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -121,6 +122,61 @@ TEST(DeviceMemory, RefusalNamesWhatAndTheSizeAskedFor) {
     std::snprintf(size, sizeof size, "%.1f MiB", double(too_big) / (1024.0 * 1024.0));
     EXPECT_NE(message.find("out of device memory: test buffer needs " + std::string(size)), std::string::npos) << message;
   }
+}
+
+// Dynamic range: the splat sums in 64-bit fixed point. The same box lit 1e-4 and 1e6 times as brightly must give the
+// same image scaled by the same factor (no overflow at the top, no lost bits at the bottom), every pixel finite and
+// non-negative.
+TEST(HardCases, LightOverTenDecadesScalesTheImageExactly) {
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  settings.light_samples = 4;
+  const Scene original = make_cornell_box();
+  const RenderedImage base = render(test::gpu(), original, settings);
+  for (float factor : {1e-4f, 1e6f}) {
+    Scene scaled = original;
+    for (SceneMaterial& m : scaled.materials) m.emission *= factor;
+    RenderedImage img = render(test::gpu(), scaled, settings);
+    ASSERT_EQ(img.stats.records, base.stats.records) << "placement does not depend on brightness";
+    double worst = 0.0;
+    for (size_t i = 0; i < img.indirect.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(img.indirect[i]) && img.indirect[i] >= 0.0f) << "pixel value " << i;
+      double expected = double(base.indirect[i]) * factor;
+      if (base.indirect[i] > 0.0f) worst = std::max(worst, std::fabs(img.indirect[i] - expected) / expected);
+    }
+    std::printf("emission x %g: largest relative difference %.2e\n", factor, worst);
+    EXPECT_LT(worst, 1e-4) << "emission x " << factor;
+  }
+}
+
+// Degenerate input geometry: zero-area and duplicated triangles, a camera grazing the floor from inside the box (so
+// records sit next to the eye and most of the view is one plane seen edge-on) and pixels that see nothing. Every
+// pixel stays finite and non-negative, nothing is left uncovered and the duplicates change no pixel.
+TEST(HardCases, DegenerateTrianglesAndAGrazingCameraStayFinite) {
+  Scene scene = make_cornell_box();
+  const size_t original_triangles = scene.triangle_count();
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  settings.light_samples = 4;
+  scene.cameras[0].eye = glm::vec3(278.0f, 0.05f, 100.0f);   // a twentieth of a unit above the floor
+  scene.cameras[0].target = glm::vec3(278.0f, 0.0f, -500.0f);  // along it, out of the open front
+  scene.cameras[0].yfov = 2.0f;                                // wide: the open front lets pixels see nothing
+  const RenderedImage clean = render(test::gpu(), scene, settings);
+  for (size_t t = 0; t < original_triangles; ++t) {
+    glm::vec3 a = scene.positions[3 * t], b = scene.positions[3 * t + 1];
+    scene.add_triangle(a, b, b, scene.triangle_material[t]);                       // zero area: two corners equal
+    scene.add_triangle(a, b, a + 2.0f * (b - a), scene.triangle_material[t]);      // zero area: collinear
+  }
+  const RenderedImage degenerate = render(test::gpu(), scene, settings);
+  size_t empty = 0;
+  for (const RenderedImage* img : {&clean, &degenerate}) {
+    EXPECT_EQ(img->stats.uncovered_pixels, 0u);
+    for (size_t i = 0; i < img->color.size(); ++i)
+      ASSERT_TRUE(std::isfinite(img->color[i]) && img->color[i] >= 0.0f) << "pixel value " << i;
+  }
+  for (int t : clean.triangle) empty += t < 0;
+  EXPECT_GT(empty, 0u) << "the view should include pixels that see no geometry";
+  EXPECT_LT(image_error(degenerate.indirect, clean.indirect).rel_mse, 1e-6) << "zero-area triangles changed the image";
 }
 
 }  // namespace
