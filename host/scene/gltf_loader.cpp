@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -66,6 +67,13 @@ class GltfReader {
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw Error(path_ + ": " + what); }
+  // A JSON number used as an index, or -1 when it is none (tinygltf's GetNumberAsInt converts 1e23 to int: undefined
+  // behaviour, found by fuzzing).
+  static int index_value(const tinygltf::Value& v) {
+    if (!v.IsNumber()) return -1;
+    double d = v.GetNumberAsDouble();
+    return d >= 0.0 && d <= double(std::numeric_limits<int>::max()) && d == std::floor(d) ? int(d) : -1;
+  }
   void warn(const std::string& what) const { log_warning(path_ + ": " + what); }
   // A feature rcsplat does not simulate: named once per scene, in a warning and in the render summary.
   void note_unsupported(const std::string& feature, const std::string& instead) {
@@ -269,7 +277,7 @@ class GltfReader {
     if (node.mesh >= 0) add_mesh(index, world);
     if (node.camera >= 0) add_camera(node.camera, world);
     auto ext = node.extensions.find("KHR_lights_punctual");
-    if (ext != node.extensions.end() && ext->second.Has("light")) add_light(ext->second.Get("light").GetNumberAsInt(), world);
+    if (ext != node.extensions.end() && ext->second.Has("light")) add_light(index_value(ext->second.Get("light")), world);
     for (int child : node.children) visit_node(child, world, visiting);
     visiting[size_t(index)] = false;
   }
@@ -506,7 +514,7 @@ class GltfReader {
     };
     glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
     float rotation = t.Has("rotation") ? float(t.Get("rotation").GetNumberAsDouble()) : 0.0f;
-    if (t.Has("texCoord")) m.tex_coord = t.Get("texCoord").GetNumberAsInt();
+    if (t.Has("texCoord")) m.tex_coord = index_value(t.Get("texCoord"));
     float c = std::cos(rotation), s = std::sin(rotation);
     // The extension's GLSL, column by column: rotation = mat3(c, s, 0, -s, c, 0, 0, 0, 1).
     glm::mat3 translate(1.0f), rotate(1.0f), scaling(1.0f);
