@@ -17,29 +17,18 @@
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
+#include "scene/scene_frame.h"
 #include "test_support.h"
 #include "util/error.h"
 
 namespace rcsplat {
 namespace {
 
-// The scene moved to offset + scale * p. Point and spot intensities scale with the square of the length so that
-// irradiance, and so every pixel, stays the same; radiance (emission) is per area and solid angle and does not change.
-Scene moved_and_scaled(Scene s, glm::dvec3 offset, double scale) {
-  auto place = [&](glm::vec3 p) { return glm::vec3(glm::dvec3(p) * scale + offset); };
-  for (glm::vec3& p : s.positions) p = place(p);
-  for (SceneLight& l : s.lights) {
-    l.position = place(l.position);
-    l.range = float(l.range * scale);
-    if (l.type != LightType::directional) l.intensity *= float(scale * scale);
-  }
-  for (SceneCamera& c : s.cameras) {
-    c.eye = place(c.eye);
-    c.target = place(c.target);
-    c.xmag = float(c.xmag * scale);
-    c.ymag = float(c.ymag * scale);
-  }
-  return s;
+// The scene moved to offset + scale * p: SceneFrame's change of units read the other way (a frame centred at
+// -offset / scale, of scale 1 / scale). Point and spot intensities scale with the square of the length so that
+// irradiance, and so every pixel, stays the same; radiance (emission) does not change.
+Scene moved_and_scaled(const Scene& s, glm::dvec3 offset, double scale) {
+  return SceneFrame{-offset / scale, 1.0 / scale}.device_scene(s);
 }
 
 TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {

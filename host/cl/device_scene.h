@@ -26,6 +26,12 @@ class DeviceScene {
   // HAS_TEXTURES, HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, HAS_SPECULAR_BRDF, BVH_STACK_SIZE: a scene compiles only the
   // code it needs.
   const KernelDefines& defines() const { return defines_; }
+  // The scene's switches plus a pass's own (name -> "1" or "0").
+  KernelDefines defines_with(const std::string& name, bool on) const {
+    KernelDefines d = defines_;
+    d[name] = on ? "1" : "0";
+    return d;
+  }
   // Materials by LOBE_* (index), from their factors.
   const std::array<unsigned, LOBE_KINDS>& lobe_counts() const { return lobe_counts_; }
   bool has_specular_brdf() const { return defines_.at("HAS_SPECULAR_BRDF") == "1"; }

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cl/embedded_kernels.h"
+#include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -195,19 +196,6 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
   return *programs_.emplace(key, std::move(program)).first->second;
 }
 
-}  // namespace rcsplat
-
-namespace rcsplat {
-namespace {
-
-std::string mebibytes(uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / (1024.0 * 1024.0));
-  return text;
-}
-
-}  // namespace
-
 bool is_out_of_memory(cl_int code) {
   return code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES || code == CL_OUT_OF_HOST_MEMORY ||
          code == CL_INVALID_BUFFER_SIZE;
@@ -215,8 +203,9 @@ bool is_out_of_memory(cl_int code) {
 
 cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::string& what) {
   auto refuse = [&](const std::string& why) {
-    return Error("out of device memory: " + what + " needs " + mebibytes(bytes) + "; " + why + " (device '" +
-                 info_.name + "': " + mebibytes(info_.global_memory) + " in all, " + mebibytes(info_.max_allocation) +
+    return Error("out of device memory: " + what + " needs " + byte_size(double(bytes), "MiB") + "; " + why +
+                 " (device '" + info_.name + "': " + byte_size(double(info_.global_memory), "MiB") + " in all, " +
+                 byte_size(double(info_.max_allocation), "MiB") +
                  " in one buffer). Render fewer pixels (--width, --height) or choose another --device");
   };
   if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");

@@ -60,7 +60,8 @@ class GpuContext {
   cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
 
   template <typename T>
-  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const std::string& what = "scene data") {
+  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY,
+                    const std::string& what = "scene data") {
     // Zero-sized buffers are invalid in OpenCL: keep one element so a kernel argument is always valid.
     size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
     cl::Buffer buffer = this->buffer(flags, bytes, what);

@@ -6,20 +6,15 @@ namespace {
 
 constexpr size_t kTableEntries = SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
 
-
-KernelDefines compose_defines(const DeviceScene& scene, bool radiance_cached) {
-  KernelDefines defines = scene.defines();
-  defines["RADIANCE_CACHED"] = radiance_cached ? "1" : "0";
-  return defines;
-}
-
 }  // namespace
 
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
-    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", compose_defines(scene, radiance_cached))) {
-  specular_albedo_table_ = gpu_.buffer(CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2), "compose specular albedo table");
+    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))) {
+  specular_albedo_table_ =
+      gpu_.buffer(CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2), "compose specular albedo table");
   if (scene.has_specular_brdf()) {
-    NamedKernel table = gpu.kernel("compose.cl", "specular_albedo_table", compose_defines(scene, radiance_cached));
+    NamedKernel table =
+        gpu.kernel("compose.cl", "specular_albedo_table", scene.defines_with("RADIANCE_CACHED", radiance_cached));
     table.set_buffer<cl_float2>("table", specular_albedo_table_);
     table.launch(kTableEntries, gpu_.groups().per_item);
   }

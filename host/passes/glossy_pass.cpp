@@ -4,20 +4,10 @@
 
 namespace rcsplat {
 
-namespace {
-
-KernelDefines glossy_defines(const DeviceScene& scene, bool sample_radiance_cacheable) {
-  KernelDefines defines = scene.defines();
-  defines["SAMPLE_HSH_LOBES"] = sample_radiance_cacheable ? "1" : "0";
-  return defines;
-}
-
-}  // namespace
-
 GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable)
     : gpu_(gpu),
       scene_(scene),
-      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", glossy_defines(scene, sample_radiance_cacheable))) {}
+      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable))) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {

@@ -11,9 +11,8 @@ namespace {
 KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
-  KernelDefines defines = scene.defines();
+  KernelDefines defines = scene.defines_with("STORE_STRATA", store_strata);
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
-  defines["STORE_STRATA"] = store_strata ? "1" : "0";
   return defines;
 }
 

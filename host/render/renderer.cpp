@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "bvh/bvh8.h"
@@ -13,6 +12,7 @@
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
 #include "scene/scene_frame.h"
+#include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -39,11 +39,7 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
   const double device_bytes = pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52);
   const double host_bytes = pixels * (sizeof(GBufferSample) + 16 + 116 + 104);
   const double host_memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
-  auto gib = [](double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1u << 30));
-    return std::string(text);
-  };
+  auto gib = [](double bytes) { return byte_size(bytes, "GiB"); };
   const std::string frame = std::to_string(width) + "x" + std::to_string(height);
   if (device.global_memory && device_bytes > double(device.global_memory))
     throw Error("out of device memory: a " + frame + " frame needs at least " + gib(device_bytes) + " of device memory; '" +
