@@ -91,6 +91,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--spacing", spacing,
                          "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
                              shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));
+  render_cmd->add_option("--guide-rays", render.settings.cache.guide_rays,
+                         "Rays per record aimed at the brightest directly lit places (photons from the lights find "
+                         "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
+                             std::to_string(cache_defaults.guide_rays))
+      ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
       ->check(CLI::Range(1u, 1u << 20));
   render_cmd->add_option("--glossy-samples", render.settings.glossy_samples,

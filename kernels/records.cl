@@ -4,6 +4,7 @@
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
 #include "cache_math.h"
+#include "light_guide.h"
 
 // The host compiles this kernel with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
 // HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M. With
@@ -26,6 +27,7 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 
 __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
                               __global CacheRecord* records,
+                              __global const GuideCluster* guide,
 #if STORE_STRATA
                               __global float4* strata,
 #endif
@@ -42,6 +44,13 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   const uint M = hp.theta_strata, N = hp.phi_strata;
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
   uint key = hash_u32(pixel ^ hash_u32(hp.seed));
+
+  // The light guide's cones for this record (none without a guide): its rays and the strata are weighted by the
+  // balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
+  GuideCone cones[GUIDE_MAX_CLUSTERS];
+  const uint cone_count = hp.guide_rays ? guide_cones(guide, hp.guide_clusters, p, n, cones) : 0u;
+  const float cosine_density = (float)(M * N) * RC_INV_PI;  // n_c p_c / cos(theta)
+  const float guided_rays = (float)hp.guide_rays;
 
   // Per-row weights, the same in every column: computed once. theta_wall: the wall between rows j - 1 and j, at
   // theta_j- (sin theta cos^2 theta dphi); phi_wall: the integral of cos(theta) over row j (the walls between columns);
@@ -87,6 +96,11 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
 #if STORE_STRATA
       strata[((size_t)i * M + j) * N + k] = (float4)(l, r);
 #endif
+      // What the strata estimate is the part of the light the guide leaves to them; their gradients see that part.
+      if (cone_count) {
+        float c = cosine_density * cos_t;
+        l *= c / (c + guided_rays * guide_pdf(cones, cone_count, dir));
+      }
       e += l;
       inverse_distances += 1.0f / r;
       rotation += rotation_weight[j] * l;
@@ -106,7 +120,19 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
     add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
-  e = finite_or_zero(e * norm);
+  // The guide's rays: f / (n_c p_c + n_g p_g) each, f = L cos(theta).
+  float3 e_guided = (float3)(0.0f);
+  for (uint g = 0; g < (cone_count ? hp.guide_rays : 0u); ++g) {
+    uint s = M * N + g;
+    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u));
+    float cos_n = dot(dir, n);
+    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
+    float r;
+    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                               &r, &rays);
+    e_guided += l * (cos_n / (cosine_density * cos_n + guided_rays * guide_pdf(cones, cone_count, dir)));
+  }
+  e = finite_or_zero(e * norm + e_guided);
 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
   float harmonic = (float)(M * N) / inverse_distances;

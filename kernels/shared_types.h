@@ -207,8 +207,40 @@ typedef struct {
   rc_uint seed;
   float min_radius_pixels;  // clamps of the radius R, in pixel footprints at the record (the settings' clamps of the
   float max_radius_pixels;  // reach a R, divided by a)
-  float pad[3];
+  rc_uint guide_rays;       // rays aimed at the light guide's clusters, beside the M x N strata (0: none)
+  rc_uint guide_clusters;   // clusters in the guide, 0 .. GUIDE_MAX_CLUSTERS
+  float pad;
 } HemisphereParams;
+
+// The light guide (kernels/light_guide.cl, kernels/light_guide.h): where the scene's directly lit surfaces send the
+// most light back, as a few bounding spheres, so that records aim rays at a small bright patch their strata would
+// mostly miss.
+#define GUIDE_MAX_CLUSTERS 32
+typedef struct {
+  float centre[3];
+  float radius;   // bounding sphere of the cluster's photon hits
+  float flux[3];  // reflected flux (photon power x albedo), RGB
+  float pad0;
+  float normal[3];  // mean surface normal on the lit side (zero when the hits face every way)
+  float pad1;
+} GuideCluster;
+
+// One photon from a light to the first surface it lands on.
+typedef struct {
+  float position[3];
+  rc_int hit;      // 0: the photon left the scene
+  float normal[3]; // geometric normal on the side the photon came from
+  float pad0;
+  float flux[3];   // reflected flux: the photon's power times the surface's albedo
+  float pad1;
+} PhotonHit;
+
+typedef struct {
+  rc_uint photon_count;
+  rc_uint source_count;  // punctual lights first, then emissive triangles, as in the sources' CDF
+  rc_uint seed;
+  rc_uint pad;
+} PhotonParams;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
 // (host/cl/kernel_args.h checks names and types against the compiled kernels).
@@ -330,6 +362,9 @@ static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 32);
+static_assert(sizeof(GuideCluster) == 48);
+static_assert(sizeof(PhotonHit) == 48);
+static_assert(sizeof(PhotonParams) == 16);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 16);

@@ -19,7 +19,11 @@ struct CacheSettings {
   // open areas. The command line's --spacing MIN,MAX.
   float min_reach_pixels = 3.0f;
   float max_reach_pixels = 20.0f;
-  int coarsest_spacing_pixels = 32;  // record placement starts on this pixel grid and halves it down to 1
+  int coarsest_spacing_pixels = 32;
+  // The light guide (kernels/light_guide.h): rays per record aimed at the brightest directly lit places, beside the
+  // M x N strata (0: no guide), and the photons that find those places. The command line's --guide-rays.
+  unsigned guide_rays = 64;
+  unsigned guide_photons = 1u << 16;  // record placement starts on this pixel grid and halves it down to 1
 };
 
 constexpr float kMinAccuracy = MIN_ACCURACY;

@@ -13,6 +13,8 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, b
   texels_ = gpu.upload(p.texels);
   lights_ = gpu.upload(p.lights);
   emitters_ = gpu.upload(p.emitters);
+  lights_host_ = p.lights;
+  emitters_host_ = p.emitters;
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
 

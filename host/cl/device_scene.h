@@ -38,6 +38,9 @@ class DeviceScene {
   // Radiance caching runs (and its kernels compile) only for a scene with a LOBE_HSH material.
   bool has_radiance_cache() const { return lobe_counts_[LOBE_HSH] > 0; }
   const std::vector<Material>& materials() const { return materials_host_; }
+  // The lights as uploaded (device frame): the light guide weighs them by power.
+  const std::vector<PunctualLight>& lights() const { return lights_host_; }
+  const std::vector<EmissiveTriangle>& emitters() const { return emitters_host_; }
   const SceneFrame& frame() const { return frame_; }
 
  private:
@@ -47,6 +50,8 @@ class DeviceScene {
   KernelDefines defines_;
   std::array<unsigned, LOBE_KINDS> lobe_counts_{};
   std::vector<Material> materials_host_;
+  std::vector<PunctualLight> lights_host_;
+  std::vector<EmissiveTriangle> emitters_host_;
   SceneFrame frame_;
 };
 

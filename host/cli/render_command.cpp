@@ -44,6 +44,11 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
+    if (s.guide_clusters)
+      std::printf("light guide  %u rays per record at %u bright places found by %llu photons (%.3f s)\n", c.guide_rays,
+                  s.guide_clusters, (unsigned long long)s.guide_photons, s.guide_s);
+    else
+      std::printf("light guide  none (%s)\n", c.guide_rays ? "no light with power" : "--guide-rays 0");
     std::printf("records      %llu:", (unsigned long long)s.records);
     for (const PlacementLevel& l : s.levels) std::printf(" %u at spacing %d;", l.records, l.spacing_pixels);
     std::printf(" %llu pixels left uncovered\n", (unsigned long long)s.uncovered_pixels);
@@ -112,7 +117,10 @@ nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, cons
                   {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
                   {"spacing", {c.min_reach_pixels, c.max_reach_pixels}}, {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
-                  {"at_max_radius", s.records_at_max_radius}};
+                  {"at_max_radius", s.records_at_max_radius},
+                  {"light_guide", {{"rays_per_record", s.guide_clusters ? c.guide_rays : 0u},
+                                   {"clusters", s.guide_clusters}, {"photons", s.guide_photons},
+                                   {"seconds", s.guide_s}}}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
                      {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
     if (s.hsh_order)

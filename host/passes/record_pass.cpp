@@ -25,7 +25,17 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       store_strata_(store_strata),
       kernel_(gpu.kernel("records.cl", "compute_records", record_defines(scene, theta_strata, store_strata))) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
+  guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}));  // never read while guide_clusters_ is 0
   reserve(1024);
+}
+
+void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record) {
+  if (clusters.size() > GUIDE_MAX_CLUSTERS)
+    throw Error("records: a light guide of " + std::to_string(clusters.size()) + " clusters (at most " +
+                std::to_string(GUIDE_MAX_CLUSTERS) + ")");
+  guide_clusters_ = rays_per_record ? unsigned(clusters.size()) : 0;
+  guide_rays_ = guide_clusters_ ? rays_per_record : 0;
+  if (guide_clusters_) guide_ = gpu_.upload(clusters);
 }
 
 void RecordPass::reserve(size_t count) {
@@ -48,6 +58,8 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   reserve(size_t(first) + count);
   RecordBatchParams batch{};
   batch.hemisphere = params;
+  batch.hemisphere.guide_rays = guide_rays_;
+  batch.hemisphere.guide_clusters = guide_clusters_;
   batch.candidate_count = count;
   batch.first_record = first;
   scene_.bind(kernel_);
@@ -55,6 +67,7 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   kernel_.set_buffer<cl_uint>("candidates", candidates)
       .set("batch", batch)
       .set_buffer<CacheRecord>("records", records_)
+      .set_buffer<GuideCluster>("guide", guide_)
       .set_buffer<cl_ulong>("ray_total", ray_total_);
   if (store_strata_) {
     size_t strata = size_t(count) * params.theta_strata * params.phi_strata;

@@ -21,6 +21,9 @@ class RecordPass {
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
   void compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
                const HemisphereParams& params);
+  // Aims rays_per_record rays of every later record at these clusters (kernels/light_guide.h), beside its M x N
+  // strata; no clusters or no rays: none. Records computed without a guide ignore HemisphereParams' guide fields.
+  void set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record);
   const cl::Buffer& records() const { return records_; }
   // float4 (L.rgb, hit distance) per stratum of the last batch: [(i * M + row) * N + column] for its record i.
   const cl::Buffer& strata() const { return strata_; }
@@ -35,7 +38,8 @@ class RecordPass {
   unsigned theta_capacity_;
   bool store_strata_;
   NamedKernel kernel_;
-  cl::Buffer records_, ray_total_, strata_;
+  cl::Buffer records_, ray_total_, strata_, guide_;
+  unsigned guide_clusters_ = 0, guide_rays_ = 0;
   size_t capacity_ = 0, strata_capacity_ = 0;
 };
 

@@ -7,6 +7,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/radiance_splat_pass.h"
+#include "passes/record_pass.h"
 #include "render/frame.h"
 #include "render/timing.h"
 
@@ -27,6 +28,9 @@ void splat_indirect(IndirectFrame& frame);
 // The classic irradiance cache (Ward 1988): the same placement and records, but coverage, clamping and the final
 // interpolation through an octree on the host.
 void octree_indirect(IndirectFrame& frame);
+// Builds the light guide (photons from the lights, clustered: cache/light_guide.h) and hands it to the record pass,
+// unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
+void attach_light_guide(IndirectFrame& frame, RecordPass& records);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);
 

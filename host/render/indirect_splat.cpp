@@ -19,6 +19,7 @@ void splat_indirect(IndirectFrame& f) {
   DeviceRecordIndex index(f.gpu, gbuffer, cs);
   SplatPass splat(f.gpu);
   st.program_s += f.gpu.program_seconds() - program_before;
+  attach_light_guide(f, records);
 
   uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st);
   // One splat of every record with its final radius, at the frame's fixed-point scale.

@@ -1,0 +1,61 @@
+#include "passes/light_guide_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rcsplat {
+namespace {
+
+double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+}  // namespace
+
+std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
+                                        const std::vector<EmissiveTriangle>& emitters) {
+  constexpr double pi = std::numbers::pi;
+  std::vector<double> power;
+  for (const PunctualLight& l : lights) {
+    double intensity = std::max(luminance(l.intensity), 0.0);
+    if (l.type == LIGHT_DIRECTIONAL) power.push_back(intensity * pi);
+    else if (l.type == LIGHT_SPOT) {
+      double cos_outer = std::clamp(-double(l.spot_offset) / double(l.spot_scale), -1.0, 1.0);
+      power.push_back(intensity * 2.0 * pi * (1.0 - cos_outer));
+    } else power.push_back(intensity * 4.0 * pi);
+  }
+  for (const EmissiveTriangle& e : emitters)
+    power.push_back(std::max(luminance(e.radiance), 0.0) * pi * double(e.area) * (e.double_sided ? 2.0 : 1.0));
+  for (double& p : power)
+    if (!std::isfinite(p)) p = 0.0;
+  return power;
+}
+
+LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("light_guide.cl", "shoot_photons", scene.defines())) {
+  std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
+  double total = 0.0;
+  for (double p : power) total += p;
+  if (!(total > 0.0)) return;
+  std::vector<cl_float> cdf;
+  double running = 0.0;
+  for (double p : power) cdf.push_back(cl_float((running += p) / total));
+  cdf.back() = 1.0f;
+  source_cdf_ = gpu_.upload(cdf);
+  source_count_ = unsigned(cdf.size());
+}
+
+std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed) {
+  if (!source_count_ || !photon_count) return {};
+  cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, size_t(photon_count) * sizeof(PhotonHit), "light guide photons");
+  PhotonParams params{};
+  params.photon_count = photon_count;
+  params.source_count = source_count_;
+  params.seed = seed;
+  scene_.bind(kernel_);
+  kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
+  kernel_.launch(photon_count, gpu_.groups().traversal);
+  gpu_.queue().finish();
+  return gpu_.download<PhotonHit>(photons, photon_count);
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,34 @@
+// The light guide's photons (kernels/light_guide.cl): sends photons from the scene's lights, each light chosen in
+// proportion to its power, and returns where they land and the flux those surfaces reflect. cache/light_guide.h turns
+// them into the clusters the record pass aims rays at.
+#pragma once
+#include <vector>
+
+#include "cl/device_scene.h"
+#include "cl/gpu_context.h"
+#include "kernels/shared_types.h"
+
+namespace rcsplat {
+
+class LightGuidePass {
+ public:
+  LightGuidePass(GpuContext& gpu, const DeviceScene& scene);
+
+  // photon_count photons (none when the scene has no light with power); blocks until done.
+  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed);
+
+ private:
+  GpuContext& gpu_;
+  const DeviceScene& scene_;
+  NamedKernel kernel_;
+  cl::Buffer source_cdf_;
+  unsigned source_count_ = 0;
+};
+
+// Each source's emitted power (luminance, device units): punctual lights, then emissive triangles, as the kernel
+// numbers them. A spot counts the whole solid angle of its outer cone, a directional light the unit disc the photons
+// cross (the device frame fits the scene in the unit sphere).
+std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
+                                        const std::vector<EmissiveTriangle>& emitters);
+
+}  // namespace rcsplat

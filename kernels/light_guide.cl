@@ -1,0 +1,86 @@
+// The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light, chosen in
+// proportion to its power, to the first surface it lands on, and records the flux that surface reflects (power times
+// albedo). The host clusters the hits into the few bright places records should aim rays at.
+#include "light_guide.h"
+#include "scene_args.h"
+#include "surface.h"
+#include "traverse.h"
+
+inline int pick_source(__global const float* cdf, uint count, float u) {
+  int lo = 0, hi = (int)count - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) >> 1;
+    if (u < cdf[mid]) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+__kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, PhotonParams params,
+                            __global PhotonHit* photons) {
+  uint i = get_global_id(0);
+  if (i >= params.photon_count) return;
+  uint key = hash_u32(i ^ hash_u32(params.seed));
+  int source = pick_source(source_cdf, params.source_count, random01(key, 0u, 0u));
+  float select = source_cdf[source] - (source > 0 ? source_cdf[source - 1] : 0.0f);
+  float u = random01(key, 0u, 1u), v = random01(key, 0u, 2u);
+  float3 origin, dir, power;
+  if (source < (int)scene_counts.light_count) {
+    PunctualLight light = lights[source];
+    float3 intensity = vload3(0, light.intensity), axis = vload3(0, light.direction);
+    if (light.type == LIGHT_DIRECTIONAL) {
+      // Through a unit disc facing the light, beyond the scene (the device frame fits it in the unit sphere).
+      float3 t, b;
+      tangent_frame(axis, &t, &b);
+      float r = sqrt(u), cos_p, sin_p = sincos(2.0f * RC_PI * v, &cos_p);
+      origin = (r * cos_p) * t + (r * sin_p) * b - 2.0f * axis;
+      dir = axis;
+      power = intensity * RC_PI;
+    } else if (light.type == LIGHT_SPOT) {
+      float cos_outer = clamp(-light.spot_offset / light.spot_scale, -1.0f, 1.0f);
+      dir = cone_direction(axis, u * (1.0f - cos_outer), v);
+      float a = clamp(dot(dir, axis) * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
+      origin = vload3(0, light.position);
+      power = intensity * (2.0f * RC_PI * (1.0f - cos_outer)) * (a * a);
+    } else {
+      dir = cone_direction((float3)(0.0f, 0.0f, 1.0f), 2.0f * u, v);
+      origin = vload3(0, light.position);
+      power = intensity * (4.0f * RC_PI);
+    }
+  } else {
+    EmissiveTriangle e = emitters[source - (int)scene_counts.light_count];
+    float su = sqrt(u);
+    float3 e1 = vload3(0, e.edge1), e2 = vload3(0, e.edge2);
+    float3 y = vload3(0, e.v0) + (su * (1.0f - v)) * e1 + (su * v) * e2;
+    float3 n = normalize(cross(e1, e2));
+    float sides = e.double_sided ? 2.0f : 1.0f;
+    if (e.double_sided && random01(key, 0u, 3u) < 0.5f) n = -n;
+    // Cosine-weighted: the emitted power per photon is then pi L area per side.
+    float u2 = random01(key, 0u, 4u), v2 = random01(key, 0u, 5u);
+    float r = sqrt(u2), cos_p, sin_p = sincos(2.0f * RC_PI * v2, &cos_p);
+    float3 t, b;
+    tangent_frame(n, &t, &b);
+    dir = (r * cos_p) * t + (r * sin_p) * b + sqrt(fmax(1.0f - u2, 0.0f)) * n;
+    origin = offset_ray_origin(y, n);
+    power = vload3(0, e.radiance) * (RC_PI * e.area * sides);
+  }
+  PhotonHit out;
+  out.hit = 0;
+  out.pad0 = out.pad1 = 0.0f;
+  vstore3((float3)(0.0f), 0, out.position);
+  vstore3((float3)(0.0f), 0, out.normal);
+  vstore3((float3)(0.0f), 0, out.flux);
+  RayPrecomp r = ray_precompute(origin, dir);
+  TraceHit hit;
+  if (select > 0.0f && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    float3 ng = dot(s.geometric_normal, dir) > 0.0f ? -s.geometric_normal : s.geometric_normal;
+    float3 albedo = surface_albedo(materials, textures, texels, &s);
+    float3 flux = finite_or_zero(power * albedo / (select * (float)params.photon_count));
+    out.hit = 1;
+    vstore3(s.position, 0, out.position);
+    vstore3(ng, 0, out.normal);
+    vstore3(flux, 0, out.flux);
+  }
+  photons[i] = out;
+}

@@ -1,0 +1,84 @@
+// A record's rays aimed at the light guide's clusters (ALGORITHM.md section 4 samples the hemisphere uniformly in
+// projected solid angle; a small bright patch that covers part of one stratum is then found by a few records only,
+// each of which turns it into a bright disc: the blotches of issue 10). Each record picks clusters in proportion to
+// the irradiance they could give it and samples directions uniformly in the cone each one subtends. Both kinds of ray
+// are combined by the balance heuristic (Veach 1997, multi-sample MIS), so the estimate stays unbiased wherever the
+// guide is wrong: a cone that is occluded or dark only costs rays.
+#ifndef RCSPLAT_LIGHT_GUIDE_H
+#define RCSPLAT_LIGHT_GUIDE_H
+#include "sampling.h"
+#include "shared_types.h"
+
+typedef struct {
+  float3 axis;      // from the record to the cluster's centre
+  float cos_max;    // cosine of the cone's half-angle
+  float inv_solid_angle;
+  float cdf;        // inclusive selection probability
+} GuideCone;
+
+// 1 - sqrt(1 - x) without cancellation for small x (tiny cones).
+inline float one_minus_sqrt_one_minus(float x) { return x / (1.0f + sqrt(fmax(1.0f - x, 0.0f))); }
+
+// The cones of the clusters that lie above the record's tangent plane and outside whose bounding sphere it sits,
+// with selection probabilities proportional to flux x cos(record) x cos(cluster) / d^2; returns their number (0: the
+// record takes no guided rays). Points inside a cluster's sphere see it over most of the hemisphere: cosine
+// sampling serves them.
+inline uint guide_cones(__global const GuideCluster* clusters, uint count, float3 p, float3 n, GuideCone* cones) {
+  uint kept = 0;
+  float total = 0.0f;
+  for (uint c = 0; c < count; ++c) {
+    GuideCluster g = clusters[c];
+    float3 to = vload3(0, g.centre) - p;
+    float d2 = dot(to, to), r2 = g.radius * g.radius;
+    if (!(d2 > 1.5f * r2)) continue;
+    float d = sqrt(d2);
+    float3 axis = to / d;
+    float cos_record = dot(axis, n) + g.radius / d;  // the nearest edge of the sphere may still be above the plane
+    if (cos_record <= 0.0f) continue;
+    float3 cn = vload3(0, g.normal);
+    // A cluster lit on one side gives nothing behind it; one whose normals spread (length < 1) faces every way.
+    float cos_cluster = fmax(-dot(cn, axis), 0.0f) + (1.0f - fmin(length(cn), 1.0f)) + g.radius / d;
+    float w = luminance(vload3(0, g.flux)) * fmin(cos_record, 1.0f) * fmin(cos_cluster, 1.0f) / d2;
+    if (!(w > 0.0f)) continue;
+    float one_minus_cos = one_minus_sqrt_one_minus(r2 / d2);
+    cones[kept].axis = axis;
+    cones[kept].cos_max = 1.0f - one_minus_cos;
+    cones[kept].inv_solid_angle = 1.0f / (2.0f * RC_PI * one_minus_cos);
+    total += w;
+    cones[kept].cdf = total;
+    ++kept;
+  }
+  for (uint c = 0; c < kept; ++c) cones[c].cdf /= total;
+  if (kept) cones[kept - 1].cdf = 1.0f;
+  return kept;
+}
+
+inline float guide_selection(const GuideCone* cones, uint c) { return cones[c].cdf - (c > 0 ? cones[c - 1].cdf : 0.0f); }
+
+// The guide's density (per solid angle) of direction dir: the cones that contain it.
+inline float guide_pdf(const GuideCone* cones, uint count, float3 dir) {
+  float pdf = 0.0f;
+  for (uint c = 0; c < count; ++c)
+    if (dot(dir, cones[c].axis) >= cones[c].cos_max) pdf += guide_selection(cones, c) * cones[c].inv_solid_angle;
+  return pdf;
+}
+
+// The direction at 1 - cos(theta) = one_minus_cos from axis and at azimuth 2 pi w about it: with one_minus_cos
+// uniform in [0, 1 - cos_max], a direction uniform in the cone of half-angle acos(cos_max).
+inline float3 cone_direction(float3 axis, float one_minus_cos, float w) {
+  float cos_t = 1.0f - one_minus_cos;
+  float sin_t = sqrt(fmax(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
+  float cos_p, sin_p = sincos(2.0f * RC_PI * w, &cos_p);
+  float3 t, b;
+  tangent_frame(axis, &t, &b);
+  return (cos_p * sin_t) * t + (sin_p * sin_t) * b + cos_t * axis;
+}
+
+// A direction from the guide: a cone picked by u, uniform inside it by (v, w).
+inline float3 sample_guide(const GuideCone* cones, uint count, float u, float v, float w) {
+  uint c = 0;
+  while (c + 1 < count && u >= cones[c].cdf) ++c;
+  return cone_direction(cones[c].axis, v * (1.0f - cones[c].cos_max), w);
+}
+
+#endif
