@@ -26,6 +26,49 @@ ErrorMetrics image_error(const std::vector<float>& image, const std::vector<floa
   return m;
 }
 
+namespace {
+
+// Sums of each whole block x block block of an RGB image, per channel: [block index * 3 + channel].
+std::vector<double> block_sums(const std::vector<float>& rgb, int width, int height, int block) {
+  if (block < 1 || rgb.size() != size_t(width) * size_t(height) * 3)
+    throw Error("block error: the image is not " + std::to_string(width) + "x" + std::to_string(height) + " RGB");
+  const int bw = width / block, bh = height / block;
+  std::vector<double> sums(size_t(bw) * size_t(bh) * 3, 0.0);
+  for (int y = 0; y < bh * block; ++y)
+    for (int x = 0; x < bw * block; ++x)
+      for (int c = 0; c < 3; ++c)
+        sums[(size_t(y / block) * bw + size_t(x / block)) * 3 + c] += rgb[(size_t(y) * width + x) * 3 + c];
+  return sums;
+}
+
+}  // namespace
+
+double block_rel_mse(const std::vector<float>& image, const std::vector<float>& reference, int width, int height,
+                     int block) {
+  std::vector<double> a = block_sums(image, width, height, block), r = block_sums(reference, width, height, block);
+  if (a.empty()) throw Error("block error: the image is smaller than one block");
+  const double area = double(block) * double(block);
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    double x = a[i] / area, ref = r[i] / area, d = x - ref;
+    sum += d * d / (ref * ref + kRelMseOffset);
+  }
+  return sum / double(a.size());
+}
+
+double block_rel_mse_of_noise(const std::vector<float>& variance, const std::vector<float>& reference, int width,
+                              int height, int block) {
+  std::vector<double> v = block_sums(variance, width, height, block), r = block_sums(reference, width, height, block);
+  if (v.empty()) throw Error("block error: the image is smaller than one block");
+  const double area = double(block) * double(block);
+  double sum = 0.0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    double ref = r[i] / area;
+    sum += (v[i] / (area * area)) / (ref * ref + kRelMseOffset);  // variance of a mean of independent pixels
+  }
+  return sum / double(v.size());
+}
+
 std::vector<double> pixel_rel_mse(const std::vector<float>& image, const std::vector<float>& reference) {
   if (image.size() != reference.size()) throw Error("images of different sizes cannot be compared");
   std::vector<double> e(image.size() / 3);

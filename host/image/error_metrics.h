@@ -15,6 +15,16 @@ struct ErrorMetrics {
 
 ErrorMetrics image_error(const std::vector<float>& image, const std::vector<float>& reference);
 
+// relMSE of block means: image and reference (RGB, width x height) averaged over block x block pixels, whole blocks
+// only, then compared as image_error does. Averaging takes out noise and leaves in a cache's low-frequency error
+// (blotches), which per-pixel relMSE flatters.
+double block_rel_mse(const std::vector<float>& image, const std::vector<float>& reference, int width, int height,
+                     int block);
+// The block relMSE a path-traced reference's own noise adds on average, from its per-pixel variance of the mean
+// (independent pixels): subtract it from a block relMSE measured against that reference.
+double block_rel_mse_of_noise(const std::vector<float>& variance, const std::vector<float>& reference, int width,
+                              int height, int block);
+
 // Per-pixel relMSE (mean over the three channels), for heat maps and regional statistics.
 std::vector<double> pixel_rel_mse(const std::vector<float>& image, const std::vector<float>& reference);
 
