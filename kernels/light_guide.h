@@ -19,29 +19,40 @@ typedef struct {
 // 1 - sqrt(1 - x) without cancellation for small x (tiny cones).
 inline float one_minus_sqrt_one_minus(float x) { return x / (1.0f + sqrt(fmax(1.0f - x, 0.0f))); }
 
-// The cones of the clusters that lie above the record's tangent plane and outside whose bounding sphere it sits,
-// with selection probabilities proportional to flux x cos(record) x cos(cluster) / d^2; returns their number (0: the
-// record takes no guided rays). Points inside a cluster's sphere see it over most of the hemisphere: cosine
-// sampling serves them.
-inline uint guide_cones(__global const GuideCluster* clusters, uint count, float3 p, float3 n, GuideCone* cones) {
+// A rough estimate of the irradiance cluster g gives point p (normal n): its flux leaving a disc, cos cos' / (pi d^2),
+// visibility ignored, the distance kept above the cluster's radius. Only the guide's choices use it.
+inline float guide_irradiance_estimate(GuideCluster g, float3 p, float3 n) {
+  float3 to = vload3(0, g.centre) - p;
+  float d2 = fmax(dot(to, to), g.radius * g.radius);
+  float d = sqrt(d2);
+  float3 axis = to / d;
+  float cos_record = clamp(dot(axis, n) + g.radius / d, 0.0f, 1.0f);  // the sphere's nearest edge may be above the plane
+  float3 cn = vload3(0, g.normal);
+  // A cluster lit on one side gives nothing behind it; one whose normals spread (mean shorter than 1) faces every way.
+  float cos_cluster = clamp(-dot(cn, axis) + (1.0f - fmin(length(cn), 1.0f)) + g.radius / d, 0.0f, 1.0f);
+  return luminance(vload3(0, g.flux)) * cos_record * cos_cluster * RC_INV_PI / d2;
+}
+
+// The cones of the clusters worth aiming at from a record at p (normal n): those that look small (a solid angle of at
+// most max_solid_angle: the strata find anything larger often enough) and promise at least GUIDE_MIN_SHARE of the
+// irradiance all clusters together promise. Selection probabilities are proportional to those promises. Returns the
+// number of cones (0: the record takes no guided rays).
+inline uint guide_cones(__global const GuideCluster* clusters, uint count, float3 p, float3 n, float max_solid_angle,
+                        GuideCone* cones) {
+  float promised = 0.0f;
+  for (uint c = 0; c < count; ++c) promised += guide_irradiance_estimate(clusters[c], p, n);
   uint kept = 0;
   float total = 0.0f;
   for (uint c = 0; c < count; ++c) {
     GuideCluster g = clusters[c];
+    float w = guide_irradiance_estimate(g, p, n);
+    if (!(w >= GUIDE_MIN_SHARE * promised) || !(w > 0.0f)) continue;
     float3 to = vload3(0, g.centre) - p;
     float d2 = dot(to, to), r2 = g.radius * g.radius;
-    if (!(d2 > 1.5f * r2)) continue;
-    float d = sqrt(d2);
-    float3 axis = to / d;
-    float cos_record = dot(axis, n) + g.radius / d;  // the nearest edge of the sphere may still be above the plane
-    if (cos_record <= 0.0f) continue;
-    float3 cn = vload3(0, g.normal);
-    // A cluster lit on one side gives nothing behind it; one whose normals spread (length < 1) faces every way.
-    float cos_cluster = fmax(-dot(cn, axis), 0.0f) + (1.0f - fmin(length(cn), 1.0f)) + g.radius / d;
-    float w = luminance(vload3(0, g.flux)) * fmin(cos_record, 1.0f) * fmin(cos_cluster, 1.0f) / d2;
-    if (!(w > 0.0f)) continue;
+    if (!(d2 > 1.5f * r2)) continue;  // inside or at the sphere: it fills much of the hemisphere
     float one_minus_cos = one_minus_sqrt_one_minus(r2 / d2);
-    cones[kept].axis = axis;
+    if (2.0f * RC_PI * one_minus_cos > max_solid_angle) continue;
+    cones[kept].axis = to * rsqrt(d2);
     cones[kept].cos_max = 1.0f - one_minus_cos;
     cones[kept].inv_solid_angle = 1.0f / (2.0f * RC_PI * one_minus_cos);
     total += w;

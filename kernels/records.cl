@@ -48,8 +48,10 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   // The light guide's cones for this record (none without a guide): its rays and the strata are weighted by the
   // balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
   GuideCone cones[GUIDE_MAX_CLUSTERS];
-  const uint cone_count = hp.guide_rays ? guide_cones(guide, hp.guide_clusters, p, n, cones) : 0u;
   const float cosine_density = (float)(M * N) * RC_INV_PI;  // n_c p_c / cos(theta)
+  // A cone larger than GUIDE_MAX_STRATA strata' worth of solid angle is found often enough by the strata themselves.
+  const uint cone_count =
+      hp.guide_rays ? guide_cones(guide, hp.guide_clusters, p, n, GUIDE_MAX_STRATA / cosine_density, cones) : 0u;
   const float guided_rays = (float)hp.guide_rays;
 
   // Per-row weights, the same in every column: computed once. theta_wall: the wall between rows j - 1 and j, at

@@ -216,6 +216,8 @@ typedef struct {
 // most light back, as a few bounding spheres, so that records aim rays at a small bright patch their strata would
 // mostly miss.
 #define GUIDE_MAX_CLUSTERS 32
+#define GUIDE_MAX_STRATA 64.0f  // a record aims at a cluster only if it covers at most this many strata' solid angle
+#define GUIDE_MIN_SHARE 0.01f  // and promises at least this share of the irradiance all clusters promise
 typedef struct {
   float centre[3];
   float radius;   // bounding sphere of the cluster's photon hits
