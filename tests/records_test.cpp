@@ -7,13 +7,16 @@
 #include <random>
 
 #include "cache/host_records.h"
+#include "cache/light_guide.h"
 #include "cache_test_scenes.h"
 #include "kernels/hsh.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/hsh_record_pass.h"
+#include "passes/light_guide_pass.h"
 #include "passes/record_pass.h"
 #include "render/camera.h"
 #include "scene/cornell_box.h"
+#include "scene/scene_frame.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -70,8 +73,10 @@ HemisphereParams hemisphere(unsigned m, unsigned n) {
 
 double irradiance_r(const CacheRecord& r) { return r.irradiance[0]; }
 
-TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
-  test::TwinScene twin(make_cornell_box());
+// The record kernel against compute_host_record on 200 random pixels of the scene's camera view; with a light guide
+// (photons from the scene's lights, clustered), guided rays too. Returns how many records took guided rays.
+size_t expect_records_match_host(const Scene& scene, bool guided) {
+  test::TwinScene twin(scene);
   GpuContext& gpu = test::gpu();
   SceneCamera cam = choose_camera(twin.scene, 0, {});
   int w = 48, h = 48;
@@ -89,8 +94,16 @@ TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
   hp.min_radius_pixels = 3.0f;
   hp.max_radius_pixels = 20.0f;
   RecordPass pass(gpu, twin.device, hp.theta_strata);
+  std::vector<GuideCluster> guide;
+  if (guided) {
+    guide = cluster_photons(LightGuidePass(gpu, twin.device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS);
+    hp.guide_rays = 32;
+    hp.guide_clusters = uint32_t(guide.size());
+    pass.set_light_guide(guide, hp.guide_rays);
+  }
   pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
   std::vector<CacheRecord> device = pass.download(0, pixels.size());
+  size_t with_guided_rays = 0;
 
   // Float directions and hit points differ from double ones by ~1e-7: a ray grazing an edge may land elsewhere, so a
   // few records may differ by one ray's share; the bulk must agree to float precision.
@@ -99,8 +112,9 @@ TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
     const GBufferSample& s = g[pixels[i]];
     vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
     vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
-    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], device[i].pixel_size, hp);
-    ASSERT_EQ(device[i].pixel, int(pixels[i]));
+    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], device[i].pixel_size, hp, guide);
+    with_guided_rays += host.rays > hp.theta_strata * hp.phi_strata;
+    EXPECT_EQ(device[i].pixel, int(pixels[i]));
     double e_scale = std::max({host.irradiance.x, host.irradiance.y, host.irradiance.z, 1e-6});
     double e_diff = 0, g_diff = 0, g_scale = 1e-9;
     for (int c = 0; c < 3; ++c) {
@@ -120,11 +134,24 @@ TEST(RecordKernel, MatchesHostDoublePrecisionRecords) {
     std::sort(v.begin(), v.end());
     return v[size_t(q * double(v.size() - 1))];
   };
-  EXPECT_LT(quantile(e_err, 0.5), 1e-5);
+  // Guided terms span more decades (a tiny cone's 1 / pdf against a stratum's), so float sums round a little more.
+  EXPECT_LT(quantile(e_err, 0.5), guided ? 3e-5 : 1e-5);
   EXPECT_LT(quantile(e_err, 0.95), 1e-3);
   EXPECT_LT(quantile(r_err, 0.95), 1e-4);
   EXPECT_LT(quantile(g_err, 0.5), 1e-4);
   EXPECT_LT(quantile(g_err, 0.95), 1e-2);
+  return with_guided_rays;
+}
+
+TEST(RecordKernel, MatchesHostDoublePrecisionRecords) { expect_records_match_host(make_cornell_box(), false); }
+
+// The corridor lit by a small bright patch (issue 10), in its own device frame as render() would trace it: the light
+// guide's cones, ray directions and balance-heuristic weights must match the host's double-precision ones.
+TEST(RecordKernel, GuidedRaysMatchHostDoublePrecisionRecords) {
+  const Scene corridor = test::bright_patch_corridor();
+  size_t guided = expect_records_match_host(SceneFrame::fitted(corridor).device_scene(corridor), true);
+  std::printf("%zu of 200 records took guided rays\n", guided);
+  EXPECT_GT(guided, 100u);
 }
 
 // Central finite differences of the kernel's own E against its Ward-Heckbert gradients, at points where the

@@ -28,17 +28,81 @@ void bound(std::array<dvec3, 3>& g, const dvec3& limit) {
   }
 }
 
+// The frame kernels/sampling.h tangent_frame builds (Duff et al.), so the same numbers give the same rays.
+void frame_around(const dvec3& n, dvec3& t, dvec3& b) {
+  double sign = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n.z), c = n.x * n.y * a;
+  t = dvec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  b = dvec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+dvec3 load3(const float* v) { return dvec3(v[0], v[1], v[2]); }
+
+// A light-guide cone as a record at p sees it: the cluster's bounding sphere, and the share of the guided rays it gets.
+struct Cone {
+  dvec3 axis;
+  double cos_max = 1.0, solid_angle = 0.0, probability = 0.0, cdf = 0.0;
+};
+
+// The cluster's flux leaving a disc toward p: Phi cos cos' / (pi d^2), visibility ignored, d at least the radius.
+double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n) {
+  dvec3 to = load3(g.centre) - p;
+  double radius = g.radius, d = std::sqrt(std::max(glm::dot(to, to), radius * radius));
+  dvec3 axis = to / d, cn = load3(g.normal);
+  double cos_here = std::clamp(glm::dot(axis, n) + radius / d, 0.0, 1.0);
+  double cos_there = std::clamp(-glm::dot(cn, axis) + (1.0 - std::min(glm::length(cn), 1.0)) + radius / d, 0.0, 1.0);
+  double flux = 0.2126 * g.flux[0] + 0.7152 * g.flux[1] + 0.0722 * g.flux[2];
+  return flux * cos_here * cos_there / (kPi * d * d);
+}
+
+// The cones worth aiming at: at most GUIDE_MAX_STRATA strata of solid angle, at least GUIDE_MIN_SHARE of the
+// irradiance all clusters promise, the point outside 1.5 r^2.
+std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3& p, const dvec3& n, int strata) {
+  double promised = 0.0;
+  for (const GuideCluster& g : guide) promised += promised_irradiance(g, p, n);
+  std::vector<Cone> cones;
+  double total = 0.0;
+  for (const GuideCluster& g : guide) {
+    double w = promised_irradiance(g, p, n);
+    dvec3 to = load3(g.centre) - p;
+    double d2 = glm::dot(to, to), r2 = double(g.radius) * g.radius;
+    if (!(w > 0.0) || w < double(GUIDE_MIN_SHARE) * promised || !(d2 > 1.5 * r2)) continue;
+    Cone c;
+    c.axis = to / std::sqrt(d2);
+    c.cos_max = std::sqrt(1.0 - r2 / d2);
+    c.solid_angle = 2.0 * kPi * (1.0 - c.cos_max);
+    if (c.solid_angle > double(GUIDE_MAX_STRATA) * kPi / strata) continue;
+    c.probability = w;
+    total += w;
+    cones.push_back(c);
+  }
+  double running = 0.0;
+  for (Cone& c : cones) {
+    c.probability /= total;
+    c.cdf = (running += c.probability);
+  }
+  return cones;
+}
+
+double guide_density(const std::vector<Cone>& cones, const dvec3& dir) {
+  double pdf = 0.0;
+  for (const Cone& c : cones)
+    if (glm::dot(dir, c.axis) >= c.cos_max) pdf += c.probability / c.solid_angle;
+  return pdf;
+}
+
 }  // namespace
 
 HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, const glm::vec3& nf,
-                               const glm::vec3& ngf, uint32_t pixel, double pixel_size, const HemisphereParams& hp) {
+                               const glm::vec3& ngf, uint32_t pixel, double pixel_size, const HemisphereParams& hp,
+                               const std::vector<GuideCluster>& guide) {
   const int M = int(hp.theta_strata), N = int(hp.phi_strata);
   dvec3 p(pf), n(nf), ng(ngf);
   glm::vec3 origin = offset_ray_origin(pf, ngf);
-  // The same frame as kernels/bounce.h tangent_frame (Duff et al.), so the same numbers give the same rays.
-  double sign = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n.z), c = n.x * n.y * a;
-  dvec3 t(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x), b(c, sign + n.y * n.y * a, -n.y);
+  dvec3 t, b;
+  frame_around(n, t, b);
   uint32_t key = hash_u32(pixel ^ hash_u32(hp.seed));
+  const std::vector<Cone> cones = hp.guide_rays ? cones_for(guide, p, n, M * N) : std::vector<Cone>{};
+  const double guided = cones.empty() ? 0.0 : double(hp.guide_rays), strata_density = M * N / kPi;
 
   std::vector<dvec3> L(size_t(M * N));
   std::vector<double> r(size_t(M * N));
@@ -56,9 +120,30 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
         l = shading.bounce_radiance(origin, glm::normalize(dir), random01(key, s, 2), random01(key, s, 3), &dist);
         ++rec.rays;
       }
+      // Balance heuristic: the strata keep their density's share of the light.
+      if (!cones.empty()) l *= strata_density * ct / (strata_density * ct + guided * guide_density(cones, dir));
       L[size_t(s)] = l;
       r[size_t(s)] = dist;
     }
+  dvec3 e_guided(0.0);
+  for (uint32_t g = 0; g < (cones.empty() ? 0u : hp.guide_rays); ++g) {
+    uint32_t s = uint32_t(M * N) + g;
+    double u = random01(key, s, 5);
+    size_t chosen = 0;
+    while (chosen + 1 < cones.size() && u >= cones[chosen].cdf) ++chosen;
+    const Cone& cone = cones[chosen];
+    double one_minus_cos = random01(key, s, 0) * (1.0 - cone.cos_max), phi = 2.0 * kPi * random01(key, s, 1);
+    double cos_t = 1.0 - one_minus_cos, sin_t = std::sqrt(std::max(one_minus_cos * (2.0 - one_minus_cos), 0.0));
+    dvec3 ct, cb;
+    frame_around(cone.axis, ct, cb);
+    dvec3 dir = std::cos(phi) * sin_t * ct + std::sin(phi) * sin_t * cb + cos_t * cone.axis;
+    double cos_n = glm::dot(dir, n);
+    if (cos_n <= 0.0 || glm::dot(dir, ng) <= 0.0) continue;
+    double dist;
+    dvec3 l = shading.bounce_radiance(origin, glm::normalize(dir), random01(key, s, 2), random01(key, s, 3), &dist);
+    ++rec.rays;
+    e_guided += l * cos_n / (strata_density * cos_n + guided * guide_density(cones, dir));
+  }
   auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };
 
   dvec3 e(0.0);
@@ -67,7 +152,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
     e += L[s];
     inverse_distances += 1.0 / r[s];
   }
-  e *= kPi / (M * N);
+  e = e * (kPi / (M * N)) + e_guided;
   for (int k = 0; k < N; ++k) {
     double phi_mid = 2.0 * kPi * (k + 0.5) / N, phi_lo = 2.0 * kPi * k / N;
     dvec3 u_mid = std::cos(phi_mid) * t + std::sin(phi_mid) * b, v_mid = -std::sin(phi_mid) * t + std::cos(phi_mid) * b;

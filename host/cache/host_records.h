@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "cache/host_shading.h"
 #include "kernels/shared_types.h"
@@ -20,8 +21,11 @@ struct HostRecord {
 };
 
 // p: surface point, n: shading normal, ng: geometric normal (both facing the viewer); pixel keys the random numbers.
+// With a light guide (clusters, and params.guide_rays), also the guided rays and the balance-heuristic weights of
+// kernels/light_guide.h, written again here in double precision.
 HostRecord compute_host_record(const HostShading& shading, const glm::vec3& p, const glm::vec3& n, const glm::vec3& ng,
-                               uint32_t pixel, double pixel_size, const HemisphereParams& params);
+                               uint32_t pixel, double pixel_size, const HemisphereParams& params,
+                               const std::vector<GuideCluster>& guide = {});
 
 // The record in the device layout.
 CacheRecord to_cache_record(const HostRecord& r);

@@ -42,7 +42,7 @@ uint64_t bin_key(const BinCoord& c) {
 struct Region {
   glm::dvec3 flux{0.0}, weighted_position{0.0}, weighted_normal{0.0};
   double weight = 0.0;  // luminance of the flux
-  double radius = 0.0;
+  double square_distances = 0.0;  // flux-weighted squared distances of the photons from the centroid
 };
 
 int find_root(std::vector<int>& parent, int i) {
@@ -106,7 +106,8 @@ std::vector<GuideCluster> cluster_photons(const std::vector<PhotonHit>& photons,
   for (size_t i = 0; i < photons.size(); ++i) {
     if (photon_bin[i] < 0) continue;
     Region& r = regions[size_t(find_root(parent, photon_bin[i]))];
-    r.radius = std::max(r.radius, glm::length(load(photons[i].position) - r.weighted_position));
+    glm::dvec3 offset = load(photons[i].position) - r.weighted_position;
+    r.square_distances += luminance(load(photons[i].flux)) * glm::dot(offset, offset);
   }
   std::vector<const Region*> order;
   for (const Region& r : regions)
@@ -118,8 +119,9 @@ std::vector<GuideCluster> cluster_photons(const std::vector<PhotonHit>& photons,
     return p.x != q.x ? p.x < q.x : (p.y != q.y ? p.y < q.y : p.z < q.z);
   });
   order.resize(std::min<size_t>(order.size(), std::min<unsigned>(max_clusters, GUIDE_MAX_CLUSTERS)));
-  // The photons sample a region's lit area: it reaches a little beyond the outermost one, and never less than a
-  // sixteenth of a cell (one photon alone).
+  // The radius: twice the flux-weighted RMS distance from the centroid (1.4 times a uniform disc's radius), so that
+  // a few dim photons sharing a bright patch's cell do not widen its cone; never less than a sixteenth of a cell (one
+  // photon alone).
   const double cell = 2.0 / kGuideGridCells;
   std::vector<GuideCluster> clusters;
   for (const Region* r : order) {
@@ -130,7 +132,7 @@ std::vector<GuideCluster> cluster_photons(const std::vector<PhotonHit>& photons,
       c.flux[a] = float(r->flux[a]);
       c.normal[a] = float(normal[a]);
     }
-    c.radius = float(std::max(r->radius * 1.1, cell / 16.0));
+    c.radius = float(std::max(2.0 * std::sqrt(r->square_distances / r->weight), cell / 16.0));
     clusters.push_back(c);
   }
   return clusters;

@@ -1,0 +1,144 @@
+// The light guide (issue 10): the photons carry the lights' reflected power, and clustering keeps a small bright patch
+// apart from an evenly lit wall.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "bvh/bvh8.h"
+#include "cache/light_guide.h"
+#include "cl/device_scene.h"
+#include "passes/light_guide_pass.h"
+#include "test_support.h"
+
+namespace rcsplat {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A closed cube [-0.5, 0.5]^3 (already in device units), every face of albedo 0.5, facing in.
+Scene closed_cube() {
+  Scene s;
+  s.source = "closed cube";
+  s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  const float h = 0.5f;
+  auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+    s.add_triangle(a, b, c, 0);
+    s.add_triangle(a, c, d, 0);
+  };
+  quad({-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h});
+  quad({-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h});
+  quad({-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h});
+  quad({h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h});
+  quad({-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h});
+  quad({-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h});
+  return s;
+}
+
+double reflected_flux(const std::vector<PhotonHit>& photons, size_t* hits = nullptr) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (const PhotonHit& p : photons) {
+    n += p.hit != 0;
+    sum += 0.2126 * p.flux[0] + 0.7152 * p.flux[1] + 0.0722 * p.flux[2];
+  }
+  if (hits) *hits = n;
+  return sum;
+}
+
+std::vector<PhotonHit> shoot(const Scene& scene, unsigned photons) {
+  Bvh8 bvh = build_bvh8(scene.positions);
+  DeviceScene device(test::gpu(), scene, bvh);
+  return LightGuidePass(test::gpu(), device).shoot(photons, 3);
+}
+
+// In a closed cube every photon lands, and what the walls reflect is albedo times what the lights emit: a point light
+// 4 pi I, an emissive triangle pi L A, a spot I times the integral of glTF's smooth falloff over its cone (computed
+// here by quadrature). Photons of one light carry equal power, so one light alone sums exactly; with several, the
+// choice of light is random and the sum is right to within its noise (about 1 / sqrt(photons)).
+TEST(LightGuide, PhotonsCarryTheLightsReflectedPower) {
+  const unsigned photons = 1u << 16;
+  Scene point = closed_cube();
+  point.lights.push_back({"point", LightType::point, {0.1f, 0.2f, -0.1f}, {0, 0, -1}, glm::vec3(3.0f)});
+  size_t hits = 0;
+  EXPECT_NEAR(reflected_flux(shoot(point, photons), &hits), 0.5 * 4.0 * kPi * 3.0, 1e-4 * 0.5 * 4.0 * kPi * 3.0);
+  EXPECT_EQ(hits, photons);
+
+  Scene emitter = closed_cube();
+  // The lamp reflects like the walls: photons from another light that land on it count the same.
+  emitter.materials.push_back({"lamp", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(5.0f), false});
+  emitter.add_triangle({-0.2f, 0.49f, -0.2f}, {0.2f, 0.49f, 0.2f}, {-0.2f, 0.49f, 0.2f}, 1);  // faces down
+  const double lamp_area = 0.5 * 0.4 * 0.4;
+  EXPECT_NEAR(reflected_flux(shoot(emitter, photons)), 0.5 * kPi * 5.0 * lamp_area, 1e-4 * 0.5 * kPi * 5.0 * lamp_area);
+
+  Scene spot = closed_cube();
+  SceneLight s{"spot", LightType::spot, {0.0f, 0.3f, 0.0f}, {0.0f, -1.0f, 0.0f}, glm::vec3(7.0f)};
+  s.inner_cone = 0.2f;
+  s.outer_cone = 0.6f;
+  spot.lights.push_back(s);
+  const double cos_inner = std::cos(0.2), cos_outer = std::cos(0.6), rows = 100000;
+  double integral = 0.0;  // of saturate((cos - cos_outer) / (cos_inner - cos_outer))^2 over the cone's solid angle
+  for (int i = 0; i < int(rows); ++i) {
+    double c = 1.0 - (i + 0.5) / rows * (1.0 - cos_outer);
+    double a = std::clamp((c - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
+    integral += a * a * 2.0 * kPi * (1.0 - cos_outer) / rows;
+  }
+  const double spot_power = 0.5 * 7.0 * integral;
+  EXPECT_NEAR(reflected_flux(shoot(spot, photons)), spot_power, 0.02 * spot_power);
+
+  Scene both = emitter;
+  both.lights = point.lights;
+  const double expected = 0.5 * (4.0 * kPi * 3.0 + kPi * 5.0 * lamp_area);
+  EXPECT_NEAR(reflected_flux(shoot(both, photons)), expected, 0.02 * expected);
+}
+
+// A directional light's photons cross the unit disc facing it: on a floor wider than that disc, the floor reflects
+// albedo times pi E.
+TEST(LightGuide, DirectionalPhotonsCrossTheUnitDisc) {
+  Scene floor;
+  floor.source = "floor";
+  floor.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  floor.add_triangle({-1.5f, 0, -1.5f}, {-1.5f, 0, 1.5f}, {1.5f, 0, 1.5f}, 0);
+  floor.add_triangle({-1.5f, 0, -1.5f}, {1.5f, 0, 1.5f}, {1.5f, 0, -1.5f}, 0);
+  floor.lights.push_back({"sun", LightType::directional, {0, 0, 0}, {0.0f, -1.0f, 0.0f}, glm::vec3(2.0f)});
+  size_t hits = 0;
+  EXPECT_NEAR(reflected_flux(shoot(floor, 1u << 14), &hits), 0.5 * kPi * 2.0, 1e-4 * 0.5 * kPi * 2.0);
+  EXPECT_EQ(hits, 1u << 14);
+}
+
+// An evenly lit wall and, on it, a small patch a hundred times brighter per photon: the patch is the brightest
+// cluster, tight around its photons; the wall is one large cluster.
+TEST(LightGuide, SmallBrightPatchIsAClusterOfItsOwn) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<PhotonHit> photons;
+  auto add = [&](float x, float y, float flux) {
+    PhotonHit p{};
+    p.position[0] = x;
+    p.position[1] = y;
+    p.position[2] = -0.5f;
+    p.normal[2] = 1.0f;  // the wall z = -0.5 faces +z
+    p.hit = 1;
+    p.flux[0] = p.flux[1] = p.flux[2] = flux;
+    photons.push_back(p);
+  };
+  for (int i = 0; i < 20000; ++i) add(0.8f * unit(rng), 0.8f * unit(rng), 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    float r = 0.01f * std::sqrt(0.5f * (unit(rng) + 1.0f)), phi = float(kPi) * unit(rng);
+    add(0.3f + r * std::cos(phi), -0.2f + r * std::sin(phi), 100.0f);
+  }
+  std::vector<GuideCluster> clusters = cluster_photons(photons, GUIDE_MAX_CLUSTERS);
+  ASSERT_GE(clusters.size(), 2u);
+  EXPECT_NEAR(clusters[0].centre[0], 0.3f, 0.003f);
+  EXPECT_NEAR(clusters[0].centre[1], -0.2f, 0.003f);
+  EXPECT_LT(clusters[0].radius, 0.02f);
+  // The patch's bins also hold the wall photons that share their cells (about 30 a cell).
+  EXPECT_NEAR(clusters[0].flux[0], 2000.0f * 100.0f + 60.0f, 60.0f);
+  EXPECT_NEAR(clusters[0].normal[2], 1.0f, 1e-6f);
+  EXPECT_GT(clusters[1].radius, 1.0f) << "the evenly lit wall is one region";
+  EXPECT_EQ(clusters.size(), 2u);
+}
+
+}  // namespace
+}  // namespace rcsplat
