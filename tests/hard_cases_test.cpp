@@ -212,6 +212,9 @@ TEST(HardCases, LightOverTenDecadesScalesTheImageExactly) {
   RenderSettings settings;
   settings.width = settings.height = 48;
   settings.light_samples = 4;
+  // Without the light guide: its choices (which clusters a record aims at, in which order) compare fluxes, and
+  // emission times 1e6 rounds them differently, which may move a guided ray (noise-level changes, not scaling ones).
+  settings.cache.guide_rays = 0;
   const Scene original = make_cornell_box();
   const RenderedImage base = render(test::gpu(), original, settings);
   for (float factor : {1e-4f, 1e6f}) {
