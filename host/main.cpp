@@ -126,11 +126,14 @@ int main(int argc, char** argv) {
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
 
   CompareOptions compare;
-  CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE");
+  CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means");
   compare_cmd->add_option("image", compare.image_path, "The image to judge (.exr)")->required();
   compare_cmd->add_option("reference", compare.reference_path, "The reference (.exr)")->required();
   compare_cmd->add_option("--heatmap", compare.heatmap_path, "Write a false-colour relative error image (.png)");
   compare_cmd->add_option("--json", compare.json_path, "Also write the numbers as JSON");
+  compare_cmd->add_option("--block", compare.block,
+                          "Also relMSE of BxB pixel means (default 8): noise averages out, a cache's blotches do not")
+      ->check(CLI::Range(1, 4096));
 
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Traversal speed: the OpenCL kernel against Embree on the same rays");

@@ -66,47 +66,6 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
   }
 }
 
-// The corridor's indirect light in double precision, without sampling: the room is convex, so every point sees all of
-// the lit disc, and the one-bounce radiance it receives is the integral over that disc of (floor albedo / pi) E(x)
-// cos cos' / d^2, E the spot's irradiance with glTF's smooth cone falloff. Midpoint quadrature, polar (the integrand
-// is smooth on the disc); each pixel's value is its albedo / pi times that irradiance at its G-buffer point.
-std::vector<float> corridor_indirect_by_quadrature(const Scene& corridor, const RenderedImage& img) {
-  const SceneLight& spot = corridor.lights[0];
-  const glm::dvec3 light(spot.position);
-  const double height = light.y, intensity = spot.intensity.x, floor_albedo = corridor.materials[0].base_color.x;
-  const double cos_outer = std::cos(double(spot.outer_cone)), scale = 1.0 / (1.0 - cos_outer);
-  const double disc_radius = height * std::tan(double(spot.outer_cone));
-  const int rings = 64, sectors = 128;
-  struct Patch { glm::dvec3 x; double radiance_area; };  // a quadrature cell: its centre and L dA
-  std::vector<Patch> cells;
-  for (int i = 0; i < rings; ++i)
-    for (int k = 0; k < sectors; ++k) {
-      double r = (i + 0.5) / rings * disc_radius, phi = (k + 0.5) / sectors * 2.0 * M_PI;
-      double dr = disc_radius / rings, dphi = 2.0 * M_PI / sectors;
-      double d2 = height * height + r * r, cos_light = height / std::sqrt(d2);
-      double falloff = std::clamp((cos_light - cos_outer) * scale, 0.0, 1.0);
-      double irradiance = intensity * falloff * falloff * cos_light / d2;  // cos at the floor = cos at the light
-      cells.push_back({glm::dvec3(light.x + r * std::cos(phi), 0.0, light.z + r * std::sin(phi)),
-                       floor_albedo / M_PI * irradiance * r * dr * dphi});
-    }
-  const size_t pixels = size_t(img.width) * size_t(img.height);
-  std::vector<float> indirect(pixels * 3, 0.0f);
-  for (size_t p = 0; p < pixels; ++p) {
-    if (img.triangle[p] < 0) continue;
-    glm::dvec3 at(img.position[3 * p], img.position[3 * p + 1], img.position[3 * p + 2]);
-    glm::dvec3 n(img.normal[3 * p], img.normal[3 * p + 1], img.normal[3 * p + 2]);
-    double e = 0.0;
-    for (const Patch& c : cells) {
-      glm::dvec3 to = c.x - at;
-      double d2 = glm::dot(to, to), d = std::sqrt(d2);
-      double cos_here = glm::dot(n, to) / d, cos_there = -to.y / d;  // the floor faces +y
-      if (cos_here > 0.0 && cos_there > 0.0) e += c.radiance_area * cos_here * cos_there / d2;
-    }
-    for (int ch = 0; ch < 3; ++ch) indirect[3 * p + ch] = float(img.albedo[3 * p + ch] / M_PI * e);
-  }
-  return indirect;
-}
-
 // Issue 10 part 2: records must not turn a small, very bright indirect source into blotches. Block means (8 x 8)
 // average noise out and keep blotches. Against the exact indirect light (quadrature, above) the cache's block relMSE
 // must be no worse than stratified path tracing's with as many rays (the deterministic stand-in for equal time;
@@ -120,7 +79,7 @@ TEST(HardCases, SmallBrightIndirectSourceLeavesNoBlotches) {
   settings.light_samples = 1;
   settings.seed = 7;
   const RenderedImage guided = render(test::gpu(), corridor, settings);
-  const std::vector<float> exact = corridor_indirect_by_quadrature(corridor, guided);
+  const std::vector<float> exact = test::corridor_indirect_by_quadrature(corridor, guided);
   auto block_error = [&](const RenderedImage& img) {
     return block_rel_mse(img.indirect, exact, settings.width, settings.height, 8);
   };

@@ -33,6 +33,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
 
 struct CompareOptions {
   std::string image_path, reference_path, heatmap_path, json_path;
+  int block = 8;  // block relMSE over block x block pixel means
 };
 int run_compare(const CompareOptions& options);
 

@@ -16,16 +16,22 @@ int run_compare(const CompareOptions& o) {
     throw Error(o.image_path + " is " + std::to_string(w) + "x" + std::to_string(h) + " but " + o.reference_path +
                 " is " + std::to_string(rw) + "x" + std::to_string(rh));
   ErrorMetrics full = image_error(image, reference);
-  std::printf("%-10s %-12s %-12s %-12s\n", "layer", "relMSE", "RMSE", "MAE");
-  std::printf("%-10s %-12.4e %-12.4e %-12.4e\n", "full", full.rel_mse, full.rmse, full.mae);
-  nlohmann::json j = {{"image", o.image_path}, {"reference", o.reference_path},
-                      {"full", {{"rel_mse", full.rel_mse}, {"rmse", full.rmse}, {"mae", full.mae}}}};
+  const bool blocks = w >= o.block && h >= o.block;
+  const double full_block = blocks ? block_rel_mse(image, reference, w, h, o.block) : 0.0;
+  const std::string block_name = std::to_string(o.block) + "x" + std::to_string(o.block) + " relMSE";
+  std::printf("%-10s %-12s %-12s %-12s %s\n", "layer", "relMSE", "RMSE", "MAE", blocks ? block_name.c_str() : "");
+  std::printf("%-10s %-12.4e %-12.4e %-12.4e %.4e\n", "full", full.rel_mse, full.rmse, full.mae, full_block);
+  nlohmann::json j = {{"image", o.image_path}, {"reference", o.reference_path}, {"block", o.block},
+                      {"full", {{"rel_mse", full.rel_mse}, {"rmse", full.rmse}, {"mae", full.mae},
+                                {"block_rel_mse", full_block}}}};
   // The indirect layer alone: noisy direct light sets a floor on the full image's error that says nothing of the cache.
   if (exr_has_layer(o.image_path, "indirect") && exr_has_layer(o.reference_path, "indirect")) {
     std::vector<float> ref = read_exr_layer(o.reference_path, "indirect", rw, rh);
-    ErrorMetrics ind = image_error(read_exr_layer(o.image_path, "indirect", w, h), ref);
-    std::printf("%-10s %-12.4e %-12.4e %-12.4e\n", "indirect", ind.rel_mse, ind.rmse, ind.mae);
-    j["indirect"] = {{"rel_mse", ind.rel_mse}, {"rmse", ind.rmse}, {"mae", ind.mae}};
+    std::vector<float> indirect = read_exr_layer(o.image_path, "indirect", w, h);
+    ErrorMetrics ind = image_error(indirect, ref);
+    const double ind_block = blocks ? block_rel_mse(indirect, ref, w, h, o.block) : 0.0;
+    std::printf("%-10s %-12.4e %-12.4e %-12.4e %.4e\n", "indirect", ind.rel_mse, ind.rmse, ind.mae, ind_block);
+    j["indirect"] = {{"rel_mse", ind.rel_mse}, {"rmse", ind.rmse}, {"mae", ind.mae}, {"block_rel_mse", ind_block}};
     // A path-traced reference carries its own noise, which adds its expected relMSE to every comparison against it.
     if (exr_has_layer(o.reference_path, "indirect_variance")) {
       std::vector<float> var = read_exr_layer(o.reference_path, "indirect_variance", rw, rh);
@@ -35,6 +41,13 @@ int run_compare(const CompareOptions& o) {
                   ind.rel_mse - noise);
       j["indirect"]["reference_noise"] = noise;
       j["indirect"]["rel_mse_less_reference_noise"] = ind.rel_mse - noise;
+      if (blocks) {
+        const double block_noise = block_rel_mse_of_noise(var, ref, w, h, o.block);
+        std::printf("reference noise: expected indirect %s %.4e; %s less that: %.4e\n", block_name.c_str(), block_noise,
+                    block_name.c_str(), ind_block - block_noise);
+        j["indirect"]["block_reference_noise"] = block_noise;
+        j["indirect"]["block_rel_mse_less_reference_noise"] = ind_block - block_noise;
+      }
     }
   } else {
     std::printf("indirect   (no indirect layer in both images)\n");

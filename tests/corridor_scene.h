@@ -1,0 +1,93 @@
+// Issue 10's small bright indirect source: a corridor lit only by a patch under a strong spot, and its exact indirect
+// light. Shared by the tests and benchmarks/hard_case_corridor.cpp; needs neither GoogleTest nor a device.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "render/frame.h"
+#include "scene/scene.h"
+
+namespace rcsplat::test {
+
+// A closed corridor (10 x 2 x 2.5 m, grey) lit by one 1e6 cd spot whose cone reaches only a disc of radius 0.25 m
+// on the floor near the far end: every wall, and the ceiling, is lit only by the light that patch reflects. Cosine
+// sampling of a record's hemisphere finds the patch in some records and misses it in others: each one that finds it
+// becomes a bright disc on the walls (the blotches of issue 10). benchmarks/hard_cases/bright_patch_corridor.py
+// writes the same scene as glTF.
+inline Scene bright_patch_corridor() {
+  Scene s;
+  s.source = "bright-patch corridor";
+  s.materials.push_back({"floor", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  s.materials.push_back({"walls", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), false});
+  const float x0 = -1.0f, x1 = 1.0f, h = 2.5f, z1 = -10.0f;
+  auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t m) {
+    s.add_triangle(a, b, c, m);
+    s.add_triangle(a, c, d, m);
+  };
+  quad({x0, 0, 0}, {x1, 0, 0}, {x1, 0, z1}, {x0, 0, z1}, 0);  // floor, facing up
+  quad({x0, h, 0}, {x0, h, z1}, {x1, h, z1}, {x1, h, 0}, 1);  // ceiling
+  quad({x0, 0, 0}, {x0, 0, z1}, {x0, h, z1}, {x0, h, 0}, 1);  // left wall
+  quad({x1, 0, 0}, {x1, h, 0}, {x1, h, z1}, {x1, 0, z1}, 1);  // right wall
+  quad({x0, 0, z1}, {x1, 0, z1}, {x1, h, z1}, {x0, h, z1}, 1);  // far end
+  quad({x0, 0, 0}, {x0, h, 0}, {x1, h, 0}, {x1, 0, 0}, 1);      // near end, behind the camera
+  SceneLight spot;
+  spot.type = LightType::spot;
+  spot.position = {0.4f, 2.4f, -7.0f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.intensity = glm::vec3(1e6f);
+  spot.inner_cone = 0.0f;
+  spot.outer_cone = std::atan(0.25f / 2.4f);
+  s.lights.push_back(spot);
+  SceneCamera camera;
+  camera.eye = {0.0f, 1.2f, -0.2f};
+  camera.target = {0.0f, 1.2f, -5.0f};
+  camera.yfov = 1.0f;
+  s.cameras.push_back(camera);
+  return s;
+}
+
+// The corridor's indirect light in double precision, without sampling: the room is convex, so every point sees all of
+// the lit disc, and the one-bounce radiance it receives is the integral over that disc of (floor albedo / pi) E(x)
+// cos cos' / d^2, E the spot's irradiance with glTF's smooth cone falloff. Midpoint quadrature, polar (the integrand
+// is smooth on the disc); each pixel's value is its albedo / pi times that irradiance at its G-buffer point.
+inline std::vector<float> corridor_indirect_by_quadrature(const Scene& corridor, const RenderedImage& img) {
+  const SceneLight& spot = corridor.lights[0];
+  const glm::dvec3 light(spot.position);
+  const double height = light.y, intensity = spot.intensity.x, floor_albedo = corridor.materials[0].base_color.x;
+  const double cos_outer = std::cos(double(spot.outer_cone)), scale = 1.0 / (1.0 - cos_outer);
+  const double disc_radius = height * std::tan(double(spot.outer_cone));
+  const int rings = 64, sectors = 128;
+  struct Patch { glm::dvec3 x; double radiance_area; };  // a quadrature cell: its centre and L dA
+  std::vector<Patch> cells;
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < sectors; ++k) {
+      double r = (i + 0.5) / rings * disc_radius, phi = (k + 0.5) / sectors * 2.0 * M_PI;
+      double dr = disc_radius / rings, dphi = 2.0 * M_PI / sectors;
+      double d2 = height * height + r * r, cos_light = height / std::sqrt(d2);
+      double falloff = std::clamp((cos_light - cos_outer) * scale, 0.0, 1.0);
+      double irradiance = intensity * falloff * falloff * cos_light / d2;  // cos at the floor = cos at the light
+      cells.push_back({glm::dvec3(light.x + r * std::cos(phi), 0.0, light.z + r * std::sin(phi)),
+                       floor_albedo / M_PI * irradiance * r * dr * dphi});
+    }
+  const size_t pixels = size_t(img.width) * size_t(img.height);
+  std::vector<float> indirect(pixels * 3, 0.0f);
+  for (size_t p = 0; p < pixels; ++p) {
+    if (img.triangle[p] < 0) continue;
+    glm::dvec3 at(img.position[3 * p], img.position[3 * p + 1], img.position[3 * p + 2]);
+    glm::dvec3 n(img.normal[3 * p], img.normal[3 * p + 1], img.normal[3 * p + 2]);
+    double e = 0.0;
+    for (const Patch& c : cells) {
+      glm::dvec3 to = c.x - at;
+      double d2 = glm::dot(to, to), d = std::sqrt(d2);
+      double cos_here = glm::dot(n, to) / d, cos_there = -to.y / d;  // the floor faces +y
+      if (cos_here > 0.0 && cos_there > 0.0) e += c.radiance_area * cos_here * cos_there / d2;
+    }
+    for (int ch = 0; ch < 3; ++ch) indirect[3 * p + ch] = float(img.albedo[3 * p + ch] / M_PI * e);
+  }
+  return indirect;
+}
+
+}  // namespace rcsplat::test
