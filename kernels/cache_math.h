@@ -46,6 +46,43 @@ inline bool record_usable(float w, float accuracy, rc_float3 p, rc_float3 n, rc_
   return w * accuracy > 1.0f && rc_dot(n, nk) > 0.0f && not_in_front_of_record(p, n, pk, nk, radius);
 }
 
+// The tangent frame of a record's normal (Duff et al. 2017, as kernels/sampling.h tangent_frame): its azimuth sectors
+// are measured from t toward b.
+inline void record_tangent_frame(rc_float3 n, rc_float3* t, rc_float3* b) {
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (sign + n.z);
+  float c = n.x * n.y * a;
+  *t = rc_make3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = rc_make3(c, sign + n.y * n.y * a, -n.y);
+}
+
+// The 45-degree azimuth sector (0 .. 7, counter-clockwise from t) of the tangent-plane offset (x, y), by comparisons
+// only, so that the host and the device agree to the bit.
+inline int horizon_sector(float x, float y) {
+  if (y >= 0.0f) return x > 0.0f ? (y < x ? 0 : 1) : (y > -x ? 2 : 3);
+  return x < 0.0f ? (-y < -x ? 4 : 5) : (-y > x ? 6 : 7);
+}
+
+// Rays below this elevation (sin^2 theta at least this) find the occluders a record stands beside.
+#define HORIZON_MIN_SIN2_THETA 0.75f
+
+// Thin-wall leaks: a record may not reach P if P lies, along the record's tangent plane, beyond the occluder its low
+// rays found in P's direction (the far side of a wall it stands beside, thinner than a pixel).
+inline bool within_record_horizon(RC_GLOBAL const CacheRecord* rec, rc_float3 p) {
+  rc_float3 nk = rc_load3(0, rec->normal), d = p - rc_load3(0, rec->position);
+  d -= rc_dot(d, nk) * nk;
+  rc_float3 t, b;
+  record_tangent_frame(nk, &t, &b);
+  float x = rc_dot(d, t), y = rc_dot(d, b), h = rec->horizon[horizon_sector(x, y)];
+  return x * x + y * y <= h * h;
+}
+
+// record_usable and within_record_horizon together: what the splat, placement and the octree ask of each record.
+inline bool record_reaches(RC_GLOBAL const CacheRecord* rec, float w, float accuracy, rc_float3 p, rc_float3 n,
+                           rc_float3 pk, rc_float3 nk, float radius) {
+  return record_usable(w, accuracy, p, n, pk, nk, radius) && within_record_horizon(rec, p);
+}
+
 // E_k(P) = max(0, E + (nk x n) . grad_r + (P - Pk) . grad_t), per channel.
 inline rc_float3 extrapolated_irradiance(RC_GLOBAL const CacheRecord* rec, rc_float3 p, rc_float3 n) {
   rc_float3 dp = p - rc_load3(0, rec->position);

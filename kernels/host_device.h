@@ -24,6 +24,7 @@ typedef float3 rc_float3;
 // Row `row` of three floats starting at p.
 #define rc_load3(row, p) vload3(row, p)
 #define rc_max_zero(v) max(v, (float3)(0.0f))
+#define rc_make3(x, y, z) ((float3)((x), (y), (z)))
 #else
 #include <glm/glm.hpp>
 
@@ -43,6 +44,7 @@ inline float rc_cos(float a) { return std::cos(a); }
 inline float rc_sin(float a) { return std::sin(a); }
 inline rc_float3 rc_load3(int row, const float* p) { return rc_float3(p[3 * row], p[3 * row + 1], p[3 * row + 2]); }
 inline rc_float3 rc_max_zero(rc_float3 v) { return glm::max(v, rc_float3(0.0f)); }
+inline rc_float3 rc_make3(float x, float y, float z) { return rc_float3(x, y, z); }
 #endif
 
 #endif

@@ -23,7 +23,7 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
       __global const GBufferSample* g = gbuffer + pixel;
       if (g->triangle < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
-      if (record_usable(ward_weight(p, n, pk, nk, radius), accuracy, p, n, pk, nk, radius)) covered[pixel] = 1;
+      if (record_reaches(rec, ward_weight(p, n, pk, nk, radius), accuracy, p, n, pk, nk, radius)) covered[pixel] = 1;
     }
   }
 }

@@ -62,7 +62,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
       if (row < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
       float w = ward_weight(p, n, pk, nk, radius);
-      if (!record_usable(w, params.accuracy, p, n, pk, nk, radius)) continue;
+      if (!record_reaches(rec, w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 view = camera_view_direction(camera, p);
       HshFrameChange change = hsh_frame_change(nk, tk, bk, n, view);
       float3 delta = p - pk;

@@ -40,7 +40,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;
-  tangent_frame(n, &t, &b);
+  record_tangent_frame(n, &t, &b);  // the frame the horizon sectors are measured in
   const uint M = hp.theta_strata, N = hp.phi_strata;
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
   uint key = hash_u32(pixel ^ hash_u32(hp.seed));
@@ -76,13 +76,19 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   float3 grad_t[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
   float3 grad_r[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
   float inverse_distances = 0.0f;
+  // The horizon: per column, the nearest occluder the low rows (elevation below 30 degrees) found, measured along the
+  // tangent plane; per sector, the nearest of its columns' (conservative: a wall seen obliquely hides the whole sector
+  // beyond it).
+  const uint first_low_row = (uint)ceil(HORIZON_MIN_SIN2_THETA * (float)M);
+  float horizon[RECORD_HORIZON_SECTORS];
+  for (int s = 0; s < RECORD_HORIZON_SECTORS; ++s) horizon[s] = INFINITY;
   uint rays = 0;
   for (uint k = 0; k < N; ++k) {
     float cos_mid, sin_mid = sincos(((float)k + 0.5f) * dphi, &cos_mid);
     float cos_lo, sin_lo = sincos((float)k * dphi, &cos_lo);
     float3 u_mid = cos_mid * t + sin_mid * b, v_mid = -sin_mid * t + cos_mid * b, v_lo = -sin_lo * t + cos_lo * b;
     float3 rotation = (float3)(0.0f), l_below = (float3)(0.0f);
-    float r_below = INFINITY;
+    float r_below = INFINITY, column_horizon = INFINITY;
     for (uint j = 0; j < M; ++j) {
       uint s = j * N + k;
       float sin2 = ((float)j + random01(key, s, 0u)) * inv_m;
@@ -105,6 +111,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
       }
       e += l;
       inverse_distances += 1.0f / r;
+      if (j >= first_low_row) column_horizon = fmin(column_horizon, r * sin_t);
       rotation += rotation_weight[j] * l;
       if (j > 0) add_outer(grad_t, u_mid, (theta_wall[j] / fmin(r, r_below)) * (l - l_below));
       if (k > 0) add_outer(grad_t, v_lo, (phi_wall[j] / fmin(r, prev_r[j])) * (l - prev_l[j]));
@@ -118,6 +125,8 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
       prev_r[j] = r;
     }
     add_outer(grad_r, v_mid, (2.0f * sin(0.5f * dphi)) * rotation);  // the integral of v(phi) over the column
+    int sector = horizon_sector(cos_mid, sin_mid);
+    horizon[sector] = fmin(horizon[sector], column_horizon);
   }
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
     add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
@@ -158,6 +167,9 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   }
   rec.harmonic_distance = harmonic;
   rec.pad = 0.0f;
+  // A sector no column falls in (N < 8) hides nothing; a record always reaches its own pixel's half-footprint.
+  for (int s = 0; s < RECORD_HORIZON_SECTORS; ++s)
+    rec.horizon[s] = fmax(horizon[s], 0.5f * pixel_size);
   records[batch.first_record + i] = rec;
   atom_add(ray_total, (ulong)rays);
 }

@@ -181,6 +181,7 @@ typedef struct {
   rc_int prim;  // -1 when nothing was hit
 } HitDesc;
 
+#define RECORD_HORIZON_SECTORS 8
 // An irradiance cache record (ALGORITHM.md section 2): where it sits, how far it reaches, its irradiance and the
 // Ward-Heckbert gradients. A gradient row is d(E.rgb)/d(axis): E_k(P) = E + sum_axis delta[axis] * row[axis].
 typedef struct {
@@ -194,6 +195,9 @@ typedef struct {
   float grad_rotation[9];
   float harmonic_distance;  // Ward's harmonic mean hit distance, before any clamp
   float pad;
+  // Per azimuth sector of the record's tangent plane (kernels/cache_math.h horizon_sector): the distance beyond which
+  // its low rays found an occluder (a wall it stands beside): points farther in that direction are hidden from it.
+  float horizon[RECORD_HORIZON_SECTORS];
 } CacheRecord;
 
 // The largest hemisphere offered: M x N strata per record (theta x phi).
@@ -362,7 +366,7 @@ static_assert(sizeof(CameraParams) == 80);
 static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
-static_assert(sizeof(CacheRecord) == 128 && alignof(CacheRecord) == 4);
+static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 32);
 static_assert(sizeof(GuideCluster) == 48);
 static_assert(sizeof(PhotonHit) == 48);

@@ -38,7 +38,7 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
       if (g->triangle < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
       float w = ward_weight(p, n, pk, nk, radius);
-      if (!record_usable(w, params.accuracy, p, n, pk, nk, radius)) continue;
+      if (!record_reaches(rec, w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 e = fmin(extrapolated_irradiance(rec, p, n), (float3)(params.irradiance_scale));
       add_weighted_fixed_point(sums + 4 * (size_t)pixel, w, e, to_fixed);
       atomic_inc(counts + pixel);

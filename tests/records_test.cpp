@@ -107,7 +107,7 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
 
   // Float directions and hit points differ from double ones by ~1e-7: a ray grazing an edge may land elsewhere, so a
   // few records may differ by one ray's share; the bulk must agree to float precision.
-  std::vector<double> e_err, r_err, g_err;
+  std::vector<double> e_err, r_err, g_err, h_err;
   for (size_t i = 0; i < pixels.size(); ++i) {
     const GBufferSample& s = g[pixels[i]];
     vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
@@ -128,6 +128,10 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
     }
     e_err.push_back(e_diff / e_scale);
     r_err.push_back(std::abs(device[i].radius - host.radius) / host.radius);
+    for (size_t s = 0; s < host.horizon.size(); ++s) {
+      double h = host.horizon[s], d = device[i].horizon[s];
+      h_err.push_back(std::isinf(h) || std::isinf(d) ? (std::isinf(h) && std::isinf(d) ? 0.0 : 1.0) : std::abs(d - h) / h);
+    }
     g_err.push_back(g_diff / std::max(g_scale, e_scale / host.radius));
   }
   auto quantile = [](std::vector<double> v, double q) {
@@ -138,6 +142,7 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
   EXPECT_LT(quantile(e_err, 0.5), guided ? 3e-5 : 1e-5);
   EXPECT_LT(quantile(e_err, 0.95), 1e-3);
   EXPECT_LT(quantile(r_err, 0.95), 1e-4);
+  EXPECT_LT(quantile(h_err, 0.95), 1e-4);
   EXPECT_LT(quantile(g_err, 0.5), 1e-4);
   EXPECT_LT(quantile(g_err, 0.95), 1e-2);
   return with_guided_rays;

@@ -71,6 +71,7 @@ void check_footprints_and_values(test::TwinScene& twin, const SceneCamera& cam) 
       while (s->triangle < 0);
       vec3 n = glm::normalize(normal_of(*s) + 0.4f * vec3(uni(rng) - 0.5f, uni(rng) - 0.5f, uni(rng) - 0.5f));
       std::memset(&r, 0, sizeof r);
+      for (float& h : r.horizon) h = INFINITY;  // nothing hides anything from these records
       r.radius = diagonal * std::pow(10.0f, -3.5f + 3.6f * uni(rng));
       for (int i = 0; i < 3; ++i) {
         r.position[i] = s->position[i];

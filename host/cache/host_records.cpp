@@ -105,7 +105,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   const double guided = cones.empty() ? 0.0 : double(hp.guide_rays), strata_density = M * N / kPi;
 
   std::vector<dvec3> L(size_t(M * N));
-  std::vector<double> r(size_t(M * N));
+  std::vector<double> r(size_t(M * N)), sin_theta(size_t(M * N));
   HostRecord rec;
   for (int j = 0; j < M; ++j)
     for (int k = 0; k < N; ++k) {
@@ -113,6 +113,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
       double sin2 = (j + double(random01(key, s, 0))) / M;
       double phi = 2.0 * kPi * (k + double(random01(key, s, 1))) / N;
       double st = std::sqrt(sin2), ct = std::sqrt(1.0 - sin2);
+      sin_theta[size_t(s)] = st;
       dvec3 dir = std::cos(phi) * st * t + std::sin(phi) * st * b + ct * n;
       double dist = std::numeric_limits<double>::infinity();
       dvec3 l(0.0);
@@ -177,6 +178,20 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
     add_outer(rec.grad_rotation, v_mid, rotation * (2.0 * std::sin(kPi / N)));
   }
 
+  // Horizon: a column's nearest occluder among its rays below 30 degrees of elevation (sin^2 theta >= 3/4), along the
+  // tangent plane; a sector's, the nearest of its columns' (a column's centre azimuth decides its sector).
+  std::array<double, RECORD_HORIZON_SECTORS> horizon;
+  horizon.fill(std::numeric_limits<double>::infinity());
+  for (int k = 0; k < N; ++k) {
+    double column = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < M; ++j)
+      if (double(j) / M >= 0.75) column = std::min(column, r[at(j, k)] * sin_theta[at(j, k)]);
+    size_t sector = size_t(std::floor((k + 0.5) / N * RECORD_HORIZON_SECTORS)) % RECORD_HORIZON_SECTORS;
+    horizon[sector] = std::min(horizon[sector], column);
+  }
+  for (size_t s = 0; s < horizon.size(); ++s)
+    rec.horizon[s] = std::max(horizon[s], 0.5 * pixel_size);
+
   rec.position = p;
   rec.normal = n;
   rec.irradiance = std::isfinite(e.x + e.y + e.z) ? e : dvec3(0.0);
@@ -204,6 +219,7 @@ CacheRecord to_cache_record(const HostRecord& r) {
   out.pixel = int32_t(r.pixel);
   out.pixel_size = float(r.pixel_size);
   out.harmonic_distance = float(r.harmonic_distance);
+  for (size_t s = 0; s < r.horizon.size(); ++s) out.horizon[s] = float(r.horizon[s]);
   return out;
 }
 

@@ -16,6 +16,7 @@ struct HostRecord {
   glm::dvec3 position{0.0}, normal{0.0}, irradiance{0.0};
   std::array<glm::dvec3, 3> grad_translation{}, grad_rotation{};  // row per axis, RGB
   double radius = 0, harmonic_distance = 0, pixel_size = 0;
+  std::array<double, RECORD_HORIZON_SECTORS> horizon{};  // per 45-degree sector from t toward b
   uint32_t pixel = 0;
   uint64_t rays = 0;
 };

@@ -34,7 +34,7 @@ inline Interpolation interpolate(const RecordOctree& octree, const std::vector<C
     const CacheRecord& r = records[k];
     glm::vec3 pk = record_position(r), nk = record_normal(r);
     float w = ward_weight(g.p, g.n, pk, nk, r.radius);
-    if (!record_usable(w, accuracy, g.p, g.n, pk, nk, r.radius)) return;
+    if (!record_reaches(&r, w, accuracy, g.p, g.n, pk, nk, r.radius)) return;
     out.weighted += double(w) * glm::dvec3(extrapolated_irradiance(&r, g.p, g.n));
     out.weight += w;
     ++out.count;
@@ -51,7 +51,7 @@ inline bool covered(const RecordOctree& octree, const std::vector<CacheRecord>& 
   octree.for_each_reaching(glm::dvec3(g.p), [&](uint32_t k) {
     const CacheRecord& r = records[k];
     glm::vec3 pk = record_position(r), nk = record_normal(r);
-    any = any || record_usable(ward_weight(g.p, g.n, pk, nk, r.radius), accuracy, g.p, g.n, pk, nk, r.radius);
+    any = any || record_reaches(&r, ward_weight(g.p, g.n, pk, nk, r.radius), accuracy, g.p, g.n, pk, nk, r.radius);
   });
   return any;
 }

@@ -58,6 +58,7 @@ CacheRecord SceneFrame::world_record(CacheRecord r) const {
   r.radius = length_to_world(r.radius);
   r.pixel_size = length_to_world(r.pixel_size);
   r.harmonic_distance = length_to_world(r.harmonic_distance);
+  for (float& h : r.horizon) h = length_to_world(h);
   for (float& g : r.grad_translation) g = float(double(g) / scale);
   return r;
 }
