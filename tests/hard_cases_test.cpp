@@ -67,10 +67,10 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
 }
 
 // Issue 10 part 2: records must not turn a small, very bright indirect source into blotches. Block means (8 x 8)
-// average noise out and keep blotches. Against the exact indirect light (quadrature, above) the cache's block relMSE
-// must be no worse than stratified path tracing's with as many rays (the deterministic stand-in for equal time;
-// benchmarks/RESULTS.md has the timed comparison), and far below the cache's without the light guide. A long path-
-// traced run checks the quadrature: its block error must be what its own variance predicts.
+// average noise out and keep blotches. Against the exact indirect light (quadrature, tests/corridor_scene.h) the
+// cache's block relMSE must be no worse than stratified path tracing's with as many rays (the deterministic stand-in
+// for equal time; benchmarks/RESULTS.md has the timed comparison), and far below the cache's without the light
+// guide. A long path-traced run checks the quadrature: its block error must be what its own variance predicts.
 TEST(HardCases, SmallBrightIndirectSourceLeavesNoBlotches) {
   const Scene corridor = test::bright_patch_corridor();
   RenderSettings settings;
