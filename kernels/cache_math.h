@@ -67,20 +67,18 @@ inline int horizon_sector(float x, float y) {
 #define HORIZON_MIN_SIN2_THETA 0.75f
 
 // Thin-wall leaks: a record may not reach P if P lies, along the record's tangent plane, beyond the occluder its low
-// rays found in P's direction (the far side of a wall it stands beside, thinner than a pixel).
-inline bool within_record_horizon(RC_GLOBAL const CacheRecord* rec, rc_float3 p) {
-  rc_float3 nk = rc_load3(0, rec->normal), d = p - rc_load3(0, rec->position);
-  d -= rc_dot(d, nk) * nk;
-  rc_float3 t, b;
-  record_tangent_frame(nk, &t, &b);
+// rays found in P's direction (the far side of a wall it stands beside, thinner than a pixel). (t, b): the record's
+// record_tangent_frame, computed once per record by the caller. The offset's normal component does not change x, y.
+inline bool within_record_horizon(RC_GLOBAL const CacheRecord* rec, rc_float3 t, rc_float3 b, rc_float3 p) {
+  rc_float3 d = p - rc_load3(0, rec->position);
   float x = rc_dot(d, t), y = rc_dot(d, b), h = rec->horizon[horizon_sector(x, y)];
   return x * x + y * y <= h * h;
 }
 
 // record_usable and within_record_horizon together: what the splat, placement and the octree ask of each record.
-inline bool record_reaches(RC_GLOBAL const CacheRecord* rec, float w, float accuracy, rc_float3 p, rc_float3 n,
-                           rc_float3 pk, rc_float3 nk, float radius) {
-  return record_usable(w, accuracy, p, n, pk, nk, radius) && within_record_horizon(rec, p);
+inline bool record_reaches(RC_GLOBAL const CacheRecord* rec, rc_float3 t, rc_float3 b, float w, float accuracy,
+                           rc_float3 p, rc_float3 n, rc_float3 pk, rc_float3 nk, float radius) {
+  return record_usable(w, accuracy, p, n, pk, nk, radius) && within_record_horizon(rec, t, b, p);
 }
 
 // E_k(P) = max(0, E + (nk x n) . grad_r + (P - Pk) . grad_t), per channel.

@@ -14,6 +14,8 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
   __global const CacheRecord* rec = records + params.first_record + get_global_id(0);
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;
+  float3 tk, bk;
+  record_tangent_frame(nk, &tk, &bk);
   PixelRect rect = sphere_footprint(camera, pk, accuracy * radius);
   int x0 = (rect.x0 + spacing - 1) / spacing * spacing, y0 = (rect.y0 + spacing - 1) / spacing * spacing;
   for (int y = y0; y <= rect.y1; y += spacing) {
@@ -23,7 +25,7 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
       __global const GBufferSample* g = gbuffer + pixel;
       if (g->triangle < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
-      if (record_reaches(rec, ward_weight(p, n, pk, nk, radius), accuracy, p, n, pk, nk, radius)) covered[pixel] = 1;
+      if (record_reaches(rec, tk, bk, ward_weight(p, n, pk, nk, radius), accuracy, p, n, pk, nk, radius)) covered[pixel] = 1;
     }
   }
 }

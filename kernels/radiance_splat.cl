@@ -48,7 +48,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
   __global const float* block = coefficients + (size_t)r * (size_t)(HSH_RECORD_PARTS * 3 * n2);
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float3 tk, bk;
-  tangent_frame(nk, &tk, &bk);
+  record_tangent_frame(nk, &tk, &bk);  // the same Duff frame as tangent_frame, and the horizon's
   float radius = rec->radius;
   PixelRect rect = sphere_footprint(camera, pk, params.accuracy * radius);
   float to_fixed = FIXED_POINT_ONE / params.radiance_scale;
@@ -62,7 +62,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
       if (row < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
       float w = ward_weight(p, n, pk, nk, radius);
-      if (!record_reaches(rec, w, params.accuracy, p, n, pk, nk, radius)) continue;
+      if (!record_reaches(rec, tk, bk, w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 view = camera_view_direction(camera, p);
       HshFrameChange change = hsh_frame_change(nk, tk, bk, n, view);
       float3 delta = p - pk;

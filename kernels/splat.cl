@@ -29,6 +29,8 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
   __global const CacheRecord* rec = records + k;
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;
+  float3 tk, bk;
+  record_tangent_frame(nk, &tk, &bk);
   PixelRect rect = sphere_footprint(camera, pk, params.accuracy * radius);
   float to_fixed = FIXED_POINT_ONE / params.irradiance_scale;
   for (int y = rect.y0; y <= rect.y1; ++y) {
@@ -38,7 +40,7 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
       if (g->triangle < 0) continue;
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
       float w = ward_weight(p, n, pk, nk, radius);
-      if (!record_reaches(rec, w, params.accuracy, p, n, pk, nk, radius)) continue;
+      if (!record_reaches(rec, tk, bk, w, params.accuracy, p, n, pk, nk, radius)) continue;
       float3 e = fmin(extrapolated_irradiance(rec, p, n), (float3)(params.irradiance_scale));
       add_weighted_fixed_point(sums + 4 * (size_t)pixel, w, e, to_fixed);
       atomic_inc(counts + pixel);

@@ -18,7 +18,7 @@ using glm::dvec3;
 using glm::vec3;
 
 constexpr int kInputs = 16;   // floats per case: p, n, pk, nk, radius, accuracy, min radius, pixel size, spare
-constexpr int kOutputs = 10;  // weight, usable, not in front, E (3), neighbour bound, clamped radius, pixel size, spare
+constexpr int kOutputs = 10;  // weight, usable, not in front, E (3), neighbour bound, clamped radius, pixel size, horizon
 
 const char* kEvaluateCacheMath = R"(
 #include "cache_math.h"
@@ -39,7 +39,9 @@ __kernel void evaluate_cache_math(__global const float* inputs, __global const C
   out[6] = bound;
   out[7] = neighbour_clamped_radius(radius, bound * 0.5f, in[14], in[15]);
   out[8] = pixel_world_size(camera, p);
-  out[9] = 0.0f;
+  float3 t, b;
+  record_tangent_frame(nk, &t, &b);
+  out[9] = within_record_horizon(records + i, t, b, p) ? 1.0f : 0.0f;
 }
 )";
 
@@ -79,6 +81,8 @@ std::vector<Case> random_cases(size_t count) {
       }
     }
     c.record.radius = radius;
+    // Horizons around the point's distance: both outcomes, some close to the boundary.
+    for (float& h : c.record.horizon) h = glm::length(p - pk) * (0.5f + pos(rng));
     c.in[12] = radius;
     c.in[13] = accuracy;
     c.in[14] = 3.0f / accuracy;
@@ -125,7 +129,7 @@ TEST(CacheMath, DeviceAndHostComputeTheSameBits) {
   gpu.queue().finish();
   std::vector<float> device = gpu.download<float>(out, cases.size() * kOutputs);
 
-  size_t usable = 0, near_threshold = 0, weight_ulps = 0;
+  size_t usable = 0, near_threshold = 0, weight_ulps = 0, hidden = 0;
   for (size_t i = 0; i < cases.size(); ++i) {
     const float* in = cases[i].in;
     vec3 p = rc_load3(0, in), n = rc_load3(1, in), pk = rc_load3(2, in), nk = rc_load3(3, in);
@@ -133,12 +137,16 @@ TEST(CacheMath, DeviceAndHostComputeTheSameBits) {
     float w = ward_weight(p, n, pk, nk, radius);
     float bound = neighbour_radius_bound(p, pk, radius);
     vec3 e = extrapolated_irradiance(&cases[i].record, p, n);
+    vec3 t, b;
+    record_tangent_frame(nk, &t, &b);
+    const float horizon = within_record_horizon(&cases[i].record, t, b, p) ? 1.0f : 0.0f;
+    hidden += horizon == 0.0f;
     float host[kOutputs] = {w,
                             record_usable(w, accuracy, p, n, pk, nk, radius) ? 1.0f : 0.0f,
                             not_in_front_of_record(p, n, pk, nk, radius) ? 1.0f : 0.0f,
                             e.x, e.y, e.z, bound,
                             neighbour_clamped_radius(radius, bound * 0.5f, in[14], in[15]),
-                            pixel_world_size(&camera, p), 0.0f};
+                            pixel_world_size(&camera, p), horizon};
     const float* dev = &device[i * kOutputs];
     for (int k = 0; k < kOutputs; ++k) {
       // OpenCL C contracts a * b + c into one fused operation by default (C++ on x86-64 does not): the weight's
@@ -163,6 +171,8 @@ TEST(CacheMath, DeviceAndHostComputeTheSameBits) {
   EXPECT_GT(usable, cases.size() / 10);
   EXPECT_LT(usable, cases.size() * 4 / 5);
   EXPECT_GT(near_threshold, 10u) << "the inputs should test decisions close to the threshold";
+  EXPECT_GT(hidden, cases.size() / 10) << "some points should lie beyond the records' horizons";
+  EXPECT_LT(hidden, cases.size() * 9 / 10);
   RecordProperty("weights_an_ulp_apart", int(weight_ulps));
 }
 

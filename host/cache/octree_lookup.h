@@ -27,6 +27,14 @@ struct Interpolation {
   uint32_t count = 0;
 };
 
+// record_reaches with the record's horizon frame (the device kernels compute it once per record).
+inline bool record_reaches_pixel(const CacheRecord& r, float w, float accuracy, const PixelGeometry& g,
+                                 const glm::vec3& pk, const glm::vec3& nk) {
+  glm::vec3 t, b;
+  record_tangent_frame(nk, &t, &b);
+  return record_reaches(&r, t, b, w, accuracy, g.p, g.n, pk, nk, r.radius);
+}
+
 inline Interpolation interpolate(const RecordOctree& octree, const std::vector<CacheRecord>& records,
                                  const PixelGeometry& g, float accuracy) {
   Interpolation out;
@@ -34,7 +42,7 @@ inline Interpolation interpolate(const RecordOctree& octree, const std::vector<C
     const CacheRecord& r = records[k];
     glm::vec3 pk = record_position(r), nk = record_normal(r);
     float w = ward_weight(g.p, g.n, pk, nk, r.radius);
-    if (!record_reaches(&r, w, accuracy, g.p, g.n, pk, nk, r.radius)) return;
+    if (!record_reaches_pixel(r, w, accuracy, g, pk, nk)) return;
     out.weighted += double(w) * glm::dvec3(extrapolated_irradiance(&r, g.p, g.n));
     out.weight += w;
     ++out.count;
@@ -51,7 +59,7 @@ inline bool covered(const RecordOctree& octree, const std::vector<CacheRecord>& 
   octree.for_each_reaching(glm::dvec3(g.p), [&](uint32_t k) {
     const CacheRecord& r = records[k];
     glm::vec3 pk = record_position(r), nk = record_normal(r);
-    any = any || record_reaches(&r, ward_weight(g.p, g.n, pk, nk, r.radius), accuracy, g.p, g.n, pk, nk, r.radius);
+    any = any || record_reaches_pixel(r, ward_weight(g.p, g.n, pk, nk, r.radius), accuracy, g, pk, nk);
   });
   return any;
 }
