@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "image/error_metrics.h"
+#include "kernels/hsh.h"
 #include "image/exr_file.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
@@ -220,6 +221,70 @@ TEST(HardCases, DegenerateTrianglesAndAGrazingCameraStayFinite) {
   for (int t : clean.triangle) empty += t < 0;
   EXPECT_GT(empty, 0u) << "the view should include pixels that see no geometry";
   EXPECT_LT(image_error(degenerate.indirect, clean.indirect).rel_mse, 1e-6) << "zero-area triangles changed the image";
+}
+
+}  // namespace
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// The Cornell box with a metal floor (base 0.9) of the given roughness.
+Scene cornell_with_metal_floor(float roughness) {
+  Scene s = make_cornell_box();
+  s.materials.push_back({"metal floor", glm::vec4(0.9f, 0.9f, 0.9f, 1.0f), -1, glm::vec3(0.0f), false});
+  SceneMaterial& metal = s.materials.back();
+  metal.metallic = 1.0f;
+  metal.roughness = roughness;
+  metal.specular = 1.0f;
+  const float floor_y = s.bounds_min().y;
+  for (size_t t = 0; t < s.triangle_count(); ++t) {
+    const glm::vec3 *v = &s.positions[3 * t];
+    if (std::max({v[0].y, v[1].y, v[2].y}) < floor_y + 1e-3f) s.triangle_material[t] = uint32_t(s.materials.size() - 1);
+  }
+  return s;
+}
+
+double floor_indirect_mean(const Scene& s, const RenderedImage& img) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (size_t p = 0; p < img.triangle.size(); ++p) {
+    if (img.triangle[p] < 0 || s.triangle_material[size_t(img.triangle[p])] != s.materials.size() - 1) continue;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_TRUE(std::isfinite(img.indirect[3 * p + c]) && img.indirect[3 * p + c] >= 0.0f);
+      sum += img.indirect[3 * p + c];
+    }
+    ++n;
+  }
+  EXPECT_GT(n, 100u);
+  return sum / double(3 * n);
+}
+
+// Issue 10 part 5 with radiance caching: the boundary between cached (roughness >= HSH_MIN_ROUGHNESS) and per-pixel
+// sampled glossy light must not show, and the highest HSH order offered must stay finite and agree too. The floor's
+// mean indirect light at roughness just below the boundary (sampled), at it (cached, order chosen from the roughness)
+// and at it with --hsh-order HSH_MAX_ORDER, against path tracing at the boundary.
+TEST(HardCases, RadianceCacheBoundaryAndHighestOrderAgreeWithPathTracing) {
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  settings.light_samples = 4;
+  const Scene at = cornell_with_metal_floor(HSH_MIN_ROUGHNESS), below = cornell_with_metal_floor(0.4499f);
+  const double cached = floor_indirect_mean(at, render(test::gpu(), at, settings));
+  const double sampled = floor_indirect_mean(below, render(test::gpu(), below, settings));
+  settings.hsh_order = HSH_MAX_ORDER;
+  const RenderedImage highest_image = render(test::gpu(), at, settings);
+  const double highest = floor_indirect_mean(at, highest_image);
+  RenderSettings path = settings;
+  path.gi = GiMethod::path;
+  path.path.samples = 1024;
+  const double reference = floor_indirect_mean(at, render(test::gpu(), at, path));
+  std::printf("metal floor's mean indirect: sampled at 0.4499 %.4f, cached at 0.45 %.4f, order %d %.4f (order used "
+              "%u), path-traced %.4f\n",
+              sampled, cached, HSH_MAX_ORDER, highest, highest_image.stats.hsh_order, reference);
+  EXPECT_NEAR(sampled, reference, 0.05 * reference);
+  EXPECT_NEAR(cached, reference, 0.1 * reference);
+  EXPECT_NEAR(highest, reference, 0.1 * reference);
+  EXPECT_EQ(highest_image.stats.hsh_order, unsigned(HSH_MAX_ORDER));
 }
 
 }  // namespace

@@ -120,6 +120,20 @@ void check_footprints_and_values(test::TwinScene& twin, const SceneCamera& cam) 
     }
     EXPECT_GT(reached, g.size() / 10) << "the random records should reach many pixels";
     EXPECT_LT(skipped, g.size() / 100) << skipped << " pixels at a threshold";
+
+    // Coincident records (issue 10 part 5): every record twice, at the same point with the same radius. The fixed-point
+    // sums double exactly, so every pixel's irradiance is the same bits and its count doubles.
+    std::vector<CacheRecord> twice = records;
+    twice.insert(twice.end(), records.begin(), records.end());
+    SplatPass doubled(gpu);
+    doubled.splat_all(gbuffer.view(), gpu.upload(twice), uint32_t(twice.size()), accuracy);
+    doubled.resolve(gbuffer.view());
+    std::vector<uint32_t> twice_counts = doubled.records_per_pixel();
+    std::vector<float> twice_irradiance = doubled.irradiance_rgbw();
+    for (size_t i = 0; i < g.size(); ++i) {
+      ASSERT_EQ(twice_counts[i], 2 * counts[i]) << "pixel " << i;
+      for (size_t c = 0; c < 3; ++c) ASSERT_EQ(twice_irradiance[4 * i + c], irradiance[4 * i + c]) << "pixel " << i;
+    }
   }
 }
 
