@@ -289,3 +289,73 @@ TEST(HardCases, RadianceCacheBoundaryAndHighestOrderAgreeWithPathTracing) {
 
 }  // namespace
 }  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// Two Cornell boxes side by side, the right one's ceiling light `dim` times the left one's. Both open toward the
+// camera (-z), so no light of one reaches the inside of the other in one bounce. The camera sees into both.
+Scene two_boxes(float dim) {
+  Scene left = make_cornell_box(), s = left;
+  const float shift = 1.2f * (left.bounds_max().x - left.bounds_min().x);
+  const uint32_t materials = uint32_t(s.materials.size());
+  for (SceneMaterial m : left.materials) {
+    m.emission *= dim;
+    s.materials.push_back(m);
+  }
+  for (size_t t = 0; t < left.triangle_count(); ++t) {
+    const glm::vec3* v = &left.positions[3 * t];
+    glm::vec3 d(shift, 0.0f, 0.0f);
+    s.add_triangle(v[0] + d, v[1] + d, v[2] + d, materials + left.triangle_material[t]);
+  }
+  SceneCamera camera = s.cameras.empty() ? s.default_camera() : s.cameras[0];
+  const glm::vec3 centre = 0.5f * (s.bounds_min() + s.bounds_max());
+  camera.target = glm::vec3(centre.x, centre.y, 0.0f);  // the boxes open toward -z, as the built-in one does
+  camera.eye = glm::vec3(centre.x, centre.y, -1.4f * shift);
+  camera.yfov = 0.8f;
+  s.cameras = {camera};
+  return s;
+}
+
+// Dynamic range in one frame: one room lit a million times more brightly than the other. The dim room's indirect light
+// must be what it is with the bright room's light off, to within the noise (light samples now also go to the bright
+// room's emitter, which the dim room cannot see), and every pixel finite and non-negative: nothing lost to the
+// fixed-point sums, and no room starved of light samples (with emitters chosen by power alone its light vanished).
+TEST(HardCases, RoomsAMillionTimesApartInOneFrame) {
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 48;
+  settings.light_samples = 4;
+  const Scene both = two_boxes(1e-6f);
+  Scene dim_only = both;
+  for (size_t m = 0; m < dim_only.materials.size() / 2; ++m) dim_only.materials[m].emission = glm::vec3(0.0f);
+  const RenderedImage together = render(test::gpu(), both, settings), alone = render(test::gpu(), dim_only, settings);
+  double dim_together = 0.0, dim_alone = 0.0, bright = 0.0;
+  size_t dim_pixels = 0, bright_pixels = 0;
+  for (size_t p = 0; p < together.triangle.size(); ++p) {
+    for (int c = 0; c < 3; ++c)
+      ASSERT_TRUE(std::isfinite(together.indirect[3 * p + c]) && together.indirect[3 * p + c] >= 0.0f);
+    if (together.triangle[p] < 0) continue;
+    if (both.triangle_material[size_t(together.triangle[p])] < both.materials.size() / 2) {
+      bright += together.indirect[3 * p + 1];
+      ++bright_pixels;
+    } else {
+      dim_together += together.indirect[3 * p + 1];
+      dim_alone += alone.indirect[3 * p + 1];
+      ++dim_pixels;
+    }
+  }
+  ASSERT_GT(dim_pixels, 500u);
+  ASSERT_GT(bright_pixels, 500u);
+  bright /= double(bright_pixels);
+  dim_together /= double(dim_pixels);
+  dim_alone /= double(dim_pixels);
+  std::printf("mean indirect (green): bright room %.4g; dim room %.4g, with its light alone %.4g\n", bright,
+              dim_together, dim_alone);
+  EXPECT_NEAR(dim_together, dim_alone, 0.05 * dim_alone);
+  // The rooms differ only in their lights (and in the angle the camera sees them at): not starved.
+  EXPECT_GT(dim_together / bright, 0.5e-6);
+}
+
+}  // namespace
+}  // namespace rcsplat
