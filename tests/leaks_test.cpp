@@ -199,5 +199,42 @@ TEST(Leaks, CentimetreSlatsKeepTheirLitTopsOffTheirUndersides) {
   EXPECT_LT(undersides.cache, 1.1 * undersides.reference + 3.0 * undersides.reference_sigma);
 }
 
+// Records on both sides of one two-sided sheet of zero thickness: a tent folded from a single sheet, lit from outside,
+// seen at its open end so that the outside of one side and the inside of the other meet along the ridge in the image.
+// The inside, lit only through the open ends, must not take light from the outside's records (within 5% of the
+// reference; the outside too). Planted: without the normal's part in Ward's weight and the facing test, the inside
+// comes out 7.4% bright.
+TEST(Leaks, BothSidesOfATwoSidedSheet) {
+  Scene s;
+  s.source = "tent";
+  s.materials.push_back({"grey", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), -1, glm::vec3(0.0f), false});
+  s.materials.push_back({"sheet", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), true});
+  s.add_triangle({-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, 0);
+  s.add_triangle({-3, 0, -3}, {3, 0, 3}, {3, 0, -3}, 0);
+  const glm::vec3 ridge_back(0, 1, -1), ridge_front(0, 1, 1);
+  for (float side : {-1.0f, 1.0f}) {
+    glm::vec3 foot_back(0.7f * side, 0, -1), foot_front(0.7f * side, 0, 1);
+    s.add_triangle(ridge_back, ridge_front, foot_front, 1);
+    s.add_triangle(ridge_back, foot_front, foot_back, 1);
+  }
+  SceneLight light;
+  light.position = {-2.0f, 2.5f, 0.5f};
+  light.intensity = glm::vec3(30.0f);
+  s.lights.push_back(light);
+  s.cameras.push_back(looking_down({-0.9f, 0.75f, 2.6f}, {0.2f, 0.55f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.8f));
+  const CacheAndReference r = render_both(s, 96, 1024);
+  // The left side's outside faces up and left (normal x < 0); the right side's inside faces down and left too, but
+  // down: the two sides of the same sheet differ in the sign of the normal's y.
+  auto on_sheet = [](const glm::vec3& x, const glm::vec3&) { return x.y > 0.05f && std::abs(x.z) < 0.95f; };
+  const RegionMeans outside = r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y > 0.3f; });
+  const RegionMeans inside = r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y < -0.3f; });
+  std::printf("outside %zu pixels %.4f (ref %.4f), inside %zu pixels %.4f (ref %.4f +- %.4f)\n", outside.pixels,
+              outside.cache, outside.reference, inside.pixels, inside.cache, inside.reference, inside.reference_sigma);
+  ASSERT_GT(outside.pixels, 100u);
+  ASSERT_GT(inside.pixels, 100u);
+  EXPECT_NEAR(outside.cache, outside.reference, 0.05 * outside.reference + 3.0 * outside.reference_sigma);
+  EXPECT_NEAR(inside.cache, inside.reference, 0.05 * inside.reference + 3.0 * inside.reference_sigma);
+}
+
 }  // namespace
 }  // namespace rcsplat
