@@ -13,6 +13,7 @@ typedef struct {
   float3 axis;      // from the record to the cluster's centre
   float cos_max;    // cosine of the cone's half-angle
   float inv_solid_angle;
+  float promise;    // the cluster's estimated irradiance here
   float cdf;        // inclusive selection probability
 } GuideCone;
 
@@ -36,13 +37,13 @@ inline float guide_irradiance_estimate(GuideCluster g, float3 p, float3 n) {
 // The cones of the clusters worth aiming at from a record at p (normal n): those that look small (a solid angle of at
 // most max_solid_angle: the strata find anything larger often enough) and promise at least GUIDE_MIN_SHARE of the
 // irradiance all clusters together promise. Selection probabilities are proportional to those promises. Returns the
-// number of cones (0: the record takes no guided rays).
+// number of cones (0: the record takes no guided rays), at most GUIDE_MAX_CONES: those that promise most (the first
+// in the clusters' order among equals).
 inline uint guide_cones(__global const GuideCluster* clusters, uint count, float3 p, float3 n, float max_solid_angle,
                         GuideCone* cones) {
   float promised = 0.0f;
   for (uint c = 0; c < count; ++c) promised += guide_irradiance_estimate(clusters[c], p, n);
   uint kept = 0;
-  float total = 0.0f;
   for (uint c = 0; c < count; ++c) {
     GuideCluster g = clusters[c];
     float w = guide_irradiance_estimate(g, p, n);
@@ -52,14 +53,24 @@ inline uint guide_cones(__global const GuideCluster* clusters, uint count, float
     if (!(d2 > 1.5f * r2)) continue;  // inside or at the sphere: it fills much of the hemisphere
     float one_minus_cos = one_minus_sqrt_one_minus(r2 / d2);
     if (2.0f * RC_PI * one_minus_cos > max_solid_angle) continue;
-    cones[kept].axis = to * rsqrt(d2);
-    cones[kept].cos_max = 1.0f - one_minus_cos;
-    cones[kept].inv_solid_angle = 1.0f / (2.0f * RC_PI * one_minus_cos);
-    total += w;
-    cones[kept].cdf = total;
-    ++kept;
+    if (kept == GUIDE_MAX_CONES && !(w > cones[kept - 1].promise)) continue;
+    uint at = kept < GUIDE_MAX_CONES ? kept++ : kept - 1;  // insertion into the list sorted by promise
+    while (at > 0 && cones[at - 1].promise < w) {
+      cones[at] = cones[at - 1];
+      --at;
+    }
+    cones[at].axis = to * rsqrt(d2);
+    cones[at].cos_max = 1.0f - one_minus_cos;
+    cones[at].inv_solid_angle = 1.0f / (2.0f * RC_PI * one_minus_cos);
+    cones[at].promise = w;
   }
-  for (uint c = 0; c < kept; ++c) cones[c].cdf /= total;
+  float total = 0.0f;
+  for (uint c = 0; c < kept; ++c) total += cones[c].promise;
+  float running = 0.0f;
+  for (uint c = 0; c < kept; ++c) {
+    running += cones[c].promise;
+    cones[c].cdf = running / total;
+  }
   if (kept) cones[kept - 1].cdf = 1.0f;
   return kept;
 }

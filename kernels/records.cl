@@ -47,7 +47,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
 
   // The light guide's cones for this record (none without a guide): its rays and the strata are weighted by the
   // balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
-  GuideCone cones[GUIDE_MAX_CLUSTERS];
+  GuideCone cones[GUIDE_MAX_CONES];
   const float cosine_density = (float)(M * N) * RC_INV_PI;  // n_c p_c / cos(theta)
   // A cone larger than GUIDE_MAX_STRATA strata' worth of solid angle is found often enough by the strata themselves.
   const uint cone_count =

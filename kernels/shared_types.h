@@ -222,6 +222,7 @@ typedef struct {
 #define GUIDE_MAX_CLUSTERS 32
 #define GUIDE_MAX_STRATA 64.0f  // a record aims at a cluster only if it covers at most this many strata' solid angle
 #define GUIDE_MIN_SHARE 0.01f  // and promises at least this share of the irradiance all clusters promise
+#define GUIDE_MAX_CONES 8       // and is among the 8 that promise most (every stratum ray tests each cone)
 typedef struct {
   float centre[3];
   float radius;   // bounding sphere of the cluster's photon hits

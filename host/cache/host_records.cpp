@@ -75,6 +75,11 @@ std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3&
     total += w;
     cones.push_back(c);
   }
+  // The GUIDE_MAX_CONES that promise most, the clusters' order kept among equals.
+  std::stable_sort(cones.begin(), cones.end(), [](const Cone& a, const Cone& b) { return a.probability > b.probability; });
+  if (cones.size() > GUIDE_MAX_CONES) cones.resize(GUIDE_MAX_CONES);
+  total = 0.0;
+  for (const Cone& c : cones) total += c.probability;
   double running = 0.0;
   for (Cone& c : cones) {
     c.probability /= total;
