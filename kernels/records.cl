@@ -25,6 +25,26 @@ inline void bound_gradient(float3* gradient, float3 limit) {
   for (int a = 0; a < 3; ++a) gradient[a] = finite_or_zero(gradient[a] * scale);
 }
 
+// The guide's share of E (kernels/light_guide.h): guided_rays rays into the record's cones, each weighted
+// f / (n_c p_c + n_g p_g) with f = L cos(theta) (the balance heuristic beside the strata's cosine density). Their
+// random numbers follow the strata's, from sample M N on.
+inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
+                                uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
+                                uint* rays) {
+  float3 e = (float3)(0.0f);
+  for (uint g = 0; g < guided_rays; ++g) {
+    uint s = first_sample + g;
+    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u));
+    float cos_n = dot(dir, n);
+    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
+    float r;
+    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                               &r, rays);
+    e += l * (cos_n / (cosine_density * cos_n + (float)guided_rays * guide_pdf(cones, cone_count, dir)));
+  }
+  return e;
+}
+
 __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
                               __global CacheRecord* records,
                               __global const GuideCluster* guide,
@@ -131,18 +151,9 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
     add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
-  // The guide's rays: f / (n_c p_c + n_g p_g) each, f = L cos(theta).
-  float3 e_guided = (float3)(0.0f);
-  for (uint g = 0; g < (cone_count ? hp.guide_rays : 0u); ++g) {
-    uint s = M * N + g;
-    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u));
-    float cos_n = dot(dir, n);
-    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
-    float r;
-    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               &r, &rays);
-    e_guided += l * (cos_n / (cosine_density * cos_n + guided_rays * guide_pdf(cones, cone_count, dir)));
-  }
+  float3 e_guided = cone_count ? guided_irradiance(SCENE, origin, n, ng, cones, cone_count, hp.guide_rays,
+                                                    cosine_density, key, M * N, &rays)
+                                 : (float3)(0.0f);
   e = finite_or_zero(e * norm + e_guided);
 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
