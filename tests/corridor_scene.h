@@ -23,16 +23,12 @@ inline Scene bright_patch_corridor() {
   s.materials.push_back({"floor", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
   s.materials.push_back({"walls", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), false});
   const float x0 = -1.0f, x1 = 1.0f, h = 2.5f, z1 = -10.0f;
-  auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t m) {
-    s.add_triangle(a, b, c, m);
-    s.add_triangle(a, c, d, m);
-  };
-  quad({x0, 0, 0}, {x1, 0, 0}, {x1, 0, z1}, {x0, 0, z1}, 0);  // floor, facing up
-  quad({x0, h, 0}, {x0, h, z1}, {x1, h, z1}, {x1, h, 0}, 1);  // ceiling
-  quad({x0, 0, 0}, {x0, 0, z1}, {x0, h, z1}, {x0, h, 0}, 1);  // left wall
-  quad({x1, 0, 0}, {x1, h, 0}, {x1, h, z1}, {x1, 0, z1}, 1);  // right wall
-  quad({x0, 0, z1}, {x1, 0, z1}, {x1, h, z1}, {x0, h, z1}, 1);  // far end
-  quad({x0, 0, 0}, {x0, h, 0}, {x1, h, 0}, {x1, 0, 0}, 1);      // near end, behind the camera
+  s.add_quad({x0, 0, 0}, {x1, 0, 0}, {x1, 0, z1}, {x0, 0, z1}, 0);  // floor, facing up
+  s.add_quad({x0, h, 0}, {x0, h, z1}, {x1, h, z1}, {x1, h, 0}, 1);  // ceiling
+  s.add_quad({x0, 0, 0}, {x0, 0, z1}, {x0, h, z1}, {x0, h, 0}, 1);  // left wall
+  s.add_quad({x1, 0, 0}, {x1, h, 0}, {x1, h, z1}, {x1, 0, z1}, 1);  // right wall
+  s.add_quad({x0, 0, z1}, {x1, 0, z1}, {x1, h, z1}, {x0, h, z1}, 1);  // far end
+  s.add_quad({x0, 0, 0}, {x0, h, 0}, {x1, h, 0}, {x1, 0, 0}, 1);      // near end, behind the camera
   SceneLight spot;
   spot.type = LightType::spot;
   spot.position = {0.4f, 2.4f, -7.0f};

@@ -65,10 +65,7 @@ void add_box(Scene& s, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
   glm::vec3 c[8];
   for (int i = 0; i < 8; ++i) c[i] = {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
   const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    s.add_triangle(c[f[0]], c[f[1]], c[f[2]], material);
-    s.add_triangle(c[f[0]], c[f[2]], c[f[3]], material);
-  }
+  for (const auto& f : faces) s.add_quad(c[f[0]], c[f[1]], c[f[2]], c[f[3]], material);
 }
 
 SceneCamera looking_down(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float yfov) {
@@ -91,8 +88,7 @@ TEST(Leaks, ThinWallKeepsItsLightAndTheGapLetsItThrough) {
   Scene s;
   s.source = "thin wall with a gap";
   s.materials.push_back({"grey", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), -1, glm::vec3(0.0f), false});
-  s.add_triangle({-2, 0, -1}, {-2, 0, 1}, {2, 0, 1}, 0);
-  s.add_triangle({-2, 0, -1}, {2, 0, 1}, {2, 0, -1}, 0);
+  s.add_quad({-2, 0, -1}, {-2, 0, 1}, {2, 0, 1}, {2, 0, -1}, 0);
   add_box(s, {-0.005f, 0.0f, -1.0f}, {0.005f, 1.0f, 0.6f}, 0);
   add_box(s, {1.2f, 0.0f, -1.0f}, {1.21f, 1.0f, 1.0f}, 0);
   SceneLight light;
@@ -132,12 +128,11 @@ void check_corner(float degrees) {
   Scene s;
   s.source = "concave corner";
   s.materials.push_back({"grey", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), -1, glm::vec3(0.0f), false});
-  s.add_triangle({0, 0, -1}, {0, 0, 1}, {1.5f, 0, 1}, 0);
-  s.add_triangle({0, 0, -1}, {1.5f, 0, 1}, {1.5f, 0, -1}, 0);
+  s.add_quad({0, 0, -1}, {0, 0, 1}, {1.5f, 0, 1}, {1.5f, 0, -1}, 0);
   const float a = degrees * float(M_PI) / 180.0f;
   const glm::vec3 up_the_slope(std::cos(a), std::sin(a), 0.0f);
-  s.add_triangle({0, 0, -1}, 1.5f * up_the_slope + glm::vec3(0, 0, -1), 1.5f * up_the_slope + glm::vec3(0, 0, 1), 0);
-  s.add_triangle({0, 0, -1}, 1.5f * up_the_slope + glm::vec3(0, 0, 1), {0, 0, 1}, 0);
+  s.add_quad({0, 0, -1}, 1.5f * up_the_slope + glm::vec3(0, 0, -1), 1.5f * up_the_slope + glm::vec3(0, 0, 1), {0, 0, 1},
+             0);
   SceneLight light;
   // Above the 90-degree corner; inside the 10-degree wedge (at a tenth of the slope's height near its open end), so
   // that both planes are lit up to the apex.
@@ -179,8 +174,7 @@ TEST(Leaks, CentimetreSlatsKeepTheirLitTopsOffTheirUndersides) {
   Scene s;
   s.source = "slats";
   s.materials.push_back({"grey", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), -1, glm::vec3(0.0f), false});
-  s.add_triangle({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, 0);
-  s.add_triangle({-2, 0, -2}, {2, 0, 2}, {2, 0, -2}, 0);
+  s.add_quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
   for (int i = 0; i < 5; ++i) {
     float y = 0.3f + 0.1f * float(i);
     add_box(s, {-0.6f, y, -0.6f + 0.25f * float(i)}, {0.6f, y + 0.01f, -0.3f + 0.25f * float(i)}, 0);
@@ -209,13 +203,11 @@ TEST(Leaks, BothSidesOfATwoSidedSheet) {
   s.source = "tent";
   s.materials.push_back({"grey", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), -1, glm::vec3(0.0f), false});
   s.materials.push_back({"sheet", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), true});
-  s.add_triangle({-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, 0);
-  s.add_triangle({-3, 0, -3}, {3, 0, 3}, {3, 0, -3}, 0);
+  s.add_quad({-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, 0);
   const glm::vec3 ridge_back(0, 1, -1), ridge_front(0, 1, 1);
   for (float side : {-1.0f, 1.0f}) {
     glm::vec3 foot_back(0.7f * side, 0, -1), foot_front(0.7f * side, 0, 1);
-    s.add_triangle(ridge_back, ridge_front, foot_front, 1);
-    s.add_triangle(ridge_back, foot_front, foot_back, 1);
+    s.add_quad(ridge_back, ridge_front, foot_front, foot_back, 1);
   }
   SceneLight light;
   light.position = {-2.0f, 2.5f, 0.5f};

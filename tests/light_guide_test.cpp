@@ -23,16 +23,12 @@ Scene closed_cube() {
   s.source = "closed cube";
   s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
   const float h = 0.5f;
-  auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-    s.add_triangle(a, b, c, 0);
-    s.add_triangle(a, c, d, 0);
-  };
-  quad({-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h});
-  quad({-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h});
-  quad({-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h});
-  quad({h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h});
-  quad({-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h});
-  quad({-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h});
+  s.add_quad({-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h}, 0);
+  s.add_quad({-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h}, 0);
+  s.add_quad({-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h}, 0);
+  s.add_quad({h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h}, 0);
+  s.add_quad({-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h}, 0);
+  s.add_quad({-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}, 0);
   return s;
 }
 
@@ -99,8 +95,7 @@ TEST(LightGuide, DirectionalPhotonsCrossTheUnitDisc) {
   Scene floor;
   floor.source = "floor";
   floor.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
-  floor.add_triangle({-1.5f, 0, -1.5f}, {-1.5f, 0, 1.5f}, {1.5f, 0, 1.5f}, 0);
-  floor.add_triangle({-1.5f, 0, -1.5f}, {1.5f, 0, 1.5f}, {1.5f, 0, -1.5f}, 0);
+  floor.add_quad({-1.5f, 0, -1.5f}, {-1.5f, 0, 1.5f}, {1.5f, 0, 1.5f}, {1.5f, 0, -1.5f}, 0);
   floor.lights.push_back({"sun", LightType::directional, {0, 0, 0}, {0.0f, -1.0f, 0.0f}, glm::vec3(2.0f)});
   size_t hits = 0;
   EXPECT_NEAR(reflected_flux(shoot(floor, 1u << 14), &hits), 0.5 * kPi * 2.0, 1e-4 * 0.5 * kPi * 2.0);

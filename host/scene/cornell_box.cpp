@@ -1,15 +1,6 @@
 #include "scene/cornell_box.h"
 
 namespace rcsplat {
-namespace {
-
-// A planar quadrilateral a-b-c-d (counter-clockwise seen from the side its normal points to) as two triangles.
-void add_quad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
-  s.add_triangle(a, b, c, material);
-  s.add_triangle(a, c, d, material);
-}
-
-}  // namespace
 
 Scene make_cornell_box() {
   Scene s;
@@ -24,25 +15,25 @@ Scene make_cornell_box() {
 
   using v = glm::vec3;
   // Floor, ceiling, back wall (white); left wall red (x = 556), right wall green (x = 0); normals face the inside.
-  add_quad(s, v(552.8f, 0, 0), v(0, 0, 0), v(0, 0, 559.2f), v(549.6f, 0, 559.2f), kWhite);
-  add_quad(s, v(556, 548.8f, 0), v(556, 548.8f, 559.2f), v(0, 548.8f, 559.2f), v(0, 548.8f, 0), kWhite);
-  add_quad(s, v(549.6f, 0, 559.2f), v(0, 0, 559.2f), v(0, 548.8f, 559.2f), v(556, 548.8f, 559.2f), kWhite);
-  add_quad(s, v(0, 0, 559.2f), v(0, 0, 0), v(0, 548.8f, 0), v(0, 548.8f, 559.2f), kGreen);
-  add_quad(s, v(552.8f, 0, 0), v(549.6f, 0, 559.2f), v(556, 548.8f, 559.2f), v(556, 548.8f, 0), kRed);
+  s.add_quad(v(552.8f, 0, 0), v(0, 0, 0), v(0, 0, 559.2f), v(549.6f, 0, 559.2f), kWhite);
+  s.add_quad(v(556, 548.8f, 0), v(556, 548.8f, 559.2f), v(0, 548.8f, 559.2f), v(0, 548.8f, 0), kWhite);
+  s.add_quad(v(549.6f, 0, 559.2f), v(0, 0, 559.2f), v(0, 548.8f, 559.2f), v(556, 548.8f, 559.2f), kWhite);
+  s.add_quad(v(0, 0, 559.2f), v(0, 0, 0), v(0, 548.8f, 0), v(0, 548.8f, 559.2f), kGreen);
+  s.add_quad(v(552.8f, 0, 0), v(549.6f, 0, 559.2f), v(556, 548.8f, 559.2f), v(556, 548.8f, 0), kRed);
   // The light, slightly below the ceiling so that it is not coplanar with it, facing down.
-  add_quad(s, v(343, 548.7f, 227), v(343, 548.7f, 332), v(213, 548.7f, 332), v(213, 548.7f, 227), kLight);
+  s.add_quad(v(343, 548.7f, 227), v(343, 548.7f, 332), v(213, 548.7f, 332), v(213, 548.7f, 227), kLight);
   // Short block.
-  add_quad(s, v(130, 165, 65), v(82, 165, 225), v(240, 165, 272), v(290, 165, 114), kWhite);
-  add_quad(s, v(290, 0, 114), v(290, 165, 114), v(240, 165, 272), v(240, 0, 272), kWhite);
-  add_quad(s, v(130, 0, 65), v(130, 165, 65), v(290, 165, 114), v(290, 0, 114), kWhite);
-  add_quad(s, v(82, 0, 225), v(82, 165, 225), v(130, 165, 65), v(130, 0, 65), kWhite);
-  add_quad(s, v(240, 0, 272), v(240, 165, 272), v(82, 165, 225), v(82, 0, 225), kWhite);
+  s.add_quad(v(130, 165, 65), v(82, 165, 225), v(240, 165, 272), v(290, 165, 114), kWhite);
+  s.add_quad(v(290, 0, 114), v(290, 165, 114), v(240, 165, 272), v(240, 0, 272), kWhite);
+  s.add_quad(v(130, 0, 65), v(130, 165, 65), v(290, 165, 114), v(290, 0, 114), kWhite);
+  s.add_quad(v(82, 0, 225), v(82, 165, 225), v(130, 165, 65), v(130, 0, 65), kWhite);
+  s.add_quad(v(240, 0, 272), v(240, 165, 272), v(82, 165, 225), v(82, 0, 225), kWhite);
   // Tall block.
-  add_quad(s, v(423, 330, 247), v(265, 330, 296), v(314, 330, 456), v(472, 330, 406), kWhite);
-  add_quad(s, v(423, 0, 247), v(423, 330, 247), v(472, 330, 406), v(472, 0, 406), kWhite);
-  add_quad(s, v(472, 0, 406), v(472, 330, 406), v(314, 330, 456), v(314, 0, 456), kWhite);
-  add_quad(s, v(314, 0, 456), v(314, 330, 456), v(265, 330, 296), v(265, 0, 296), kWhite);
-  add_quad(s, v(265, 0, 296), v(265, 330, 296), v(423, 330, 247), v(423, 0, 247), kWhite);
+  s.add_quad(v(423, 330, 247), v(265, 330, 296), v(314, 330, 456), v(472, 330, 406), kWhite);
+  s.add_quad(v(423, 0, 247), v(423, 330, 247), v(472, 330, 406), v(472, 0, 406), kWhite);
+  s.add_quad(v(472, 0, 406), v(472, 330, 406), v(314, 330, 456), v(314, 0, 456), kWhite);
+  s.add_quad(v(314, 0, 456), v(314, 330, 456), v(265, 330, 296), v(265, 0, 296), kWhite);
+  s.add_quad(v(265, 0, 296), v(265, 330, 296), v(423, 330, 247), v(423, 0, 247), kWhite);
 
   SceneCamera cam;
   cam.eye = v(278, 273, -800);

@@ -47,6 +47,12 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   triangle_material.push_back(material);
 }
 
+void Scene::add_quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
+                     uint32_t material) {
+  add_triangle(a, b, c, material);
+  add_triangle(a, c, d, material);
+}
+
 float Scene::bounding_radius() const {
   // A scene of one point has no size: give it one unit. Any other size stands, however small (a default camera at a
   // millimetre from a micrometre-sized scene would see nothing; found by fuzzing).

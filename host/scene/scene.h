@@ -75,6 +75,9 @@ struct Scene {
 
   // Appends a triangle; normals default to the geometric normal, texture coordinates to zero.
   void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint32_t material);
+  // A planar quadrilateral a-b-c-d (counter-clockwise seen from the side its normal points to) as the triangles
+  // a-b-c and a-c-d.
+  void add_quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d, uint32_t material);
 
   float bounding_radius() const;
   // Throws rcsplat::Error (naming source) unless the bounding radius lies in [1e-15, 1e15] units (or is 0: one point):
