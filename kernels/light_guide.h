@@ -41,12 +41,12 @@ inline float guide_irradiance_estimate(GuideCluster g, float3 p, float3 n) {
 // in the clusters' order among equals).
 inline uint guide_cones(__global const GuideCluster* clusters, uint count, float3 p, float3 n, float max_solid_angle,
                         GuideCone* cones) {
-  float promised = 0.0f;
-  for (uint c = 0; c < count; ++c) promised += guide_irradiance_estimate(clusters[c], p, n);
+  float promise[GUIDE_MAX_CLUSTERS], promised = 0.0f;
+  for (uint c = 0; c < count; ++c) promised += promise[c] = guide_irradiance_estimate(clusters[c], p, n);
   uint kept = 0;
   for (uint c = 0; c < count; ++c) {
     GuideCluster g = clusters[c];
-    float w = guide_irradiance_estimate(g, p, n);
+    float w = promise[c];
     if (!(w >= GUIDE_MIN_SHARE * promised) || !(w > 0.0f)) continue;
     float3 to = vload3(0, g.centre) - p;
     float d2 = dot(to, to), r2 = g.radius * g.radius;

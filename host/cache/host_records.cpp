@@ -57,12 +57,14 @@ double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n
 // The cones worth aiming at: at most GUIDE_MAX_STRATA strata of solid angle, at least GUIDE_MIN_SHARE of the
 // irradiance all clusters promise, the point outside 1.5 r^2.
 std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3& p, const dvec3& n, int strata) {
+  std::vector<double> promise;
   double promised = 0.0;
-  for (const GuideCluster& g : guide) promised += promised_irradiance(g, p, n);
+  for (const GuideCluster& g : guide) promised += promise.emplace_back(promised_irradiance(g, p, n));
   std::vector<Cone> cones;
   double total = 0.0;
-  for (const GuideCluster& g : guide) {
-    double w = promised_irradiance(g, p, n);
+  for (size_t i = 0; i < guide.size(); ++i) {
+    const GuideCluster& g = guide[i];
+    double w = promise[i];
     dvec3 to = load3(g.centre) - p;
     double d2 = glm::dot(to, to), r2 = double(g.radius) * g.radius;
     if (!(w > 0.0) || w < double(GUIDE_MIN_SHARE) * promised || !(d2 > 1.5 * r2)) continue;
