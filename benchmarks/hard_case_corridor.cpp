@@ -2,8 +2,10 @@
 // disc of radius 0.25 m; everything else is lit only by that disc) at 256 x 192, against its exact indirect light
 // (quadrature). Renders the cache with and without the light guide, and stratified path tracing given the guided
 // cache's indirect time, three times each (median), and prints per-pixel and 8 x 8 block relMSE of the indirect
-// layer. Writes the indirect layers as PNG at exposures -4, 0 and +2 into the output directory.
-//   build/benchmarks/hard_case_corridor OUT_DIR [GUIDE_RAYS]
+// layer. Writes the indirect layers as PNG at exposures -4, 0 and +2 into the output directory. With
+// METAL_WALL_ROUGHNESS the walls and ceiling are metal of that roughness (radiance-cached at 0.45 .. 0.9), and the
+// files are named glossy_corridor_*.
+//   build/benchmarks/hard_case_corridor OUT_DIR [GUIDE_RAYS [METAL_WALL_ROUGHNESS]]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +24,8 @@ using namespace rcsplat;
 namespace {
 
 double indirect_seconds(const RenderStats& s) {
-  return s.guide_s + s.records_s + s.placement_s + s.splat_s + s.resolve_s + s.path_s;
+  return s.guide_s + s.records_s + s.placement_s + s.splat_s + s.resolve_s + s.path_s + s.hsh_table_s +
+         s.radiance_records_s + s.radiance_placement_s + s.radiance_splat_s + s.glossy_s;
 }
 
 struct Run {
@@ -47,7 +50,9 @@ Run timed(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
 int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : ".";
   GpuContext gpu(select_device(""));
-  const Scene corridor = test::bright_patch_corridor();
+  const float metal_roughness = argc > 3 ? std::stof(argv[3]) : 0.0f;
+  const std::string prefix = metal_roughness > 0.0f ? "glossy_corridor" : "corridor";
+  const Scene corridor = test::bright_patch_corridor(metal_roughness);
   RenderSettings settings;
   settings.width = 256;
   settings.height = 192;
@@ -69,7 +74,8 @@ int main(int argc, char** argv) {
   path_settings.path.samples = side * side;
   Run path = timed(gpu, corridor, path_settings);
 
-  std::printf("device %s, corridor 256x192, indirect layer against the quadrature\n", gpu.device_info().name.c_str());
+  std::printf("device %s, %s 256x192, indirect layer against the quadrature\n", gpu.device_info().name.c_str(),
+              prefix.c_str());
   std::printf("%-34s %10s %14s %14s\n", "method", "seconds", "relMSE", "8x8 relMSE");
   auto row = [&](const char* name, const Run& r, const char* file) {
     std::printf("%-34s %10.3f %14.4e %14.4e\n", name, r.seconds, image_error(r.image.indirect, exact).rel_mse,
@@ -79,13 +85,13 @@ int main(int argc, char** argv) {
                 r.image.indirect, float(stops));
   };
   std::string guided_name = "cache, light guide, " + std::to_string(settings.cache.guide_rays) + " rays";
-  row(guided_name.c_str(), guided, "corridor_guided");
-  row("cache, --guide-rays 0", unguided, "corridor_unguided");
+  row(guided_name.c_str(), guided, (prefix + "_guided").c_str());
+  row("cache, --guide-rays 0", unguided, (prefix + "_unguided").c_str());
   char name[64];
   std::snprintf(name, sizeof name, "stratified path, %u spp", path_settings.path.samples);
-  row(name, path, "corridor_path");
+  row(name, path, (prefix + "_path").c_str());
   for (int stops : {-4, 0, 2})
-    write_png(out + "/corridor_exact_ev" + std::to_string(stops) + ".png", settings.width, settings.height, exact,
+    write_png(out + "/" + prefix + "_exact_ev" + std::to_string(stops) + ".png", settings.width, settings.height, exact,
               float(stops));
   return 0;
 }

@@ -27,20 +27,31 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 
 // The guide's share of E (kernels/light_guide.h): guided_rays rays into the record's cones, each weighted
 // f / (n_c p_c + n_g p_g) with f = L cos(theta) (the balance heuristic beside the strata's cosine density). Their
-// random numbers follow the strata's, from sample M N on.
-inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
-                                uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
-                                uint* rays) {
+// random numbers follow the strata's, from sample M N on. With samples (radiance records), each ray also leaves two
+// float4 there for the HSH projection: (L, 1 / (n_c p_c + n_g p_g)) and its direction in the record's frame (t, b, n);
+// a ray below the surface leaves zeros.
+inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 t, float3 b, float3 n, float3 ng,
+                                const GuideCone* cones, uint cone_count, uint guided_rays, float cosine_density,
+                                uint key, uint first_sample, __global float4* samples, uint* rays) {
   float3 e = (float3)(0.0f);
   for (uint g = 0; g < guided_rays; ++g) {
     uint s = first_sample + g;
     float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u));
     float cos_n = dot(dir, n);
-    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
-    float r;
-    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               &r, rays);
-    e += l * (cos_n / (cosine_density * cos_n + (float)guided_rays * guide_pdf(cones, cone_count, dir)));
+    float4 radiance_weight = (float4)(0.0f), in_frame = (float4)(0.0f);
+    if (cos_n > 0.0f && dot(dir, ng) > 0.0f) {
+      float r;
+      float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                                 &r, rays);
+      float weight = 1.0f / (cosine_density * cos_n + (float)guided_rays * guide_pdf(cones, cone_count, dir));
+      e += l * (cos_n * weight);
+      radiance_weight = (float4)(l, weight);
+      in_frame = (float4)(dot(dir, t), dot(dir, b), cos_n, 0.0f);
+    }
+    if (samples) {
+      samples[2 * g] = radiance_weight;
+      samples[2 * g + 1] = in_frame;
+    }
   }
   return e;
 }
@@ -49,7 +60,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
                               __global CacheRecord* records,
                               __global const GuideCluster* guide,
 #if STORE_STRATA
-                              __global float4* strata,
+                              __global float4* strata, __global float4* guided_samples,
 #endif
                               __global ulong* ray_total) {
   uint i = get_global_id(0);
@@ -121,14 +132,15 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
         l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u), &r,
                             &rays);
       }
-#if STORE_STRATA
-      strata[((size_t)i * M + j) * N + k] = (float4)(l, r);
-#endif
-      // What the strata estimate is the part of the light the guide leaves to them; their gradients see that part.
+      // What the strata estimate is the part of the light the guide leaves to them; their gradients, and the HSH
+      // projection of radiance records, see that part.
       if (cone_count) {
         float c = cosine_density * cos_t;
         l *= c / (c + guided_rays * guide_pdf(cones, cone_count, dir));
       }
+#if STORE_STRATA
+      strata[((size_t)i * M + j) * N + k] = (float4)(l, r);
+#endif
       e += l;
       inverse_distances += 1.0f / r;
       if (j >= first_low_row) column_horizon = fmin(column_horizon, r * sin_t);
@@ -151,8 +163,15 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
     add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
-  float3 e_guided = cone_count ? guided_irradiance(SCENE, origin, n, ng, cones, cone_count, hp.guide_rays,
-                                                    cosine_density, key, M * N, &rays)
+  __global float4* samples = 0;
+#if STORE_STRATA
+  // Every record of a guided batch owns hp.guide_rays sample pairs, zero where it took no guided rays.
+  samples = guided_samples + (size_t)i * (size_t)(2 * hp.guide_rays);
+  if (!cone_count)
+    for (uint g = 0; g < 2 * hp.guide_rays; ++g) samples[g] = (float4)(0.0f);
+#endif
+  float3 e_guided = cone_count ? guided_irradiance(SCENE, origin, t, b, n, ng, cones, cone_count, hp.guide_rays,
+                                                    cosine_density, key, M * N, samples, &rays)
                                  : (float3)(0.0f);
   e = finite_or_zero(e * norm + e_guided);
 

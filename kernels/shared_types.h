@@ -309,7 +309,8 @@ typedef struct {
   rc_uint order;         // n
   rc_uint theta_strata;  // the batch's M x N strata
   rc_uint phi_strata;
-  rc_uint pad[3];
+  rc_uint guide_rays;    // guided samples per record (kernels/records.cl guided_irradiance), 0: none
+  rc_uint pad[2];
 } HshRecordParams;
 
 // The radiance splat's constants for one frame (kernels/radiance_splat.cl).

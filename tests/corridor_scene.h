@@ -4,9 +4,11 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
+#include "brdf_reference.h"
 #include "render/frame.h"
 #include "scene/scene.h"
 
@@ -17,11 +19,19 @@ namespace rcsplat::test {
 // sampling of a record's hemisphere finds the patch in some records and misses it in others: each one that finds it
 // becomes a bright disc on the walls (the blotches of issue 10). benchmarks/hard_cases/bright_patch_corridor.py
 // writes the same scene as glTF.
-inline Scene bright_patch_corridor() {
+// With metal_wall_roughness > 0 the walls and ceiling are metal of that roughness instead of grey Lambertian: at
+// HSH_MIN_ROUGHNESS .. ROUGH_METAL_MIN_ROUGHNESS their light is radiance-cached (kernels/hsh_records.cl), and each
+// record that sees the disc holds its bright reflection.
+inline Scene bright_patch_corridor(float metal_wall_roughness = 0.0f) {
   Scene s;
   s.source = "bright-patch corridor";
   s.materials.push_back({"floor", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
   s.materials.push_back({"walls", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), false});
+  if (metal_wall_roughness > 0.0f) {
+    s.materials.back().metallic = 1.0f;
+    s.materials.back().specular = 1.0f;
+    s.materials.back().roughness = metal_wall_roughness;
+  }
   const float x0 = -1.0f, x1 = 1.0f, h = 2.5f, z1 = -10.0f;
   s.add_quad({x0, 0, 0}, {x1, 0, 0}, {x1, 0, z1}, {x0, 0, z1}, 0);  // floor, facing up
   s.add_quad({x0, h, 0}, {x0, h, z1}, {x1, h, z1}, {x1, h, 0}, 1);  // ceiling
@@ -48,7 +58,8 @@ inline Scene bright_patch_corridor() {
 // The corridor's indirect light in double precision, without sampling: the room is convex, so every point sees all of
 // the lit disc, and the one-bounce radiance it receives is the integral over that disc of (floor albedo / pi) E(x)
 // cos cos' / d^2, E the spot's irradiance with glTF's smooth cone falloff. Midpoint quadrature, polar (the integrand
-// is smooth on the disc); each pixel's value is its albedo / pi times that irradiance at its G-buffer point.
+// is smooth on the disc); a Lambertian pixel's value is its albedo / pi times that irradiance at its G-buffer point,
+// a glossy pixel's the same sum with its BRDF (tests/brdf_reference.h) toward the camera in place of albedo / pi.
 inline std::vector<float> corridor_indirect_by_quadrature(const Scene& corridor, const RenderedImage& img) {
   const SceneLight& spot = corridor.lights[0];
   const glm::dvec3 light(spot.position);
@@ -68,20 +79,40 @@ inline std::vector<float> corridor_indirect_by_quadrature(const Scene& corridor,
       cells.push_back({glm::dvec3(light.x + r * std::cos(phi), 0.0, light.z + r * std::sin(phi)),
                        floor_albedo / M_PI * irradiance * r * dr * dphi});
     }
+  const glm::vec3 eye = corridor.cameras[0].eye;
   const size_t pixels = size_t(img.width) * size_t(img.height);
   std::vector<float> indirect(pixels * 3, 0.0f);
   for (size_t p = 0; p < pixels; ++p) {
     if (img.triangle[p] < 0) continue;
     glm::dvec3 at(img.position[3 * p], img.position[3 * p + 1], img.position[3 * p + 2]);
     glm::dvec3 n(img.normal[3 * p], img.normal[3 * p + 1], img.normal[3 * p + 2]);
-    double e = 0.0;
+    const SceneMaterial& m = corridor.materials[corridor.triangle_material[size_t(img.triangle[p])]];
+    const bool lambertian = !(m.metallic > 0.0f) && !(m.specular > 0.0f);
+    // The pixel's frame: n, and the view direction's component along the surface as x.
+    const glm::dvec3 to_eye = glm::normalize(glm::dvec3(eye) - at);
+    glm::dvec3 x = to_eye - glm::dot(to_eye, n) * n;
+    if (!(glm::length(x) > 1e-9)) x = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) - n.x * n : glm::dvec3(0, 1, 0) - n.y * n;
+    x = glm::normalize(x);
+    const glm::dvec3 y = glm::cross(n, x);
+    const brdf_reference::Material brdf{{m.base_color.x, m.base_color.y, m.base_color.z}, m.metallic, m.roughness,
+                                        m.specular};
+    const brdf_reference::Vec wo{glm::dot(to_eye, x), 0.0, glm::dot(to_eye, n)};
+    double radiance[3] = {0.0, 0.0, 0.0};
     for (const Patch& c : cells) {
       glm::dvec3 to = c.x - at;
       double d2 = glm::dot(to, to), d = std::sqrt(d2);
       double cos_here = glm::dot(n, to) / d, cos_there = -to.y / d;  // the floor faces +y
-      if (cos_here > 0.0 && cos_there > 0.0) e += c.radiance_area * cos_here * cos_there / d2;
+      if (!(cos_here > 0.0 && cos_there > 0.0)) continue;
+      double e = c.radiance_area * cos_here * cos_there / d2;
+      if (lambertian) {
+        for (int ch = 0; ch < 3; ++ch) radiance[ch] += img.albedo[3 * p + ch] / M_PI * e;
+        continue;
+      }
+      const brdf_reference::Vec wi{glm::dot(to, x) / d, glm::dot(to, y) / d, cos_here};
+      std::array<double, 3> f = brdf_reference::reference_brdf(brdf, wo, wi, true, true);
+      for (int ch = 0; ch < 3; ++ch) radiance[ch] += f[size_t(ch)] * e;
     }
-    for (int ch = 0; ch < 3; ++ch) indirect[3 * p + ch] = float(img.albedo[3 * p + ch] / M_PI * e);
+    for (int ch = 0; ch < 3; ++ch) indirect[3 * p + ch] = float(radiance[ch]);
   }
   return indirect;
 }

@@ -230,7 +230,7 @@ void check_hsh_gradients(bool occluder, vec3 p) {
   // lambda_k (red) of a record at q, and the record's floats.
   auto coefficients_at = [&](vec3 q, const HemisphereParams& hp) {
     device_record(pass, q, n, hp);
-    hsh.project(pass.strata(), 0, 1, hp.theta_strata, hp.phi_strata);
+    hsh.project(pass, 0, 1, hp.theta_strata, hp.phi_strata);
     return hsh.download(0, 1);
   };
   const int checked[] = {hsh_index(0, 0), hsh_index(1, -1), hsh_index(1, 0), hsh_index(1, 1), hsh_index(2, 2),

@@ -2,6 +2,8 @@
 // image's indirect layers and the colour, and its part of the statistics.
 #pragma once
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "cl/device_scene.h"
 #include "passes/direct_pass.h"
@@ -21,6 +23,8 @@ struct IndirectFrame {
   DirectPass& direct;
   const RenderSettings& settings;
   RenderedImage& image;  // G-buffer layers, direct light and colour (emission + direct) already filled
+  // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records share them.
+  std::optional<std::vector<GuideCluster>> light_guide{};
 };
 
 // Radiance cache splatting on the device: coarse-to-fine placement, records, neighbour clamping, splat, resolve.
@@ -28,8 +32,8 @@ void splat_indirect(IndirectFrame& frame);
 // The classic irradiance cache (Ward 1988): the same placement and records, but coverage, clamping and the final
 // interpolation through an octree on the host.
 void octree_indirect(IndirectFrame& frame);
-// Builds the light guide (photons from the lights, clustered: cache/light_guide.h) and hands it to the record pass,
-// unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
+// Builds the frame's light guide (photons from the lights, clustered: cache/light_guide.h) on its first call, and
+// hands it to the record pass, unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
 void attach_light_guide(IndirectFrame& frame, RecordPass& records);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);

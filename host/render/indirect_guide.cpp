@@ -10,6 +10,10 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   const CacheSettings& cs = f.settings.cache;
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
+  if (f.light_guide) {
+    records.set_light_guide(*f.light_guide, cs.guide_rays);
+    return;
+  }
   auto t = Clock::now();
   double program_before = f.gpu.program_seconds();
   LightGuidePass photons(f.gpu, f.device_scene);
@@ -19,8 +23,9 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ 0x6c677569u);
   std::vector<GuideCluster> clusters = cluster_photons(hits, GUIDE_MAX_CLUSTERS);
   records.set_light_guide(clusters, cs.guide_rays);
+  f.light_guide = std::move(clusters);
   st.guide_photons = hits.size();
-  st.guide_clusters = unsigned(clusters.size());
+  st.guide_clusters = unsigned(f.light_guide->size());
   st.guide_s = seconds_since(t) - program_s;
 }
 

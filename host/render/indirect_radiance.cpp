@@ -91,12 +91,13 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   DeviceRecordIndex index(f.gpu, kept, cs);
   st.program_s += f.gpu.program_seconds() - program_before;
   st.hsh_table_s = seconds_since(t);
+  attach_light_guide(f, records);  // the irradiance records' guide, built once per frame
 
   RenderStats placed;
   uint32_t total = place_records(
       index, records, kept, cs, f.settings.seed ^ 0x68736831u, placed,
       [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
-        hsh.project(records.strata(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
+        hsh.project(records, first, count, hemisphere.theta_strata, hemisphere.phi_strata);
       },
       "radiance cache");
   st.radiance_records = total;
