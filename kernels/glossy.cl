@@ -1,12 +1,42 @@
-// The specular part of the indirect light at pixels whose lobe is glossy (LOBE_GLOSSY), by sampling the lobe alone:
+// The specular part of the indirect light at pixels whose lobe is glossy (LOBE_GLOSSY), by sampling the lobe:
 // the cache's irradiance carries the diffuse base (kernels/splat.cl), and a glossy lobe is too narrow for irradiance
 // to stand in for the light it reflects. Each sample reflects the view about a visible normal of the GGX lobe
 // (Heitz 2018), drawn from a grid_side x grid_side grid, and weighs the directly lit radiance its ray finds
-// (kernels/bounce.h) by F G2 / G1. Writes RGB = the mean, A = the rays the pixel cast. With SAMPLE_HSH_LOBES the
-// radiance-cacheable lobes (LOBE_HSH) are sampled too, for cache methods that do not radiance-cache them.
+// (kernels/bounce.h) by F G2 / G1; with a light guide, some samples aim at its clusters instead (below). Writes
+// RGB = the mean, A = the rays the pixel cast. With SAMPLE_HSH_LOBES the radiance-cacheable lobes (LOBE_HSH) are
+// sampled too, for cache methods that do not radiance-cache them.
 #include "bounce.h"
+#include "light_guide.h"
 
-__kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* glossy_out) {
+// With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
+// adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
+// (Veach 1997): a small bright patch that the lobe's own samples find in one pixel of many (fireflies) is found by
+// every pixel.
+// Cones are chosen in proportion to their promised irradiance times the lobe toward their axis; a cone that the
+// lobe's own samples would hit GUIDE_MAX_STRATA times or more (a wall beside a glossy floor) is left to them, as the
+// records leave such cones to their strata.
+
+// The density (solid angle) of reflecting wo about a visible normal of the lobe: D(h) G1(wo) / (4 wo.z).
+inline float visible_normal_pdf(BrdfInputs in, float3 wo, float3 wi) {
+  float a2 = in.alpha * in.alpha;
+  return ggx_d(normalize(wo + wi), a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
+}
+
+inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters, float3 p, ShadingFrame frame,
+                               BrdfInputs in, float3 wo, float lobe_samples, GuideCone* cones) {
+  if (!clusters) return 0u;
+  uint count = guide_cones(guide, clusters, p, frame.n, 4.0f * RC_PI, cones);
+  for (uint c = 0; c < count; ++c) {
+    float3 axis = to_local(frame, cones[c].axis);
+    bool small = axis.z > 0.0f &&
+                 lobe_samples * visible_normal_pdf(in, wo, axis) < GUIDE_MAX_STRATA * cones[c].inv_solid_angle;
+    cones[c].promise *= small ? luminance(brdf_eval_specular(in, wo, axis)) * axis.z : 0.0f;
+  }
+  return guide_selection_cdf(cones, count);
+}
+
+__kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                              __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];
@@ -21,24 +51,41 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __glo
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
   uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x2c1b3c6du));
-  const uint side = params.grid_side, count = params.sample_count;
+  GuideCone cones[GUIDE_MAX_CONES];
+  const uint lobe_samples = params.sample_count, side = params.grid_side;
+  const uint cone_count = glossy_guide_cones(guide, params.guide_clusters, p, frame, in, wo, (float)lobe_samples, cones);
+  const uint guided = cone_count ? (lobe_samples + 1) / 2 : 0u, count = lobe_samples + guided;
   float3 sum = (float3)(0.0f);
   uint rays = 0;
   for (uint s = 0; s < count; ++s) {
     float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
-    if (s < side * side) {
-      u1 = ((float)(s % side) + u1) / (float)side;
-      u2 = ((float)(s / side) + u2) / (float)side;
+    bool from_lobe = s < lobe_samples;
+    float3 wi;
+    uint drawn_from = GUIDE_MAX_CONES;  // a lobe sample: no cone
+    if (from_lobe) {
+      if (s < side * side) {
+        u1 = ((float)(s % side) + u1) / (float)side;
+        u2 = ((float)(s / side) + u2) / (float)side;
+      }
+      float3 h = ggx_sample_visible_normal(wo, in.alpha, u1, u2);
+      wi = 2.0f * dot(wo, h) * h - wo;
+    } else {
+      wi = to_local(frame, sample_guide(cones, cone_count, random01(key, s, 5u), u1, u2, &drawn_from));
     }
-    float3 h = ggx_sample_visible_normal(wo, in.alpha, u1, u2);
-    float3 wi = 2.0f * dot(wo, h) * h - wo;
     if (wi.z <= 0.0f) continue;
     float3 dir = to_world(frame, wi);
     if (dot(dir, ng) <= 0.0f) continue;
     float r;
-    sum += brdf_specular_weight(in, wo, wi) *
-           bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u), &r,
-                           &rays);
+    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                               &r, &rays);
+    if (!cone_count) {
+      sum += brdf_specular_weight(in, wo, wi) * l;
+      continue;
+    }
+    // Balance heuristic: f cos L / (n_lobe p_lobe + n_guide p_guide) for a sample of either kind.
+    float lobe_density = (float)lobe_samples * visible_normal_pdf(in, wo, wi);
+    float combined = lobe_density + (float)guided * guide_pdf_drawn(cones, cone_count, dir, drawn_from);
+    if (combined > 0.0f) sum += brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)lobe_samples / combined);
   }
-  glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(count, 1u)), (float)rays);
+  glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays);
 }

@@ -34,6 +34,25 @@ inline float guide_irradiance_estimate(GuideCluster g, float3 p, float3 n) {
   return luminance(vload3(0, g.flux)) * cos_record * cos_cluster * RC_INV_PI / d2;
 }
 
+// Drops the cones that promise nothing and makes the rest's selection probabilities proportional to their promises
+// (inclusive cdf, the last exactly 1). Returns how many are left.
+inline uint guide_selection_cdf(GuideCone* cones, uint count) {
+  uint kept = 0;
+  float total = 0.0f;
+  for (uint c = 0; c < count; ++c)
+    if (cones[c].promise > 0.0f) {
+      total += cones[c].promise;
+      cones[kept++] = cones[c];
+    }
+  float running = 0.0f;
+  for (uint c = 0; c < kept; ++c) {
+    running += cones[c].promise;
+    cones[c].cdf = running / total;
+  }
+  if (kept) cones[kept - 1].cdf = 1.0f;
+  return kept;
+}
+
 // The cones of the clusters worth aiming at from a record at p (normal n): those that look small (a solid angle of at
 // most max_solid_angle: the strata find anything larger often enough) and promise at least GUIDE_MIN_SHARE of the
 // irradiance all clusters together promise. Selection probabilities are proportional to those promises. Returns the
@@ -64,25 +83,24 @@ inline uint guide_cones(__global const GuideCluster* clusters, uint count, float
     cones[at].inv_solid_angle = 1.0f / (2.0f * RC_PI * one_minus_cos);
     cones[at].promise = w;
   }
-  float total = 0.0f;
-  for (uint c = 0; c < kept; ++c) total += cones[c].promise;
-  float running = 0.0f;
-  for (uint c = 0; c < kept; ++c) {
-    running += cones[c].promise;
-    cones[c].cdf = running / total;
-  }
-  if (kept) cones[kept - 1].cdf = 1.0f;
-  return kept;
+  return guide_selection_cdf(cones, kept);
 }
 
 inline float guide_selection(const GuideCone* cones, uint c) { return cones[c].cdf - (c > 0 ? cones[c - 1].cdf : 0.0f); }
 
-// The guide's density (per solid angle) of direction dir: the cones that contain it.
-inline float guide_pdf(const GuideCone* cones, uint count, float3 dir) {
+// The guide's density (per solid angle) of direction dir: the cones that contain it. For a direction the guide drew
+// from cone `drawn_from` (else GUIDE_MAX_CONES), that cone counts whatever the rounded test says: a direction on the
+// rim of a tiny cone may test outside it, and its weight would then divide by the other technique's density alone.
+inline float guide_pdf_drawn(const GuideCone* cones, uint count, float3 dir, uint drawn_from) {
   float pdf = 0.0f;
   for (uint c = 0; c < count; ++c)
-    if (dot(dir, cones[c].axis) >= cones[c].cos_max) pdf += guide_selection(cones, c) * cones[c].inv_solid_angle;
+    if (c == drawn_from || dot(dir, cones[c].axis) >= cones[c].cos_max)
+      pdf += guide_selection(cones, c) * cones[c].inv_solid_angle;
   return pdf;
+}
+
+inline float guide_pdf(const GuideCone* cones, uint count, float3 dir) {
+  return guide_pdf_drawn(cones, count, dir, GUIDE_MAX_CONES);
 }
 
 // The direction at 1 - cos(theta) = one_minus_cos from axis and at azimuth 2 pi w about it: with one_minus_cos
@@ -96,10 +114,11 @@ inline float3 cone_direction(float3 axis, float one_minus_cos, float w) {
   return (cos_p * sin_t) * t + (sin_p * sin_t) * b + cos_t * axis;
 }
 
-// A direction from the guide: a cone picked by u, uniform inside it by (v, w).
-inline float3 sample_guide(const GuideCone* cones, uint count, float u, float v, float w) {
+// A direction from the guide: a cone picked by u (into *drawn_from), uniform inside it by (v, w).
+inline float3 sample_guide(const GuideCone* cones, uint count, float u, float v, float w, uint* drawn_from) {
   uint c = 0;
   while (c + 1 < count && u >= cones[c].cdf) ++c;
+  *drawn_from = c;
   return cone_direction(cones[c].axis, v * (1.0f - cones[c].cos_max), w);
 }
 

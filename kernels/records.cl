@@ -36,14 +36,17 @@ inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 t, float3 b, f
   float3 e = (float3)(0.0f);
   for (uint g = 0; g < guided_rays; ++g) {
     uint s = first_sample + g;
-    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u));
+    uint drawn_from;
+    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u),
+                              &drawn_from);
     float cos_n = dot(dir, n);
     float4 radiance_weight = (float4)(0.0f), in_frame = (float4)(0.0f);
     if (cos_n > 0.0f && dot(dir, ng) > 0.0f) {
       float r;
       float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
                                  &r, rays);
-      float weight = 1.0f / (cosine_density * cos_n + (float)guided_rays * guide_pdf(cones, cone_count, dir));
+      float weight =
+          1.0f / (cosine_density * cos_n + (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from));
       e += l * (cos_n * weight);
       radiance_weight = (float4)(l, weight);
       in_frame = (float4)(dot(dir, t), dot(dir, b), cos_n, 0.0f);

@@ -272,6 +272,14 @@ typedef struct {
   rc_uint seed;
 } PathParams;
 
+// The glossy pass's constants (kernels/glossy.cl).
+typedef struct {
+  rc_uint sample_count;    // samples per glossy pixel
+  rc_uint grid_side;       // the lobe's samples are stratified over a grid_side x grid_side grid
+  rc_uint seed;
+  rc_uint guide_clusters;  // the light guide's clusters (0: the lobe's samples alone)
+} GlossyParams;
+
 // A material's BRDF parameters (kernels/brdf.h), for the BRDF's HSH table (kernels/brdf_table.cl).
 typedef struct {
   float base_color[3];
@@ -380,6 +388,7 @@ static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 16);
 static_assert(sizeof(RecordBatchParams) == 48);
 static_assert(sizeof(HshRecordParams) == 32);
+static_assert(sizeof(GlossyParams) == 16);
 static_assert(sizeof(RadianceSplatParams) == 32);
 static_assert(sizeof(PlacementParams) == 32);
 static_assert(sizeof(SplatParams) == 16);

@@ -14,21 +14,11 @@
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/hsh_record_pass.h"
+#include "hsh_reference.h"
 #include "test_support.h"
 
 namespace rcsplat {
 namespace {
-
-// H_l^m in double, from the definition (ALGORITHM.md section 6), written apart from kernels/hsh.h.
-double reference_hsh(int l, int m, double cos_theta, double phi) {
-  int am = std::abs(m);
-  double x = 2.0 * cos_theta - 1.0;
-  double k = std::sqrt((2.0 * l + 1.0) / (2.0 * std::numbers::pi) *
-                       std::exp(std::lgamma(l - am + 1.0) - std::lgamma(l + am + 1.0)));
-  double p = std::assoc_legendre(unsigned(l), unsigned(am), x);  // no Condon-Shortley phase, as hsh.h
-  if (m == 0) return k * p;
-  return std::sqrt(2.0) * k * p * (m > 0 ? std::cos(m * phi) : std::sin(am * phi));
-}
 
 // Directions of a quadrature over the hemisphere exact for products of two basis functions up to HSH_MAX_ORDER:
 // Gauss-Legendre in x = 2 cos(theta) - 1 (d omega = dx dphi / 2) and equal steps in phi.

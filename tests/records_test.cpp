@@ -7,8 +7,11 @@
 #include <random>
 
 #include "cache/host_records.h"
+#include "cache/hsh_rotation.h"
 #include "cache/light_guide.h"
 #include "cache_test_scenes.h"
+#include "corridor_scene.h"
+#include "hsh_reference.h"
 #include "kernels/hsh.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/hsh_record_pass.h"
@@ -266,6 +269,91 @@ TEST(HshRecordGradients, MatchFiniteDifferencesNearALitWall) { check_hsh_gradien
 
 TEST(HshRecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) {
   check_hsh_gradients(true, vec3(0.3f, 0.0f, 0.0f));
+}
+
+// Radiance records with a light guide: every coefficient lambda_k (kernels/hsh_records.cl, order 4) against the
+// host's double-precision projection of the host's own record (cache/host_records.h): each stratum's share of the
+// light times the exact integral of H_k over the stratum (Gauss-Legendre in cos(theta) and phi, 8 x 8 nodes, exact
+// for these polynomials in cos(theta) and nearly so in phi), plus each guided ray's L H_k(omega) / (n_c p_c + n_g p_g).
+// In the corridor lit by a small bright patch, where most records aim guided rays at it.
+TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
+  const Scene corridor = test::bright_patch_corridor();
+  test::TwinScene twin(SceneFrame::fitted(corridor).device_scene(corridor));
+  GpuContext& gpu = test::gpu();
+  CameraParams params = camera_params(choose_camera(twin.scene, 0, {}), 48, 48);
+  GBufferPass gbuffer(gpu, twin.device);
+  gbuffer.run(params);
+  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<uint32_t> pixels;
+  std::mt19937 rng(11);
+  while (pixels.size() < 64) {
+    uint32_t p = rng() % uint32_t(48 * 48);
+    if (g[p].triangle >= 0) pixels.push_back(p);
+  }
+  HemisphereParams hp = hemisphere(8, 16);
+  hp.min_radius_pixels = 3.0f;
+  hp.max_radius_pixels = 20.0f;
+  hp.guide_rays = 32;
+  const std::vector<GuideCluster> guide =
+      cluster_photons(LightGuidePass(gpu, twin.device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS);
+  hp.guide_clusters = uint32_t(guide.size());
+  RecordPass pass(gpu, twin.device, hp.theta_strata, true);
+  pass.set_light_guide(guide, hp.guide_rays);
+  pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
+  const int order = 4, n2 = order * order, M = int(hp.theta_strata), N = int(hp.phi_strata);
+  HshRecordPass hsh(gpu, order);
+  hsh.project(pass, 0, uint32_t(pixels.size()), hp.theta_strata, hp.phi_strata);
+  const std::vector<float> device = hsh.download(0, uint32_t(pixels.size()));
+  const std::vector<CacheRecord> records = pass.download(0, pixels.size());
+
+  // The integral of H_k over each stratum (rows equal in sin^2 theta, columns in phi), the same for every record.
+  std::vector<double> stratum_integral(size_t(M * N * n2), 0.0), nodes, weights;
+  for (int j = 0; j < M; ++j)
+    for (int k = 0; k < N; ++k) {
+      double cos_hi = std::sqrt(1.0 - double(j) / M), cos_lo = std::sqrt(1.0 - double(j + 1) / M);
+      double phi_lo = 2.0 * M_PI * k / N, phi_hi = 2.0 * M_PI * (k + 1) / N;
+      std::vector<double> c_nodes, c_weights, p_nodes, p_weights;
+      gauss_legendre(8, cos_lo, cos_hi, c_nodes, c_weights);
+      gauss_legendre(8, phi_lo, phi_hi, p_nodes, p_weights);
+      for (size_t a = 0; a < c_nodes.size(); ++a)
+        for (size_t b = 0; b < p_nodes.size(); ++b)
+          for (int l = 0; l < order; ++l)
+            for (int m = -l; m <= l; ++m)
+              stratum_integral[size_t((j * N + k) * n2 + hsh_index(l, m))] +=
+                  c_weights[a] * p_weights[b] * reference_hsh(l, m, c_nodes[a], p_nodes[b]);
+    }
+
+  std::vector<double> errors;
+  size_t with_guided_rays = 0;
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const GBufferSample& s = g[pixels[i]];
+    vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
+    vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
+    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], records[i].pixel_size, hp, guide);
+    with_guided_rays += !host.guided.empty();
+    std::vector<double> want(size_t(n2), 0.0);
+    for (size_t st = 0; st < host.strata_radiance.size(); ++st)
+      for (int k = 0; k < n2; ++k) want[size_t(k)] += host.strata_radiance[st].x * stratum_integral[st * size_t(n2) + size_t(k)];
+    for (const HostRecord::GuidedSample& gs : host.guided)
+      for (int l = 0; l < order; ++l)
+        for (int m = -l; m <= l; ++m)
+          want[size_t(hsh_index(l, m))] += gs.radiance.x * gs.weight *
+                                           reference_hsh(l, m, gs.direction.z, std::atan2(gs.direction.y, gs.direction.x));
+    double scale = 1e-9, diff = 0.0;
+    for (int k = 0; k < n2; ++k) {
+      scale = std::max(scale, std::abs(want[size_t(k)]));
+      diff = std::max(diff, std::abs(double(device[i * size_t(HSH_RECORD_PARTS * 3 * n2) + 3 * size_t(k)]) - want[size_t(k)]));
+    }
+    errors.push_back(diff / scale);
+  }
+  std::sort(errors.begin(), errors.end());
+  const double median = errors[errors.size() / 2], p95 = errors[size_t(0.95 * double(errors.size() - 1))];
+  std::printf("%zu of %zu radiance records took guided rays; coefficient error relative to the largest: median %.2e, "
+              "95%% %.2e\n", with_guided_rays, pixels.size(), median, p95);
+  EXPECT_GT(with_guided_rays, pixels.size() / 2);
+  // As the irradiance records above: float directions may send a grazing ray elsewhere in a few records.
+  EXPECT_LT(median, 1e-4);
+  EXPECT_LT(p95, 1e-2);
 }
 
 // The kernel keeps a column of M strata in an array sized when it is compiled: a larger M is refused, never clamped.

@@ -150,8 +150,11 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
     double dist;
     dvec3 l = shading.bounce_radiance(origin, glm::normalize(dir), random01(key, s, 2), random01(key, s, 3), &dist);
     ++rec.rays;
-    e_guided += l * cos_n / (strata_density * cos_n + guided * guide_density(cones, dir));
+    double weight = 1.0 / (strata_density * cos_n + guided * guide_density(cones, dir));
+    e_guided += l * cos_n * weight;
+    rec.guided.push_back({dvec3(glm::dot(dir, t), glm::dot(dir, b), cos_n), l, weight});
   }
+  rec.strata_radiance = L;
   auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };
 
   dvec3 e(0.0);

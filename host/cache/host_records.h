@@ -19,6 +19,15 @@ struct HostRecord {
   std::array<double, RECORD_HORIZON_SECTORS> horizon{};  // per 45-degree sector from t toward b
   uint32_t pixel = 0;
   uint64_t rays = 0;
+  // What a radiance record projects onto HSH: each stratum's share of the light (after the light guide's balance-
+  // heuristic weight), [row * N + column], and each guided ray that stayed above the surface: its direction in the
+  // record's frame (t, b, n), its radiance and its weight 1 / (n_c p_c + n_g p_g).
+  struct GuidedSample {
+    glm::dvec3 direction{0.0}, radiance{0.0};
+    double weight = 0;
+  };
+  std::vector<glm::dvec3> strata_radiance;
+  std::vector<GuidedSample> guided;
 };
 
 // p: surface point, n: shading normal, ng: geometric normal (both facing the viewer); pixel keys the random numbers.

@@ -6,6 +6,7 @@
 
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
+#include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
@@ -14,8 +15,9 @@ class GlossyPass {
  public:
   // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
   GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
-  // samples lobe samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; blocks until done.
-  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed);
+  // samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; with a light guide's clusters, half
+  // of them aimed at those a pixel's lobe faces (kernels/glossy.cl). Blocks until done.
+  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {});
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
   std::vector<float> download_rgba();
 
@@ -23,7 +25,7 @@ class GlossyPass {
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;
-  cl::Buffer radiance_;
+  cl::Buffer radiance_, guide_;
   size_t pixels_ = 0;
 };
 

@@ -21,7 +21,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 
   if (glossy) {
     auto t = Clock::now();
-    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed);
+    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, f.light_guide ? *f.light_guide : std::vector<GuideCluster>{});
     st.glossy_s = seconds_since(t);
     st.glossy_samples = f.settings.glossy_samples;
     std::vector<float> g = glossy->download_rgba();
