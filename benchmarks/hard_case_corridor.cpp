@@ -4,7 +4,7 @@
 // cache's indirect time, three times each (median), and prints per-pixel and 8 x 8 block relMSE of the indirect
 // layer. Writes the indirect layers as PNG at exposures -4, 0 and +2 into the output directory. With
 // METAL_WALL_ROUGHNESS the walls and ceiling are metal of that roughness (radiance-cached at 0.45 .. 0.9), and the
-// files are named glossy_corridor_*.
+// files are named corridor_metalROUGHNESS_*.
 //   build/benchmarks/hard_case_corridor OUT_DIR [GUIDE_RAYS [METAL_WALL_ROUGHNESS]]
 #include <algorithm>
 #include <cmath>
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : ".";
   GpuContext gpu(select_device(""));
   const float metal_roughness = argc > 3 ? std::stof(argv[3]) : 0.0f;
-  const std::string prefix = metal_roughness > 0.0f ? "glossy_corridor" : "corridor";
+  const std::string prefix = metal_roughness > 0.0f ? "corridor_metal" + std::string(argv[3]) : "corridor";
   const Scene corridor = test::bright_patch_corridor(metal_roughness);
   RenderSettings settings;
   settings.width = 256;

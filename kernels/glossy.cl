@@ -12,7 +12,7 @@
 // adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
 // (Veach 1997): a small bright patch that the lobe's own samples find in one pixel of many (fireflies) is found by
 // every pixel.
-// Cones are chosen in proportion to their promised irradiance times the lobe toward their axis; a cone that the
+// Cones are chosen in proportion to their promised irradiance times the lobe toward them; a cone that the
 // lobe's own samples would hit GUIDE_MAX_STRATA times or more (a wall beside a glossy floor) is left to them, as the
 // records leave such cones to their strata.
 
@@ -26,11 +26,20 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
                                BrdfInputs in, float3 wo, float lobe_samples, GuideCone* cones) {
   if (!clusters) return 0u;
   uint count = guide_cones(guide, clusters, p, frame.n, 4.0f * RC_PI, cones);
+  const float3 mirror = (float3)(-wo.x, -wo.y, wo.z);  // the lobe's peak, near enough
   for (uint c = 0; c < count; ++c) {
     float3 axis = to_local(frame, cones[c].axis);
-    bool small = axis.z > 0.0f &&
-                 lobe_samples * visible_normal_pdf(in, wo, axis) < GUIDE_MAX_STRATA * cones[c].inv_solid_angle;
-    cones[c].promise *= small ? luminance(brdf_eval_specular(in, wo, axis)) * axis.z : 0.0f;
+    // The lobe's own samples expected in the cone, the share of the lobe it holds estimated at its axis (at most 1).
+    float lobe_hits = axis.z > 0.0f ? lobe_samples * fmin(visible_normal_pdf(in, wo, axis) / cones[c].inv_solid_angle, 1.0f)
+                                    : 0.0f;
+    bool small = axis.z > 0.0f && lobe_hits < GUIDE_MAX_STRATA;
+    // The lobe at the cone's direction nearest its peak: a narrow lobe that meets only the cone's rim still counts.
+    float cos_to_mirror = dot(mirror, axis), cos_max = cones[c].cos_max;
+    float3 toward = mirror - cos_to_mirror * axis;
+    float3 nearest = cos_to_mirror >= cos_max || !(dot(toward, toward) > 0.0f)
+                         ? mirror
+                         : cos_max * axis + sqrt(fmax(1.0f - cos_max * cos_max, 0.0f)) * normalize(toward);
+    cones[c].promise *= small && nearest.z > 0.0f ? luminance(brdf_eval_specular(in, wo, nearest)) * nearest.z : 0.0f;
   }
   return guide_selection_cdf(cones, count);
 }
