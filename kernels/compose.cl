@@ -5,7 +5,7 @@
 // incident directions; a rough lobe adds its directional albedo times E / pi (the incident light taken as uniform over
 // the lobe: an approximation, docs/NOTES.md "Material kinds"), a glossy lobe the light sampled from it (glossy.cl)
 // or, with RADIANCE_CACHED, a radiance-cached lobe (LOBE_HSH) the light its records reflect toward the pixel's view
-// (radiance_splat.cl).
+// (radiance_splat.cl), plus, with a light guide, the guide's share sampled per pixel (glossy.cl guide_share).
 #include "sampling.h"
 #include "scene_args.h"
 #if HAS_SPECULAR_BRDF
@@ -24,7 +24,7 @@ __kernel void specular_albedo_table(__global float2* table) {
 
 __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global const float4* direct,
                       __global const float4* glossy, __global const float4* cached_lobes,
-                      __global const float2* specular_albedo_terms,
+                      __global const float2* specular_albedo_terms, uint glossy_holds_guide_share,
                       __global float4* indirect_out, __global float4* color_out) {
   uint i = get_global_id(0);
   if (i >= (uint)(camera->width * camera->height)) return;
@@ -39,7 +39,8 @@ __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global 
     float3 wo = view_local(frame, camera_view_direction(camera, vload3(0, g.position)));
     indirect = brdf_eval_diffuse(in, wo.z) * e;
     if (g.lobe == LOBE_ROUGH) indirect += specular_albedo(specular_albedo_terms, in, wo) * RC_INV_PI * e;
-    else if (RADIANCE_CACHED && g.lobe == LOBE_HSH) indirect += cached_lobes[i].xyz;
+    else if (RADIANCE_CACHED && g.lobe == LOBE_HSH)
+      indirect += cached_lobes[i].xyz + (glossy_holds_guide_share ? glossy[i].xyz : (float3)(0.0f));
     else indirect += glossy[i].xyz;
     indirect = finite_or_zero(indirect);
   }

@@ -4,7 +4,8 @@
 // (Heitz 2018), drawn from a grid_side x grid_side grid, and weighs the directly lit radiance its ray finds
 // (kernels/bounce.h) by F G2 / G1; with a light guide, some samples aim at its clusters instead (below). Writes
 // RGB = the mean, A = the rays the pixel cast. With SAMPLE_HSH_LOBES the radiance-cacheable lobes (LOBE_HSH) are
-// sampled too, for cache methods that do not radiance-cache them.
+// sampled too, for cache methods that do not radiance-cache them; without it, and with a light guide, the LOBE_HSH
+// pixels get the share of their light that their radiance records leave to the guide (guide_share).
 #include "bounce.h"
 #include "light_guide.h"
 
@@ -44,13 +45,46 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
   return guide_selection_cdf(cones, count);
 }
 
+// The share of a radiance-cached pixel's glossy light that its records leave to the light guide. A radiance record
+// (kernels/records.cl with STORE_STRATA) caches L n_c p_c / (n_c p_c + n_g p_g) in HSH: its strata's balance-
+// heuristic share beside n_g guided rays it does not cast. The pixel draws guide_share_samples directions from the
+// same cones (the same clusters, selection and limits, seen from the pixel) and weighs each f cos L / p_g by the rest,
+// n_g p_g / (n_c p_c + n_g p_g). So the light of a small bright patch is never truncated to the HSH order: through the
+// basis it rang (dark bands beside its reflection) on glossy walls. Directions the lobe does not reflect cast no ray.
+inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, GlossyParams params, float3 p, float3 ng,
+                          float3 origin, ShadingFrame frame, BrdfInputs in, float3 wo, uint key, uint* rays) {
+  const float strata_density = (float)params.record_strata * RC_INV_PI;  // n_c p_c / cos(theta)
+  GuideCone cones[GUIDE_MAX_CONES];
+  const uint cone_count =
+      guide_cones(guide, params.guide_clusters, p, frame.n, GUIDE_MAX_STRATA / strata_density, cones);
+  const float record_guided = (float)params.record_guide_rays;
+  float3 sum = (float3)(0.0f);
+  for (uint s = 0; s < (cone_count ? params.guide_share_samples : 0u); ++s) {
+    uint drawn_from;
+    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u),
+                              &drawn_from);
+    float3 wi = to_local(frame, dir);
+    if (wi.z <= 0.0f || dot(dir, ng) <= 0.0f) continue;
+    float3 f = brdf_eval_specular(in, wo, wi);
+    if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
+    float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
+    float r;
+    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                               &r, rays);
+    sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
+  }
+  return sum / (float)max(params.guide_share_samples, 1u);
+}
+
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
                               __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];
   bool sampled = g.lobe == LOBE_GLOSSY || (SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH);
-  if (g.triangle < 0 || !sampled) {
+  bool cached_with_guide = !SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH && params.guide_share_samples > 0u &&
+                           params.guide_clusters > 0u;
+  if (g.triangle < 0 || !(sampled || cached_with_guide)) {
     glossy_out[pixel] = (float4)(0.0f);
     return;
   }
@@ -60,6 +94,12 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
   uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x2c1b3c6du));
+  if (cached_with_guide) {
+    uint rays = 0;
+    float3 share = guide_share(SCENE, guide, params, p, ng, origin, frame, in, wo, key, &rays);
+    glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays);
+    return;
+  }
   GuideCone cones[GUIDE_MAX_CONES];
   const uint lobe_samples = params.sample_count, side = params.grid_side;
   const uint cone_count = glossy_guide_cones(guide, params.guide_clusters, p, frame, in, wo, (float)lobe_samples, cones);

@@ -54,26 +54,10 @@ inline void add_separable(__global float* part, int order, const float* factor, 
     }
 }
 
-// The light guide's rays (kernels/records.cl guided_irradiance): each a balance-heuristic Monte Carlo sample of every
-// coefficient, L H_k(omega) / (n_c p_c + n_g p_g), beside the strata, which already hold only the share of the light
-// the guide leaves to them. They move no gradient, as in the irradiance records. Returns the brightest L among them.
-inline float add_guided_samples(__global float* lambda, int order, __global const float4* samples, uint count) {
-  float basis[HSH_MAX_COEFFICIENTS], largest = 0.0f;
-  for (uint g = 0; g < count; ++g) {
-    float4 radiance_weight = samples[2 * g], in_frame = samples[2 * g + 1];
-    if (!(radiance_weight.w > 0.0f)) continue;  // below the surface, or no guided rays at this record
-    float3 weighted = radiance_weight.xyz * radiance_weight.w;
-    largest = fmax(largest, fmax(fmax(radiance_weight.x, radiance_weight.y), radiance_weight.z));
-    hsh_basis(in_frame.z, atan2(in_frame.y, in_frame.x), order, basis);
-    for (int k = 0; k < order * order; ++k) vstore3(vload3(k, lambda) + basis[k] * weighted, k, lambda);
-  }
-  return largest;
-}
-
 // One work item per record of the batch.
-__kernel void project_radiance_records(__global const float4* strata, __global const float4* guided_samples,
-                                       __global const float* column_table, HshRecordParams params,
-                                       __global float* coefficients, __global uint* max_radiance_bits) {
+__kernel void project_radiance_records(__global const float4* strata, __global const float* column_table,
+                                       HshRecordParams params, __global float* coefficients,
+                                       __global uint* max_radiance_bits) {
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
   const int order = (int)params.order, n2 = order * order, width = 2 * order - 1;
@@ -125,8 +109,6 @@ __kernel void project_radiance_records(__global const float4* strata, __global c
     add_separable(grad_t, order, theta_integrals, side_t);
     add_separable(grad_b, order, theta_integrals, side_b);
   }
-  largest = fmax(largest, add_guided_samples(lambda, order, guided_samples + (size_t)i * (size_t)(2 * params.guide_rays),
-                                              params.guide_rays));
   for (int k = 0; k < 3 * 3 * n2; ++k) block[k] = isfinite(block[k]) ? block[k] : 0.0f;
   if (isfinite(largest)) atomic_max(max_radiance_bits, as_uint(largest));
 }

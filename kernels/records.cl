@@ -8,8 +8,8 @@
 
 // The host compiles this kernel with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
 // HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M. With
-// STORE_STRATA = 1 (radiance caching) each stratum's radiance and hit distance are also kept, for the HSH projection
-// of kernels/hsh_records.cl.
+// STORE_STRATA = 1 (radiance caching) each stratum's radiance (the share the light guide leaves it) and hit distance
+// are also kept, for the HSH projection of kernels/hsh_records.cl, and the record casts no guided rays.
 
 // gradient[axis] += direction[axis] * value, for a world-space direction and an RGB value.
 inline void add_outer(float3* gradient, float3 direction, float3 value) {
@@ -27,12 +27,10 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 
 // The guide's share of E (kernels/light_guide.h): guided_rays rays into the record's cones, each weighted
 // f / (n_c p_c + n_g p_g) with f = L cos(theta) (the balance heuristic beside the strata's cosine density). Their
-// random numbers follow the strata's, from sample M N on. With samples (radiance records), each ray also leaves two
-// float4 there for the HSH projection: (L, 1 / (n_c p_c + n_g p_g)) and its direction in the record's frame (t, b, n);
-// a ray below the surface leaves zeros.
-inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 t, float3 b, float3 n, float3 ng,
-                                const GuideCone* cones, uint cone_count, uint guided_rays, float cosine_density,
-                                uint key, uint first_sample, __global float4* samples, uint* rays) {
+// random numbers follow the strata's, from sample M N on.
+inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
+                                uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
+                                uint* rays) {
   float3 e = (float3)(0.0f);
   for (uint g = 0; g < guided_rays; ++g) {
     uint s = first_sample + g;
@@ -40,21 +38,12 @@ inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 t, float3 b, f
     float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u),
                               &drawn_from);
     float cos_n = dot(dir, n);
-    float4 radiance_weight = (float4)(0.0f), in_frame = (float4)(0.0f);
-    if (cos_n > 0.0f && dot(dir, ng) > 0.0f) {
-      float r;
-      float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                                 &r, rays);
-      float weight =
-          1.0f / (cosine_density * cos_n + (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from));
-      e += l * (cos_n * weight);
-      radiance_weight = (float4)(l, weight);
-      in_frame = (float4)(dot(dir, t), dot(dir, b), cos_n, 0.0f);
-    }
-    if (samples) {
-      samples[2 * g] = radiance_weight;
-      samples[2 * g + 1] = in_frame;
-    }
+    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
+    float r;
+    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                               &r, rays);
+    e += l * (cos_n / (cosine_density * cos_n +
+                       (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from)));
   }
   return e;
 }
@@ -63,7 +52,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
                               __global CacheRecord* records,
                               __global const GuideCluster* guide,
 #if STORE_STRATA
-                              __global float4* strata, __global float4* guided_samples,
+                              __global float4* strata,
 #endif
                               __global ulong* ray_total) {
   uint i = get_global_id(0);
@@ -166,16 +155,11 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
     add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
-  __global float4* samples = 0;
-#if STORE_STRATA
-  // Every record of a guided batch owns hp.guide_rays sample pairs, zero where it took no guided rays.
-  samples = guided_samples + (size_t)i * (size_t)(2 * hp.guide_rays);
-  if (!cone_count)
-    for (uint g = 0; g < 2 * hp.guide_rays; ++g) samples[g] = (float4)(0.0f);
-#endif
-  float3 e_guided = cone_count ? guided_irradiance(SCENE, origin, t, b, n, ng, cones, cone_count, hp.guide_rays,
-                                                    cosine_density, key, M * N, samples, &rays)
-                                 : (float3)(0.0f);
+  // Radiance records (STORE_STRATA) cache only the strata's share; each pixel samples the guide's share itself
+  // (kernels/glossy.cl guided_share), so that a small bright source never goes through the truncated HSH basis.
+  float3 e_guided = cone_count && !STORE_STRATA ? guided_irradiance(SCENE, origin, n, ng, cones, cone_count,
+                                                                    hp.guide_rays, cosine_density, key, M * N, &rays)
+                                                 : (float3)(0.0f);
   e = finite_or_zero(e * norm + e_guided);
 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.

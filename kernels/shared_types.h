@@ -278,6 +278,12 @@ typedef struct {
   rc_uint grid_side;       // the lobe's samples are stratified over a grid_side x grid_side grid
   rc_uint seed;
   rc_uint guide_clusters;  // the light guide's clusters (0: the lobe's samples alone)
+  // Radiance caching with a light guide: the radiance records' strata (M N) and guided rays per record (n_g), whose
+  // balance-heuristic share the records leave to each pixel, and the pixel's samples of it (0: none).
+  rc_uint record_strata;
+  rc_uint record_guide_rays;
+  rc_uint guide_share_samples;
+  rc_uint pad;
 } GlossyParams;
 
 // A material's BRDF parameters (kernels/brdf.h), for the BRDF's HSH table (kernels/brdf_table.cl).
@@ -317,8 +323,7 @@ typedef struct {
   rc_uint order;         // n
   rc_uint theta_strata;  // the batch's M x N strata
   rc_uint phi_strata;
-  rc_uint guide_rays;    // guided samples per record (kernels/records.cl guided_irradiance), 0: none
-  rc_uint pad[2];
+  rc_uint pad[3];
 } HshRecordParams;
 
 // The radiance splat's constants for one frame (kernels/radiance_splat.cl).
@@ -388,7 +393,7 @@ static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 16);
 static_assert(sizeof(RecordBatchParams) == 48);
 static_assert(sizeof(HshRecordParams) == 32);
-static_assert(sizeof(GlossyParams) == 16);
+static_assert(sizeof(GlossyParams) == 32);
 static_assert(sizeof(RadianceSplatParams) == 32);
 static_assert(sizeof(PlacementParams) == 32);
 static_assert(sizeof(SplatParams) == 16);

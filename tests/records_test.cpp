@@ -9,11 +9,13 @@
 #include "cache/host_records.h"
 #include "cache/hsh_rotation.h"
 #include "cache/light_guide.h"
+#include "brdf_reference.h"
 #include "cache_test_scenes.h"
 #include "corridor_scene.h"
 #include "hsh_reference.h"
 #include "kernels/hsh.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/glossy_pass.h"
 #include "passes/hsh_record_pass.h"
 #include "passes/light_guide_pass.h"
 #include "passes/record_pass.h"
@@ -21,6 +23,8 @@
 #include "scene/cornell_box.h"
 #include "scene/scene_frame.h"
 #include "util/error.h"
+#include "util/ray_offset.h"
+#include "kernels/counter_random.h"
 
 namespace rcsplat {
 namespace {
@@ -76,6 +80,17 @@ HemisphereParams hemisphere(unsigned m, unsigned n) {
 
 double irradiance_r(const CacheRecord& r) { return r.irradiance[0]; }
 
+// count pixels (repeats allowed) drawn at random among those that see geometry.
+std::vector<uint32_t> random_covered_pixels(const std::vector<GBufferSample>& g, size_t count, unsigned seed) {
+  std::vector<uint32_t> pixels;
+  std::mt19937 rng(seed);
+  while (pixels.size() < count) {
+    uint32_t p = rng() % uint32_t(g.size());
+    if (g[p].triangle >= 0) pixels.push_back(p);
+  }
+  return pixels;
+}
+
 // The record kernel against compute_host_record on 200 random pixels of the scene's camera view; with a light guide
 // (photons from the scene's lights, clustered), guided rays too. Returns how many records took guided rays.
 size_t expect_records_match_host(const Scene& scene, bool guided) {
@@ -87,12 +102,7 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
   GBufferPass gbuffer(gpu, twin.device);
   gbuffer.run(params);
   std::vector<GBufferSample> g = gbuffer.download();
-  std::vector<uint32_t> pixels;
-  std::mt19937 rng(3);
-  while (pixels.size() < 200) {
-    uint32_t p = rng() % uint32_t(w * h);
-    if (g[p].triangle >= 0) pixels.push_back(p);
-  }
+  std::vector<uint32_t> pixels = random_covered_pixels(g, 200, 3);
   HemisphereParams hp = hemisphere(8, 16);
   hp.min_radius_pixels = 3.0f;
   hp.max_radius_pixels = 20.0f;
@@ -273,23 +283,18 @@ TEST(HshRecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) {
 
 // Radiance records with a light guide: every coefficient lambda_k (kernels/hsh_records.cl, order 4) against the
 // host's double-precision projection of the host's own record (cache/host_records.h): each stratum's share of the
-// light times the exact integral of H_k over the stratum (Gauss-Legendre in cos(theta) and phi, 8 x 8 nodes, exact
-// for these polynomials in cos(theta) and nearly so in phi), plus each guided ray's L H_k(omega) / (n_c p_c + n_g p_g).
-// In the corridor lit by a small bright patch, where most records aim guided rays at it.
+// light (the balance-heuristic weight beside the guide's rays, which the pixels take: kernels/glossy.cl guide_share)
+// times the exact integral of H_k over the stratum (Gauss-Legendre in cos(theta) and phi, 8 x 8 nodes, exact for
+// these polynomials in cos(theta) and nearly so in phi). In the Cornell box, where every record's strata see light
+// and most see some of the guide's clusters (in the corridor most strata see nothing at all: zero on both sides).
 TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
-  const Scene corridor = test::bright_patch_corridor();
-  test::TwinScene twin(SceneFrame::fitted(corridor).device_scene(corridor));
+  test::TwinScene twin(make_cornell_box());
   GpuContext& gpu = test::gpu();
   CameraParams params = camera_params(choose_camera(twin.scene, 0, {}), 48, 48);
   GBufferPass gbuffer(gpu, twin.device);
   gbuffer.run(params);
   std::vector<GBufferSample> g = gbuffer.download();
-  std::vector<uint32_t> pixels;
-  std::mt19937 rng(11);
-  while (pixels.size() < 64) {
-    uint32_t p = rng() % uint32_t(48 * 48);
-    if (g[p].triangle >= 0) pixels.push_back(p);
-  }
+  std::vector<uint32_t> pixels = random_covered_pixels(g, 64, 11);
   HemisphereParams hp = hemisphere(8, 16);
   hp.min_radius_pixels = 3.0f;
   hp.max_radius_pixels = 20.0f;
@@ -324,21 +329,16 @@ TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
     }
 
   std::vector<double> errors;
-  size_t with_guided_rays = 0;
+  size_t with_guided_rays = 0;  // records whose host twin cast guided rays: those whose strata are weighted
   for (size_t i = 0; i < pixels.size(); ++i) {
     const GBufferSample& s = g[pixels[i]];
     vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
     vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
     HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], records[i].pixel_size, hp, guide);
-    with_guided_rays += !host.guided.empty();
+    with_guided_rays += host.rays > hp.theta_strata * hp.phi_strata;
     std::vector<double> want(size_t(n2), 0.0);
     for (size_t st = 0; st < host.strata_radiance.size(); ++st)
       for (int k = 0; k < n2; ++k) want[size_t(k)] += host.strata_radiance[st].x * stratum_integral[st * size_t(n2) + size_t(k)];
-    for (const HostRecord::GuidedSample& gs : host.guided)
-      for (int l = 0; l < order; ++l)
-        for (int m = -l; m <= l; ++m)
-          want[size_t(hsh_index(l, m))] += gs.radiance.x * gs.weight *
-                                           reference_hsh(l, m, gs.direction.z, std::atan2(gs.direction.y, gs.direction.x));
     double scale = 1e-9, diff = 0.0;
     for (int k = 0; k < n2; ++k) {
       scale = std::max(scale, std::abs(want[size_t(k)]));
@@ -348,12 +348,82 @@ TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
   }
   std::sort(errors.begin(), errors.end());
   const double median = errors[errors.size() / 2], p95 = errors[size_t(0.95 * double(errors.size() - 1))];
-  std::printf("%zu of %zu radiance records took guided rays; coefficient error relative to the largest: median %.2e, "
+  std::printf("%zu of %zu radiance records see a cone; coefficient error relative to the largest: median %.2e, "
               "95%% %.2e\n", with_guided_rays, pixels.size(), median, p95);
-  EXPECT_GT(with_guided_rays, pixels.size() / 2);
+  EXPECT_GT(with_guided_rays, pixels.size() / 8);  // 17 of 64: enough that a wrong weight shows in the 95th percentile
   // As the irradiance records above: float directions may send a grazing ray elsewhere in a few records.
   EXPECT_LT(median, 1e-4);
   EXPECT_LT(p95, 1e-2);
+}
+
+// The other half of that split (kernels/glossy.cl guide_share): at each radiance-cached pixel of the corridor with
+// metal walls (roughness 0.6), the glossy pass's estimate of the light the records leave to the guide, against the
+// same estimator in double on the host (the same random numbers; cones, directions and densities from
+// cache/host_records.h, Embree rays, the BRDF of tests/brdf_reference.h): the mean over the pixel's samples of
+// f cos L n_g / (n_c p_c + n_g p_g), drawn from the records' own cones. Nearly every cone holds nearly all of the
+// weight here (n_g p_g >> n_c p_c), so a weight of 1 in its place would still be off by about 1%: far above float.
+TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {
+  const Scene corridor = test::bright_patch_corridor(0.6f);
+  test::TwinScene twin(SceneFrame::fitted(corridor).device_scene(corridor));
+  GpuContext& gpu = test::gpu();
+  const int w = 64, h = 48;
+  CameraParams camera = camera_params(choose_camera(twin.scene, 0, {}), w, h);
+  GBufferPass gbuffer(gpu, twin.device);
+  gbuffer.run(camera);
+  const std::vector<GBufferSample> g = gbuffer.download();
+  const std::vector<GuideCluster> guide =
+      cluster_photons(LightGuidePass(gpu, twin.device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS);
+  const unsigned samples = 16, seed = 9, record_strata = 16 * 32, record_guide_rays = 64;
+  GlossyPass glossy(gpu, twin.device, false);
+  glossy.run(gbuffer.view(), samples, seed, guide, record_strata, record_guide_rays);
+  const std::vector<float> device = glossy.download_rgba();
+  const unsigned share_samples = samples;
+  const SceneMaterial& metal = twin.scene.materials[1];
+  const brdf_reference::Material brdf{{metal.base_color.x, metal.base_color.y, metal.base_color.z}, metal.metallic,
+                                      metal.roughness, metal.specular};
+  const dvec3 eye(camera.eye[0], camera.eye[1], camera.eye[2]);
+
+  std::vector<double> errors;
+  size_t with_light = 0;
+  for (uint32_t pixel = 0; pixel < uint32_t(w * h); ++pixel) {
+    const GBufferSample& s = g[pixel];
+    if (s.triangle < 0 || s.lobe != LOBE_HSH) continue;
+    const vec3 pf(s.position[0], s.position[1], s.position[2]), ngf(s.geometric_normal[0], s.geometric_normal[1],
+                                                                      s.geometric_normal[2]);
+    const dvec3 p(pf), n(s.normal[0], s.normal[1], s.normal[2]), ng(ngf), wo_world = glm::normalize(eye - p);
+    const vec3 origin = offset_ray_origin(pf, ngf);
+    // A frame around n with the view in its x-z plane: the BRDF is isotropic.
+    dvec3 x = glm::normalize(wo_world - glm::dot(wo_world, n) * n), y = glm::cross(n, x);
+    const brdf_reference::Vec wo{glm::dot(wo_world, x), 0.0, glm::dot(wo_world, n)};
+    const std::vector<HostGuideCone> cones = host_guide_cones(guide, p, n, int(record_strata));
+    const uint32_t key = hash_u32(pixel ^ hash_u32(seed ^ 0x2c1b3c6du));
+    double want = 0.0;
+    for (unsigned k = 0; k < (cones.empty() ? 0u : share_samples); ++k) {
+      dvec3 dir = host_guide_direction(cones, random01(key, k, 5), random01(key, k, 0), random01(key, k, 1));
+      const brdf_reference::Vec wi{glm::dot(dir, x), glm::dot(dir, y), glm::dot(dir, n)};
+      if (wi.z <= 0.0 || glm::dot(dir, ng) <= 0.0) continue;
+      double f = brdf_reference::reference_brdf(brdf, wo, wi, false, true)[0];
+      if (!(f > 0.0)) continue;
+      double distance;
+      dvec3 l = twin.shading.bounce_radiance(origin, glm::normalize(vec3(dir)), random01(key, k, 2),
+                                             random01(key, k, 3), &distance);
+      double strata_density = record_strata / M_PI * wi.z, guided = double(record_guide_rays);
+      want += f * l.x * wi.z * guided / (strata_density + guided * host_guide_density(cones, dir));
+    }
+    want /= share_samples;
+    const double got = device[4 * pixel];
+    if (want == 0.0 && got == 0.0) continue;
+    ++with_light;
+    errors.push_back(std::abs(got - want) / std::max(std::abs(want), 1e-12));
+  }
+  ASSERT_GT(with_light, 100u) << "too few radiance-cached pixels see the patch";
+  std::sort(errors.begin(), errors.end());
+  const double median = errors[errors.size() / 2], p95 = errors[size_t(0.95 * double(errors.size() - 1))];
+  std::printf("%zu radiance-cached pixels with a guide share; relative error median %.2e, 95%% %.2e\n", with_light,
+              median, p95);
+  // Float directions, BRDF and distances against double: a grazing ray may land elsewhere in a few pixels.
+  EXPECT_LT(median, 1e-4);
+  EXPECT_LT(p95, 5e-3);
 }
 
 // The kernel keeps a column of M strata in an array sized when it is compiled: a larger M is refused, never clamped.

@@ -37,12 +37,6 @@ void frame_around(const dvec3& n, dvec3& t, dvec3& b) {
 
 dvec3 load3(const float* v) { return dvec3(v[0], v[1], v[2]); }
 
-// A light-guide cone as a record at p sees it: the cluster's bounding sphere, and the share of the guided rays it gets.
-struct Cone {
-  dvec3 axis;
-  double cos_max = 1.0, solid_angle = 0.0, probability = 0.0, cdf = 0.0;
-};
-
 // The cluster's flux leaving a disc toward p: Phi cos cos' / (pi d^2), visibility ignored, d at least the radius.
 double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n) {
   dvec3 to = load3(g.centre) - p;
@@ -54,13 +48,16 @@ double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n
   return flux * cos_here * cos_there / (kPi * d * d);
 }
 
+}  // namespace
+
 // The cones worth aiming at: at most GUIDE_MAX_STRATA strata of solid angle, at least GUIDE_MIN_SHARE of the
 // irradiance all clusters promise, the point outside 1.5 r^2.
-std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3& p, const dvec3& n, int strata) {
+std::vector<HostGuideCone> host_guide_cones(const std::vector<GuideCluster>& guide, const dvec3& p, const dvec3& n,
+                                            int strata) {
   std::vector<double> promise;
   double promised = 0.0;
   for (const GuideCluster& g : guide) promised += promise.emplace_back(promised_irradiance(g, p, n));
-  std::vector<Cone> cones;
+  std::vector<HostGuideCone> cones;
   double total = 0.0;
   for (size_t i = 0; i < guide.size(); ++i) {
     const GuideCluster& g = guide[i];
@@ -68,7 +65,7 @@ std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3&
     dvec3 to = load3(g.centre) - p;
     double d2 = glm::dot(to, to), r2 = double(g.radius) * g.radius;
     if (!(w > 0.0) || w < double(GUIDE_MIN_SHARE) * promised || !(d2 > 1.5 * r2)) continue;
-    Cone c;
+    HostGuideCone c;
     c.axis = to / std::sqrt(d2);
     c.cos_max = std::sqrt(1.0 - r2 / d2);
     c.solid_angle = 2.0 * kPi * (1.0 - c.cos_max);
@@ -78,26 +75,37 @@ std::vector<Cone> cones_for(const std::vector<GuideCluster>& guide, const dvec3&
     cones.push_back(c);
   }
   // The GUIDE_MAX_CONES that promise most, the clusters' order kept among equals.
-  std::stable_sort(cones.begin(), cones.end(), [](const Cone& a, const Cone& b) { return a.probability > b.probability; });
+  std::stable_sort(cones.begin(), cones.end(),
+                   [](const HostGuideCone& a, const HostGuideCone& b) { return a.probability > b.probability; });
   if (cones.size() > GUIDE_MAX_CONES) cones.resize(GUIDE_MAX_CONES);
   total = 0.0;
-  for (const Cone& c : cones) total += c.probability;
+  for (const HostGuideCone& c : cones) total += c.probability;
   double running = 0.0;
-  for (Cone& c : cones) {
+  for (HostGuideCone& c : cones) {
     c.probability /= total;
     c.cdf = (running += c.probability);
   }
   return cones;
 }
 
-double guide_density(const std::vector<Cone>& cones, const dvec3& dir) {
+double host_guide_density(const std::vector<HostGuideCone>& cones, const dvec3& dir) {
   double pdf = 0.0;
-  for (const Cone& c : cones)
+  for (const HostGuideCone& c : cones)
     if (glm::dot(dir, c.axis) >= c.cos_max) pdf += c.probability / c.solid_angle;
   return pdf;
 }
 
-}  // namespace
+dvec3 host_guide_direction(const std::vector<HostGuideCone>& cones, double u, double v, double w) {
+  size_t chosen = 0;
+  while (chosen + 1 < cones.size() && u >= cones[chosen].cdf) ++chosen;
+  const HostGuideCone& cone = cones[chosen];
+  double one_minus_cos = v * (1.0 - cone.cos_max), phi = 2.0 * kPi * w;
+  double cos_t = 1.0 - one_minus_cos, sin_t = std::sqrt(std::max(one_minus_cos * (2.0 - one_minus_cos), 0.0));
+  dvec3 ct, cb;
+  frame_around(cone.axis, ct, cb);
+  return std::cos(phi) * sin_t * ct + std::sin(phi) * sin_t * cb + cos_t * cone.axis;
+}
+
 
 HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, const glm::vec3& nf,
                                const glm::vec3& ngf, uint32_t pixel, double pixel_size, const HemisphereParams& hp,
@@ -108,7 +116,8 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   dvec3 t, b;
   frame_around(n, t, b);
   uint32_t key = hash_u32(pixel ^ hash_u32(hp.seed));
-  const std::vector<Cone> cones = hp.guide_rays ? cones_for(guide, p, n, M * N) : std::vector<Cone>{};
+  const std::vector<HostGuideCone> cones =
+      hp.guide_rays ? host_guide_cones(guide, p, n, M * N) : std::vector<HostGuideCone>{};
   const double guided = cones.empty() ? 0.0 : double(hp.guide_rays), strata_density = M * N / kPi;
 
   std::vector<dvec3> L(size_t(M * N));
@@ -129,30 +138,20 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
         ++rec.rays;
       }
       // Balance heuristic: the strata keep their density's share of the light.
-      if (!cones.empty()) l *= strata_density * ct / (strata_density * ct + guided * guide_density(cones, dir));
+      if (!cones.empty()) l *= strata_density * ct / (strata_density * ct + guided * host_guide_density(cones, dir));
       L[size_t(s)] = l;
       r[size_t(s)] = dist;
     }
   dvec3 e_guided(0.0);
   for (uint32_t g = 0; g < (cones.empty() ? 0u : hp.guide_rays); ++g) {
     uint32_t s = uint32_t(M * N) + g;
-    double u = random01(key, s, 5);
-    size_t chosen = 0;
-    while (chosen + 1 < cones.size() && u >= cones[chosen].cdf) ++chosen;
-    const Cone& cone = cones[chosen];
-    double one_minus_cos = random01(key, s, 0) * (1.0 - cone.cos_max), phi = 2.0 * kPi * random01(key, s, 1);
-    double cos_t = 1.0 - one_minus_cos, sin_t = std::sqrt(std::max(one_minus_cos * (2.0 - one_minus_cos), 0.0));
-    dvec3 ct, cb;
-    frame_around(cone.axis, ct, cb);
-    dvec3 dir = std::cos(phi) * sin_t * ct + std::sin(phi) * sin_t * cb + cos_t * cone.axis;
+    dvec3 dir = host_guide_direction(cones, random01(key, s, 5), random01(key, s, 0), random01(key, s, 1));
     double cos_n = glm::dot(dir, n);
     if (cos_n <= 0.0 || glm::dot(dir, ng) <= 0.0) continue;
     double dist;
     dvec3 l = shading.bounce_radiance(origin, glm::normalize(dir), random01(key, s, 2), random01(key, s, 3), &dist);
     ++rec.rays;
-    double weight = 1.0 / (strata_density * cos_n + guided * guide_density(cones, dir));
-    e_guided += l * cos_n * weight;
-    rec.guided.push_back({dvec3(glm::dot(dir, t), glm::dot(dir, b), cos_n), l, weight});
+    e_guided += l * cos_n / (strata_density * cos_n + guided * host_guide_density(cones, dir));
   }
   rec.strata_radiance = L;
   auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };

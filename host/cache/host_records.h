@@ -20,14 +20,8 @@ struct HostRecord {
   uint32_t pixel = 0;
   uint64_t rays = 0;
   // What a radiance record projects onto HSH: each stratum's share of the light (after the light guide's balance-
-  // heuristic weight), [row * N + column], and each guided ray that stayed above the surface: its direction in the
-  // record's frame (t, b, n), its radiance and its weight 1 / (n_c p_c + n_g p_g).
-  struct GuidedSample {
-    glm::dvec3 direction{0.0}, radiance{0.0};
-    double weight = 0;
-  };
+  // heuristic weight), [row * N + column].
   std::vector<glm::dvec3> strata_radiance;
-  std::vector<GuidedSample> guided;
 };
 
 // p: surface point, n: shading normal, ng: geometric normal (both facing the viewer); pixel keys the random numbers.
@@ -39,5 +33,17 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& p, c
 
 // The record in the device layout.
 CacheRecord to_cache_record(const HostRecord& r);
+
+// The light guide's cones as a point p (normal n) sees them, in double (kernels/light_guide.h guide_cones for a
+// hemisphere of `strata` strata): the clusters' bounding spheres, each with its selection probability and inclusive
+// cdf; their density of a unit direction; and the direction the guide draws from (u, v, w) (sample_guide).
+struct HostGuideCone {
+  glm::dvec3 axis{0.0};
+  double cos_max = 1.0, solid_angle = 0.0, probability = 0.0, cdf = 0.0;
+};
+std::vector<HostGuideCone> host_guide_cones(const std::vector<GuideCluster>& guide, const glm::dvec3& p,
+                                            const glm::dvec3& n, int strata);
+double host_guide_density(const std::vector<HostGuideCone>& cones, const glm::dvec3& dir);
+glm::dvec3 host_guide_direction(const std::vector<HostGuideCone>& cones, double u, double v, double w);
 
 }  // namespace rcsplat

@@ -59,9 +59,10 @@ void print_summary(const Scene& scene, const RenderedImage& image, const RenderS
                 mrays_per_second(s.record_rays, s.records_s));
     std::printf("time         records %.3f s, placement %.3f s, splat %.3f s, resolve %.3f s\n", s.records_s,
                 s.placement_s, s.splat_s, s.resolve_s);
-    if (s.rough_pixels || s.glossy_pixels)
-      std::printf("specular     %llu rough pixels from the irradiance; %llu glossy pixels, %u lobe samples each: %llu "
-                  "rays, %.3f s (%.2f Mrays/s)\n",
+    if (s.rough_pixels || s.glossy_pixels || s.glossy_rays)
+      std::printf("specular     %llu rough pixels from the irradiance; %llu glossy pixels, %u lobe samples each; per "
+                  "pixel (lobes, and the light guide's share of radiance-cached pixels): %llu rays, %.3f s (%.2f "
+                  "Mrays/s)\n",
                   (unsigned long long)s.rough_pixels, (unsigned long long)s.glossy_pixels, s.glossy_samples,
                   (unsigned long long)s.glossy_rays, s.glossy_s, mrays_per_second(s.glossy_rays, s.glossy_s));
     if (s.hsh_order)

@@ -21,7 +21,7 @@ ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radianc
 }
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
-                      const cl::Buffer* glossy, const cl::Buffer* cached_lobes) {
+                      const cl::Buffer* glossy, const cl::Buffer* cached_lobes, bool glossy_holds_guide_share) {
   if (gbuffer.pixel_count() != pixels_ || !indirect_()) {
     pixels_ = gbuffer.pixel_count();
     size_t bytes = std::max<size_t>(pixels_, 1) * 4 * sizeof(float);
@@ -36,6 +36,7 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
       .set_buffer<cl_float4>("glossy", glossy ? *glossy : irradiance)
       .set_buffer<cl_float4>("cached_lobes", cached_lobes ? *cached_lobes : irradiance)
       .set_buffer<cl_float2>("specular_albedo_terms", specular_albedo_table_)
+      .set("glossy_holds_guide_share", cl_uint(glossy && glossy_holds_guide_share))
       .set_buffer<cl_float4>("indirect_out", indirect_)
       .set_buffer<cl_float4>("color_out", color_);
   kernel_.launch(pixels_, gpu_.groups().per_item);

@@ -15,9 +15,10 @@ class ComposePass {
   ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached);
   // irradiance: float4 per pixel (E.rgb, weight; 0 where uncovered); direct: DirectPass's RGBA; glossy: GlossyPass's
   // RGBA, or nullptr where no pixel is sampled; cached_lobes: RadianceSplatPass's lobe radiance, or nullptr without
-  // radiance caching. Blocks until done.
+  // radiance caching; glossy_holds_guide_share: glossy also holds the radiance-cached pixels' light-guide share
+  // (kernels/glossy.cl guide_share), added to their cached lobes. Blocks until done.
   void run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct, const cl::Buffer* glossy,
-           const cl::Buffer* cached_lobes);
+           const cl::Buffer* cached_lobes, bool glossy_holds_guide_share = false);
 
   std::vector<float> indirect_rgba();  // A = 1 where a record reached the pixel
   std::vector<float> color_rgba();

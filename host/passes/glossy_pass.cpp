@@ -1,5 +1,6 @@
 #include "passes/glossy_pass.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -12,7 +13,8 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
       scene_(scene),
       kernel_(gpu.kernel("glossy.cl", "glossy_indirect", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable))) {}
 
-void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide) {
+void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
+                     unsigned record_strata, unsigned record_guide_rays) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
     radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
@@ -23,6 +25,11 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
   params.grid_side = unsigned(std::sqrt(double(samples)));
   params.seed = seed;
   params.guide_clusters = cl_uint(guide.size());
+  if (record_strata && record_guide_rays && !guide.empty()) {
+    params.record_strata = record_strata;
+    params.record_guide_rays = record_guide_rays;
+    params.guide_share_samples = std::max(1u, samples);
+  }
   // An unused one-cluster buffer when there is no guide: the kernel reads none.
   guide_ = gpu_.upload(guide.empty() ? std::vector<GuideCluster>(1, GuideCluster{}) : guide);
   scene_.bind(kernel_);

@@ -16,8 +16,11 @@ class GlossyPass {
   // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
   GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
   // samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; with a light guide's clusters, half
-  // of them aimed at those a pixel's lobe faces (kernels/glossy.cl). Blocks until done.
-  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {});
+  // as many again aimed at those a pixel's lobe faces (kernels/glossy.cl). With radiance records that left the
+  // guide's share to the pixels (record_guide_rays guided rays beside record_strata strata, both > 0), the
+  // radiance-cached pixels get that share from as many samples. Blocks until done.
+  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {},
+           unsigned record_strata = 0, unsigned record_guide_rays = 0);
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
   std::vector<float> download_rgba();
 

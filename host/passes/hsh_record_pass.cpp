@@ -91,13 +91,11 @@ void HshRecordPass::project(const RecordPass& records, uint32_t first, uint32_t 
   params.order = cl_uint(order_);
   params.theta_strata = theta_strata;
   params.phi_strata = phi_strata;
-  params.guide_rays = records.guide_rays();
   if (phi_strata != table_columns_) {
     column_table_ = gpu_.upload(hsh_column_table(order_, phi_strata));
     table_columns_ = phi_strata;
   }
   project_.set_buffer<cl_float4>("strata", records.strata())
-      .set_buffer<cl_float4>("guided_samples", records.guided_samples())
       .set_buffer<cl_float>("column_table", column_table_)
       .set("params", params)
       .set_buffer<cl_float>("coefficients", coefficients_)

@@ -22,8 +22,8 @@ class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
 
-  // Records first .. first + count - 1 from the strata and guided samples of their batch, the last one records
-  // computed (theta_strata x phi_strata strata each); blocks.
+  // Records first .. first + count - 1 from the strata of their batch, the last one records computed
+  // (theta_strata x phi_strata strata each); blocks.
   void project(const RecordPass& records, uint32_t first, uint32_t count, unsigned theta_strata, unsigned phi_strata);
   const cl::Buffer& coefficients() const { return coefficients_; }
   int order() const { return order_; }

@@ -75,12 +75,7 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
       strata_capacity_ = std::max(strata, strata_capacity_ * 2);
       strata_ = gpu_.buffer(CL_MEM_READ_WRITE, strata_capacity_ * sizeof(cl_float4), "record strata");
     }
-    size_t guided = std::max<size_t>(size_t(count) * guide_rays_ * 2, 1);
-    if (guided > guided_capacity_) {
-      guided_capacity_ = std::max(guided, guided_capacity_ * 2);
-      guided_samples_ = gpu_.buffer(CL_MEM_READ_WRITE, guided_capacity_ * sizeof(cl_float4), "guided record samples");
-    }
-    kernel_.set_buffer<cl_float4>("strata", strata_).set_buffer<cl_float4>("guided_samples", guided_samples_);
+    kernel_.set_buffer<cl_float4>("strata", strata_);
   }
   kernel_.launch(count, gpu_.groups().per_record);
   gpu_.queue().finish();

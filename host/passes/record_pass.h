@@ -26,11 +26,9 @@ class RecordPass {
   void set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record);
   const cl::Buffer& records() const { return records_; }
   // With store_strata, of the last batch: float4 (L.rgb, hit distance) per stratum, [(i * M + row) * N + column] for
-  // its record i, L the share of the light the light guide leaves to the strata; and guide_rays() pairs of float4 per
-  // record, [2 * (i * guide_rays() + g)]: (L.rgb, balance-heuristic weight) and the direction in the record's frame.
+  // its record i, L the share of the light the light guide leaves to the strata (such records cast no guided rays:
+  // each pixel samples the guide's share, kernels/glossy.cl).
   const cl::Buffer& strata() const { return strata_; }
-  const cl::Buffer& guided_samples() const { return guided_samples_; }
-  unsigned guide_rays() const { return guide_rays_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t first, size_t count);
 
@@ -42,9 +40,9 @@ class RecordPass {
   unsigned theta_capacity_;
   bool store_strata_;
   NamedKernel kernel_;
-  cl::Buffer records_, ray_total_, strata_, guided_samples_, guide_;
+  cl::Buffer records_, ray_total_, strata_, guide_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0;
-  size_t capacity_ = 0, strata_capacity_ = 0, guided_capacity_ = 0;
+  size_t capacity_ = 0, strata_capacity_ = 0;
 };
 
 }  // namespace rcsplat

@@ -15,13 +15,19 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   double program_before = f.gpu.program_seconds();
   std::optional<GlossyPass> glossy;
   bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
-  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh) glossy.emplace(f.gpu, f.device_scene, sample_hsh);
+  // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
+  const CacheSettings& cs = f.settings.cache;
+  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && f.light_guide && !f.light_guide->empty();
+  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
+    glossy.emplace(f.gpu, f.device_scene, sample_hsh);
   ComposePass compose(f.gpu, f.device_scene, radiance_cached != nullptr);
   st.program_s += f.gpu.program_seconds() - program_before;
 
   if (glossy) {
     auto t = Clock::now();
-    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, f.light_guide ? *f.light_guide : std::vector<GuideCluster>{});
+    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed,
+                f.light_guide ? *f.light_guide : std::vector<GuideCluster>{},
+                guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u);
     st.glossy_s = seconds_since(t);
     st.glossy_samples = f.settings.glossy_samples;
     std::vector<float> g = glossy->download_rgba();
@@ -29,7 +35,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   }
   auto t = Clock::now();
   compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
-              radiance_cached ? &radiance_cached->lobe_radiance() : nullptr);
+              radiance_cached ? &radiance_cached->lobe_radiance() : nullptr, guide_share);
   st.resolve_s += seconds_since(t);
 
   std::vector<float> indirect = compose.indirect_rgba(), color = compose.color_rgba();
