@@ -243,7 +243,7 @@ void check_hsh_gradients(bool occluder, vec3 p) {
   // lambda_k (red) of a record at q, and the record's floats.
   auto coefficients_at = [&](vec3 q, const HemisphereParams& hp) {
     device_record(pass, q, n, hp);
-    hsh.project(pass, 0, 1, hp.theta_strata, hp.phi_strata);
+    hsh.project(pass.strata(), 0, 1, hp.theta_strata, hp.phi_strata);
     return hsh.download(0, 1);
   };
   const int checked[] = {hsh_index(0, 0), hsh_index(1, -1), hsh_index(1, 0), hsh_index(1, 1), hsh_index(2, 2),
@@ -307,7 +307,7 @@ TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
   pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
   const int order = 4, n2 = order * order, M = int(hp.theta_strata), N = int(hp.phi_strata);
   HshRecordPass hsh(gpu, order);
-  hsh.project(pass, 0, uint32_t(pixels.size()), hp.theta_strata, hp.phi_strata);
+  hsh.project(pass.strata(), 0, uint32_t(pixels.size()), hp.theta_strata, hp.phi_strata);
   const std::vector<float> device = hsh.download(0, uint32_t(pixels.size()));
   const std::vector<CacheRecord> records = pass.download(0, pixels.size());
 

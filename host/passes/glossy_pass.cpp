@@ -19,7 +19,8 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
     pixels_ = gbuffer.pixel_count();
     radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
   }
-  if (guide.size() > GUIDE_MAX_CLUSTERS) throw Error("glossy: a light guide of more than " + std::to_string(GUIDE_MAX_CLUSTERS) + " clusters");
+  if (guide.size() > GUIDE_MAX_CLUSTERS)
+    throw Error("glossy: a light guide of more than " + std::to_string(GUIDE_MAX_CLUSTERS) + " clusters");
   GlossyParams params{};
   params.sample_count = samples;
   params.grid_side = unsigned(std::sqrt(double(samples)));

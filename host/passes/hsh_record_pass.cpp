@@ -81,7 +81,7 @@ void HshRecordPass::reserve(size_t records) {
   capacity_ = grown;
 }
 
-void HshRecordPass::project(const RecordPass& records, uint32_t first, uint32_t count, unsigned theta_strata,
+void HshRecordPass::project(const cl::Buffer& strata, uint32_t first, uint32_t count, unsigned theta_strata,
                             unsigned phi_strata) {
   if (count == 0) return;
   reserve(size_t(first) + count);
@@ -95,7 +95,7 @@ void HshRecordPass::project(const RecordPass& records, uint32_t first, uint32_t 
     column_table_ = gpu_.upload(hsh_column_table(order_, phi_strata));
     table_columns_ = phi_strata;
   }
-  project_.set_buffer<cl_float4>("strata", records.strata())
+  project_.set_buffer<cl_float4>("strata", strata)
       .set_buffer<cl_float>("column_table", column_table_)
       .set("params", params)
       .set_buffer<cl_float>("coefficients", coefficients_)

@@ -9,7 +9,6 @@
 #include "cl/gpu_context.h"
 #include "cl/named_kernel.h"
 #include "kernels/shared_types.h"
-#include "passes/record_pass.h"
 
 namespace rcsplat {
 
@@ -22,9 +21,8 @@ class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
 
-  // Records first .. first + count - 1 from the strata of their batch, the last one records computed
-  // (theta_strata x phi_strata strata each); blocks.
-  void project(const RecordPass& records, uint32_t first, uint32_t count, unsigned theta_strata, unsigned phi_strata);
+  // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each); blocks.
+  void project(const cl::Buffer& strata, uint32_t first, uint32_t count, unsigned theta_strata, unsigned phi_strata);
   const cl::Buffer& coefficients() const { return coefficients_; }
   int order() const { return order_; }
   float largest_radiance();  // the brightest stratum any record saw (a bound on what a lobe can reflect)

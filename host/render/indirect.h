@@ -23,7 +23,8 @@ struct IndirectFrame {
   DirectPass& direct;
   const RenderSettings& settings;
   RenderedImage& image;  // G-buffer layers, direct light and colour (emission + direct) already filled
-  // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records share them.
+  // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records and the
+  // glossy pass share them.
   std::optional<std::vector<GuideCluster>> light_guide{};
 };
 
