@@ -286,7 +286,8 @@ TEST(HshRecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) {
 // light (the balance-heuristic weight beside the guide's rays, which the pixels take: kernels/glossy.cl guide_share)
 // times the exact integral of H_k over the stratum (Gauss-Legendre in cos(theta) and phi, 8 x 8 nodes, exact for
 // these polynomials in cos(theta) and nearly so in phi). In the Cornell box, where every record's strata see light
-// and most see some of the guide's clusters (in the corridor most strata see nothing at all: zero on both sides).
+// and about a quarter of the records see some of the guide's clusters (in the corridor most strata see nothing at
+// all: zero on both sides, which would test little).
 TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
   test::TwinScene twin(make_cornell_box());
   GpuContext& gpu = test::gpu();
