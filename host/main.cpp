@@ -125,6 +125,12 @@ int main(int argc, char** argv) {
                           "Add samples to the .exr output an earlier run wrote, up to --spp in all");
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
 
+  InfoOptions info;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "What a scene contains and what rcsplat will simulate for it, with the kernel switches it compiles");
+  info_cmd->add_option("scene", info.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
+  info_cmd->add_option("--json", info.json_path, "Also write it as JSON");
+
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means");
   compare_cmd->add_option("image", compare.image_path, "The image to judge (.exr)")->required();
@@ -163,6 +169,7 @@ int main(int argc, char** argv) {
       return run_render(reference);
     }
     if (*compare_cmd) return run_compare(compare);
+    if (*info_cmd) return run_info(info);
     if (*bench_cmd) return run_bench(bench);
   } catch (const Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

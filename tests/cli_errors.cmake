@@ -37,3 +37,4 @@ expect_refused("unknown output format" "out.tiff: unknown output format" render 
 expect_refused("invalid JSON" "broken.gltf: cannot be loaded" render broken.gltf -o out.exr)
 expect_refused("missing scene" "nothing.gltf" render nothing.gltf -o out.exr)
 expect_refused("accuracy out of range" "--accuracy" render -o out.exr --accuracy 0)
+expect_refused("info on invalid JSON" "broken.gltf: cannot be loaded" info broken.gltf --json out.json)

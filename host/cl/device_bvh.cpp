@@ -5,9 +5,10 @@ namespace rcsplat {
 DeviceBvh::DeviceBvh(GpuContext& gpu, const Bvh8& bvh)
     : nodes_(gpu.upload(bvh.nodes)), blocks_(gpu.upload(bvh.blocks)), stack_size_(bvh.stack_size()) {}
 
+std::string bvh_stack_switch(int stack_size) { return std::to_string((stack_size + 15) / 16 * 16); }
+
 void DeviceBvh::add_defines(KernelDefines& defines) const {
-  // Rounded up to a multiple of 16 so that scenes of similar depth share one compiled program.
-  defines["BVH_STACK_SIZE"] = std::to_string((stack_size_ + 15) / 16 * 16);
+  defines["BVH_STACK_SIZE"] = bvh_stack_switch(stack_size_);
 }
 
 }  // namespace rcsplat

@@ -1,9 +1,15 @@
 // The BVH's node and triangle-block buffers on the device.
 #pragma once
+#include <string>
+
 #include "bvh/bvh8.h"
 #include "cl/gpu_context.h"
 
 namespace rcsplat {
+
+// BVH_STACK_SIZE for a tree whose traversal needs stack_size entries (Bvh8::stack_size), rounded up to a multiple of 16
+// so that scenes of similar depth share one compiled program.
+std::string bvh_stack_switch(int stack_size);
 
 class DeviceBvh {
  public:

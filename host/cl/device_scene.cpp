@@ -1,5 +1,7 @@
 #include "cl/device_scene.h"
 
+#include "scene/scene_plan.h"
+
 namespace rcsplat {
 
 DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf,
@@ -18,18 +20,9 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, b
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
 
-  bool textured = false;
-  for (const Material& m : p.materials) textured |= m.base_color_texture >= 0;
-  defines_["HAS_TEXTURES"] = textured ? "1" : "0";
-  defines_["HAS_VERTEX_COLORS"] = scene.has_vertex_colors() ? "1" : "0";
-  bool masked = false;
-  for (const Material& m : p.materials) masked |= m.alpha_cutoff > 0.0f;
-  defines_["HAS_ALPHA_MASK"] = masked ? "1" : "0";
   for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
-  bool specular = force_specular_brdf || lobe_counts_[LOBE_ROUGH] + lobe_counts_[LOBE_GLOSSY] + lobe_counts_[LOBE_HSH] > 0;
-  defines_["HAS_SPECULAR_BRDF"] = specular ? "1" : "0";
-  defines_["HAS_PUNCTUAL_LIGHTS"] = counts_.light_count ? "1" : "0";
-  defines_["HAS_EMITTERS"] = counts_.emitter_count ? "1" : "0";
+  for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), force_specular_brdf))
+    defines_[name] = value;
   bvh_.add_defines(defines_);
 }
 

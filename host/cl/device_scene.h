@@ -23,8 +23,7 @@ class DeviceScene {
   // Sets a kernel's SCENE_ARGS.
   void bind(NamedKernel& kernel) const;
 
-  // HAS_TEXTURES, HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, HAS_SPECULAR_BRDF, BVH_STACK_SIZE: a scene compiles only the
-  // code it needs.
+  // scene_switches (scene/scene_plan.h) and BVH_STACK_SIZE: a scene compiles only the code it needs.
   const KernelDefines& defines() const { return defines_; }
   // The scene's switches plus a pass's own (name -> "1" or "0").
   KernelDefines defines_with(const std::string& name, bool on) const {

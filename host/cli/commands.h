@@ -1,11 +1,14 @@
 // The rcsplat subcommands. Each returns the process exit code; rcsplat::Error escapes to main, which prints it.
 #pragma once
+#include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cl/gpu_context.h"
 #include "render/renderer.h"
+#include "scene/scene_plan.h"
 
 namespace rcsplat {
 
@@ -30,6 +33,16 @@ int run_render(const RenderOptions& options);
 // this scene and frame. Returns false when the file already has the samples asked for.
 bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& options, const std::string& path,
                       RenderedImage& image);
+
+struct InfoOptions {
+  std::string scene_path;  // empty: the built-in Cornell box
+  std::string json_path;
+};
+int run_info(const InfoOptions& options);
+// The scene plan's lines (info and the render summary), its JSON, and the kernel switches with the BVH's stack size.
+void print_scene_plan(const ScenePlan& plan, int bvh_depth);
+nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth);
+std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth);
 
 struct CompareOptions {
   std::string image_path, reference_path, heatmap_path, json_path;

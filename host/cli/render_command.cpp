@@ -18,22 +18,15 @@ namespace {
 
 double mrays_per_second(uint64_t rays, double seconds) { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
 
-void print_summary(const Scene& scene, const RenderedImage& image, const RenderSettings& settings,
-                   const std::vector<std::string>& outputs) {
+void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImage& image,
+                   const RenderSettings& settings, const std::vector<std::string>& outputs) {
   const RenderStats& s = image.stats;
   std::printf("scene        %s\n", scene.source.c_str());
-  for (const std::string& line : scene.unsupported) std::printf("not simulated %s\n", line.c_str());
+  print_scene_plan(plan, s.bvh_depth);  // what `rcsplat info` prints
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
               s.light_samples, gi_method_name(s.gi));
-  std::printf("materials    %u Lambertian, %u rough (specular indirect light from the cached irradiance), %u "
-              "radiance-cached (roughness %.2f and up: HSH records), %u glossy (too sharp for HSH order %d: specular "
-              "indirect light sampled per pixel); BRDF code %s, HSH code %s\n",
-              s.lambertian_materials, s.rough_materials, s.hsh_materials, double(HSH_MIN_ROUGHNESS), s.glossy_materials,
-              HSH_MAX_ORDER, s.specular_brdf ? "compiled" : "not compiled (every material is Lambertian)",
-              s.hsh_materials ? "compiled" : "not compiled (no radiance-cached material)");
-  std::printf("triangles    %zu (BVH: %zu nodes, %zu triangle blocks, depth %d)\n", s.triangles, s.bvh_nodes,
-              s.bvh_blocks, s.bvh_depth);
+  std::printf("BVH          %zu nodes, %zu triangle blocks, depth %d\n", s.bvh_nodes, s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
               (unsigned long long)s.shadow_rays);
   std::printf("time         BVH build %.3f s, upload %.3f s, kernel build %.3f s\n", s.bvh_build_s, s.upload_s, s.program_s);
@@ -92,10 +85,11 @@ size_t nonfinite_values(const RenderedImage& image) {
   return count;
 }
 
-nlohmann::json summary_json(const Scene& scene, const RenderedImage& image, const RenderSettings& settings,
-                            const std::vector<std::string>& outputs) {
+nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const RenderedImage& image,
+                            const RenderSettings& settings, const std::vector<std::string>& outputs) {
   const RenderStats& s = image.stats;
   nlohmann::json j = {
+      {"scene_plan", scene_plan_json(plan, s.bvh_depth)},
       {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
       {"gi", gi_method_name(s.gi)}, {"light_samples", s.light_samples}, {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
@@ -169,9 +163,11 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
                               {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
-  print_summary(scene, image, options.settings, options.outputs);
+  const ScenePlan plan = plan_scene(scene);
+  print_summary(scene, plan, image, options.settings, options.outputs);
   if (!options.json_path.empty())
-    write_text_file(options.json_path, summary_json(scene, image, options.settings, options.outputs).dump(2) + "\n");
+    write_text_file(options.json_path,
+                    summary_json(scene, plan, image, options.settings, options.outputs).dump(2) + "\n");
   return 0;
 }
 

@@ -1,0 +1,81 @@
+// `rcsplat info SCENE`: what the scene contains and what rcsplat will simulate for it (scene/scene_plan.h), the same
+// lines the render summary prints, and the kernel switches a render compiles. Needs no OpenCL device.
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "bvh/bvh8.h"
+#include "cl/device_bvh.h"
+#include "cli/commands.h"
+#include "scene/scene_frame.h"
+
+namespace rcsplat {
+
+std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth) {
+  std::map<std::string, std::string> switches = plan.switches;
+  switches["BVH_STACK_SIZE"] = bvh_stack_switch(Bvh8{.depth = bvh_depth}.stack_size());
+  return switches;
+}
+
+void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
+  std::printf("triangles    %zu, %zu of them emissive\n", plan.triangles, plan.emissive_triangles);
+  std::printf("materials    %zu: %u Lambertian, %u rough, %u radiance-cached, %u glossy\n", plan.materials.size(),
+              plan.lobe_counts[LOBE_NONE], plan.lobe_counts[LOBE_ROUGH], plan.lobe_counts[LOBE_HSH],
+              plan.lobe_counts[LOBE_GLOSSY]);
+  for (const MaterialPlan& m : plan.materials)
+    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
+                double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
+                lobe_treatment(m.lobe));
+  std::printf("textures     %zu%s%s\n", plan.textures, plan.vertex_colors ? ", vertex colours" : "",
+              plan.alpha_mask ? ", alpha-masked cutouts" : "");
+  std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,
+              plan.spot_lights, plan.directional_lights, plan.emissive_triangles);
+  std::printf("environment  none (no sky or environment light is simulated; rays that leave the scene see black)\n");
+  for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
+  std::printf("compiles     BRDF code %s, HSH code %s, texture code %s, area-light sampling %s, punctual lights %s\n",
+              plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
+              plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
+              plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no texture)",
+              plan.switches.at("HAS_EMITTERS") == "1" ? "yes" : "no (no emissive triangle)",
+              plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)");
+  std::printf("switches    ");
+  for (const auto& [name, value] : plan_switches(plan, bvh_depth)) std::printf(" %s=%s", name.c_str(), value.c_str());
+  std::printf("\n");
+}
+
+nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
+  nlohmann::json materials = nlohmann::json::array();
+  for (const MaterialPlan& m : plan.materials)
+    materials.push_back({{"name", m.name}, {"kind", lobe_name(m.lobe)}, {"roughness", m.roughness},
+                         {"metallic", m.metallic}, {"emissive", m.emissive}, {"textured", m.textured},
+                         {"shading", lobe_treatment(m.lobe)}});
+  return {{"triangles", plan.triangles},
+          {"emissive_triangles", plan.emissive_triangles},
+          {"materials", materials},
+          {"materials_by_kind",
+           {{"lambertian", plan.lobe_counts[LOBE_NONE]}, {"rough", plan.lobe_counts[LOBE_ROUGH]},
+            {"radiance_cached", plan.lobe_counts[LOBE_HSH]}, {"glossy", plan.lobe_counts[LOBE_GLOSSY]}}},
+          {"textures", plan.textures},
+          {"vertex_colors", plan.vertex_colors},
+          {"alpha_mask", plan.alpha_mask},
+          {"lights", {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
+          {"environment", nullptr},
+          {"not_simulated", plan.not_simulated},
+          {"switches", plan_switches(plan, bvh_depth)}};
+}
+
+int run_info(const InfoOptions& options) {
+  const Scene scene = load_scene(options.scene_path);
+  const ScenePlan plan = plan_scene(scene);
+  // The BVH a render builds: over the scene in its fitted device frame (scene/scene_frame.h), so the depth matches.
+  const Bvh8 bvh = build_bvh8(SceneFrame::fitted(scene).device_scene(scene).positions);
+  std::printf("scene        %s\n", scene.source.c_str());
+  print_scene_plan(plan, bvh.depth);
+  if (!options.json_path.empty()) {
+    nlohmann::json report = scene_plan_json(plan, bvh.depth);
+    report["scene"] = scene.source;
+    write_text_file(options.json_path, report.dump(2) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace rcsplat

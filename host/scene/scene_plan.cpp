@@ -1,0 +1,71 @@
+#include "scene/scene_plan.h"
+
+namespace rcsplat {
+
+std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
+                                                  bool force_specular_brdf) {
+  bool textured = false, masked = false, specular = force_specular_brdf;
+  for (const Material& m : p.materials) {
+    textured |= m.base_color_texture >= 0;
+    masked |= m.alpha_cutoff > 0.0f;
+    specular |= m.lobe != LOBE_NONE;
+  }
+  auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
+  return {{"HAS_TEXTURES", flag(textured)},        {"HAS_VERTEX_COLORS", flag(has_vertex_colors)},
+          {"HAS_ALPHA_MASK", flag(masked)},        {"HAS_SPECULAR_BRDF", flag(specular)},
+          {"HAS_PUNCTUAL_LIGHTS", flag(!p.lights.empty())}, {"HAS_EMITTERS", flag(!p.emitters.empty())}};
+}
+
+const char* lobe_name(int lobe) {
+  switch (lobe) {
+    case LOBE_NONE: return "Lambertian";
+    case LOBE_ROUGH: return "rough";
+    case LOBE_GLOSSY: return "glossy";
+    case LOBE_HSH: return "radiance-cached";
+    default: return "unknown";
+  }
+}
+
+const char* lobe_treatment(int lobe) {
+  switch (lobe) {
+    case LOBE_NONE: return "albedo / pi times the cached irradiance (exact)";
+    case LOBE_ROUGH: return "diffuse base and the lobe's albedo times the cached irradiance";
+    case LOBE_GLOSSY: return "diffuse base from the cached irradiance; the lobe sampled per pixel (too sharp for HSH)";
+    case LOBE_HSH: return "diffuse base from the cached irradiance; the lobe from HSH radiance records";
+    default: return "";
+  }
+}
+
+ScenePlan plan_scene(const Scene& scene) {
+  const PackedScene packed = pack_scene(scene);
+  ScenePlan plan;
+  plan.source = scene.source;
+  plan.triangles = scene.triangle_count();
+  plan.emissive_triangles = packed.emitters.size();
+  plan.textures = scene.textures.size();
+  plan.vertex_colors = scene.has_vertex_colors();
+  for (size_t i = 0; i < packed.materials.size(); ++i) {
+    const Material& m = packed.materials[i];
+    const SceneMaterial& source = scene.materials[i];
+    MaterialPlan mp;
+    mp.name = source.name.empty() ? "material " + std::to_string(i) : source.name;
+    mp.lobe = m.lobe;
+    mp.metallic = m.metallic;
+    mp.roughness = m.roughness;
+    mp.emissive = m.emission[0] > 0.0f || m.emission[1] > 0.0f || m.emission[2] > 0.0f;
+    mp.textured = m.base_color_texture >= 0 || source.metallic_roughness_texture >= 0;
+    plan.alpha_mask |= m.alpha_cutoff > 0.0f;
+    ++plan.lobe_counts[size_t(m.lobe)];
+    plan.materials.push_back(mp);
+  }
+  for (const SceneLight& l : scene.lights) {
+    plan.point_lights += l.type == LightType::point;
+    plan.spot_lights += l.type == LightType::spot;
+    plan.directional_lights += l.type == LightType::directional;
+  }
+  plan.not_simulated = scene.unsupported;
+  plan.switches = scene_switches(packed, plan.vertex_colors);
+  return plan;
+}
+
+}  // namespace rcsplat

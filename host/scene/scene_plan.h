@@ -1,0 +1,48 @@
+// What a scene contains and what rcsplat will simulate for it (issue 11): `rcsplat info`, the render summary and its
+// JSON all print this. scene_switches is also what DeviceScene compiles the kernels with: the one place that decides
+// the coarse -D switches, so what `info` reports is what a render compiles.
+#pragma once
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "kernels/shared_types.h"
+#include "scene/packed_scene.h"
+#include "scene/scene.h"
+
+namespace rcsplat {
+
+// The scene's kernel switches (name -> "1" or "0"): HAS_TEXTURES, HAS_VERTEX_COLORS, HAS_ALPHA_MASK,
+// HAS_SPECULAR_BRDF (any non-Lambertian material, or forced: a test shows it changes no bit of a Lambertian image),
+// HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS. The BVH adds BVH_STACK_SIZE, passes their own (STORE_STRATA, ...).
+std::map<std::string, std::string> scene_switches(const PackedScene& packed, bool has_vertex_colors,
+                                                  bool force_specular_brdf = false);
+
+struct MaterialPlan {
+  std::string name;
+  int lobe = LOBE_NONE;  // LOBE_*: how the cache shades its specular lobe
+  float metallic = 0, roughness = 1;
+  bool emissive = false, textured = false;
+};
+
+struct ScenePlan {
+  std::string source;
+  size_t triangles = 0, emissive_triangles = 0, textures = 0;
+  bool vertex_colors = false, alpha_mask = false;
+  std::vector<MaterialPlan> materials;
+  std::array<unsigned, LOBE_KINDS> lobe_counts{};
+  unsigned point_lights = 0, spot_lights = 0, directional_lights = 0;
+  std::vector<std::string> not_simulated;  // the loader's notes: what the file asks for and what rcsplat does instead
+  std::map<std::string, std::string> switches;
+  // What rcsplat does with each kind of material, and whether it compiles radiance caching (LOBE_HSH present).
+  bool radiance_cache() const { return lobe_counts[LOBE_HSH] > 0; }
+};
+
+ScenePlan plan_scene(const Scene& scene);
+
+// How the cache methods shade a material of this LOBE_*, in a few words (for `info` and the summary).
+const char* lobe_treatment(int lobe);
+const char* lobe_name(int lobe);
+
+}  // namespace rcsplat

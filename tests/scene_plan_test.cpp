@@ -1,0 +1,83 @@
+// What a scene contains and what rcsplat compiles for it (scene/scene_plan.h, `rcsplat info`, issue 11): each
+// feature a scene adds turns on its own switch and no other, and the device scene compiles exactly the switches the
+// plan reports.
+#include <gtest/gtest.h>
+
+#include "bvh/bvh8.h"
+#include "cl/device_scene.h"
+#include "cli/commands.h"
+#include "scene/cornell_box.h"
+#include "scene/scene_plan.h"
+#include "test_support.h"
+
+namespace rcsplat {
+namespace {
+
+// The built-in Cornell box with one feature added (or its emitter taken away).
+Scene cornell_with(const std::string& feature) {
+  Scene s = make_cornell_box();
+  if (feature == "point light") {
+    SceneLight light;
+    light.type = LightType::point;
+    light.position = 0.5f * (s.bounds_min() + s.bounds_max());
+    light.intensity = glm::vec3(1.0f);
+    s.lights.push_back(light);
+  } else if (feature == "texture") {
+    SceneTexture t;
+    t.width = t.height = 2;
+    t.rgba.assign(16, 200);
+    s.textures.push_back(t);
+    s.materials[0].base_color_texture = 0;
+  } else if (feature == "glossy material") {
+    s.materials[0].metallic = 1.0f;
+    s.materials[0].roughness = 0.5f;
+  } else if (feature == "alpha mask") {
+    s.materials[0].alpha_cutoff = 0.5f;
+  } else if (feature == "no emitter") {
+    for (SceneMaterial& m : s.materials) m.emission = glm::vec3(0.0f);
+  }
+  return s;
+}
+
+TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
+  const ScenePlan base = plan_scene(cornell_with(""));
+  EXPECT_EQ(base.switches, (std::map<std::string, std::string>{{"HAS_ALPHA_MASK", "0"},
+                                                                {"HAS_EMITTERS", "1"},
+                                                                {"HAS_PUNCTUAL_LIGHTS", "0"},
+                                                                {"HAS_SPECULAR_BRDF", "0"},
+                                                                {"HAS_TEXTURES", "0"},
+                                                                {"HAS_VERTEX_COLORS", "0"}}));
+  EXPECT_EQ(base.lobe_counts[LOBE_NONE], base.materials.size());
+  EXPECT_EQ(base.emissive_triangles, 2u);
+  EXPECT_FALSE(base.radiance_cache());
+  const std::pair<const char*, const char*> cases[] = {{"point light", "HAS_PUNCTUAL_LIGHTS"},
+                                                       {"texture", "HAS_TEXTURES"},
+                                                       {"glossy material", "HAS_SPECULAR_BRDF"},
+                                                       {"alpha mask", "HAS_ALPHA_MASK"},
+                                                       {"no emitter", "HAS_EMITTERS"}};
+  for (const auto& [feature, flipped] : cases) {
+    const ScenePlan plan = plan_scene(cornell_with(feature));
+    for (const auto& [name, value] : base.switches)
+      EXPECT_EQ(plan.switches.at(name) != value, name == std::string(flipped)) << feature << ": " << name;
+  }
+  const ScenePlan glossy = plan_scene(cornell_with("glossy material"));
+  EXPECT_TRUE(glossy.radiance_cache()) << "roughness 0.5 metal is radiance-cached";
+  EXPECT_EQ(glossy.lobe_counts[LOBE_HSH], 1u);
+  EXPECT_EQ(plan_scene(cornell_with("point light")).point_lights, 1u);
+  EXPECT_EQ(plan_scene(cornell_with("no emitter")).emissive_triangles, 0u);
+}
+
+// What `info` reports is what a render compiles: the device scene's defines are the plan's switches and the BVH's
+// stack size.
+TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
+  for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "no emitter"}) {
+    const Scene scene = cornell_with(feature);
+    const Bvh8 bvh = build_bvh8(scene.positions);
+    DeviceScene device(test::gpu(), scene, bvh);
+    std::map<std::string, std::string> compiled(device.defines().begin(), device.defines().end());
+    EXPECT_EQ(compiled, plan_switches(plan_scene(scene), bvh.depth)) << feature;
+  }
+}
+
+}  // namespace
+}  // namespace rcsplat
