@@ -15,9 +15,13 @@ typedef struct {
 } SurfacePoint;
 
 #if HAS_VERTEX_COLORS
+// A full channel is exactly 1 (the white that triangles without colours carry): compiling the vertex-colour code for
+// a scene without colours then changes no bit of its image (tests/scene_plan_test.cpp).
 inline float3 unpack_vertex_color(uint packed) {
-  return (float3)((float)(packed & VERTEX_COLOR_MAX), (float)((packed >> VERTEX_COLOR_BITS) & VERTEX_COLOR_MAX),
-                  (float)((packed >> (2 * VERTEX_COLOR_BITS)) & VERTEX_COLOR_MAX)) * (1.0f / (float)VERTEX_COLOR_MAX);
+  uint3 c = (uint3)(packed & VERTEX_COLOR_MAX, (packed >> VERTEX_COLOR_BITS) & VERTEX_COLOR_MAX,
+                    (packed >> (2 * VERTEX_COLOR_BITS)) & VERTEX_COLOR_MAX);
+  float3 scaled = convert_float3(c) * (1.0f / (float)VERTEX_COLOR_MAX);
+  return select(scaled, (float3)(1.0f), c == (uint3)(VERTEX_COLOR_MAX));
 }
 #endif
 
@@ -33,7 +37,11 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
   s.uv = w * vload2(0, t->uv0) + u * vload2(0, t->uv1) + v * vload2(0, t->uv2);
   s.material = t->material;
 #if HAS_VERTEX_COLORS
-  s.color = w * unpack_vertex_color(t->color[0]) + u * unpack_vertex_color(t->color[1]) + v * unpack_vertex_color(t->color[2]);
+  // A triangle of one colour takes it as it is: barycentric weights need not sum to exactly 1 in float.
+  if (t->color[0] == t->color[1] && t->color[1] == t->color[2]) s.color = unpack_vertex_color(t->color[0]);
+  else
+    s.color = w * unpack_vertex_color(t->color[0]) + u * unpack_vertex_color(t->color[1]) +
+              v * unpack_vertex_color(t->color[2]);
 #endif
   return s;
 }

@@ -120,9 +120,9 @@ TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
   for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
     settings.gi = gi;
     settings.path.samples = 16;
-    settings.force_specular_brdf = false;
+    settings.forced_switches = {};
     RenderedImage plain = render(test::gpu(), scene, settings);
-    settings.force_specular_brdf = true;
+    settings.forced_switches = {"HAS_SPECULAR_BRDF"};
     RenderedImage compiled = render(test::gpu(), scene, settings);
     EXPECT_FALSE(plain.stats.specular_brdf);
     EXPECT_TRUE(compiled.stats.specular_brdf);

@@ -6,6 +6,7 @@
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
 #include "cli/commands.h"
+#include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "scene/scene_plan.h"
 #include "test_support.h"
@@ -76,6 +77,42 @@ TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
     DeviceScene device(test::gpu(), scene, bvh);
     std::map<std::string, std::string> compiled(device.defines().begin(), device.defines().end());
     EXPECT_EQ(compiled, plan_switches(plan_scene(scene), bvh.depth)) << feature;
+  }
+}
+
+// Simulate only what a scene calls for, and lose nothing by it: compiling a feature's code for a scene that does not use
+// it changes no bit of the image (direct, indirect, colour), for the cache and the path tracer. HAS_EMITTERS is tried
+// on the Cornell box lit by a point light instead of its ceiling (it has emitters otherwise); HAS_SPECULAR_BRDF has its
+// own test (GlobalIllumination.BrdfCodeChangesNoBitOfALambertianScene).
+TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
+  const std::pair<const char*, const char*> cases[] = {{"HAS_TEXTURES", ""},
+                                                       {"HAS_ALPHA_MASK", ""},
+                                                       {"HAS_VERTEX_COLORS", ""},
+                                                       {"HAS_PUNCTUAL_LIGHTS", ""},
+                                                       {"HAS_EMITTERS", "lit by a point light"}};
+  for (const auto& [forced, variant] : cases) {
+    Scene scene = make_cornell_box();
+    if (*variant) {
+      scene = cornell_with("no emitter");
+      SceneLight light;
+      light.type = LightType::point;
+      light.position = glm::vec3(0.0f, scene.bounds_max().y - 0.1f, 0.0f);
+      light.intensity = glm::vec3(2.0f);
+      scene.lights.push_back(light);
+    }
+    ASSERT_EQ(plan_scene(scene).switches.at(forced), "0") << forced << " is already on";
+    for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
+      RenderSettings settings;
+      settings.width = settings.height = 32;
+      settings.gi = gi;
+      settings.path.samples = 4;
+      const RenderedImage plain = render(test::gpu(), scene, settings);
+      settings.forced_switches = {forced};
+      const RenderedImage compiled = render(test::gpu(), scene, settings);
+      EXPECT_EQ(plain.direct, compiled.direct) << forced << ", " << gi_method_name(gi);
+      EXPECT_EQ(plain.indirect, compiled.indirect) << forced << ", " << gi_method_name(gi);
+      EXPECT_EQ(plain.color, compiled.color) << forced << ", " << gi_method_name(gi);
+    }
   }
 }
 

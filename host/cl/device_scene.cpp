@@ -4,7 +4,7 @@
 
 namespace rcsplat {
 
-DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf,
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, const std::set<std::string>& forced_switches,
                          const SceneFrame& frame)
     : bvh_(gpu, bvh), frame_(frame) {
   PackedScene p = pack_scene(scene, frame);
@@ -21,7 +21,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, b
   counts_.emitter_count = cl_uint(p.emitters.size());
 
   for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
-  for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), force_specular_brdf))
+  for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), forced_switches))
     defines_[name] = value;
   bvh_.add_defines(defines_);
 }

@@ -3,6 +3,8 @@
 // compile-time switches from the scene.
 #pragma once
 #include <array>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "bvh/bvh8.h"
@@ -14,10 +16,10 @@ namespace rcsplat {
 
 class DeviceScene {
  public:
-  // force_specular_brdf compiles the BRDF code (HAS_SPECULAR_BRDF) even for an all-Lambertian scene, which must not
-  // change a bit of its image (tests).
+  // forced_switches: scene switches compiled on whether the scene needs them or not (scene/scene_plan.h; tests show
+  // that doing so changes no bit of the image).
   // bvh and the uploaded positions and lights are in `frame`'s coordinates (render() uses SceneFrame::fitted).
-  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, bool force_specular_brdf = false,
+  DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, const std::set<std::string>& forced_switches = {},
               const SceneFrame& frame = {});
 
   // Sets a kernel's SCENE_ARGS.

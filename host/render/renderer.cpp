@@ -84,7 +84,7 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   st.bvh_depth = bvh.depth;
 
   auto t = Clock::now();
-  DeviceScene device_scene(gpu, scene, bvh, settings.force_specular_brdf, scene_frame);
+  DeviceScene device_scene(gpu, scene, bvh, settings.forced_switches, scene_frame);
   st.lambertian_materials = device_scene.lobe_counts()[LOBE_NONE];
   st.rough_materials = device_scene.lobe_counts()[LOBE_ROUGH];
   st.glossy_materials = device_scene.lobe_counts()[LOBE_GLOSSY];

@@ -1,5 +1,8 @@
 // What a render is asked to do: resolution, camera, light samples, and how indirect light is computed.
 #pragma once
+#include <set>
+#include <string>
+
 #include "cache/cache_settings.h"
 #include "render/camera.h"
 
@@ -25,7 +28,8 @@ struct RenderSettings {
   unsigned hsh_order = 0;
   unsigned seed = 0;
   GiMethod gi = GiMethod::splat;
-  bool force_specular_brdf = false;  // tests: compile the BRDF code for a Lambertian scene too (DeviceScene)
+  // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
+  std::set<std::string> forced_switches;
   CacheSettings cache;
   PathSettings path;
 };

@@ -3,17 +3,22 @@
 namespace rcsplat {
 
 std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
-                                                  bool force_specular_brdf) {
-  bool textured = false, masked = false, specular = force_specular_brdf;
+                                                  const std::set<std::string>& forced) {
+  bool textured = false, masked = false, specular = false;
   for (const Material& m : p.materials) {
     textured |= m.base_color_texture >= 0;
     masked |= m.alpha_cutoff > 0.0f;
     specular |= m.lobe != LOBE_NONE;
   }
-  auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
-  return {{"HAS_TEXTURES", flag(textured)},        {"HAS_VERTEX_COLORS", flag(has_vertex_colors)},
-          {"HAS_ALPHA_MASK", flag(masked)},        {"HAS_SPECULAR_BRDF", flag(specular)},
-          {"HAS_PUNCTUAL_LIGHTS", flag(!p.lights.empty())}, {"HAS_EMITTERS", flag(!p.emitters.empty())}};
+  std::map<std::string, std::string> switches;
+  auto set = [&](const char* name, bool on) { switches[name] = on || forced.count(name) ? "1" : "0"; };
+  set("HAS_TEXTURES", textured);
+  set("HAS_VERTEX_COLORS", has_vertex_colors);
+  set("HAS_ALPHA_MASK", masked);
+  set("HAS_SPECULAR_BRDF", specular);
+  set("HAS_PUNCTUAL_LIGHTS", !p.lights.empty());
+  set("HAS_EMITTERS", !p.emitters.empty());
+  return switches;
 }
 
 const char* lobe_name(int lobe) {

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -14,10 +15,11 @@
 namespace rcsplat {
 
 // The scene's kernel switches (name -> "1" or "0"): HAS_TEXTURES, HAS_VERTEX_COLORS, HAS_ALPHA_MASK,
-// HAS_SPECULAR_BRDF (any non-Lambertian material, or forced: a test shows it changes no bit of a Lambertian image),
-// HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS. The BVH adds BVH_STACK_SIZE, passes their own (STORE_STRATA, ...).
+// HAS_SPECULAR_BRDF (any non-Lambertian material), HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS. Those named in `forced` are on
+// whatever the scene holds: tests show that compiling a feature the scene does not use changes no bit of its image.
+// The BVH adds BVH_STACK_SIZE, passes their own (STORE_STRATA, ...).
 std::map<std::string, std::string> scene_switches(const PackedScene& packed, bool has_vertex_colors,
-                                                  bool force_specular_brdf = false);
+                                                  const std::set<std::string>& forced = {});
 
 struct MaterialPlan {
   std::string name;
