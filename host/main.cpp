@@ -52,6 +52,10 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam) {
                   "Samples per pixel on emissive triangles (rounded up to a square)")
       ->check(CLI::Range(0u, 1u << 20));
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
+  cmd->add_option("--bounces", o.settings.bounces,
+                  "Indirect bounces: 1 lights the first bounce's hit directly, each more continues the path from "
+                  "there (every method, the reference too; default 1)")
+      ->check(CLI::Range(1u, kMaxBounces));
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
   cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
 }

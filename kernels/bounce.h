@@ -1,5 +1,6 @@
-// One indirect bounce: what a ray leaving a surface sees, counted as the directly lit radiance reflected by the surface it
-// lands on (never that surface's emission, which direct light already counts: ALGORITHM.md section 1).
+// Indirect light: what a ray leaving a surface sees, counted as the directly lit radiance reflected by the surface it
+// lands on (never that surface's emission, which direct light already counts: ALGORITHM.md section 1), and with
+// --bounces N > 1 what the path continued from there gathers.
 // Shared by the record pass and the path tracer so that both estimate the same integral.
 #ifndef RCSPLAT_BOUNCE_H
 #define RCSPLAT_BOUNCE_H
@@ -10,32 +11,100 @@
 #include "reflected_light.h"
 #endif
 
-// Radiance arriving at origin from direction dir after one reflection; (u, v) pick the light sample at the hit, and
-// u_lobe the lobe of its BRDF sample where the hit is glossy. *distance is the hit distance, INFINITY on a miss.
-inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe, float* distance,
-                              uint* rays) {
+// A surface a ray found, oriented toward the ray (surfaces reflect on both sides, as in the G-buffer).
+typedef struct {
+  SurfacePoint s;
+  float3 ns, ng, albedo;
+} HitSurface;
+
+inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
   ++*rays;
   if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
     *distance = INFINITY;
-    return (float3)(0.0f);
+    return false;
   }
   *distance = hit.t;
-  SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-  bool back = dot(s.geometric_normal, dir) > 0.0f;  // surfaces reflect on both sides, as in the G-buffer
-  float3 ng = back ? -s.geometric_normal : s.geometric_normal;
-  float3 ns = back ? -s.shading_normal : s.shading_normal;
-  if (dot(ns, ng) <= 0.0f) ns = ng;
-  float3 albedo = surface_albedo(materials, textures, texels, &s);
+  h->s = surface_at(triangles, hit.prim, hit.u, hit.v);
+  bool back = dot(h->s.geometric_normal, dir) > 0.0f;
+  h->ng = back ? -h->s.geometric_normal : h->s.geometric_normal;
+  h->ns = back ? -h->s.shading_normal : h->s.shading_normal;
+  if (dot(h->ns, h->ng) <= 0.0f) h->ns = h->ng;
+  h->albedo = surface_albedo(materials, textures, texels, &h->s);
+  return true;
+}
+
+// The directly lit radiance the surface reflects back along -dir; (u, v) pick the light sample, u_lobe the lobe of its
+// BRDF sample where the surface is glossy.
+inline float3 hit_direct(SCENE_ARGS, const HitSurface* h, float3 dir, float u, float v, float u_lobe, uint* rays) {
 #if HAS_SPECULAR_BRDF
-  SurfaceLobe lobe = surface_lobe(materials, textures, texels, &s);
+  SurfaceLobe lobe = surface_lobe(materials, textures, texels, &h->s);
   if (lobe.lobe != LOBE_NONE)
-    return direct_reflected(SCENE, surface_brdf(albedo, lobe), lobe.lobe, s.position, ns, ng, -dir, u, v, u_lobe, rays);
+    return direct_reflected(SCENE, surface_brdf(h->albedo, lobe), lobe.lobe, h->s.position, h->ns, h->ng, -dir, u, v,
+                            u_lobe, rays);
 #endif
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
-                               s.position, ns, ng, u, v, rays);
-  return finite_or_zero(albedo * RC_INV_PI * e);
+                               h->s.position, h->ns, h->ng, u, v, rays);
+  return finite_or_zero(h->albedo * RC_INV_PI * e);
+}
+
+// The bounces after the first (--bounces N: N - 1 of them): from each hit the path goes on along a direction drawn
+// from the hit's BRDF (cosine-weighted where Lambertian), and each new hit adds its directly lit radiance times the
+// path's throughput. Emission found on the way is never counted (direct light at each hit counts it). Random numbers:
+// bounce k (1 ..) takes dimensions PATH_FIRST_DIMENSION + 6 (k - 1) .. + 5 of (key, sample).
+#define PATH_FIRST_DIMENSION 8u
+typedef struct {
+  uint key, sample, bounces;
+} PathContinuation;
+
+inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
+  float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
+  for (uint k = 0; k < more.bounces; ++k) {
+    uint d = PATH_FIRST_DIMENSION + 6u * k;
+    float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
+    float3 next;
+#if HAS_SPECULAR_BRDF
+    SurfaceLobe lobe = surface_lobe(materials, textures, texels, &h.s);
+    if (lobe.lobe != LOBE_NONE) {
+      ShadingFrame frame = shading_frame(h.ns);
+      float3 wi;
+      float pdf;
+      throughput *= brdf_sample(surface_brdf(h.albedo, lobe), view_local(frame, -dir),
+                                random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
+      next = to_world(frame, wi);
+    } else
+#endif
+    {
+      float3 t, b;
+      tangent_frame(h.ns, &t, &b);
+      float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
+      next = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * h.ns;
+      throughput *= h.albedo;  // cosine-weighted: f cos / pdf = albedo
+    }
+    if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f) || dot(next, h.ng) <= 0.0f) break;
+    float distance;
+    HitSurface h_next;
+    if (!trace_surface(SCENE, offset_ray_origin(h.s.position, h.ng), next, &h_next, &distance, rays)) break;
+    sum += throughput * hit_direct(SCENE, &h_next, next, random01(more.key, more.sample, d + 3u),
+                                   random01(more.key, more.sample, d + 4u), random01(more.key, more.sample, d + 5u),
+                                   rays);
+    h = h_next;
+    dir = next;
+  }
+  return finite_or_zero(sum);
+}
+
+// Radiance arriving at origin from direction dir after one reflection, and after more.bounces more; (u, v) pick the
+// light sample at the first hit, and u_lobe the lobe of its BRDF sample where the hit is glossy. *distance is the hit
+// distance, INFINITY on a miss.
+inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
+                              PathContinuation more, float* distance, uint* rays) {
+  HitSurface h;
+  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) return (float3)(0.0f);
+  float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
+  if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
+  return l;
 }
 
 #endif

@@ -69,8 +69,9 @@ inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, Glossy
     if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
     float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
     float r;
+    PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
     float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               &r, rays);
+                               more, &r, rays);
     sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
   }
   return sum / (float)max(params.guide_share_samples, 1u);
@@ -81,7 +82,10 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];
-  bool sampled = g.lobe == LOBE_GLOSSY || (SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH);
+  bool sampled = g.lobe == LOBE_GLOSSY;
+#if SAMPLE_HSH_LOBES
+  sampled = sampled || g.lobe == LOBE_HSH;
+#endif
   bool cached_with_guide = !SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH && params.guide_share_samples > 0u &&
                            params.guide_clusters > 0u;
   if (g.triangle < 0 || !(sampled || cached_with_guide)) {
@@ -125,8 +129,9 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     float3 dir = to_world(frame, wi);
     if (dot(dir, ng) <= 0.0f) continue;
     float r;
+    PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
     float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               &r, &rays);
+                               more, &r, &rays);
     if (!cone_count) {
       sum += brdf_specular_weight(in, wo, wi) * l;
       continue;

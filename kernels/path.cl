@@ -1,6 +1,7 @@
-// The path tracer that serves as ground truth and competitor: through the same pixel centres as the G-buffer, one
-// bounce per sample (cosine-weighted at Lambertian pixels, drawn from the BRDF where there is a specular lobe), the
-// bounce's hit lit directly (kernels/bounce.h): the same integral the cache estimates, with the same bounce count.
+// The path tracer that serves as ground truth and competitor: through the same pixel centres as the G-buffer, a first
+// bounce per sample (cosine-weighted at Lambertian pixels, drawn from the BRDF where there is a specular lobe), its hit
+// lit directly and the path continued for --bounces in all (kernels/bounce.h): the same integral the cache estimates,
+// with the same bounce count.
 // Accumulates the indirect radiance and its square per pixel (for the variance).
 // Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
@@ -47,8 +48,9 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
     float3 c = (float3)(0.0f);
     if (dot(dir, ng) > 0.0f && (throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) {
       float r;
+      PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
       c = throughput * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
-                                       random01(key, s, 5u), &r, &rays);
+                                       random01(key, s, 5u), more, &r, &rays);
     }
     s1 += c;
     s2 += c * c;

@@ -213,7 +213,7 @@ typedef struct {
   float max_radius_pixels;  // reach a R, divided by a)
   rc_uint guide_rays;       // rays aimed at the light guide's clusters, beside the M x N strata (0: none)
   rc_uint guide_clusters;   // clusters in the guide, 0 .. GUIDE_MAX_CLUSTERS
-  float pad;
+  rc_uint bounces;          // indirect bounces each ray gathers (kernels/bounce.h; 0 counts as 1)
 } HemisphereParams;
 
 // The light guide (kernels/light_guide.cl, kernels/light_guide.h): where the scene's directly lit surfaces send the
@@ -270,6 +270,8 @@ typedef struct {
   rc_uint sample_count;
   rc_uint grid_side;  // stratified: samples drawn from a grid_side x grid_side grid over the hemisphere; 0: plain
   rc_uint seed;
+  rc_uint bounces;    // indirect bounces per path (kernels/bounce.h; 0 counts as 1)
+  rc_uint pad[3];
 } PathParams;
 
 // The glossy pass's constants (kernels/glossy.cl).
@@ -283,7 +285,7 @@ typedef struct {
   rc_uint record_strata;
   rc_uint record_guide_rays;
   rc_uint guide_share_samples;
-  rc_uint pad;
+  rc_uint bounces;  // indirect bounces each sample gathers (kernels/bounce.h; 0 counts as 1)
 } GlossyParams;
 
 // A material's BRDF parameters (kernels/brdf.h), for the BRDF's HSH table (kernels/brdf_table.cl).
@@ -390,7 +392,7 @@ static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 16);
 static_assert(sizeof(DirectParams) == 16);
-static_assert(sizeof(PathParams) == 16);
+static_assert(sizeof(PathParams) == 32);
 static_assert(sizeof(RecordBatchParams) == 48);
 static_assert(sizeof(HshRecordParams) == 32);
 static_assert(sizeof(GlossyParams) == 32);

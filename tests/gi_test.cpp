@@ -111,6 +111,35 @@ TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
   EXPECT_LT(errors[2], errors[1]) << "the error must fall as a falls";
 }
 
+// --bounces N (issue 11 part 3): the cache and the path tracer continue each ray's path from its first hit alike
+// (kernels/bounce.h), so the splatted image converges to the path-traced one for every N, and each bounce adds light.
+// The Cornell box, 48 x 48, a = 0.3, against stratified references of 2048 samples less their own noise.
+TEST(GlobalIllumination, SplatConvergesToPathTracingForOneTwoAndThreeBounces) {
+  Scene scene = make_cornell_box();
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  settings.light_samples = 4;
+  double previous_mean = 0.0;
+  for (unsigned bounces : {1u, 2u, 3u}) {
+    settings.bounces = bounces;
+    settings.gi = GiMethod::splat;
+    PathReference reference = path_reference(scene, settings, 2048);
+    const RenderedImage img = render(test::gpu(), scene, settings);
+    double error = indirect_rel_mse(img, reference.image) - reference.noise;
+    double mean = 0.0, ref_mean = 0.0;
+    for (size_t i = 0; i < img.indirect.size(); ++i) {
+      mean += img.indirect[i];
+      ref_mean += reference.image.indirect[i];
+    }
+    std::printf("%u bounce(s): indirect relMSE %.3e after the reference's own %.1e; mean %.5f against %.5f\n", bounces,
+                error, reference.noise, mean / double(img.indirect.size()), ref_mean / double(img.indirect.size()));
+    EXPECT_LT(error, 5e-4) << bounces << " bounces";  // measured 1.4e-4, 2.1e-4, 2.2e-4
+    EXPECT_NEAR(mean, ref_mean, 0.01 * ref_mean) << bounces << " bounces";
+    EXPECT_GT(ref_mean, 1.05 * previous_mean) << "bounce " << bounces << " adds light";
+    previous_mean = ref_mean;
+  }
+}
+
 // Compiling the BRDF code (HAS_SPECULAR_BRDF) for a scene whose materials are all Lambertian changes no bit of its
 // image: the specular branches are taken per pixel and per hit only where a lobe exists.
 TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {

@@ -35,6 +35,12 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
     throw Error(path + ": rendered from " + need("rcsplat:scene") + ", not " + scene.source);
   if (need("rcsplat:stratified") != (o.settings.path.stratified ? "1" : "0"))
     throw Error(path + ": sampled " + (o.settings.path.stratified ? "without" : "with") + " stratification");
+  // Files written before --bounces existed hold one bounce.
+  auto bounces_it = attributes.find("rcsplat:bounces");
+  unsigned bounces_before = bounces_it == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_it->second);
+  if (bounces_before != o.settings.bounces)
+    throw Error(path + ": rendered with --bounces " + std::to_string(bounces_before) + ", not " +
+                std::to_string(o.settings.bounces));
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));

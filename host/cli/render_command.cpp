@@ -24,8 +24,8 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
   std::printf("scene        %s\n", scene.source.c_str());
   print_scene_plan(plan, s.bvh_depth);  // what `rcsplat info` prints
   std::printf("device       %s\n", s.device.c_str());
-  std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s\n", image.width, image.height,
-              s.light_samples, gi_method_name(s.gi));
+  std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s, %u bounce%s\n", image.width,
+              image.height, s.light_samples, gi_method_name(s.gi), settings.bounces, settings.bounces == 1 ? "" : "s");
   std::printf("BVH          %zu nodes, %zu triangle blocks, depth %d\n", s.bvh_nodes, s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
               (unsigned long long)s.shadow_rays);
@@ -91,7 +91,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
   nlohmann::json j = {
       {"scene_plan", scene_plan_json(plan, s.bvh_depth)},
       {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
-      {"gi", gi_method_name(s.gi)}, {"light_samples", s.light_samples}, {"triangles", s.triangles},
+      {"gi", gi_method_name(s.gi)}, {"bounces", settings.bounces}, {"light_samples", s.light_samples},
+      {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
       {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}, {"records", s.record_rays},
                 {"path", s.path_rays}}},
@@ -161,7 +162,8 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:path_samples", std::to_string(image.stats.path_samples)},
                               {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
-                              {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"}};
+                              {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
+                              {"rcsplat:bounces", std::to_string(options.settings.bounces)}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);

@@ -14,7 +14,7 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
       kernel_(gpu.kernel("glossy.cl", "glossy_indirect", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable))) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
-                     unsigned record_strata, unsigned record_guide_rays) {
+                     unsigned record_strata, unsigned record_guide_rays, unsigned bounces) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
     radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
@@ -26,6 +26,7 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
   params.grid_side = unsigned(std::sqrt(double(samples)));
   params.seed = seed;
   params.guide_clusters = cl_uint(guide.size());
+  params.bounces = bounces;
   if (record_strata && record_guide_rays && !guide.empty()) {
     params.record_strata = record_strata;
     params.record_guide_rays = record_guide_rays;

@@ -20,7 +20,7 @@ class GlossyPass {
   // guide's share to the pixels (record_guide_rays guided rays beside record_strata strata, both > 0), the
   // radiance-cached pixels get that share from as many samples. Blocks until done.
   void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {},
-           unsigned record_strata = 0, unsigned record_guide_rays = 0);
+           unsigned record_strata = 0, unsigned record_guide_rays = 0, unsigned bounces = 1);
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
   std::vector<float> download_rgba();
 

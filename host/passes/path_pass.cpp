@@ -9,7 +9,9 @@ PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
 }
 
-void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed) {
+void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed,
+                     unsigned bounces) {
+  bounces_ = bounces;
   gbuffer_ = gbuffer;
   pixels_ = gbuffer.pixel_count();
   std::vector<cl_float4> zeros(pixels_, cl_float4{{0, 0, 0, 0}});
@@ -30,6 +32,7 @@ void PathPass::add_samples(unsigned count) {
   params.sample_count = count;
   params.grid_side = grid_side_;
   params.seed = seed_;
+  params.bounces = bounces_;
   scene_.bind(kernel_);
   gbuffer_.bind(kernel_);
   kernel_.set("params", params)

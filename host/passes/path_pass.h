@@ -14,7 +14,7 @@ class PathPass {
   PathPass(GpuContext& gpu, const DeviceScene& scene);
 
   // Starts over for a frame of total_samples per pixel; stratified draws them from a grid over the hemisphere.
-  void begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed);
+  void begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed, unsigned bounces = 1);
   // Adds the next count samples to every pixel; blocks until done.
   void add_samples(unsigned count);
   unsigned samples_done() const { return done_; }
@@ -30,7 +30,7 @@ class PathPass {
   NamedKernel kernel_;
   cl::Buffer sum_, sum_squares_, ray_total_;
   size_t pixels_ = 0;
-  unsigned total_ = 0, done_ = 0, grid_side_ = 0, seed_ = 0;
+  unsigned total_ = 0, done_ = 0, grid_side_ = 0, seed_ = 0, bounces_ = 1;
 };
 
 }  // namespace rcsplat

@@ -60,6 +60,7 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   batch.hemisphere = params;
   batch.hemisphere.guide_rays = guide_rays_;
   batch.hemisphere.guide_clusters = guide_clusters_;
+  batch.hemisphere.bounces = bounces_;
   batch.candidate_count = count;
   batch.first_record = first;
   scene_.bind(kernel_);

@@ -24,6 +24,8 @@ class RecordPass {
   // Aims rays_per_record rays of every later record at these clusters (kernels/light_guide.h), beside its M x N
   // strata; no clusters or no rays: none. Records computed without a guide ignore HemisphereParams' guide fields.
   void set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record);
+  // Indirect bounces each record's rays gather (kernels/bounce.h), for every later record; 1 unless set.
+  void set_bounces(unsigned bounces) { bounces_ = bounces; }
   const cl::Buffer& records() const { return records_; }
   // With store_strata, of the last batch: float4 (L.rgb, hit distance) per stratum, [(i * M + row) * N + column] for
   // its record i, L the share of the light the light guide leaves to the strata (such records cast no guided rays:
@@ -41,7 +43,7 @@ class RecordPass {
   bool store_strata_;
   NamedKernel kernel_;
   cl::Buffer records_, ray_total_, strata_, guide_;
-  unsigned guide_clusters_ = 0, guide_rays_ = 0;
+  unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
   size_t capacity_ = 0, strata_capacity_ = 0;
 };
 

@@ -27,7 +27,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
     auto t = Clock::now();
     glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed,
                 f.light_guide ? *f.light_guide : std::vector<GuideCluster>{},
-                guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u);
+                guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
+                f.settings.bounces);
     st.glossy_s = seconds_since(t);
     st.glossy_samples = f.settings.glossy_samples;
     std::vector<float> g = glossy->download_rgba();

@@ -98,6 +98,7 @@ void octree_indirect(IndirectFrame& f) {
 
   double program_before = f.gpu.program_seconds();
   RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
+  records.set_bounces(f.settings.bounces);
   st.program_s += f.gpu.program_seconds() - program_before;
   attach_light_guide(f, records);
   OctreeRecordIndex index(f.gpu, geo, img.width, img.height, f.scene, f.device_scene.frame(), cs);

@@ -16,6 +16,7 @@ void splat_indirect(IndirectFrame& f) {
   const GBufferView& gbuffer = f.gbuffer.view();
   double program_before = f.gpu.program_seconds();
   RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
+  records.set_bounces(f.settings.bounces);
   DeviceRecordIndex index(f.gpu, gbuffer, cs);
   SplatPass splat(f.gpu);
   st.program_s += f.gpu.program_seconds() - program_before;

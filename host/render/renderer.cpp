@@ -54,6 +54,8 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
   if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
   // The command line refuses it too; a caller of the library gets the same words before any work.
+  if (settings.bounces < 1 || settings.bounces > kMaxBounces)
+    throw Error("--bounces must be between 1 and " + std::to_string(kMaxBounces));
   if (settings.hsh_order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
   auto start = Clock::now();

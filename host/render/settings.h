@@ -9,6 +9,8 @@
 namespace rcsplat {
 
 enum class GiMethod { none, splat, octree, path };
+
+constexpr unsigned kMaxBounces = 16;
 const char* gi_method_name(GiMethod method);
 
 struct PathSettings {
@@ -27,6 +29,9 @@ struct RenderSettings {
   // materials' roughness (the smallest order holding 95% of what order 10 holds of every cached lobe).
   unsigned hsh_order = 0;
   unsigned seed = 0;
+  // Indirect bounces every method gathers (kernels/bounce.h): 1 is the first bounce lit directly; each more continues
+  // the path from the bounce's hit. The command line's --bounces.
+  unsigned bounces = 1;  // 1 .. kMaxBounces
   GiMethod gi = GiMethod::splat;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
