@@ -4,7 +4,8 @@
 
 namespace rcsplat {
 
-DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh, const std::set<std::string>& forced_switches,
+DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
+                         const std::set<std::string>& forced_switches,
                          const SceneFrame& frame)
     : bvh_(gpu, bvh), frame_(frame) {
   PackedScene p = pack_scene(scene, frame);

@@ -57,7 +57,8 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
           {"textures", plan.textures},
           {"vertex_colors", plan.vertex_colors},
           {"alpha_mask", plan.alpha_mask},
-          {"lights", {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
+          {"lights",
+           {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
           {"environment", nullptr},
           {"not_simulated", plan.not_simulated},
           {"switches", plan_switches(plan, bvh_depth)}};

@@ -37,7 +37,8 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
     throw Error(path + ": sampled " + (o.settings.path.stratified ? "without" : "with") + " stratification");
   // Files written before --bounces existed hold one bounce.
   auto bounces_it = attributes.find("rcsplat:bounces");
-  unsigned bounces_before = bounces_it == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_it->second);
+  unsigned bounces_before =
+      bounces_it == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_it->second);
   if (bounces_before != o.settings.bounces)
     throw Error(path + ": rendered with --bounces " + std::to_string(bounces_before) + ", not " +
                 std::to_string(o.settings.bounces));
