@@ -58,6 +58,12 @@ typedef struct {
   uint key, sample, bounces;
 } PathContinuation;
 
+// The continuation of sample `sample` (random stream `key`) for a frame of `bounces` bounces in all (0 counts as 1).
+inline PathContinuation path_continuation(uint key, uint sample, uint bounces) {
+  PathContinuation more = {key, sample, bounces > 1u ? bounces - 1u : 0u};
+  return more;
+}
+
 inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
   float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
   for (uint k = 0; k < more.bounces; ++k) {
@@ -78,8 +84,7 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
     {
       float3 t, b;
       tangent_frame(h.ns, &t, &b);
-      float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
-      next = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * h.ns;
+      next = cosine_direction(t, b, h.ns, u1, u2);
       throughput *= h.albedo;  // cosine-weighted: f cos / pdf = albedo
     }
     if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f) || dot(next, h.ng) <= 0.0f) break;

@@ -46,16 +46,6 @@ inline bool record_usable(float w, float accuracy, rc_float3 p, rc_float3 n, rc_
   return w * accuracy > 1.0f && rc_dot(n, nk) > 0.0f && not_in_front_of_record(p, n, pk, nk, radius);
 }
 
-// The tangent frame of a record's normal (Duff et al. 2017, as kernels/sampling.h tangent_frame): its azimuth sectors
-// are measured from t toward b.
-inline void record_tangent_frame(rc_float3 n, rc_float3* t, rc_float3* b) {
-  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
-  float a = -1.0f / (sign + n.z);
-  float c = n.x * n.y * a;
-  *t = rc_make3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  *b = rc_make3(c, sign + n.y * n.y * a, -n.y);
-}
-
 // The 45-degree azimuth sector (0 .. 7, counter-clockwise from t) of the tangent-plane offset (x, y), by comparisons
 // only, so that the host and the device agree to the bit.
 inline int horizon_sector(float x, float y) {
@@ -68,7 +58,7 @@ inline int horizon_sector(float x, float y) {
 
 // Thin-wall leaks: a record may not reach P if P lies, along the record's tangent plane, beyond the occluder its low
 // rays found in P's direction (the far side of a wall it stands beside, thinner than a pixel). (t, b): the record's
-// record_tangent_frame, computed once per record by the caller. The offset's normal component does not change x, y.
+// tangent_frame, computed once per record by the caller. The offset's normal component does not change x, y.
 inline bool within_record_horizon(RC_GLOBAL const CacheRecord* rec, rc_float3 t, rc_float3 b, rc_float3 p) {
   rc_float3 d = p - rc_load3(0, rec->position);
   float x = rc_dot(d, t), y = rc_dot(d, b), h = rec->horizon[horizon_sector(x, y)];

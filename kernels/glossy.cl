@@ -30,10 +30,10 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
   const float3 mirror = (float3)(-wo.x, -wo.y, wo.z);  // the lobe's peak, near enough
   for (uint c = 0; c < count; ++c) {
     float3 axis = to_local(frame, cones[c].axis);
-    // The lobe's own samples expected in the cone, the share of the lobe it holds estimated at its axis (at most 1).
-    float lobe_hits = axis.z > 0.0f ? lobe_samples * fmin(visible_normal_pdf(in, wo, axis) / cones[c].inv_solid_angle, 1.0f)
-                                    : 0.0f;
-    bool small = axis.z > 0.0f && lobe_hits < GUIDE_MAX_STRATA;
+    // Small: the lobe's own samples expected in the cone (the share of the lobe it holds, estimated at its axis, at
+    // most 1) stay below GUIDE_MAX_STRATA.
+    bool small = axis.z > 0.0f && lobe_samples * fmin(visible_normal_pdf(in, wo, axis) / cones[c].inv_solid_angle,
+                                                      1.0f) < GUIDE_MAX_STRATA;
     // The lobe at the cone's direction nearest its peak: a narrow lobe that meets only the cone's rim still counts.
     float cos_to_mirror = dot(mirror, axis), cos_max = cones[c].cos_max;
     float3 toward = mirror - cos_to_mirror * axis;
@@ -69,9 +69,8 @@ inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, Glossy
     if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
     float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
     float r;
-    PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
     float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               more, &r, rays);
+                               path_continuation(key, s, params.bounces), &r, rays);
     sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
   }
   return sum / (float)max(params.guide_share_samples, 1u);
@@ -129,9 +128,8 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     float3 dir = to_world(frame, wi);
     if (dot(dir, ng) <= 0.0f) continue;
     float r;
-    PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
     float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               more, &r, &rays);
+                               path_continuation(key, s, params.bounces), &r, &rays);
     if (!cone_count) {
       sum += brdf_specular_weight(in, wo, wi) * l;
       continue;

@@ -47,4 +47,14 @@ inline rc_float3 rc_max_zero(rc_float3 v) { return glm::max(v, rc_float3(0.0f));
 inline rc_float3 rc_make3(float x, float y, float z) { return rc_float3(x, y, z); }
 #endif
 
+// An orthonormal frame around the unit vector n (Duff et al. 2017, branch-free): the kernels' sampling frame and the
+// frame a record's horizon sectors are measured in (kernels/cache_math.h), the same bits on host and device.
+inline void tangent_frame(rc_float3 n, rc_float3* t, rc_float3* b) {
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (sign + n.z);
+  float c = n.x * n.y * a;
+  *t = rc_make3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = rc_make3(c, sign + n.y * n.y * a, -n.y);
+}
+
 #endif

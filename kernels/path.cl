@@ -34,8 +34,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
       u1 = ((float)(s % grid_side) + u1) / (float)grid_side;
       u2 = ((float)(s / grid_side) + u2) / (float)grid_side;
     }
-    float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
-    float3 dir = (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
+    float3 dir = cosine_direction(t, b, n, u1, u2);
     float3 throughput = albedo;  // cosine-weighted sampling: f cos / pdf = albedo
 #if HAS_SPECULAR_BRDF
     if (specular) {
@@ -48,9 +47,9 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
     float3 c = (float3)(0.0f);
     if (dot(dir, ng) > 0.0f && (throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) {
       float r;
-      PathContinuation more = {key, s, params.bounces > 1u ? params.bounces - 1u : 0u};
       c = throughput * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
-                                       random01(key, s, 5u), more, &r, &rays);
+                                       random01(key, s, 5u), path_continuation(key, s, params.bounces), &r,
+                                       &rays);
     }
     s1 += c;
     s2 += c * c;

@@ -15,7 +15,7 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;
   float3 tk, bk;
-  record_tangent_frame(nk, &tk, &bk);
+  tangent_frame(nk, &tk, &bk);
   PixelRect rect = sphere_footprint(camera, pk, accuracy * radius);
   int x0 = (rect.x0 + spacing - 1) / spacing * spacing, y0 = (rect.y0 + spacing - 1) / spacing * spacing;
   for (int y = y0; y <= rect.y1; y += spacing) {

@@ -48,7 +48,7 @@ __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, 
   __global const float* block = coefficients + (size_t)r * (size_t)(HSH_RECORD_PARTS * 3 * n2);
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float3 tk, bk;
-  record_tangent_frame(nk, &tk, &bk);  // the same Duff frame as tangent_frame, and the horizon's
+  tangent_frame(nk, &tk, &bk);  // the record's HSH frame and its horizon's
   float radius = rec->radius;
   PixelRect rect = sphere_footprint(camera, pk, params.accuracy * radius);
   float to_fixed = FIXED_POINT_ONE / params.radiance_scale;

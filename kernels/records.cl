@@ -30,7 +30,7 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 // random numbers follow the strata's, from sample M N on.
 inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
                                 uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
-                                uint extra_bounces, uint* rays) {
+                                uint bounces, uint* rays) {
   float3 e = (float3)(0.0f);
   for (uint g = 0; g < guided_rays; ++g) {
     uint s = first_sample + g;
@@ -40,9 +40,8 @@ inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, 
     float cos_n = dot(dir, n);
     if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
     float r;
-    PathContinuation more = {key, s, extra_bounces};
     float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               more, &r, rays);
+                               path_continuation(key, s, bounces), &r, rays);
     e += l * (cos_n / (cosine_density * cos_n +
                        (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from)));
   }
@@ -64,11 +63,10 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;
-  record_tangent_frame(n, &t, &b);  // the frame the horizon sectors are measured in
+  tangent_frame(n, &t, &b);  // the frame the horizon sectors are measured in
   const uint M = hp.theta_strata, N = hp.phi_strata;
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
   uint key = hash_u32(pixel ^ hash_u32(hp.seed));
-  const uint extra_bounces = hp.bounces > 1u ? hp.bounces - 1u : 0u;
 
   // The light guide's cones for this record (none without a guide): its rays and the strata are weighted by the
   // balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
@@ -123,9 +121,8 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
       float r = INFINITY;
       float3 l = (float3)(0.0f);
       if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
-        PathContinuation more = {key, s, extra_bounces};
-        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u), more,
-                            &r, &rays);
+        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+                            path_continuation(key, s, hp.bounces), &r, &rays);
       }
       // What the strata estimate is the part of the light the guide leaves to them; their gradients, and the HSH
       // projection of radiance records, see that part.
@@ -164,7 +161,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
 #if !STORE_STRATA
   if (cone_count)
     e_guided = guided_irradiance(SCENE, origin, n, ng, cones, cone_count, hp.guide_rays, cosine_density, key, M * N,
-                                 extra_bounces, &rays);
+                                 hp.bounces, &rays);
 #endif
   e = finite_or_zero(e * norm + e_guided);
 

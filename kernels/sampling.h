@@ -22,13 +22,10 @@ inline float3 finite_or_zero(float3 c) {
   return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);
 }
 
-// An orthonormal frame around the unit vector n (Duff et al. 2017, branch-free).
-inline void tangent_frame(float3 n, float3* t, float3* b) {
-  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
-  float a = -1.0f / (sign + n.z);
-  float c = n.x * n.y * a;
-  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+// A cosine-weighted direction about n (frame t, b, n) from uniform (u1, u2): sin^2(theta) = u1, phi = 2 pi u2.
+inline float3 cosine_direction(float3 t, float3 b, float3 n, float u1, float u2) {
+  float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;
+  return (cos(phi) * sin_t) * t + (sin(phi) * sin_t) * b + cos_t * n;
 }
 
 #endif

@@ -30,7 +30,7 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
   float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
   float radius = rec->radius;
   float3 tk, bk;
-  record_tangent_frame(nk, &tk, &bk);
+  tangent_frame(nk, &tk, &bk);
   PixelRect rect = sphere_footprint(camera, pk, params.accuracy * radius);
   float to_fixed = FIXED_POINT_ONE / params.irradiance_scale;
   for (int y = rect.y0; y <= rect.y1; ++y) {

@@ -40,7 +40,7 @@ __kernel void evaluate_cache_math(__global const float* inputs, __global const C
   out[7] = neighbour_clamped_radius(radius, bound * 0.5f, in[14], in[15]);
   out[8] = pixel_world_size(camera, p);
   float3 t, b;
-  record_tangent_frame(nk, &t, &b);
+  tangent_frame(nk, &t, &b);
   out[9] = within_record_horizon(records + i, t, b, p) ? 1.0f : 0.0f;
 }
 )";
@@ -138,7 +138,7 @@ TEST(CacheMath, DeviceAndHostComputeTheSameBits) {
     float bound = neighbour_radius_bound(p, pk, radius);
     vec3 e = extrapolated_irradiance(&cases[i].record, p, n);
     vec3 t, b;
-    record_tangent_frame(nk, &t, &b);
+    tangent_frame(nk, &t, &b);
     const float horizon = within_record_horizon(&cases[i].record, t, b, p) ? 1.0f : 0.0f;
     hidden += horizon == 0.0f;
     float host[kOutputs] = {w,

@@ -17,7 +17,8 @@ struct Bvh8 {
   double build_seconds = 0.0;
 
   // Entries a traversal stack needs: each level pushes at most seven siblings.
-  int stack_size() const { return 7 * depth + 8; }
+  static int stack_size_for_depth(int depth) { return 7 * depth + 8; }
+  int stack_size() const { return stack_size_for_depth(depth); }
 };
 
 // positions: three per triangle. Degenerate and non-finite triangles are left out (no ray can hit them).

@@ -31,7 +31,7 @@ struct Interpolation {
 inline bool record_reaches_pixel(const CacheRecord& r, float w, float accuracy, const PixelGeometry& g,
                                  const glm::vec3& pk, const glm::vec3& nk) {
   glm::vec3 t, b;
-  record_tangent_frame(nk, &t, &b);
+  tangent_frame(nk, &t, &b);
   return record_reaches(&r, t, b, w, accuracy, g.p, g.n, pk, nk, r.radius);
 }
 

@@ -12,7 +12,7 @@ namespace rcsplat {
 
 std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth) {
   std::map<std::string, std::string> switches = plan.switches;
-  switches["BVH_STACK_SIZE"] = bvh_stack_switch(Bvh8{.depth = bvh_depth}.stack_size());
+  switches["BVH_STACK_SIZE"] = bvh_stack_switch(Bvh8::stack_size_for_depth(bvh_depth));
   return switches;
 }
 
