@@ -38,3 +38,4 @@ expect_refused("invalid JSON" "broken.gltf: cannot be loaded" render broken.gltf
 expect_refused("missing scene" "nothing.gltf" render nothing.gltf -o out.exr)
 expect_refused("accuracy out of range" "--accuracy" render -o out.exr --accuracy 0)
 expect_refused("info on invalid JSON" "broken.gltf: cannot be loaded" info broken.gltf --json out.json)
+expect_refused("bounces 0" "--bounces: Value 0" render -o out.exr --bounces 0)

@@ -80,6 +80,28 @@ HemisphereParams hemisphere(unsigned m, unsigned n) {
 
 double irradiance_r(const CacheRecord& r) { return r.irradiance[0]; }
 
+// The G-buffer of the scene's first camera at w x h, run on `pass` (which keeps it for the record pass) and downloaded.
+std::vector<GBufferSample> camera_gbuffer(GBufferPass& pass, const Scene& scene, int w, int h) {
+  pass.run(camera_params(choose_camera(scene, 0, {}), w, h));
+  return pass.download();
+}
+
+// The 8 x 16 hemisphere of the tests below, with the renderer's default radius clamps.
+HemisphereParams clamped_hemisphere() {
+  HemisphereParams hp = hemisphere(8, 16);
+  hp.min_radius_pixels = 3.0f;
+  hp.max_radius_pixels = 20.0f;
+  return hp;
+}
+
+// The host's double-precision record at a G-buffer sample (its position and both normals).
+HostRecord host_record_at(const test::TwinScene& twin, const GBufferSample& s, uint32_t pixel, double pixel_size,
+                          const HemisphereParams& hp, const std::vector<GuideCluster>& guide) {
+  vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
+  vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
+  return compute_host_record(twin.shading, p, n, ng, pixel, pixel_size, hp, guide);
+}
+
 // count pixels (repeats allowed) drawn at random among those that see geometry.
 std::vector<uint32_t> random_covered_pixels(const std::vector<GBufferSample>& g, size_t count, unsigned seed) {
   std::vector<uint32_t> pixels;
@@ -96,16 +118,10 @@ std::vector<uint32_t> random_covered_pixels(const std::vector<GBufferSample>& g,
 size_t expect_records_match_host(const Scene& scene, bool guided) {
   test::TwinScene twin(scene);
   GpuContext& gpu = test::gpu();
-  SceneCamera cam = choose_camera(twin.scene, 0, {});
-  int w = 48, h = 48;
-  CameraParams params = camera_params(cam, w, h);
   GBufferPass gbuffer(gpu, twin.device);
-  gbuffer.run(params);
-  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<GBufferSample> g = camera_gbuffer(gbuffer, twin.scene, 48, 48);
   std::vector<uint32_t> pixels = random_covered_pixels(g, 200, 3);
-  HemisphereParams hp = hemisphere(8, 16);
-  hp.min_radius_pixels = 3.0f;
-  hp.max_radius_pixels = 20.0f;
+  HemisphereParams hp = clamped_hemisphere();
   RecordPass pass(gpu, twin.device, hp.theta_strata);
   std::vector<GuideCluster> guide;
   if (guided) {
@@ -122,10 +138,7 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
   // few records may differ by one ray's share; the bulk must agree to float precision.
   std::vector<double> e_err, r_err, g_err, h_err;
   for (size_t i = 0; i < pixels.size(); ++i) {
-    const GBufferSample& s = g[pixels[i]];
-    vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
-    vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
-    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], device[i].pixel_size, hp, guide);
+    HostRecord host = host_record_at(twin, g[pixels[i]], pixels[i], device[i].pixel_size, hp, guide);
     with_guided_rays += host.rays > hp.theta_strata * hp.phi_strata;
     EXPECT_EQ(device[i].pixel, int(pixels[i]));
     double e_scale = std::max({host.irradiance.x, host.irradiance.y, host.irradiance.z, 1e-6});
@@ -291,14 +304,10 @@ TEST(HshRecordGradients, MatchFiniteDifferencesAtAnOccluderEdge) {
 TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
   test::TwinScene twin(make_cornell_box());
   GpuContext& gpu = test::gpu();
-  CameraParams params = camera_params(choose_camera(twin.scene, 0, {}), 48, 48);
   GBufferPass gbuffer(gpu, twin.device);
-  gbuffer.run(params);
-  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<GBufferSample> g = camera_gbuffer(gbuffer, twin.scene, 48, 48);
   std::vector<uint32_t> pixels = random_covered_pixels(g, 64, 11);
-  HemisphereParams hp = hemisphere(8, 16);
-  hp.min_radius_pixels = 3.0f;
-  hp.max_radius_pixels = 20.0f;
+  HemisphereParams hp = clamped_hemisphere();
   hp.guide_rays = 32;
   const std::vector<GuideCluster> guide =
       cluster_photons(LightGuidePass(gpu, twin.device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS);
@@ -332,10 +341,7 @@ TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
   std::vector<double> errors;
   size_t with_guided_rays = 0;  // records whose host twin cast guided rays: those whose strata are weighted
   for (size_t i = 0; i < pixels.size(); ++i) {
-    const GBufferSample& s = g[pixels[i]];
-    vec3 p(s.position[0], s.position[1], s.position[2]), n(s.normal[0], s.normal[1], s.normal[2]);
-    vec3 ng(s.geometric_normal[0], s.geometric_normal[1], s.geometric_normal[2]);
-    HostRecord host = compute_host_record(twin.shading, p, n, ng, pixels[i], records[i].pixel_size, hp, guide);
+    HostRecord host = host_record_at(twin, g[pixels[i]], pixels[i], records[i].pixel_size, hp, guide);
     with_guided_rays += host.rays > hp.theta_strata * hp.phi_strata;
     std::vector<double> want(size_t(n2), 0.0);
     for (size_t st = 0; st < host.strata_radiance.size(); ++st)
