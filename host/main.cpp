@@ -35,8 +35,25 @@ struct CameraFlags {
   }
 };
 
+// Light from outside the scene (scene/environment.h), for render, reference and info.
+struct EnvironmentFlags {
+  std::vector<float> sky;
+  void add(CLI::App* cmd, EnvironmentSettings& e) {
+    cmd->add_option("--sky", sky, "Uniform sky radiance R,G,B seen by every ray that leaves the scene")
+        ->delimiter(',')
+        ->expected(3);
+    cmd->add_option("--environment", e.file,
+                    "Equirectangular environment map (.exr, .hdr): +Y up, its centre column toward -Z; its bright "
+                    "peak (a sun) is importance-sampled by shadow rays, the rest gathered with the indirect light");
+    cmd->add_option("--environment-intensity", e.intensity, "Multiplies the environment map (default 1)");
+    cmd->add_option("--environment-rotation", e.rotation_degrees,
+                    "Rotates the environment map about +Y by this many degrees (default 0)");
+  }
+  void apply(EnvironmentSettings& e) const { e.sky = as_vec3(sky); }
+};
+
 // The options every image-making command shares: scene, outputs, device, frame and camera, light samples.
-void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam) {
+void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env) {
   cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
   cmd->add_option("-o,--output", o.outputs, "Output image(s): .exr (linear, with layers) or .png (tone-mapped)")
       ->required();
@@ -56,6 +73,7 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam) {
                   "Indirect bounces: 1 lights the first bounce's hit directly, each more continues the path from "
                   "there (every method, the reference too; default 1)")
       ->check(CLI::Range(1u, kMaxBounces));
+  env.add(cmd, o.environment);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
   cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
 }
@@ -75,8 +93,9 @@ int main(int argc, char** argv) {
 
   RenderOptions render;
   CameraFlags render_camera;
+  EnvironmentFlags render_environment;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
-  add_frame_options(render_cmd, render, render_camera);
+  add_frame_options(render_cmd, render, render_camera, render_environment);
   std::string gi = "splat", hemisphere, spacing;
   render_cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
                                      "irradiance cache on the host), path (path tracing), none")
@@ -115,13 +134,14 @@ int main(int argc, char** argv) {
 
   RenderOptions reference;
   CameraFlags reference_camera;
+  EnvironmentFlags reference_environment;
   reference.settings.gi = GiMethod::path;
   reference.settings.path.samples = 1024;
   reference.settings.path.stratified = true;
   bool light_samples_given = false;
   CLI::App* reference_cmd =
       app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
-  add_frame_options(reference_cmd, reference, reference_camera);
+  add_frame_options(reference_cmd, reference, reference_camera, reference_environment);
   reference_cmd->add_option("--spp", reference.settings.path.samples, "Samples per pixel (default 1024); the light "
                                                                       "samples default to the same number")
       ->check(CLI::Range(1u, 1u << 20));
@@ -134,6 +154,8 @@ int main(int argc, char** argv) {
       "info", "What a scene contains and what rcsplat will simulate for it, with the kernel switches it compiles");
   info_cmd->add_option("scene", info.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
   info_cmd->add_option("--json", info.json_path, "Also write it as JSON");
+  EnvironmentFlags info_environment;
+  info_environment.add(info_cmd, info.environment);
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means");
@@ -161,6 +183,7 @@ int main(int argc, char** argv) {
     if (*devices_cmd) return run_devices(devices);
     if (*render_cmd) {
       render_camera.apply(render.settings);
+      render_environment.apply(render.environment);
       render.settings.gi = parse_gi_method(gi);
       if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
       if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
@@ -169,11 +192,15 @@ int main(int argc, char** argv) {
     }
     if (*reference_cmd) {
       reference_camera.apply(reference.settings);
+      reference_environment.apply(reference.environment);
       if (!light_samples_given) reference.settings.light_samples = reference.settings.path.samples;
       return run_render(reference);
     }
     if (*compare_cmd) return run_compare(compare);
-    if (*info_cmd) return run_info(info);
+    if (*info_cmd) {
+      info_environment.apply(info.environment);
+      return run_info(info);
+    }
     if (*bench_cmd) return run_bench(bench);
   } catch (const Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -4,6 +4,7 @@
 // Shared by the record pass and the path tracer so that both estimate the same integral.
 #ifndef RCSPLAT_BOUNCE_H
 #define RCSPLAT_BOUNCE_H
+#include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
 #include "surface.h"
@@ -46,6 +47,10 @@ inline float3 hit_direct(SCENE_ARGS, const HitSurface* h, float3 dir, float u, f
 #endif
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
                                h->s.position, h->ns, h->ng, u, v, rays);
+#if HAS_ENVIRONMENT
+  float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
+  e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
+#endif
   return finite_or_zero(h->albedo * RC_INV_PI * e);
 }
 
@@ -102,11 +107,17 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
 
 // Radiance arriving at origin from direction dir after one reflection, and after more.bounces more; (u, v) pick the
 // light sample at the first hit, and u_lobe the lobe of its BRDF sample where the hit is glossy. *distance is the hit
-// distance, INFINITY on a miss.
+// distance, INFINITY on a miss, where the environment's smooth part is what the ray brings (kernels/environment.h).
 inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
                               PathContinuation more, float* distance, uint* rays) {
   HitSurface h;
-  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) return (float3)(0.0f);
+  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) {
+#if HAS_ENVIRONMENT
+    return environment_smooth(environment, scene_counts, dir);  // the peak is the pixel's direct light
+#else
+    return (float3)(0.0f);
+#endif
+  }
   float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
   if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
   return l;

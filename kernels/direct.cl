@@ -1,8 +1,10 @@
-// Direct light at each G-buffer point: punctual lights (point, spot, directional) with shadow rays, and emissive
-// triangles sampled as area lights with stratified samples. Lambertian pixels reflect albedo / pi times the
+// Direct light at each G-buffer point: punctual lights (point, spot, directional) with shadow rays, emissive
+// triangles sampled as area lights with stratified samples, and the environment's peak (a sun) with as many stratified
+// samples (its smooth part is gathered with the indirect light: kernels/environment.h). Lambertian pixels reflect albedo / pi times the
 // irradiance; pixels with a specular lobe (HAS_SPECULAR_BRDF) evaluate the BRDF toward the camera per light sample,
 // glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission itself is not included.
 // Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
+#include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
 #if HAS_SPECULAR_BRDF
@@ -15,6 +17,9 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
   float inv = 1.0f / (float)strata;
   return (float2)(((float)i + random01(key, s, 0u)) * inv, ((float)j + random01(key, s, 1u)) * inv);
 }
+
+// The environment's samples draw from their own stream, independent of the emitters'.
+#define ENVIRONMENT_KEY 0x2545f491u
 
 #if HAS_SPECULAR_BRDF
 // Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters
@@ -37,6 +42,19 @@ inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world
         float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
         sum += emitters_reflected(SCENE, in, g.lobe, frame, wo, p, origin, ng, uv.x, uv.y,
                                   random01(key, j * strata_per_axis + i, 2u), rays);
+      }
+    }
+    result += sum * (inv * inv);
+  }
+#endif
+#if HAS_ENVIRONMENT
+  if (scene_counts.environment_peak_power > 0.0f && strata_per_axis > 0) {
+    float3 sum = (float3)(0.0f);
+    float inv = 1.0f / (float)strata_per_axis;
+    for (uint j = 0; j < strata_per_axis; ++j) {
+      for (uint i = 0; i < strata_per_axis; ++i) {
+        float2 uv = light_stratum_sample(key ^ ENVIRONMENT_KEY, i, j, strata_per_axis);
+        sum += environment_peak_reflected(SCENE, in, frame, wo, origin, ng, uv.x, uv.y, rays);
       }
     }
     result += sum * (inv * inv);
@@ -81,6 +99,20 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
           float3 wi;
           float pdf;
           sum += emitter_sample(BVH, emitters, emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, &rays);
+        }
+      }
+      irradiance += sum * (inv * inv);
+    }
+#endif
+#if HAS_ENVIRONMENT
+    if (scene_counts.environment_peak_power > 0.0f && strata_per_axis > 0) {
+      float3 sum = (float3)(0.0f), wi;
+      float inv = 1.0f / (float)strata_per_axis;
+      uint key = hash_u32(pixel ^ hash_u32(params.seed)) ^ ENVIRONMENT_KEY;
+      for (uint j = 0; j < strata_per_axis; ++j) {
+        for (uint i = 0; i < strata_per_axis; ++i) {
+          float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
+          sum += environment_peak_irradiance(SCENE, origin, n, ng, uv.x, uv.y, &wi, &rays);
         }
       }
       irradiance += sum * (inv * inv);

@@ -1,6 +1,8 @@
-// Primary visibility: what the ray through each pixel's centre hits, with its normals, albedo and emission.
+// Primary visibility: what the ray through each pixel's centre hits, with its normals, albedo and emission (where it
+// leaves the scene, the environment it sees).
 // traverse.h first: its FP_CONTRACT OFF must also cover surface.h's interpolation, as in every tracing kernel.
 #include "traverse.h"
+#include "environment.h"
 #include "scene_args.h"
 #include "surface.h"
 
@@ -36,7 +38,11 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     vstore3((float3)(0.0f), 0, g.normal);
     vstore3((float3)(0.0f), 0, g.geometric_normal);
     vstore3((float3)(0.0f), 0, g.albedo);
+#if HAS_ENVIRONMENT
+    vstore3(environment_radiance(environment, scene_counts, dir), 0, g.emission);  // the sky, seen
+#else
     vstore3((float3)(0.0f), 0, g.emission);
+#endif
     g.triangle = -1;
     g.material = -1;
     g.depth = INFINITY;

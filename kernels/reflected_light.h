@@ -5,6 +5,7 @@
 #ifndef RCSPLAT_REFLECTED_LIGHT_H
 #define RCSPLAT_REFLECTED_LIGHT_H
 #include "brdf_frame.h"
+#include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
 #include "surface.h"
@@ -88,15 +89,48 @@ inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFra
   return finite_or_zero(sum);
 }
 
+#if HAS_ENVIRONMENT
+// One light-sample estimate of the environment's peak reflected toward wo: the smooth part is left to the rays that
+// gather (kernels/environment.h).
+inline float3 environment_peak_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local,
+                                         float3 origin, float3 ng, float u1, float u2, uint* rays) {
+  float3 wi;
+  float3 e = environment_peak_irradiance(SCENE, origin, frame.n, ng, u1, u2, &wi, rays);
+  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);
+  return brdf_eval(in, wo_local, to_local(frame, wi)) * e;
+}
+
+// The environment reflected toward wo by a surface a gathering ray found: the peak by a light sample, the smooth part
+// by a BRDF sample that must escape. Its random numbers come from the light sample's (u, v).
+inline float3 environment_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local, float3 origin,
+                                    float3 ng, float u, float v, uint* rays) {
+  if (!environment_present(scene_counts)) return (float3)(0.0f);
+  float2 peak_u = environment_extra_randoms(u, v, 0u), lobe_u = environment_extra_randoms(u, v, 1u);
+  float3 sum = environment_peak_reflected(SCENE, in, frame, wo_local, origin, ng, peak_u.x, peak_u.y, rays);
+  float3 wi_local;
+  float pdf;
+  float3 throughput = brdf_sample(in, wo_local, environment_extra_randoms(u, v, 2u).x, lobe_u.x, lobe_u.y, &wi_local,
+                                  &pdf);
+  float3 dir = to_world(frame, wi_local);
+  if (pdf > 0.0f && dot(dir, ng) > 0.0f && escapes(BVH, origin, dir, rays))
+    sum += throughput * environment_smooth(environment, scene_counts, dir);
+  return sum;
+}
+#endif
+
 // Direct light reflected toward wo_world (unit, pointing away from p) by a surface with a specular lobe: every
-// punctual light and one emitter estimate.
+// punctual light, one emitter estimate and, where there is one, one estimate of the environment.
 inline float3 direct_reflected(SCENE_ARGS, BrdfInputs in, int lobe, float3 p, float3 n, float3 ng, float3 wo_world,
                                float u, float v, float u_lobe, uint* rays) {
   ShadingFrame frame = shading_frame(n);
   float3 wo_local = view_local(frame, wo_world);
   float3 origin = offset_ray_origin(p, ng);
-  return finite_or_zero(punctual_reflected(SCENE, in, frame, wo_local, p, origin, ng, rays) +
-                        emitters_reflected(SCENE, in, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays));
+  float3 l = punctual_reflected(SCENE, in, frame, wo_local, p, origin, ng, rays) +
+             emitters_reflected(SCENE, in, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays);
+#if HAS_ENVIRONMENT
+  l += environment_reflected(SCENE, in, frame, wo_local, origin, ng, u, v, rays);
+#endif
+  return finite_or_zero(l);
 }
 
 #endif

@@ -256,7 +256,13 @@ typedef struct {
 typedef struct {
   rc_uint light_count;    // punctual lights
   rc_uint emitter_count;  // emissive triangles
-  rc_uint pad[2];
+  // The environment map (kernels/environment.h; 0 x 0 without one) and its rotation about +Y (cos, sin).
+  rc_uint environment_width, environment_height;
+  float environment_rotation[2];
+  // The peak's sampling normalisation: the sum over texels of the peak's luminance times the texel's solid angle
+  // (0: no peak; all of the environment is gathered by escaping rays).
+  float environment_peak_power;
+  rc_uint pad;
 } SceneCounts;
 
 typedef struct {
@@ -390,7 +396,7 @@ static_assert(sizeof(PhotonHit) == 48);
 static_assert(sizeof(PhotonParams) == 16);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
-static_assert(sizeof(SceneCounts) == 16);
+static_assert(sizeof(SceneCounts) == 32);
 static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 32);
 static_assert(sizeof(RecordBatchParams) == 48);

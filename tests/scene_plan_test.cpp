@@ -34,6 +34,10 @@ Scene cornell_with(const std::string& feature) {
     s.materials[0].roughness = 0.5f;
   } else if (feature == "alpha mask") {
     s.materials[0].alpha_cutoff = 0.5f;
+  } else if (feature == "sky") {
+    EnvironmentSettings e;
+    e.sky = glm::vec3(0.3f);
+    s.environment = make_environment(e);
   } else if (feature == "no emitter") {
     for (SceneMaterial& m : s.materials) m.emission = glm::vec3(0.0f);
   }
@@ -44,6 +48,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
   const ScenePlan base = plan_scene(cornell_with(""));
   EXPECT_EQ(base.switches, (std::map<std::string, std::string>{{"HAS_ALPHA_MASK", "0"},
                                                                 {"HAS_EMITTERS", "1"},
+                                                                {"HAS_ENVIRONMENT", "0"},
                                                                 {"HAS_PUNCTUAL_LIGHTS", "0"},
                                                                 {"HAS_SPECULAR_BRDF", "0"},
                                                                 {"HAS_TEXTURES", "0"},
@@ -55,6 +60,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
                                                        {"texture", "HAS_TEXTURES"},
                                                        {"glossy material", "HAS_SPECULAR_BRDF"},
                                                        {"alpha mask", "HAS_ALPHA_MASK"},
+                                                       {"sky", "HAS_ENVIRONMENT"},
                                                        {"no emitter", "HAS_EMITTERS"}};
   for (const auto& [feature, flipped] : cases) {
     const ScenePlan plan = plan_scene(cornell_with(feature));
@@ -71,7 +77,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
 // What `info` reports is what a render compiles: the device scene's defines are the plan's switches and the BVH's
 // stack size.
 TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
-  for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "no emitter"}) {
+  for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "sky", "no emitter"}) {
     const Scene scene = cornell_with(feature);
     const Bvh8 bvh = build_bvh8(scene.positions);
     DeviceScene device(test::gpu(), scene, bvh);
@@ -89,6 +95,7 @@ TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
                                                        {"HAS_ALPHA_MASK", ""},
                                                        {"HAS_VERTEX_COLORS", ""},
                                                        {"HAS_PUNCTUAL_LIGHTS", ""},
+                                                       {"HAS_ENVIRONMENT", ""},
                                                        {"HAS_EMITTERS", "lit by a point light"}};
   for (const auto& [forced, variant] : cases) {
     Scene scene = make_cornell_box();

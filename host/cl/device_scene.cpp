@@ -1,5 +1,7 @@
 #include "cl/device_scene.h"
 
+#include <cstring>
+
 #include "scene/scene_plan.h"
 
 namespace rcsplat {
@@ -20,6 +22,15 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   emitters_host_ = p.emitters;
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
+  std::vector<cl_float4> environment(p.environment.texels.size() / 4);
+  std::memcpy(environment.data(), p.environment.texels.data(), environment.size() * sizeof(cl_float4));
+  environment_ = gpu.upload(environment);
+  environment_cdf_ = gpu.upload(p.environment.cdf);
+  counts_.environment_width = p.environment.width;
+  counts_.environment_height = p.environment.height;
+  counts_.environment_rotation[0] = p.environment.rotation[0];
+  counts_.environment_rotation[1] = p.environment.rotation[1];
+  counts_.environment_peak_power = p.environment.peak_power;
 
   for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
   for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), forced_switches))
@@ -36,6 +47,8 @@ void DeviceScene::bind(NamedKernel& kernel) const {
       .set_buffer<cl_uint>("texels", texels_)
       .set_buffer<PunctualLight>("lights", lights_)
       .set_buffer<EmissiveTriangle>("emitters", emitters_)
+      .set_buffer<cl_float4>("environment", environment_)
+      .set_buffer<cl_float>("environment_cdf", environment_cdf_)
       .set("scene_counts", counts_);
 }
 

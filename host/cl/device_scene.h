@@ -46,7 +46,7 @@ class DeviceScene {
 
  private:
   DeviceBvh bvh_;
-  cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_;
+  cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
   SceneCounts counts_{};
   KernelDefines defines_;
   std::array<unsigned, LOBE_KINDS> lobe_counts_{};

@@ -22,6 +22,7 @@ struct RenderOptions {
   std::vector<std::string> outputs;
   std::string device;
   RenderSettings settings;
+  EnvironmentSettings environment;  // --sky, --environment (part of the scene once loaded)
   float exposure = 0.0f;
   std::string json_path;
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
@@ -37,6 +38,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
 struct InfoOptions {
   std::string scene_path;  // empty: the built-in Cornell box
   std::string json_path;
+  EnvironmentSettings environment;
 };
 int run_info(const InfoOptions& options);
 // The scene plan's lines (info and the render summary), its JSON, and the kernel switches with the BVH's stack size.
@@ -67,7 +69,9 @@ int run_bench(const BenchOptions& options);
 
 // The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
 // placed for the camera the user chose (render/camera.h add_view_defaults).
-Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {});
+// With the environment the options ask for (--sky, --environment), which also stands in for the default light.
+Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
+                 const EnvironmentSettings& environment = {});
 
 // Writes text to path atomically (temporary file, then rename). Throws rcsplat::Error.
 void write_text_file(const std::string& path, const std::string& text);

@@ -29,14 +29,21 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.alpha_mask ? ", alpha-masked cutouts" : "");
   std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,
               plan.spot_lights, plan.directional_lights, plan.emissive_triangles);
-  std::printf("environment  none (no sky or environment light is simulated; rays that leave the scene see black)\n");
+  if (plan.environment.empty())
+    std::printf("environment  none (no sky or environment light is simulated; rays that leave the scene see black)\n");
+  else
+    std::printf("environment  %s: seen by camera rays; %.1f%% of its power (texels above %g times its mean luminance) "
+                "sampled by shadow rays, the rest gathered by the rays that leave the scene\n",
+                plan.environment.c_str(), 100.0 * plan.environment_peak_fraction, kEnvironmentPeakOverMean);
   for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
-  std::printf("compiles     BRDF code %s, HSH code %s, texture code %s, area-light sampling %s, punctual lights %s\n",
+  std::printf("compiles     BRDF code %s, HSH code %s, texture code %s, area-light sampling %s, punctual lights %s, "
+              "environment %s\n",
               plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
               plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
               plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no texture)",
               plan.switches.at("HAS_EMITTERS") == "1" ? "yes" : "no (no emissive triangle)",
-              plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)");
+              plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
+              plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)");
   std::printf("switches    ");
   for (const auto& [name, value] : plan_switches(plan, bvh_depth)) std::printf(" %s=%s", name.c_str(), value.c_str());
   std::printf("\n");
@@ -48,6 +55,14 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
     materials.push_back({{"name", m.name}, {"kind", lobe_name(m.lobe)}, {"roughness", m.roughness},
                          {"metallic", m.metallic}, {"emissive", m.emissive}, {"textured", m.textured},
                          {"shading", lobe_treatment(m.lobe)}});
+  nlohmann::json environment = nullptr;
+  if (!plan.environment.empty())
+    environment = {{"description", plan.environment}, {"kind", plan.environment_map ? "map" : "uniform sky"},
+                   {"width", plan.environment_width}, {"height", plan.environment_height},
+                   {"intensity", plan.environment_intensity}, {"rotation_degrees", plan.environment_rotation_degrees},
+                   {"mean_luminance", plan.environment_mean_luminance},
+                   {"peak_fraction", plan.environment_peak_fraction},
+                   {"peak_threshold_over_mean", kEnvironmentPeakOverMean}};
   return {{"triangles", plan.triangles},
           {"emissive_triangles", plan.emissive_triangles},
           {"materials", materials},
@@ -59,13 +74,13 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
           {"alpha_mask", plan.alpha_mask},
           {"lights",
            {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
-          {"environment", nullptr},
+          {"environment", environment},
           {"not_simulated", plan.not_simulated},
           {"switches", plan_switches(plan, bvh_depth)}};
 }
 
 int run_info(const InfoOptions& options) {
-  const Scene scene = load_scene(options.scene_path);
+  const Scene scene = load_scene(options.scene_path, 0, {}, options.environment);
   const ScenePlan plan = plan_scene(scene);
   // The BVH a render builds: over the scene in its fitted device frame (scene/scene_frame.h), so the depth matches.
   const Bvh8 bvh = build_bvh8(SceneFrame::fitted(scene).device_scene(scene).positions);

@@ -42,6 +42,11 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   if (bounces_before != o.settings.bounces)
     throw Error(path + ": rendered with --bounces " + std::to_string(bounces_before) + ", not " +
                 std::to_string(o.settings.bounces));
+  // Files written before --sky and --environment existed have none.
+  auto environment_it = attributes.find("rcsplat:environment");
+  const std::string environment_before = environment_it == attributes.end() ? "none" : environment_it->second;
+  if (environment_before != scene.environment.describe())
+    throw Error(path + ": rendered with environment " + environment_before + ", not " + scene.environment.describe());
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));

@@ -139,7 +139,8 @@ int run_render(const RenderOptions& options) {
     check_writable_destination(out);
   }
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
-  Scene scene = load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides);
+  Scene scene =
+      load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides, options.environment);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);
@@ -163,7 +164,8 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
                               {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
-                              {"rcsplat:bounces", std::to_string(options.settings.bounces)}};
+                              {"rcsplat:bounces", std::to_string(options.settings.bounces)},
+                              {"rcsplat:environment", scene.environment.describe()}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);

@@ -66,7 +66,7 @@ void add_view_defaults(Scene& scene, int index, const CameraOverrides& o) {
                          : o.target ? std::string("looking at --target from a default viewpoint")
                                     : std::string("using a default camera looking at the scene's centre along -z")));
   }
-  if (scene.lights.empty() && !scene.has_emissive_triangles()) {
+  if (scene.lights.empty() && !scene.has_emissive_triangles() && !scene.environment.present()) {
     SceneCamera view = choose_camera(scene, index, o);
     scene.lights.push_back(scene.default_light(view));
     log_warning(scene.source + ": the scene has no light; using a default point light above the camera");

@@ -137,6 +137,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     p.textures.push_back(info);
   }
   for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(frame.device_light(l)));
+  p.environment = pack_environment(scene.environment);  // directions: the frame only translates and scales
   return p;
 }
 

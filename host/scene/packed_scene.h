@@ -18,6 +18,7 @@ struct PackedScene {
   std::vector<uint32_t> texels;  // RGBA8, sRGB-encoded
   std::vector<PunctualLight> lights;
   std::vector<EmissiveTriangle> emitters;  // with a power-proportional selection CDF
+  PackedEnvironment environment;
 };
 
 // Positions and lights in `frame`'s coordinates (render() passes the fitted one; the identity keeps world units).

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/environment.h"
+
 namespace rcsplat {
 
 struct SceneMaterial {
@@ -64,6 +66,8 @@ struct Scene {
   std::vector<SceneTexture> textures;
   std::vector<SceneLight> lights;
   std::vector<SceneCamera> cameras;
+  // Light from outside (--sky, --environment); none by default: rays that leave the scene see black.
+  Environment environment;
   // What the file asks for that rcsplat does not simulate, once each, as "feature: what rcsplat does instead".
   std::vector<std::string> unsupported;
 

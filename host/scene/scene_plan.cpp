@@ -18,6 +18,9 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   set("HAS_SPECULAR_BRDF", specular);
   set("HAS_PUNCTUAL_LIGHTS", !p.lights.empty());
   set("HAS_EMITTERS", !p.emitters.empty());
+  set("HAS_ENVIRONMENT", p.environment.width > 0);
+  // Tests only: the environment's peak sampled uniformly over the sphere, to check its importance sampling against.
+  if (forced.count("ENVIRONMENT_UNIFORM_SAMPLING")) switches["ENVIRONMENT_UNIFORM_SAMPLING"] = "1";
   return switches;
 }
 
@@ -67,6 +70,17 @@ ScenePlan plan_scene(const Scene& scene) {
     plan.point_lights += l.type == LightType::point;
     plan.spot_lights += l.type == LightType::spot;
     plan.directional_lights += l.type == LightType::directional;
+  }
+  if (scene.environment.present()) {
+    const Environment& e = scene.environment;
+    plan.environment = e.describe();
+    plan.environment_map = !e.source.empty();
+    plan.environment_width = e.width;
+    plan.environment_height = e.height;
+    plan.environment_intensity = e.intensity;
+    plan.environment_rotation_degrees = e.rotation_degrees;
+    plan.environment_peak_fraction = packed.environment.peak_fraction;
+    plan.environment_mean_luminance = packed.environment.mean_luminance;
   }
   plan.not_simulated = scene.unsupported;
   plan.switches = scene_switches(packed, plan.vertex_colors);

@@ -35,6 +35,13 @@ struct ScenePlan {
   std::vector<MaterialPlan> materials;
   std::array<unsigned, LOBE_KINDS> lobe_counts{};
   unsigned point_lights = 0, spot_lights = 0, directional_lights = 0;
+  // The environment (scene/environment.h): its description ("" for none), and the share of its power in the peak that
+  // shadow rays sample.
+  std::string environment;
+  bool environment_map = false;
+  int environment_width = 0, environment_height = 0;
+  float environment_intensity = 1, environment_rotation_degrees = 0;
+  double environment_peak_fraction = 0, environment_mean_luminance = 0;
   std::vector<std::string> not_simulated;  // the loader's notes: what the file asks for and what rcsplat does instead
   std::map<std::string, std::string> switches;
   // What rcsplat does with each kind of material, and whether it compiles radiance caching (LOBE_HSH present).
