@@ -1,9 +1,9 @@
 // Direct light at each G-buffer point: punctual lights (point, spot, directional) with shadow rays, emissive
 // triangles sampled as area lights with stratified samples, and the environment's peak (a sun) with as many stratified
-// samples (its smooth part is gathered with the indirect light: kernels/environment.h). Lambertian pixels reflect albedo / pi times the
-// irradiance; pixels with a specular lobe (HAS_SPECULAR_BRDF) evaluate the BRDF toward the camera per light sample,
-// glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission itself is not included.
-// Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
+// samples (its smooth part is gathered with the indirect light: kernels/environment.h). Lambertian pixels reflect
+// albedo / pi times the irradiance; pixels with a specular lobe (HAS_SPECULAR_BRDF) evaluate the BRDF toward the
+// camera per light sample, glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission
+// itself is not included. Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
 #include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"

@@ -1,6 +1,8 @@
-// The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light, chosen in
-// proportion to its power, to the first surface it lands on, and records the flux that surface reflects (power times
-// albedo). The host clusters the hits into the few bright places records should aim rays at.
+// The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light (punctual,
+// emissive triangle, or the environment's peak, a sun: kernels/environment.h), chosen in proportion to its power, to
+// the first surface it lands on, and records the flux that surface reflects (power times albedo). The host clusters
+// the hits into the few bright places records should aim rays at.
+#include "environment.h"
 #include "light_guide.h"
 #include "scene_args.h"
 #include "surface.h"
@@ -47,7 +49,24 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
       origin = vload3(0, light.position);
       power = intensity * (4.0f * RC_PI);
     }
-  } else {
+  }
+#if HAS_ENVIRONMENT
+  else if (source == (int)(scene_counts.light_count + scene_counts.emitter_count)) {
+    // The peak: a direction drawn by its importance sampling, the photon entering through a unit disc facing it
+    // beyond the scene (as a directional light's), carrying radiance / density times the disc's area.
+    float pdf;
+    float3 toward;
+    float3 radiance_over_pdf =
+        environment_peak_sample(environment, environment_cdf, scene_counts, u, v, &toward, &pdf);
+    float3 t, b;
+    tangent_frame(toward, &t, &b);
+    float r = sqrt(random01(key, 0u, 4u)), cos_p, sin_p = sincos(2.0f * RC_PI * random01(key, 0u, 5u), &cos_p);
+    origin = (r * cos_p) * t + (r * sin_p) * b + 2.0f * toward;
+    dir = -toward;
+    power = pdf > 0.0f ? radiance_over_pdf * RC_PI : (float3)(0.0f);
+  }
+#endif
+  else {
     EmissiveTriangle e = emitters[source - (int)scene_counts.light_count];
     float su = sqrt(u);
     float3 e1 = vload3(0, e.edge1), e2 = vload3(0, e.edge2);

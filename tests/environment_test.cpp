@@ -1,6 +1,6 @@
-// Light from outside the scene (--sky, --environment; kernels/environment.h, scene/environment.h): the furnace case, the
-// map's orientation against an independent double-precision lookup, importance sampling against uniform sampling, and
-// the loader's errors.
+// Light from outside the scene (--sky, --environment; kernels/environment.h, scene/environment.h): the furnace case,
+// the map's orientation against an independent double-precision lookup, importance sampling against uniform
+// sampling, and the loader's errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,8 +135,8 @@ TEST(Environment, BackgroundLooksUpTheRotatedMapAsAHostDoublePrecisionLookup) {
         const double fu = u * w, fv = v * h;
         if (std::abs(fu - std::round(fu)) < 1e-3 || std::abs(fv - std::round(fv)) < 1e-3) continue;
         const int i_tex = std::min(int(fu), w - 1), j_tex = std::min(int(fv), h - 1);
-        ASSERT_EQ(image.emission[3 * i + 0], float(i_tex) + 1.0f) << "rotation " << rotation << ", pixel " << x << "," << y;
-        ASSERT_EQ(image.emission[3 * i + 1], float(j_tex) + 1.0f) << "rotation " << rotation << ", pixel " << x << "," << y;
+        ASSERT_EQ(image.emission[3 * i + 0], float(i_tex) + 1.0f) << "rotation " << rotation << ", pixel " << i;
+        ASSERT_EQ(image.emission[3 * i + 1], float(j_tex) + 1.0f) << "rotation " << rotation << ", pixel " << i;
         ++checked;
       }
     }

@@ -102,6 +102,27 @@ TEST(LightGuide, DirectionalPhotonsCrossTheUnitDisc) {
   EXPECT_EQ(hits, 1u << 14);
 }
 
+// The environment's peak (a sun) sends its photons through the unit disc facing each sampled direction, so a floor
+// wider than every such disc's shadow reflects albedo times pi times the peak's integral of radiance over solid
+// angle (its peak_power, for a grey map). Each photon carries the same power, so the sum is exact to rounding.
+TEST(LightGuide, EnvironmentPeakPhotonsCrossTheUnitDisc) {
+  Scene floor;
+  floor.source = "floor";
+  floor.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  floor.add_quad({-2.5f, 0, -2.5f}, {-2.5f, 0, 2.5f}, {2.5f, 0, 2.5f}, {2.5f, 0, -2.5f}, 0);
+  // A grey 16 x 8 map, its sun two texels at 22 to 45 degrees from the zenith.
+  floor.environment.width = 16;
+  floor.environment.height = 8;
+  floor.environment.source = "grey sun";
+  for (int t = 0; t < 16 * 8; ++t)
+    floor.environment.radiance.push_back(glm::vec3(t == 16 + 5 || t == 16 + 6 ? 50.0f : 0.2f));
+  const double peak_power = pack_environment(floor.environment).peak_power;
+  ASSERT_GT(peak_power, 0.0);
+  size_t hits = 0;
+  EXPECT_NEAR(reflected_flux(shoot(floor, 1u << 14), &hits), 0.5 * kPi * peak_power, 1e-4 * 0.5 * kPi * peak_power);
+  EXPECT_EQ(hits, 1u << 14);
+}
+
 // An evenly lit wall and, on it, a small patch a hundred times brighter per photon: the patch is the brightest
 // cluster, tight around its photons; the wall is one large cluster.
 TEST(LightGuide, SmallBrightPatchIsAClusterOfItsOwn) {

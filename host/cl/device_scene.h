@@ -43,6 +43,8 @@ class DeviceScene {
   const std::vector<PunctualLight>& lights() const { return lights_host_; }
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_host_; }
   const SceneFrame& frame() const { return frame_; }
+  // The environment's peak: the sum of its luminance times solid angle (0: none; kernels/environment.h).
+  float environment_peak_power() const { return counts_.environment_peak_power; }
 
  private:
   DeviceBvh bvh_;

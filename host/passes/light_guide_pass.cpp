@@ -33,6 +33,8 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
 LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
     : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("light_guide.cl", "shoot_photons", scene.defines())) {
   std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
+  // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
+  if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);
   double total = 0.0;
   for (double p : power) total += p;
   if (!(total > 0.0)) return;
