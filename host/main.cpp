@@ -69,6 +69,10 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
                   "Samples per pixel on emissive triangles (rounded up to a square)")
       ->check(CLI::Range(0u, 1u << 20));
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
+  cmd->add_option("--pixel-samples", o.settings.pixel_samples,
+                  "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
+                  "and path samples are per pixel, records keep their world-space size (default 1)")
+      ->check(CLI::Range(1u, 64u));
   cmd->add_option("--bounces", o.settings.bounces,
                   "Indirect bounces: 1 lights the first bounce's hit directly, each more continues the path from "
                   "there (every method, the reference too; default 1)")

@@ -47,3 +47,6 @@ expect_refused("sky and map" "--sky and --environment: give one or the other"
 expect_refused("negative sky" "--sky \\(1, -1, 1\\): must be finite and non-negative" render -o out.exr --sky 1,-1,1)
 expect_refused("sky with two numbers" "--sky" render -o out.exr --sky 1,1)
 expect_refused("info with a missing map" "nosky.hdr: cannot be read" info --environment nosky.hdr)
+expect_refused("pixel samples not square" "--pixel-samples 3: must be a square number" render -o out.exr --pixel-samples 3)
+expect_refused("spp not a multiple of the pixel samples" "--spp 6 must be a multiple of --pixel-samples 4"
+               render -o out.exr --gi path --spp 6 --pixel-samples 4)

@@ -47,6 +47,12 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   const std::string environment_before = environment_it == attributes.end() ? "none" : environment_it->second;
   if (environment_before != scene.environment.describe())
     throw Error(path + ": rendered with environment " + environment_before + ", not " + scene.environment.describe());
+  auto pixel_samples_it = attributes.find("rcsplat:pixel_samples");  // absent: written before --pixel-samples
+  const unsigned pixel_samples_before =
+      pixel_samples_it == attributes.end() ? 1u : parse_count(path, "rcsplat:pixel_samples", pixel_samples_it->second);
+  if (pixel_samples_before != o.settings.pixel_samples)
+    throw Error(path + ": rendered with --pixel-samples " + std::to_string(pixel_samples_before) + ", not " +
+                std::to_string(o.settings.pixel_samples));
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));

@@ -26,6 +26,14 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s, %u bounce%s\n", image.width,
               image.height, s.light_samples, gi_method_name(s.gi), settings.bounces, settings.bounces == 1 ? "" : "s");
+  if (s.pixel_samples > 1)
+    std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
+                "averaged); record reach and placement spacing are in output pixels, so records keep their world-space size; "
+                "the finest placement level works on sub-pixels and adds records along edges\n",
+                s.pixel_samples, unsigned(std::lround(std::sqrt(s.pixel_samples))),
+                unsigned(std::lround(std::sqrt(s.pixel_samples))),
+                image.width * int(std::lround(std::sqrt(s.pixel_samples))),
+                image.height * int(std::lround(std::sqrt(s.pixel_samples))));
   std::printf("BVH          %zu nodes, %zu triangle blocks, depth %d\n", s.bvh_nodes, s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
               (unsigned long long)s.shadow_rays);
@@ -92,6 +100,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"scene_plan", scene_plan_json(plan, s.bvh_depth)},
       {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
       {"gi", gi_method_name(s.gi)}, {"bounces", settings.bounces}, {"light_samples", s.light_samples},
+      {"pixel_samples", s.pixel_samples},
       {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
       {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}, {"records", s.record_rays},
@@ -165,7 +174,8 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
                               {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
                               {"rcsplat:bounces", std::to_string(options.settings.bounces)},
-                              {"rcsplat:environment", scene.environment.describe()}};
+                              {"rcsplat:environment", scene.environment.describe()},
+                              {"rcsplat:pixel_samples", std::to_string(options.settings.pixel_samples)}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);

@@ -20,7 +20,8 @@ struct RenderStats {
   GiMethod gi = GiMethod::none;
   size_t triangles = 0, bvh_nodes = 0, bvh_blocks = 0;
   int bvh_depth = 0;
-  unsigned light_samples = 0;
+  unsigned light_samples = 0;  // per pixel, all of its sub-pixels together
+  unsigned pixel_samples = 1;  // primary samples per pixel (render/pixel_samples.h)
   double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
   uint64_t primary_rays = 0, shadow_rays = 0;
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
+#include "render/pixel_samples.h"
 #include "scene/scene_frame.h"
 #include "util/byte_size.h"
 #include "util/error.h"
@@ -51,7 +53,7 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
 
 }  // namespace
 
-RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
   if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
   // The command line refuses it too; a caller of the library gets the same words before any work.
   if (settings.bounces < 1 || settings.bounces > kMaxBounces)
@@ -150,6 +152,17 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
   st.total_s = seconds_since(start);
   return img;
+}
+
+RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+  const unsigned side = pixel_sample_side(settings.pixel_samples);
+  if (side == 1) return render_single_sample(gpu, scene, settings);
+  int width = settings.width, height = settings.height;
+  resolve_resolution(choose_camera(scene, settings.camera, settings.camera_overrides), width, height);
+  if (std::max(width, height) * int(side) > 16384)
+    throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
+                std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
+  return average_sub_pixels(render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side)), side);
 }
 
 }  // namespace rcsplat

@@ -9,5 +9,7 @@
 namespace rcsplat {
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
+// One primary sample per pixel (render() calls it once, on the sub-pixel frame when settings.pixel_samples > 1).
+RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
 
 }  // namespace rcsplat

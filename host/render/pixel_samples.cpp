@@ -1,0 +1,103 @@
+#include "render/pixel_samples.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "util/error.h"
+
+namespace rcsplat {
+
+unsigned pixel_sample_side(unsigned pixel_samples) {
+  const unsigned side = unsigned(std::lround(std::sqrt(double(pixel_samples))));
+  if (pixel_samples < 1 || side * side != pixel_samples || side > 8)
+    throw Error("--pixel-samples " + std::to_string(pixel_samples) + ": must be a square number from 1 to 64 (1, 4, 9, "
+                "16, ...): each pixel is a square grid of sub-pixels");
+  return side;
+}
+
+RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height, unsigned side) {
+  const unsigned n = side * side;
+  RenderSettings sub = s;
+  sub.pixel_samples = 1;
+  sub.width = width * int(side);
+  sub.height = height * int(side);
+  // Per output pixel: light samples split among the sub-pixels (at least one each).
+  sub.light_samples = s.light_samples ? std::max(1u, (s.light_samples + n - 1) / n) : 0;
+  if (s.gi == GiMethod::path) {
+    if (s.path.samples % n)
+      throw Error("--spp " + std::to_string(s.path.samples) + " must be a multiple of --pixel-samples " +
+                  std::to_string(n) + ": each sub-pixel takes the same share");
+    sub.path.samples = s.path.samples / n;
+  }
+  // Record reach and placement in sub-pixels: the same world-space records as at one sample.
+  sub.cache.min_reach_pixels *= float(side);
+  sub.cache.max_reach_pixels *= float(side);
+  sub.cache.coarsest_spacing_pixels *= int(side);
+  return sub;
+}
+
+namespace {
+
+// Averages a layer of `channels` floats a pixel (an empty layer stays empty).
+std::vector<float> average(const std::vector<float>& sub, int width, int height, unsigned side, int channels,
+                           double scale = 1.0) {
+  if (sub.empty()) return {};
+  std::vector<float> out(size_t(width) * height * channels);
+  const int sub_width = width * int(side);
+  const double inv = scale / double(side * side);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) {
+        double sum = 0.0;
+        for (unsigned j = 0; j < side; ++j)
+          for (unsigned i = 0; i < side; ++i)
+            sum += sub[(size_t(y * side + j) * sub_width + x * side + i) * channels + c];
+        out[(size_t(y) * width + x) * channels + c] = float(sum * inv);
+      }
+  return out;
+}
+
+template <typename T>
+std::vector<T> centre(const std::vector<T>& sub, int width, int height, unsigned side, int channels) {
+  std::vector<T> out(size_t(width) * height * channels);
+  const int sub_width = width * int(side);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c)
+        out[(size_t(y) * width + x) * channels + c] =
+            sub[(size_t(y * side + side / 2) * sub_width + x * side + side / 2) * channels + c];
+  return out;
+}
+
+}  // namespace
+
+RenderedImage average_sub_pixels(const RenderedImage& sub, unsigned side) {
+  RenderedImage out;
+  out.width = sub.width / int(side);
+  out.height = sub.height / int(side);
+  const int w = out.width, h = out.height;
+  const double n = double(side * side);
+  out.color = average(sub.color, w, h, side, 3);
+  out.direct = average(sub.direct, w, h, side, 3);
+  out.emission = average(sub.emission, w, h, side, 3);
+  out.albedo = average(sub.albedo, w, h, side, 3);
+  out.normal = average(sub.normal, w, h, side, 3);
+  out.indirect = average(sub.indirect, w, h, side, 3);
+  out.irradiance = average(sub.irradiance, w, h, side, 3);
+  out.coverage = average(sub.coverage, w, h, side, 1);
+  out.records_per_pixel = average(sub.records_per_pixel, w, h, side, 1);
+  out.record_positions = average(sub.record_positions, w, h, side, 1, n);  // a sum: records in the pixel
+  out.indirect_variance = average(sub.indirect_variance, w, h, side, 3, 1.0 / n);
+  out.position = centre(sub.position, w, h, side, 3);
+  out.depth = centre(sub.depth, w, h, side, 1);
+  out.triangle = centre(sub.triangle, w, h, side, 1);
+  out.records = sub.records;
+  out.stats = sub.stats;
+  out.stats.pixel_samples = unsigned(n);
+  out.stats.light_samples *= unsigned(n);
+  out.stats.path_samples *= unsigned(n);
+  return out;
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,23 @@
+// Anti-aliasing (--pixel-samples N): each pixel is an s x s grid of sub-pixels (N = s^2), at the centres of the grid's
+// cells (a stratified pattern, the same for every method, so a reference integrates the very points a cache render
+// shades). The frame is rendered s times larger and averaged back; records stay in world space.
+#pragma once
+#include "render/frame.h"
+#include "render/settings.h"
+
+namespace rcsplat {
+
+// The side s of the sub-pixel grid; throws rcsplat::Error unless N is 1, 4, 9, 16, ... (up to 64).
+unsigned pixel_sample_side(unsigned pixel_samples);
+
+// The settings of the s-times larger frame: light samples and path samples divided among the sub-pixels (path samples
+// must divide evenly), record reach and placement spacing in sub-pixels so that records keep their world-space size
+// (only the finest level, at one sub-pixel, adds records along edges).
+RenderSettings sub_pixel_settings(const RenderSettings& settings, int width, int height, unsigned side);
+
+// Averages the sub-pixel frame into width x height pixels: light, albedo, normal, irradiance, coverage means;
+// record_positions sums (records per pixel); the indirect variance of the mean (mean variance / N); position, depth
+// and triangle of the sub-pixel at (s / 2, s / 2), a single surface.
+RenderedImage average_sub_pixels(const RenderedImage& sub, unsigned side);
+
+}  // namespace rcsplat

@@ -1,0 +1,125 @@
+// Anti-aliasing (--pixel-samples, render/pixel_samples.h): an edge pixel's value is its covered fraction, against the
+// exact area of the pixel's square on the lit side of the edge; bad counts are refused.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "render/renderer.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+// The area of the square [x0, x1] x [y0, y1] below the line y = k x + d, by clipping the square (Sutherland-Hodgman
+// against one half-plane) and the shoelace formula.
+double area_below(double x0, double x1, double y0, double y1, double k, double d) {
+  const double square[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  auto inside = [&](const double* p) { return p[1] <= k * p[0] + d; };
+  std::vector<std::array<double, 2>> kept;
+  for (int i = 0; i < 4; ++i) {
+    const double* a = square[i];
+    const double* b = square[(i + 1) % 4];
+    if (inside(a)) kept.push_back({a[0], a[1]});
+    if (inside(a) != inside(b)) {
+      // Where a-b crosses the line: a + t (b - a) with a.y + t (b.y - a.y) = k (a.x + t (b.x - a.x)) + d.
+      const double t = (k * a[0] + d - a[1]) / ((b[1] - a[1]) - k * (b[0] - a[0]));
+      kept.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+    }
+  }
+  double twice = 0.0;
+  for (size_t i = 0; i < kept.size(); ++i) {
+    const auto& p = kept[i];
+    const auto& q = kept[(i + 1) % kept.size()];
+    twice += p[0] * q[1] - q[0] * p[1];
+  }
+  return 0.5 * std::abs(twice);
+}
+
+// An emitter of radiance 1 below the slanted line y = 0.3 x + 0.1 of the plane z = 0, seen by an orthographic camera
+// whose view is [-1, 1]^2 of that plane.
+Scene slanted_edge() {
+  Scene s;
+  s.source = "slanted edge";
+  s.materials.push_back({"lamp", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), -1, glm::vec3(1.0f), false});
+  s.add_quad({-3.0f, -3.0f, 0.0f}, {3.0f, -3.0f, 0.0f}, {3.0f, 1.0f, 0.0f}, {-3.0f, -0.8f, 0.0f}, 0);
+  SceneCamera c;
+  c.orthographic = true;
+  c.eye = {0.0f, 0.0f, 5.0f};
+  c.target = {0.0f, 0.0f, 0.0f};
+  c.xmag = c.ymag = 1.0f;
+  c.aspect = 1.0f;
+  s.cameras.push_back(c);
+  return s;
+}
+
+struct EdgeError {
+  double mean_abs = 0.0, max_abs = 0.0, mean_signed = 0.0;
+  size_t pixels = 0;
+};
+
+// How far each pixel the edge crosses is from its covered fraction.
+EdgeError edge_error(unsigned pixel_samples) {
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.gi = GiMethod::none;
+  settings.pixel_samples = pixel_samples;
+  const RenderedImage image = render(test::gpu(), slanted_edge(), settings);
+  EdgeError e;
+  const double size = 2.0 / settings.width;
+  for (int y = 0; y < settings.height; ++y) {
+    for (int x = 0; x < settings.width; ++x) {
+      const double x0 = -1.0 + x * size, y1 = 1.0 - y * size;
+      const double covered = area_below(x0, x0 + size, y1 - size, y1, 0.3, 0.1) / (size * size);
+      if (covered <= 1e-6 || covered >= 1.0 - 1e-6) continue;
+      const double error = image.emission[3 * (size_t(y) * settings.width + x)] - covered;
+      e.mean_abs += std::abs(error);
+      e.mean_signed += error;
+      e.max_abs = std::max(e.max_abs, std::abs(error));
+      ++e.pixels;
+    }
+  }
+  e.mean_abs /= double(e.pixels);
+  e.mean_signed /= double(e.pixels);
+  return e;
+}
+
+// With s x s sub-pixels at the cells' centres a straight edge is off by at most about one sub-pixel column's share
+// of the pixel, 1 / s (an edge that misses every centre of a column), and by much less on average; one sample a pixel
+// gives 0 or 1, off by a quarter on average (the jagged edge). Signed errors cancel along the edge: the image's
+// total is right to within a few hundredths of a pixel per edge pixel.
+TEST(PixelSamples, EdgePixelsHoldTheirCoveredFraction) {
+  const EdgeError one = edge_error(1);
+  ASSERT_GT(one.pixels, 30u);
+  EXPECT_GT(one.mean_abs, 0.15) << "one sample a pixel cannot be anti-aliased";
+  for (unsigned n : {4u, 16u}) {
+    const EdgeError e = edge_error(n);
+    const double side = std::sqrt(double(n));
+    EXPECT_EQ(e.pixels, one.pixels);
+    EXPECT_LE(e.max_abs, 1.0 / side + 1e-6) << n << " samples";
+    EXPECT_LT(e.mean_abs, 0.4 / side) << n << " samples";
+    EXPECT_LT(std::abs(e.mean_signed), 0.05) << n << " samples";
+  }
+}
+
+TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {
+  RenderSettings settings;
+  settings.width = settings.height = 8;
+  settings.gi = GiMethod::none;
+  settings.pixel_samples = 3;
+  EXPECT_THROW(render(test::gpu(), slanted_edge(), settings), Error);
+  settings.pixel_samples = 4;
+  settings.gi = GiMethod::path;
+  settings.path.samples = 6;
+  EXPECT_THROW(render(test::gpu(), slanted_edge(), settings), Error);
+  settings.path.samples = 8;
+  const RenderedImage image = render(test::gpu(), slanted_edge(), settings);
+  EXPECT_EQ(image.width, 8);
+  EXPECT_EQ(image.stats.path_samples, 8u);
+  EXPECT_EQ(image.stats.pixel_samples, 4u);
+}
+
+}  // namespace
+}  // namespace rcsplat
