@@ -29,7 +29,8 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
   if (s.pixel_samples > 1)
     std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
                 "averaged); record reach and placement spacing are in output pixels, so records keep their world-space size; "
-                "the finest placement level works on sub-pixels and adds records along edges\n",
+                "the finest placement levels work on sub-pixels (spacings below are in sub-pixels) and add records along "
+                "edges\n",
                 s.pixel_samples, unsigned(std::lround(std::sqrt(s.pixel_samples))),
                 unsigned(std::lround(std::sqrt(s.pixel_samples))),
                 image.width * int(std::lround(std::sqrt(s.pixel_samples))),
