@@ -49,7 +49,7 @@ inline float3 environment_smooth(__global const float4* environment, SceneCounts
   return t.xyz * t.w;
 }
 
-// The peak's part of a texel and its luminance, which its sampling density is proportional to.
+// The peak's part of a texel (its luminance is what the peak's sampling density is proportional to).
 inline float3 environment_peak_of(float4 t) { return t.xyz * (1.0f - t.w); }
 
 // Index of the first entry of cdf[0 .. count] above u (cdf[0] = 0, cdf[count] = 1): the bin u falls in.

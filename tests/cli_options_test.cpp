@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "image/error_metrics.h"
@@ -52,11 +54,32 @@ TEST(CliOptions, BadValuesAreRefusedByName) {
   EXPECT_THROW(validate_cache_settings(bad_accuracy), Error);
 }
 
-void write_rgb_exr(const std::string& path, int w, int h, float value, bool with_indirect) {
+void write_rgb_exr(const std::string& path, int w, int h, float value, bool with_indirect,
+                   const ExrAttributes& attributes = {}) {
   std::vector<float> rgb(size_t(w) * size_t(h) * 3, value), indirect(rgb.size(), value * 0.5f);
   std::vector<ImageLayer> layers = {{"", {"R", "G", "B"}, &rgb}};
   if (with_indirect) layers.push_back({"indirect", {"R", "G", "B"}, &indirect});
-  write_exr(path, w, h, layers);
+  write_exr(path, w, h, layers, attributes);
+}
+
+// A reference of another environment or pixel sampling measures a difference, not an error: compare names it.
+TEST(Compare, NamesWhatTheTwoRendersDidDifferently) {
+  std::string dir = test::scratch_dir();
+  write_rgb_exr(dir + "/a.exr", 8, 6, 1.0f, true,
+                {{"rcsplat:pixel_samples", "4"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "1"}});
+  write_rgb_exr(dir + "/b.exr", 8, 6, 1.1f, true,
+                {{"rcsplat:pixel_samples", "1"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "1"}});
+  CompareOptions o;
+  o.image_path = dir + "/b.exr";
+  o.reference_path = dir + "/a.exr";
+  o.json_path = dir + "/cmp.json";
+  EXPECT_EQ(run_compare(o), 0);
+  std::ifstream in(o.json_path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["rendered_differently"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["rendered_differently"][0]["attribute"], "rcsplat:pixel_samples");
+  EXPECT_EQ(j["rendered_differently"][0]["image"], "1");
+  EXPECT_EQ(j["rendered_differently"][0]["reference"], "4");
 }
 
 TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {

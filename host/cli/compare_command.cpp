@@ -5,6 +5,7 @@
 #include "image/error_metrics.h"
 #include "image/image_io.h"
 #include "util/error.h"
+#include "util/log.h"
 
 namespace rcsplat {
 
@@ -15,6 +16,20 @@ int run_compare(const CompareOptions& o) {
   if (w != rw || h != rh)
     throw Error(o.image_path + " is " + std::to_string(w) + "x" + std::to_string(h) + " but " + o.reference_path +
                 " is " + std::to_string(rw) + "x" + std::to_string(rh));
+  // Renders of other light, bounces or pixel sampling differ in what they show, not by error: say so, loudly.
+  const ExrAttributes image_attributes = read_exr_attributes(o.image_path);
+  const ExrAttributes reference_attributes = read_exr_attributes(o.reference_path);
+  nlohmann::json rendered_differently = nlohmann::json::array();
+  for (const char* key : {"rcsplat:scene", "rcsplat:bounces", "rcsplat:environment", "rcsplat:pixel_samples"}) {
+    auto in_image = image_attributes.find(key), in_reference = reference_attributes.find(key);
+    if (in_image == image_attributes.end() || in_reference == reference_attributes.end() ||
+        in_image->second == in_reference->second)
+      continue;
+    log_warning(std::string("the images differ in ") + key + ": " + in_image->second + " against " +
+                in_reference->second + "; the numbers below measure that difference, not an error");
+    rendered_differently.push_back(
+        {{"attribute", key}, {"image", in_image->second}, {"reference", in_reference->second}});
+  }
   ErrorMetrics full = image_error(image, reference);
   const bool blocks = w >= o.block && h >= o.block;
   const double full_block = blocks ? block_rel_mse(image, reference, w, h, o.block) : 0.0;
@@ -23,7 +38,8 @@ int run_compare(const CompareOptions& o) {
   std::printf("%-10s %-12.4e %-12.4e %-12.4e %.4e\n", "full", full.rel_mse, full.rmse, full.mae, full_block);
   nlohmann::json j = {{"image", o.image_path}, {"reference", o.reference_path}, {"block", o.block},
                       {"full", {{"rel_mse", full.rel_mse}, {"rmse", full.rmse}, {"mae", full.mae},
-                                {"block_rel_mse", full_block}}}};
+                                {"block_rel_mse", full_block}}},
+                      {"rendered_differently", rendered_differently}};
   // The indirect layer alone: noisy direct light sets a floor on the full image's error that says nothing of the cache.
   if (exr_has_layer(o.image_path, "indirect") && exr_has_layer(o.reference_path, "indirect")) {
     std::vector<float> ref = read_exr_layer(o.reference_path, "indirect", rw, rh);
