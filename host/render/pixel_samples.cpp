@@ -34,6 +34,13 @@ RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height
   sub.cache.min_reach_pixels *= float(side);
   sub.cache.max_reach_pixels *= float(side);
   sub.cache.coarsest_spacing_pixels *= int(side);
+  // The finest level places records one sub-pixel apart, along edges: each serves about a sub-pixel's area, so its
+  // hemisphere shrinks with it (M / s x N / s, at least 4 x 8), as --fine-hemisphere does for one-pixel records;
+  // a --fine-hemisphere given by the user is kept.
+  if (!sub.cache.fine_theta_strata) {
+    sub.cache.fine_theta_strata = std::max(4u, s.cache.theta_strata / side);
+    sub.cache.fine_phi_strata = std::max(8u, s.cache.phi_strata / side);
+  }
   return sub;
 }
 
