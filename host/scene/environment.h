@@ -54,6 +54,9 @@ struct PackedEnvironment {
 };
 PackedEnvironment pack_environment(const Environment& environment);
 
+// "(r, g, b)" for messages and descriptions.
+std::string format_rgb(const glm::vec3& c);
+
 // A texel row's solid angle (all of its width): 2 pi (cos(pi j / h) - cos(pi (j + 1) / h)).
 double environment_row_solid_angle(int row, int height);
 
