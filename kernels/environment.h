@@ -52,17 +52,6 @@ inline float3 environment_smooth(__global const float4* environment, SceneCounts
 // The peak's part of a texel (its luminance is what the peak's sampling density is proportional to).
 inline float3 environment_peak_of(float4 t) { return t.xyz * (1.0f - t.w); }
 
-// Index of the first entry of cdf[0 .. count] above u (cdf[0] = 0, cdf[count] = 1): the bin u falls in.
-inline uint environment_bin(__global const float* cdf, uint count, float u) {
-  uint lo = 0, hi = count - 1u;
-  while (lo < hi) {
-    uint mid = (lo + hi) >> 1;
-    if (u < cdf[mid + 1u]) hi = mid;
-    else lo = mid + 1u;
-  }
-  return lo;
-}
-
 // A direction toward the peak from uniform (u1, u2): a row by the marginal CDF, a texel by the row's CDF (both of
 // luminance times solid angle), then uniformly in solid angle inside the texel (uniform in phi and in cos theta), so
 // the density per solid angle is exactly luminance / environment_peak_power. Returns the peak radiance divided by
@@ -81,12 +70,12 @@ inline float3 environment_peak_sample(__global const float4* environment, __glob
 #else
   uint w = c.environment_width, h = c.environment_height;
   __global const float* marginal = cdf;
-  uint j = environment_bin(marginal, h, u1);
+  uint j = cdf_bin(marginal + 1, h, u1);  // the CDFs start with their 0
   float row_width = marginal[j + 1u] - marginal[j];
   if (!(row_width > 0.0f)) return (float3)(0.0f);
   float v_in = clamp((u1 - marginal[j]) / row_width, 0.0f, 1.0f);
   __global const float* row = cdf + (h + 1u) + j * (w + 1u);
-  uint i = environment_bin(row, w, u2);
+  uint i = cdf_bin(row + 1, w, u2);
   float texel_width = row[i + 1u] - row[i];
   if (!(texel_width > 0.0f)) return (float3)(0.0f);
   float u_in = clamp((u2 - row[i]) / texel_width, 0.0f, 1.0f);

@@ -8,14 +8,12 @@
 #include "surface.h"
 #include "traverse.h"
 
-inline int pick_source(__global const float* cdf, uint count, float u) {
-  int lo = 0, hi = (int)count - 1;
-  while (lo < hi) {
-    int mid = (lo + hi) >> 1;
-    if (u < cdf[mid]) hi = mid;
-    else lo = mid + 1;
-  }
-  return lo;
+// A point of the unit disc facing axis, from uniform (u, v): photons of lights at infinity cross it.
+inline float3 unit_disc_point(float3 axis, float u, float v) {
+  float3 t, b;
+  tangent_frame(axis, &t, &b);
+  float r = sqrt(u), cos_p, sin_p = sincos(2.0f * RC_PI * v, &cos_p);
+  return (r * cos_p) * t + (r * sin_p) * b;
 }
 
 __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, PhotonParams params,
@@ -23,7 +21,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
   uint i = get_global_id(0);
   if (i >= params.photon_count) return;
   uint key = hash_u32(i ^ hash_u32(params.seed));
-  int source = pick_source(source_cdf, params.source_count, random01(key, 0u, 0u));
+  int source = (int)cdf_bin(source_cdf, params.source_count, random01(key, 0u, 0u));
   float select = source_cdf[source] - (source > 0 ? source_cdf[source - 1] : 0.0f);
   float u = random01(key, 0u, 1u), v = random01(key, 0u, 2u);
   float3 origin, dir, power;
@@ -32,10 +30,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     float3 intensity = vload3(0, light.intensity), axis = vload3(0, light.direction);
     if (light.type == LIGHT_DIRECTIONAL) {
       // Through a unit disc facing the light, beyond the scene (the device frame fits it in the unit sphere).
-      float3 t, b;
-      tangent_frame(axis, &t, &b);
-      float r = sqrt(u), cos_p, sin_p = sincos(2.0f * RC_PI * v, &cos_p);
-      origin = (r * cos_p) * t + (r * sin_p) * b - 2.0f * axis;
+      origin = unit_disc_point(axis, u, v) - 2.0f * axis;
       dir = axis;
       power = intensity * RC_PI;
     } else if (light.type == LIGHT_SPOT) {
@@ -58,10 +53,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     float3 toward;
     float3 radiance_over_pdf =
         environment_peak_sample(environment, environment_cdf, scene_counts, u, v, &toward, &pdf);
-    float3 t, b;
-    tangent_frame(toward, &t, &b);
-    float r = sqrt(random01(key, 0u, 4u)), cos_p, sin_p = sincos(2.0f * RC_PI * random01(key, 0u, 5u), &cos_p);
-    origin = (r * cos_p) * t + (r * sin_p) * b + 2.0f * toward;
+    origin = unit_disc_point(toward, random01(key, 0u, 4u), random01(key, 0u, 5u)) + 2.0f * toward;
     dir = -toward;
     power = pdf > 0.0f ? radiance_over_pdf * RC_PI : (float3)(0.0f);
   }

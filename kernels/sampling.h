@@ -22,6 +22,18 @@ inline float3 finite_or_zero(float3 c) {
   return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);
 }
 
+// The bin u in [0, 1) falls in, of count bins whose inclusive CDF is cdf[0 .. count - 1] (cdf[count - 1] = 1): the
+// first entry above u. Bins of zero width are never chosen.
+inline uint cdf_bin(__global const float* cdf, uint count, float u) {
+  uint lo = 0, hi = count - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (u < cdf[mid]) hi = mid;
+    else lo = mid + 1u;
+  }
+  return lo;
+}
+
 // A cosine-weighted direction about n (frame t, b, n) from uniform (u1, u2): sin^2(theta) = u1, phi = 2 pi u2.
 inline float3 cosine_direction(float3 t, float3 b, float3 n, float u1, float u2) {
   float sin_t = sqrt(u1), cos_t = sqrt(1.0f - u1), phi = 2.0f * RC_PI * u2;

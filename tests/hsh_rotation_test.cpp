@@ -41,7 +41,7 @@ __kernel void reflect_through_frame(__global const float* blocks, __global const
 }
 )";
 
-// The same frame the kernels build from a normal (kernels/sampling.h tangent_frame), in double.
+// The same frame the kernels build from a normal (kernels/host_device.h tangent_frame), in double.
 void tangent_frame(dvec3 n, dvec3& t, dvec3& b) {
   double sign = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n.z), c = n.x * n.y * a;
   t = dvec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);

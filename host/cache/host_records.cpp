@@ -28,7 +28,7 @@ void bound(std::array<dvec3, 3>& g, const dvec3& limit) {
   }
 }
 
-// The frame kernels/sampling.h tangent_frame builds (Duff et al.), so the same numbers give the same rays.
+// The frame kernels/host_device.h tangent_frame builds (Duff et al.), so the same numbers give the same rays.
 void frame_around(const dvec3& n, dvec3& t, dvec3& b) {
   double sign = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n.z), c = n.x * n.y * a;
   t = dvec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);

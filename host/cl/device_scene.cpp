@@ -1,7 +1,5 @@
 #include "cl/device_scene.h"
 
-#include <cstring>
-
 #include "scene/scene_plan.h"
 
 namespace rcsplat {
@@ -22,9 +20,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   emitters_host_ = p.emitters;
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
-  std::vector<cl_float4> environment(p.environment.texels.size() / 4);
-  std::memcpy(environment.data(), p.environment.texels.data(), environment.size() * sizeof(cl_float4));
-  environment_ = gpu.upload(environment);
+  environment_ = gpu.upload(p.environment.texels);  // float4 per texel
   environment_cdf_ = gpu.upload(p.environment.cdf);
   counts_.environment_width = p.environment.width;
   counts_.environment_height = p.environment.height;

@@ -35,24 +35,17 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
     throw Error(path + ": rendered from " + need("rcsplat:scene") + ", not " + scene.source);
   if (need("rcsplat:stratified") != (o.settings.path.stratified ? "1" : "0"))
     throw Error(path + ": sampled " + (o.settings.path.stratified ? "without" : "with") + " stratification");
-  // Files written before --bounces existed hold one bounce.
-  auto bounces_it = attributes.find("rcsplat:bounces");
-  unsigned bounces_before =
-      bounces_it == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_it->second);
-  if (bounces_before != o.settings.bounces)
-    throw Error(path + ": rendered with --bounces " + std::to_string(bounces_before) + ", not " +
-                std::to_string(o.settings.bounces));
-  // Files written before --sky and --environment existed have none.
-  auto environment_it = attributes.find("rcsplat:environment");
-  const std::string environment_before = environment_it == attributes.end() ? "none" : environment_it->second;
-  if (environment_before != scene.environment.describe())
-    throw Error(path + ": rendered with environment " + environment_before + ", not " + scene.environment.describe());
-  auto pixel_samples_it = attributes.find("rcsplat:pixel_samples");  // absent: written before --pixel-samples
-  const unsigned pixel_samples_before =
-      pixel_samples_it == attributes.end() ? 1u : parse_count(path, "rcsplat:pixel_samples", pixel_samples_it->second);
-  if (pixel_samples_before != o.settings.pixel_samples)
-    throw Error(path + ": rendered with --pixel-samples " + std::to_string(pixel_samples_before) + ", not " +
-                std::to_string(o.settings.pixel_samples));
+  // What this run renders must be what the file holds; a file from before an attribute existed holds its default.
+  auto refuse_other = [&](const std::string& key, const std::string& absent, bool count, const std::string& now,
+                          const std::string& option) {
+    auto it = attributes.find(key);
+    const std::string before =
+        it == attributes.end() ? absent : count ? std::to_string(parse_count(path, key, it->second)) : it->second;
+    if (before != now) throw Error(path + ": rendered with " + option + " " + before + ", not " + now);
+  };
+  refuse_other("rcsplat:bounces", "1", true, std::to_string(o.settings.bounces), "--bounces");
+  refuse_other("rcsplat:environment", "none", false, scene.environment.describe(), "environment");
+  refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));

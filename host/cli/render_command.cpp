@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "kernels/hsh.h"
+#include "render/pixel_samples.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -31,10 +32,9 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 "averaged); record reach and placement spacing are in output pixels, so records keep their world-space size; "
                 "the finest placement levels work on sub-pixels (spacings below are in sub-pixels) and add records along "
                 "edges\n",
-                s.pixel_samples, unsigned(std::lround(std::sqrt(s.pixel_samples))),
-                unsigned(std::lround(std::sqrt(s.pixel_samples))),
-                image.width * int(std::lround(std::sqrt(s.pixel_samples))),
-                image.height * int(std::lround(std::sqrt(s.pixel_samples))));
+                s.pixel_samples, pixel_sample_side(s.pixel_samples), pixel_sample_side(s.pixel_samples),
+                image.width * int(pixel_sample_side(s.pixel_samples)),
+                image.height * int(pixel_sample_side(s.pixel_samples)));
   std::printf("BVH          %zu nodes, %zu triangle blocks, depth %d\n", s.bvh_nodes, s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
               (unsigned long long)s.shadow_rays);
