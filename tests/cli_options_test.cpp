@@ -146,10 +146,29 @@ TEST(Reference, ResumeAddsIndependentSamples) {
   for (size_t i = 0; i < merged.size(); ++i)
     ASSERT_NEAR(merged[i], (first[i] * 8.0f + part.indirect[i] * 16.0f) / 24.0f, 1e-6f) << i;
 
-  o.settings.width = 8;  // another frame: refused, and the file is left as it was
   o.settings.path.samples = 32;
-  EXPECT_THROW(run_render(o), Error);
-  EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24");
+  // Another frame, bounce count, environment or pixel sampling: refused by name, and the file is left as it was.
+  auto refused = [&](RenderOptions changed, const std::string& expected) {
+    try {
+      run_render(changed);
+      ADD_FAILURE() << "resumed despite " << expected;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24") << expected;
+  };
+  RenderOptions narrower = o;
+  narrower.settings.width = 8;
+  refused(narrower, "is 16x16, this frame 8x16");
+  RenderOptions bounces = o;
+  bounces.settings.bounces = 2;
+  refused(bounces, "rendered with --bounces 1, not 2");
+  RenderOptions sky = o;
+  sky.environment.sky = glm::vec3(0.5f);
+  refused(sky, "rendered with environment none, not uniform sky (0.5, 0.5, 0.5)");
+  RenderOptions anti_aliased = o;
+  anti_aliased.settings.pixel_samples = 4;
+  refused(anti_aliased, "rendered with --pixel-samples 1, not 4");
 }
 
 }  // namespace
