@@ -135,6 +135,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, unsigned(HSH_MAX_ORDER)));
   render_cmd->add_flag("--stratified", render.settings.path.stratified,
                        "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
+  std::string bounce_method;
+  render_cmd->add_option("--bounce-method", bounce_method,
+                         "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
+                         "path (continue its path) or photons (read a photon map at its hit); default " +
+                             std::string(bounce_method_name(RenderSettings{}.bounce_method)))
+      ->check(CLI::IsMember({"path", "photons"}));
+  render_cmd->add_option("--photons", render.settings.photon_paths,
+                         "Photons shot for --bounce-method photons (default " +
+                             std::to_string(RenderSettings{}.photon_paths) + ")")
+      ->check(CLI::Range(1u, 1u << 26));
 
   RenderOptions reference;
   CameraFlags reference_camera;
@@ -189,6 +199,7 @@ int main(int argc, char** argv) {
       render_camera.apply(render.settings);
       render_environment.apply(render.environment);
       render.settings.gi = parse_gi_method(gi);
+      if (!bounce_method.empty()) render.settings.bounce_method = parse_bounce_method(bounce_method);
       if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
       if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
       if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, render.settings.cache, true);

@@ -12,6 +12,17 @@
 #include "reflected_light.h"
 #endif
 
+// PHOTON_GATHER = 1 (the record pass with --bounce-method photons): the bounces after the first come from the photon
+// map (kernels/photon_map.h), which the kernels then take after SCENE_ARGS; otherwise from the continued path.
+#if PHOTON_GATHER
+#include "photon_map.h"
+#define GATHER_MAP_ARGS , PHOTON_MAP_ARGS
+#define GATHER_MAP , PHOTON_MAP
+#else
+#define GATHER_MAP_ARGS
+#define GATHER_MAP
+#endif
+
 // A surface a ray found, oriented toward the ray (surfaces reflect on both sides, as in the G-buffer).
 typedef struct {
   SurfacePoint s;
@@ -105,10 +116,11 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
   return finite_or_zero(sum);
 }
 
-// Radiance arriving at origin from direction dir after one reflection, and after more.bounces more; (u, v) pick the
-// light sample at the first hit, and u_lobe the lobe of its BRDF sample where the hit is glossy. *distance is the hit
-// distance, INFINITY on a miss, where the environment's smooth part is what the ray brings (kernels/environment.h).
-inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
+// Radiance arriving at origin from direction dir after one reflection, and after more.bounces more (or what the photon
+// map holds there); (u, v) pick the light sample at the first hit, and u_lobe the lobe of its BRDF sample where the hit
+// is glossy. *distance is the hit distance, INFINITY on a miss, where the environment's smooth part is what the ray
+// brings (kernels/environment.h).
+inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
                               PathContinuation more, float* distance, uint* rays) {
   HitSurface h;
   if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) {
@@ -119,7 +131,11 @@ inline float3 bounce_radiance(SCENE_ARGS, float3 origin, float3 dir, float u, fl
 #endif
   }
   float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
+#if PHOTON_GATHER
+  l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng);
+#else
   if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
+#endif
   return l;
 }
 

@@ -1,7 +1,8 @@
 // The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light (punctual,
 // emissive triangle, or the environment's peak, a sun: kernels/environment.h), chosen in proportion to its power, to
 // the first surface it lands on, and records the flux that surface reflects (power times albedo). The host clusters
-// the hits into the few bright places records should aim rays at.
+// the hits into the few bright places records should aim rays at. With more landings the photons go on bouncing and
+// their later landings make the photon map of --bounce-method photons (host/passes/photon_map_pass.h).
 #include "environment.h"
 #include "light_guide.h"
 #include "scene_args.h"
@@ -75,23 +76,39 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     origin = offset_ray_origin(y, n);
     power = vload3(0, e.radiance) * (RC_PI * e.area * sides);
   }
-  PhotonHit out;
-  out.hit = 0;
-  out.pad0 = out.pad1 = 0.0f;
-  vstore3((float3)(0.0f), 0, out.position);
-  vstore3((float3)(0.0f), 0, out.normal);
-  vstore3((float3)(0.0f), 0, out.flux);
-  RayPrecomp r = ray_precompute(origin, dir);
-  TraceHit hit;
-  if (select > 0.0f && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
-    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-    float3 ng = dot(s.geometric_normal, dir) > 0.0f ? -s.geometric_normal : s.geometric_normal;
-    float3 albedo = surface_albedo(materials, textures, texels, &s);
-    float3 flux = finite_or_zero(power * albedo / (select * (float)params.photon_count));
-    out.hit = 1;
-    vstore3(s.position, 0, out.position);
-    vstore3(ng, 0, out.normal);
-    vstore3(flux, 0, out.flux);
+  // Landing 0 is the first surface (the light guide reads only it); with params.landings > 1 the photon goes on,
+  // reflected diffusely with its power times the albedo, and lands params.landings times at most (the photon map,
+  // kernels/photon_map.h, keeps landings 1 ..). Landing k > 0 draws its direction from dimensions 6 + 2 (k - 1) ...
+  bool alive = select > 0.0f;
+  for (uint k = 0; k < params.landings; ++k) {
+    PhotonHit out;
+    out.hit = 0;
+    out.pad0 = out.pad1 = 0.0f;
+    vstore3((float3)(0.0f), 0, out.position);
+    vstore3((float3)(0.0f), 0, out.normal);
+    vstore3((float3)(0.0f), 0, out.flux);
+    RayPrecomp r = ray_precompute(origin, dir);
+    TraceHit hit;
+    if (alive && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+      SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+      float3 ng = dot(s.geometric_normal, dir) > 0.0f ? -s.geometric_normal : s.geometric_normal;
+      float3 ns = dot(s.shading_normal, ng) > 0.0f ? s.shading_normal : ng;
+      power *= surface_albedo(materials, textures, texels, &s);  // what leaves the surface
+      float3 flux = finite_or_zero(power / (select * (float)params.photon_count));
+      out.hit = 1;
+      vstore3(s.position, 0, out.position);
+      vstore3(ng, 0, out.normal);
+      vstore3(flux, 0, out.flux);
+      if (k + 1u < params.landings) {
+        float3 t, b;
+        tangent_frame(ns, &t, &b);
+        dir = cosine_direction(t, b, ns, random01(key, 0u, 6u + 2u * k), random01(key, 0u, 7u + 2u * k));
+        alive = dot(dir, ng) > 0.0f && (flux.x > 0.0f || flux.y > 0.0f || flux.z > 0.0f);
+        origin = offset_ray_origin(s.position, ng);
+      }
+    } else {
+      alive = false;
+    }
+    photons[(size_t)i * params.landings + k] = out;
   }
-  photons[i] = out;
 }

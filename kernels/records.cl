@@ -28,7 +28,7 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 // The guide's share of E (kernels/light_guide.h): guided_rays rays into the record's cones, each weighted
 // f / (n_c p_c + n_g p_g) with f = L cos(theta) (the balance heuristic beside the strata's cosine density). Their
 // random numbers follow the strata's, from sample M N on.
-inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
+inline float3 guided_irradiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
                                 uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
                                 uint bounces, uint* rays) {
   float3 e = (float3)(0.0f);
@@ -40,7 +40,7 @@ inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, 
     float cos_n = dot(dir, n);
     if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
     float r;
-    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+    float3 l = bounce_radiance(SCENE GATHER_MAP, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
                                path_continuation(key, s, bounces), &r, rays);
     e += l * (cos_n / (cosine_density * cos_n +
                        (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from)));
@@ -48,7 +48,7 @@ inline float3 guided_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, 
   return e;
 }
 
-__kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
+__kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
                               __global CacheRecord* records,
                               __global const GuideCluster* guide,
 #if STORE_STRATA
@@ -121,7 +121,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
       float r = INFINITY;
       float3 l = (float3)(0.0f);
       if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
-        l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
+        l = bounce_radiance(SCENE GATHER_MAP, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
                             path_continuation(key, s, hp.bounces), &r, &rays);
       }
       // What the strata estimate is the part of the light the guide leaves to them; their gradients, and the HSH
@@ -160,7 +160,7 @@ __kernel void compute_records(SCENE_ARGS, GBUFFER_ARGS, __global const uint* can
   float3 e_guided = (float3)(0.0f);
 #if !STORE_STRATA
   if (cone_count)
-    e_guided = guided_irradiance(SCENE, origin, n, ng, cones, cone_count, hp.guide_rays, cosine_density, key, M * N,
+    e_guided = guided_irradiance(SCENE GATHER_MAP, origin, n, ng, cones, cone_count, hp.guide_rays, cosine_density, key, M * N,
                                  hp.bounces, &rays);
 #endif
   e = finite_or_zero(e * norm + e_guided);

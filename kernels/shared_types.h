@@ -246,8 +246,19 @@ typedef struct {
   rc_uint photon_count;
   rc_uint source_count;  // punctual lights first, then emissive triangles, as in the sources' CDF
   rc_uint seed;
-  rc_uint pad;
+  rc_uint landings;  // surfaces each photon lands on at most (1: the first only); photons[i * landings + k]
 } PhotonParams;
+
+// The photon map (--bounce-method photons; kernels/photon_map.h): photon landings after at least one reflection, sorted
+// by a hashed grid of cubes of side cell_size >= radius, photons[cell_starts[h] .. cell_starts[h + 1]) in bucket h.
+typedef struct {
+  float grid_origin[3];
+  float cell_size;
+  float radius;          // of the density estimate around each photon
+  rc_uint bucket_count;  // a power of two
+  rc_uint photon_count;
+  rc_uint pad;
+} PhotonMapParams;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
 // (host/cl/kernel_args.h checks names and types against the compiled kernels).
@@ -394,6 +405,7 @@ static_assert(sizeof(HemisphereParams) == 32);
 static_assert(sizeof(GuideCluster) == 48);
 static_assert(sizeof(PhotonHit) == 48);
 static_assert(sizeof(PhotonParams) == 16);
+static_assert(sizeof(PhotonMapParams) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);

@@ -54,6 +54,7 @@ int run_compare(const CompareOptions& options);
 
 // Parsers for the render options; each throws rcsplat::Error naming the option on bad input.
 GiMethod parse_gi_method(const std::string& name);
+BounceMethod parse_bounce_method(const std::string& name);
 void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine = false);  // "MxN"
 void parse_spacing(const std::string& text, CacheSettings& cache);     // "MIN,MAX"
 

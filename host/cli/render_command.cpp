@@ -46,6 +46,12 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
+    if (s.photon_map_photons)
+      std::printf("photon map   bounces 2..%u at the records' hits: %llu photons kept of %u shot, radius %.4g (%.3f s)\n",
+                  settings.bounces, (unsigned long long)s.photon_map_photons, settings.photon_paths,
+                  s.photon_map_radius, s.photon_map_s);
+    else if (settings.bounces > 1)
+      std::printf("bounces      2..%u at the records' hits by path continuation\n", settings.bounces);
     if (s.guide_clusters)
       std::printf("light guide  %u rays per record at %u bright places found by %llu photons (%.3f s)\n", c.guide_rays,
                   s.guide_clusters, (unsigned long long)s.guide_photons, s.guide_s);
@@ -126,7 +132,12 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                   {"at_max_radius", s.records_at_max_radius},
                   {"light_guide", {{"rays_per_record", s.guide_clusters ? c.guide_rays : 0u},
                                    {"clusters", s.guide_clusters}, {"photons", s.guide_photons},
-                                   {"seconds", s.guide_s}}}};
+                                   {"seconds", s.guide_s}}},
+                  {"later_bounces",
+                   {{"method", settings.bounces > 1 ? bounce_method_name(settings.bounce_method) : "none"},
+                    {"photons_shot", s.photon_map_photons ? settings.photon_paths : 0u},
+                    {"photons_kept", s.photon_map_photons}, {"radius", s.photon_map_radius},
+                    {"seconds", s.photon_map_s}}}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
                      {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
     if (s.hsh_order)
@@ -175,6 +186,7 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
                               {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
                               {"rcsplat:bounces", std::to_string(options.settings.bounces)},
+                              {"rcsplat:bounce_method", bounce_method_name(options.settings.bounce_method)},
                               {"rcsplat:environment", scene.environment.describe()},
                               {"rcsplat:pixel_samples", std::to_string(options.settings.pixel_samples)}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);

@@ -12,6 +12,12 @@ GiMethod parse_gi_method(const std::string& name) {
   throw Error("--gi " + name + ": unknown method (use splat, octree, path or none)");
 }
 
+BounceMethod parse_bounce_method(const std::string& name) {
+  for (BounceMethod m : {BounceMethod::path, BounceMethod::photons})
+    if (name == bounce_method_name(m)) return m;
+  throw Error("--bounce-method " + name + ": unknown method (use path or photons)");
+}
+
 void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine) {
   unsigned m = 0, n = 0;
   char tail = 0;

@@ -46,18 +46,20 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
   source_count_ = unsigned(cdf.size());
 }
 
-std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed) {
-  if (!source_count_ || !photon_count) return {};
-  cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, size_t(photon_count) * sizeof(PhotonHit), "light guide photons");
+std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings) {
+  if (!source_count_ || !photon_count || !landings) return {};
+  size_t slots = size_t(photon_count) * landings;
+  cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(PhotonHit), "photons");
   PhotonParams params{};
   params.photon_count = photon_count;
   params.source_count = source_count_;
   params.seed = seed;
+  params.landings = landings;
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);
   gpu_.queue().finish();
-  return gpu_.download<PhotonHit>(photons, photon_count);
+  return gpu_.download<PhotonHit>(photons, slots);
 }
 
 }  // namespace rcsplat

@@ -14,8 +14,9 @@ class LightGuidePass {
  public:
   LightGuidePass(GpuContext& gpu, const DeviceScene& scene);
 
-  // photon_count photons (none when the scene has no light with power); blocks until done.
-  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed);
+  // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
+  // diffusely in between): photon i's landing k at [i * landings + k]; blocks until done.
+  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1);
 
  private:
   GpuContext& gpu_;

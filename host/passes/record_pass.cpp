@@ -8,22 +8,26 @@ namespace rcsplat {
 namespace {
 
 // The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata) {
+KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
   KernelDefines defines = scene.defines_with("STORE_STRATA", store_strata);
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
+  defines["PHOTON_GATHER"] = photon_gather ? "1" : "0";
   return defines;
 }
 
 }  // namespace
 
-RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata)
+RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                       const PhotonMapPass* photon_map)
     : gpu_(gpu),
       scene_(scene),
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
-      kernel_(gpu.kernel("records.cl", "compute_records", record_defines(scene, theta_strata, store_strata))) {
+      photon_map_(photon_map),
+      kernel_(gpu.kernel("records.cl", "compute_records",
+                         record_defines(scene, theta_strata, store_strata, photon_map != nullptr))) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
   guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}));  // never read while guide_clusters_ is 0
   reserve(1024);
@@ -64,6 +68,7 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   batch.candidate_count = count;
   batch.first_record = first;
   scene_.bind(kernel_);
+  if (photon_map_) photon_map_->bind(kernel_);
   gbuffer.bind(kernel_);
   kernel_.set_buffer<cl_uint>("candidates", candidates)
       .set("batch", batch)

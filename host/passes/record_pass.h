@@ -8,14 +8,18 @@
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/photon_map_pass.h"
 
 namespace rcsplat {
 
 class RecordPass {
  public:
   // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
-  // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them).
-  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false);
+  // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them). With a photon
+  // map (--bounce-method photons) the records' rays take the bounces after the first from it (kernels/photon_map.h);
+  // it must outlive the pass.
+  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false,
+             const PhotonMapPass* photon_map = nullptr);
 
   // Computes records first .. first + count - 1 at the G-buffer pixels listed in candidates (a device array of pixel
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
@@ -41,6 +45,7 @@ class RecordPass {
   const DeviceScene& scene_;
   unsigned theta_capacity_;
   bool store_strata_;
+  const PhotonMapPass* photon_map_;
   NamedKernel kernel_;
   cl::Buffer records_, ray_total_, strata_, guide_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;

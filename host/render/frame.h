@@ -45,6 +45,10 @@ struct RenderStats {
   unsigned guide_clusters = 0;  // the light guide's clusters (0: records took no guided rays)
   uint64_t guide_photons = 0;
   double guide_s = 0;
+  // The photon map (--bounce-method photons): photons kept (landings after a reflection), radius (world units).
+  uint64_t photon_map_photons = 0;
+  float photon_map_radius = 0;
+  double photon_map_s = 0;
   // Path tracing
   unsigned path_samples = 0;
   uint64_t path_rays = 0;

@@ -8,6 +8,7 @@
 #include "cl/device_scene.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/photon_map_pass.h"
 #include "passes/radiance_splat_pass.h"
 #include "passes/record_pass.h"
 #include "render/frame.h"
@@ -26,6 +27,8 @@ struct IndirectFrame {
   // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records and the
   // glossy pass share them.
   std::optional<std::vector<GuideCluster>> light_guide{};
+  // The photon map once attach_photon_map has built it: the irradiance and radiance records share it.
+  std::unique_ptr<PhotonMapPass> photon_map{};
 };
 
 // Radiance cache splatting on the device: coarse-to-fine placement, records, neighbour clamping, splat, resolve.
@@ -36,6 +39,9 @@ void octree_indirect(IndirectFrame& frame);
 // Builds the frame's light guide (photons from the lights, clustered: cache/light_guide.h) on its first call, and
 // hands it to the record pass, unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
 void attach_light_guide(IndirectFrame& frame, RecordPass& records);
+// The photon map the records read their hits' later bounces from (--bounce-method photons with --bounces 2 or more),
+// built on the first call; null otherwise. Fills its statistics.
+const PhotonMapPass* attach_photon_map(IndirectFrame& frame);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);
 

@@ -96,8 +96,9 @@ void octree_indirect(IndirectFrame& f) {
   std::vector<PixelGeometry> geo(pixels);
   for (size_t i = 0; i < pixels; ++i) geo[i] = pixel_geometry(gb[i]);
 
+  const PhotonMapPass* photon_map = attach_photon_map(f);
   double program_before = f.gpu.program_seconds();
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
+  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), false, photon_map);
   records.set_bounces(f.settings.bounces);
   st.program_s += f.gpu.program_seconds() - program_before;
   attach_light_guide(f, records);

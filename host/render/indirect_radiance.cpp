@@ -86,7 +86,7 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
 
   auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, row_of_material);
   const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), true);
+  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), true, attach_photon_map(f));
   records.set_bounces(f.settings.bounces);
   HshRecordPass hsh(f.gpu, order);
   DeviceRecordIndex index(f.gpu, kept, cs);

@@ -14,8 +14,9 @@ void splat_indirect(IndirectFrame& f) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
+  const PhotonMapPass* photon_map = attach_photon_map(f);
   double program_before = f.gpu.program_seconds();
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs));
+  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), false, photon_map);
   records.set_bounces(f.settings.bounces);
   DeviceRecordIndex index(f.gpu, gbuffer, cs);
   SplatPass splat(f.gpu);

@@ -30,6 +30,10 @@ const char* gi_method_name(GiMethod method) {
   return "?";
 }
 
+const char* bounce_method_name(BounceMethod method) {
+  return method == BounceMethod::photons ? "photons" : "path";
+}
+
 namespace {
 
 // Refuses, before any work, a frame that cannot fit: the per-pixel buffers every method allocates on the device
@@ -58,6 +62,12 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   // The command line refuses it too; a caller of the library gets the same words before any work.
   if (settings.bounces < 1 || settings.bounces > kMaxBounces)
     throw Error("--bounces must be between 1 and " + std::to_string(kMaxBounces));
+  if (settings.bounce_method == BounceMethod::photons && settings.bounces > 1 && settings.gi != GiMethod::path &&
+      settings.gi != GiMethod::none && scene.environment.present())
+    throw Error("--bounce-method photons: the photons come from the lights and an environment's peak, not from its "
+                "gathered part, so a sky's later bounces would be lost; use --bounce-method path with --sky or "
+                "--environment");
+  if (settings.photon_paths == 0) throw Error("--photons must be at least 1");
   if (settings.hsh_order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
   auto start = Clock::now();

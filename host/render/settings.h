@@ -9,6 +9,11 @@
 namespace rcsplat {
 
 enum class GiMethod { none, splat, octree, path };
+// How the cache's records find the bounces after the first (--bounces 2 and more): path: each record ray's path goes
+// on from its hit (kernels/bounce.h); photons: the hit reads a photon map (kernels/photon_map.h). The path tracer
+// always continues its paths.
+enum class BounceMethod { path, photons };
+const char* bounce_method_name(BounceMethod method);
 
 constexpr unsigned kMaxBounces = 16;
 const char* gi_method_name(GiMethod method);
@@ -32,6 +37,11 @@ struct RenderSettings {
   // Indirect bounces every method gathers (kernels/bounce.h): 1 is the first bounce lit directly; each more continues
   // the path from the bounce's hit. The command line's --bounces.
   unsigned bounces = 1;  // 1 .. kMaxBounces
+  BounceMethod bounce_method = BounceMethod::path;
+  // --bounce-method photons: photons shot from the lights (each lands up to `bounces` times), and how many of them the
+  // density estimate's radius holds on average over the scene's surface.
+  unsigned photon_paths = 1u << 19;
+  unsigned photon_neighbours = 64;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are

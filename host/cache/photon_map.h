@@ -1,0 +1,40 @@
+// The photon map of --bounce-method photons, as the host builds it from the photons' landings (passes/photon_map_pass.h
+// shoots them and uploads the result): the landings after the first reflection, sorted into the buckets of a hashed
+// grid (kernels/photon_grid.h), and a sparser grid of every few of them, which carry the radiance estimates that
+// lookups return (Christensen 1999: the estimate uses every photon, the lookup searches few).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/shared_types.h"
+
+namespace rcsplat {
+
+struct PhotonGrid {
+  PhotonMapParams params{};
+  std::vector<PhotonHit> photons;       // sorted by bucket
+  std::vector<uint32_t> bucket_starts;  // params.bucket_count + 1: bucket h holds [starts[h], starts[h + 1])
+};
+
+struct PhotonMapGrids {
+  PhotonGrid all;     // every photon kept: the density estimates sum over it
+  PhotonGrid lookup;  // every lookup_stride-th of them: where the estimates are made and what lookups search
+};
+
+// The density estimate's radius: the disc that holds `neighbours` photons on average when `photons` photons spread over
+// `surface_area` (device units).
+float photon_gather_radius(double surface_area, size_t photons, unsigned neighbours);
+
+// photons sorted into a grid of cells one radius wide (and a hair more, so rounding never hides a photon within the
+// radius); the order within a cell is the order given.
+PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius);
+
+// Keeps the landings k >= 1 of photons[i * landings + k] that hit a surface with some flux.
+std::vector<PhotonHit> reflected_landings(const std::vector<PhotonHit>& photons, unsigned landings);
+
+// Both grids over the kept landings, radius as photon_gather_radius gives it for their count.
+PhotonMapGrids build_photon_map(const std::vector<PhotonHit>& kept, double surface_area, unsigned neighbours,
+                                unsigned lookup_stride);
+
+}  // namespace rcsplat

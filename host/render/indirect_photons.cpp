@@ -1,0 +1,49 @@
+// The photon map for a frame's records (--bounce-method photons): shot once, shared by the irradiance and radiance
+// records.
+#include <glm/glm.hpp>
+
+#include "passes/photon_map_pass.h"
+#include "render/indirect.h"
+#include "render/timing.h"
+
+namespace rcsplat {
+namespace {
+
+// One photon in this many carries a radiance estimate for the lookups: Christensen (1999) kept a quarter; the lookup
+// searches this many times fewer photons, each estimate still sums all of them.
+constexpr unsigned kPhotonLookupStride = 8;
+
+// The scene's surface area in device units: the photon map's radius spreads its photons over it.
+double device_surface_area(const Scene& scene, const SceneFrame& frame) {
+  double area = 0.0;
+  for (size_t i = 0; i + 2 < scene.positions.size(); i += 3) {
+    glm::dvec3 a(scene.positions[i]), b(scene.positions[i + 1]), c(scene.positions[i + 2]);
+    area += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  return area / (frame.scale * frame.scale);
+}
+
+}  // namespace
+
+const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
+  if (f.settings.bounce_method != BounceMethod::photons || f.settings.bounces < 2) return nullptr;
+  if (f.photon_map) return f.photon_map.get();
+  RenderStats& st = f.image.stats;
+  auto t = Clock::now();
+  double program_before = f.gpu.program_seconds();
+  const SceneFrame& frame = f.device_scene.frame();
+  // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
+  std::vector<PhotonHit> kept = shoot_reflected_photons(f.gpu, f.device_scene, f.settings.photon_paths,
+                                                        f.settings.bounces, f.settings.seed ^ 0x70686f74u);
+  PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
+                                          kPhotonLookupStride);
+  f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
+  double program_s = f.gpu.program_seconds() - program_before;
+  st.program_s += program_s;
+  st.photon_map_photons = grids.all.photons.size();
+  st.photon_map_radius = frame.length_to_world(grids.all.params.radius);
+  st.photon_map_s = seconds_since(t) - program_s;
+  return f.photon_map.get();
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,22 @@
+// The photon map's hashed grid (kernels/photon_map.h), one source for the host, which sorts the photons into buckets
+// (host/cache/photon_map.cpp), and the kernels, which look them up.
+#ifndef RCSPLAT_PHOTON_GRID_H
+#define RCSPLAT_PHOTON_GRID_H
+#include "counter_random.h"
+#include "host_device.h"
+
+// Map photons and the surface they light face the same way when their normals are closer than 60 degrees: this keeps
+// the two sides of a wall, and a floor and the wall it meets, apart.
+#define PHOTON_MIN_NORMAL_COSINE 0.5f
+
+// The grid cell along one axis holding coordinate x.
+inline int photon_cell(float x, float origin, float cell_size) { return (int)floor((x - origin) / cell_size); }
+
+// The bucket of cell (cx, cy, cz) among bucket_count (a power of two). Different cells may share a bucket: lookups
+// test each photon's distance, and visit a bucket once.
+inline rc_uint photon_bucket(int cx, int cy, int cz, rc_uint bucket_count) {
+  rc_uint h = ((rc_uint)cx * 73856093u) ^ ((rc_uint)cy * 19349663u) ^ ((rc_uint)cz * 83492791u);
+  return hash_u32(h) & (bucket_count - 1u);
+}
+
+#endif
