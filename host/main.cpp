@@ -73,10 +73,12 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
                   "and path samples are per pixel, records keep their world-space size (default 1)")
       ->check(CLI::Range(1u, 64u));
+  o.settings.bounces = 0;
   cmd->add_option("--bounces", o.settings.bounces,
-                  "Indirect bounces: 1 lights the first bounce's hit directly, each more continues the path from "
-                  "there (every method, the reference too; default 1)")
-      ->check(CLI::Range(1u, kMaxBounces));
+                  "Indirect bounces: 1 lights the first bounce's hit directly, each more adds a reflection (every "
+                  "method, the reference too); default 0: chosen from the scene, the fewest that leave out at most 5% "
+                  "of the indirect light, as a few photons measure it (at most 8 with photons, 3 by path)")
+      ->check(CLI::Range(0u, kMaxBounces));
   env.add(cmd, o.environment);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
   cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
@@ -138,12 +140,12 @@ int main(int argc, char** argv) {
   std::string bounce_method;
   render_cmd->add_option("--bounce-method", bounce_method,
                          "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
-                         "path (continue its path) or photons (read a photon map at its hit); default " +
-                             std::string(bounce_method_name(RenderSettings{}.bounce_method)))
-      ->check(CLI::IsMember({"path", "photons"}));
+                         "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
+                         "unless the scene has a sky or an environment map")
+      ->check(CLI::IsMember({"auto", "path", "photons"}));
   render_cmd->add_option("--photons", render.settings.photon_paths,
-                         "Photons shot for --bounce-method photons (default " +
-                             std::to_string(RenderSettings{}.photon_paths) + ")")
+                         "Photons shot for --bounce-method photons; default " + std::to_string(kPhotonLandings) +
+                             " over (bounces - 1), about as many landings in a closed scene")
       ->check(CLI::Range(1u, 1u << 26));
 
   RenderOptions reference;

@@ -109,6 +109,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     } else {
       alive = false;
     }
-    photons[(size_t)i * params.landings + k] = out;
+    if (k >= params.first_stored)
+      photons[(size_t)i * (params.landings - params.first_stored) + (k - params.first_stored)] = out;
   }
 }

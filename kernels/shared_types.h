@@ -246,7 +246,11 @@ typedef struct {
   rc_uint photon_count;
   rc_uint source_count;  // punctual lights first, then emissive triangles, as in the sources' CDF
   rc_uint seed;
-  rc_uint landings;  // surfaces each photon lands on at most (1: the first only); photons[i * landings + k]
+  rc_uint landings;  // surfaces each photon lands on at most (1: the first only)
+  // Landings before this one are not stored: landing k of photon i at photons[i * (landings - first_stored) + k -
+  // first_stored] (the photon map keeps the landings after a reflection, the light guide the first).
+  rc_uint first_stored;
+  rc_uint pad[3];
 } PhotonParams;
 
 // The photon map (--bounce-method photons; kernels/photon_map.h): photon landings after at least one reflection, sorted
@@ -404,7 +408,7 @@ static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 32);
 static_assert(sizeof(GuideCluster) == 48);
 static_assert(sizeof(PhotonHit) == 48);
-static_assert(sizeof(PhotonParams) == 16);
+static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);

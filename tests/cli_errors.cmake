@@ -38,7 +38,11 @@ expect_refused("invalid JSON" "broken.gltf: cannot be loaded" render broken.gltf
 expect_refused("missing scene" "nothing.gltf" render nothing.gltf -o out.exr)
 expect_refused("accuracy out of range" "--accuracy" render -o out.exr --accuracy 0)
 expect_refused("info on invalid JSON" "broken.gltf: cannot be loaded" info broken.gltf --json out.json)
-expect_refused("bounces 0" "--bounces: Value 0" render -o out.exr --bounces 0)
+expect_refused("bounces 17" "--bounces: Value 17" render -o out.exr --bounces 17)
+expect_refused("unknown bounce method" "--bounce-method: photon not in" render -o out.exr --bounce-method photon)
+expect_refused("photons under a sky" "--bounce-method photons: the photons come from the lights"
+               render -o out.exr --bounces 2 --bounce-method photons --sky 1,1,1)
+expect_refused("no photons" "--photons: Value 0" render -o out.exr --bounce-method photons --photons 0)
 file(WRITE "${WORK}/garbage.hdr" "#?RADIANCE\nnot a picture")
 expect_refused("missing environment map" "nosky.hdr: cannot be read" render -o out.exr --environment nosky.hdr)
 expect_refused("unreadable environment map" "garbage.hdr: cannot be read" render -o out.exr --environment garbage.hdr)

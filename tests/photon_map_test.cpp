@@ -12,6 +12,8 @@
 #include "cl/device_scene.h"
 #include "passes/light_guide_pass.h"
 #include "passes/photon_map_pass.h"
+#include "render/bounce_choice.h"
+#include "scene/environment.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -55,8 +57,11 @@ TEST(PhotonMap, EachLandingCarriesTheFluxItsReflectionLeaves) {
     EXPECT_EQ(landed, photons) << "landing " << k;
     EXPECT_NEAR(sum, expected, 1e-4 * expected) << "landing " << k;
   }
-  // The map keeps the landings after a reflection: all of landings 1 and 2.
-  EXPECT_EQ(reflected_landings(hits, landings).size(), size_t(photons) * (landings - 1));
+  // The map keeps the landings after a reflection: the same photons' landings 1 and 2, all lit.
+  std::vector<PhotonHit> reflected = LightGuidePass(test::gpu(), device).shoot(photons, 7, landings, 1);
+  ASSERT_EQ(lit_landings(reflected).size(), size_t(photons) * (landings - 1));
+  for (size_t i = 0; i < reflected.size(); ++i)
+    ASSERT_EQ(reflected[i].flux[0], hits[(i / 2) * landings + 1 + i % 2].flux[0]) << "stored landing " << i;
 }
 
 // Random photons on a floor (y = 0, both sides) and a wall (x = 0) meeting it, with random flux.
@@ -195,6 +200,53 @@ TEST(PhotonMap, AnEmptyMapIsDark) {
   EXPECT_EQ(found[0].s[0], 0.0f);
   PhotonMapGrids no_area = build_photon_map(random_photons(30, 1).photons, 0.0, 32, 4);
   EXPECT_EQ(no_area.lookup.params.photon_count, 0u);
+}
+
+// --bounces 0: the fewest bounces that leave out at most 5% of the indirect light of a geometric series.
+TEST(BounceChoice, FewestBouncesThatLeaveOutAtMostFivePercent) {
+  EXPECT_EQ(bounces_for(0.0, 8), 1u);
+  EXPECT_EQ(bounces_for(0.05, 8), 1u);
+  EXPECT_EQ(bounces_for(0.2, 8), 2u);   // 0.2 left out by one, 0.04 by two
+  EXPECT_EQ(bounces_for(0.5, 8), 5u);   // 0.0625 by four, 0.031 by five
+  EXPECT_EQ(bounces_for(0.99, 8), 8u);  // the maximum
+  EXPECT_EQ(bounces_for(0.99, 3), 3u);
+}
+
+// The scene's measure: in the closed cube of albedo 0.5 each reflection keeps exactly half (every photon lands again),
+// so five bounces with photons and the path method's three at most; a floor alone under a light keeps nothing (what it
+// reflects leaves), so one. Auto picks photons for the cache and path under a sky.
+TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
+  Scene cube = lit_closed_cube();
+  Bvh8 bvh = build_bvh8(cube.positions);
+  DeviceScene device(test::gpu(), cube, bvh);
+  RenderSettings settings;
+  settings.bounces = 0;
+  BounceChoice choice = choose_bounces(test::gpu(), cube, device, settings);
+  EXPECT_NEAR(choice.kept_per_bounce, 0.5, 1e-4);
+  EXPECT_EQ(choice.bounces, 5u);
+  EXPECT_EQ(choice.method, BounceMethod::photons);
+  EXPECT_TRUE(choice.bounces_chosen);
+  settings.bounce_method = BounceMethod::path;
+  EXPECT_EQ(choose_bounces(test::gpu(), cube, device, settings).bounces, 3u);
+  settings.bounces = 2;
+  EXPECT_FALSE(choose_bounces(test::gpu(), cube, device, settings).bounces_chosen);
+
+  Scene floor;
+  floor.source = "floor";
+  floor.materials.push_back({"white", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), -1, glm::vec3(0.0f), false});
+  floor.add_quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, 0);
+  floor.lights.push_back({"point", LightType::point, {0.0f, 0.5f, 0.0f}, {0, 0, -1}, glm::vec3(1.0f)});
+  Bvh8 floor_bvh = build_bvh8(floor.positions);
+  DeviceScene floor_device(test::gpu(), floor, floor_bvh);
+  settings.bounces = 0;
+  settings.bounce_method = BounceMethod::automatic;
+  BounceChoice open = choose_bounces(test::gpu(), floor, floor_device, settings);
+  EXPECT_EQ(open.kept_per_bounce, 0.0);
+  EXPECT_EQ(open.bounces, 1u);
+  EnvironmentSettings sky;
+  sky.sky = glm::vec3(1.0f);
+  floor.environment = make_environment(sky);
+  EXPECT_EQ(choose_bounces(test::gpu(), floor, floor_device, settings).method, BounceMethod::path);
 }
 
 }  // namespace

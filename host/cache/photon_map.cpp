@@ -14,13 +14,10 @@ float photon_gather_radius(double surface_area, size_t photons, unsigned neighbo
   return float(std::sqrt(double(neighbours) * surface_area / (std::numbers::pi * double(photons))));
 }
 
-std::vector<PhotonHit> reflected_landings(const std::vector<PhotonHit>& photons, unsigned landings) {
+std::vector<PhotonHit> lit_landings(const std::vector<PhotonHit>& photons) {
   std::vector<PhotonHit> kept;
-  for (size_t i = 0; landings > 1 && i < photons.size(); ++i) {
-    const PhotonHit& p = photons[i];
-    bool lit = p.flux[0] > 0.0f || p.flux[1] > 0.0f || p.flux[2] > 0.0f;
-    if (i % landings != 0 && p.hit && lit) kept.push_back(p);
-  }
+  for (const PhotonHit& p : photons)
+    if (p.hit && (p.flux[0] > 0.0f || p.flux[1] > 0.0f || p.flux[2] > 0.0f)) kept.push_back(p);
   return kept;
 }
 

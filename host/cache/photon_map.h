@@ -30,8 +30,8 @@ float photon_gather_radius(double surface_area, size_t photons, unsigned neighbo
 // radius); the order within a cell is the order given.
 PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius);
 
-// Keeps the landings k >= 1 of photons[i * landings + k] that hit a surface with some flux.
-std::vector<PhotonHit> reflected_landings(const std::vector<PhotonHit>& photons, unsigned landings);
+// The landings that hit a surface with some flux.
+std::vector<PhotonHit> lit_landings(const std::vector<PhotonHit>& photons);
 
 // Both grids over the kept landings, radius as photon_gather_radius gives it for their count.
 PhotonMapGrids build_photon_map(const std::vector<PhotonHit>& kept, double surface_area, unsigned neighbours,

@@ -43,7 +43,11 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
         it == attributes.end() ? absent : count ? std::to_string(parse_count(path, key, it->second)) : it->second;
     if (before != now) throw Error(path + ": rendered with " + option + " " + before + ", not " + now);
   };
-  refuse_other("rcsplat:bounces", "1", true, std::to_string(o.settings.bounces), "--bounces");
+  // Bounces left to the scene (0) continue with the file's count.
+  auto bounces_in_file = attributes.find("rcsplat:bounces");
+  const unsigned file_bounces =
+      bounces_in_file == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_in_file->second);
+  if (o.settings.bounces) refuse_other("rcsplat:bounces", "1", true, std::to_string(o.settings.bounces), "--bounces");
   refuse_other("rcsplat:environment", "none", false, scene.environment.describe(), "environment");
   refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
@@ -62,6 +66,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   std::vector<float> direct = read_exr_layer(path, "direct", w, h);
 
   RenderSettings more = o.settings;
+  more.bounces = file_bounces;
   more.path.samples = o.settings.path.samples - samples_before;
   more.seed = seed + samples_before;  // differs from every earlier part's seed: the parts are independent
   more.light_samples = o.settings.light_samples > lights_before ? o.settings.light_samples - lights_before : 0;

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "kernels/hsh.h"
+#include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -26,7 +27,11 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
   print_scene_plan(plan, s.bvh_depth);  // what `rcsplat info` prints
   std::printf("device       %s\n", s.device.c_str());
   std::printf("image        %d x %d, %u light samples per pixel, indirect light: %s, %u bounce%s\n", image.width,
-              image.height, s.light_samples, gi_method_name(s.gi), settings.bounces, settings.bounces == 1 ? "" : "s");
+              image.height, s.light_samples, gi_method_name(s.gi), s.bounces, s.bounces == 1 ? "" : "s");
+  if (s.bounces_chosen)
+    std::printf("bounces      %u chosen from the scene: each reflection keeps %.0f%% of the light it receives (photons "
+                "measured it), so the bounces left out carry at most %.0f%% of the indirect light (--bounces)\n",
+                s.bounces, 100.0 * s.kept_per_bounce, 100.0 * kMissingIndirectShare);
   if (s.pixel_samples > 1)
     std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
                 "averaged); record reach and placement spacing are in output pixels, so records keep their world-space size; "
@@ -47,11 +52,11 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
     if (s.photon_map_photons)
-      std::printf("photon map   bounces 2..%u at the records' hits: %llu photons kept of %u shot, radius %.4g (%.3f s)\n",
-                  settings.bounces, (unsigned long long)s.photon_map_photons, settings.photon_paths,
+      std::printf("photon map   bounces 2..%u at the records' hits: %llu photons kept of %llu shot, radius %.4g (%.3f s)\n",
+                  s.bounces, (unsigned long long)s.photon_map_photons, (unsigned long long)s.photon_map_paths,
                   s.photon_map_radius, s.photon_map_s);
-    else if (settings.bounces > 1)
-      std::printf("bounces      2..%u at the records' hits by path continuation\n", settings.bounces);
+    else if (s.bounces > 1)
+      std::printf("bounces      2..%u at the records' hits by path continuation\n", s.bounces);
     if (s.guide_clusters)
       std::printf("light guide  %u rays per record at %u bright places found by %llu photons (%.3f s)\n", c.guide_rays,
                   s.guide_clusters, (unsigned long long)s.guide_photons, s.guide_s);
@@ -106,7 +111,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
   nlohmann::json j = {
       {"scene_plan", scene_plan_json(plan, s.bvh_depth)},
       {"scene", scene.source}, {"device", s.device}, {"width", image.width}, {"height", image.height},
-      {"gi", gi_method_name(s.gi)}, {"bounces", settings.bounces}, {"light_samples", s.light_samples},
+      {"gi", gi_method_name(s.gi)}, {"bounces", s.bounces}, {"bounces_chosen", s.bounces_chosen},
+      {"kept_per_bounce", s.kept_per_bounce}, {"light_samples", s.light_samples},
       {"pixel_samples", s.pixel_samples},
       {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
@@ -134,8 +140,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                                    {"clusters", s.guide_clusters}, {"photons", s.guide_photons},
                                    {"seconds", s.guide_s}}},
                   {"later_bounces",
-                   {{"method", settings.bounces > 1 ? bounce_method_name(settings.bounce_method) : "none"},
-                    {"photons_shot", s.photon_map_photons ? settings.photon_paths : 0u},
+                   {{"method", s.bounces > 1 ? bounce_method_name(s.bounce_method) : "none"},
+                    {"photons_shot", s.photon_map_paths},
                     {"photons_kept", s.photon_map_photons}, {"radius", s.photon_map_radius},
                     {"seconds", s.photon_map_s}}}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
@@ -185,8 +191,8 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
                               {"rcsplat:seed", std::to_string(options.settings.seed)},
                               {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
-                              {"rcsplat:bounces", std::to_string(options.settings.bounces)},
-                              {"rcsplat:bounce_method", bounce_method_name(options.settings.bounce_method)},
+                              {"rcsplat:bounces", std::to_string(image.stats.bounces)},
+                              {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
                               {"rcsplat:environment", scene.environment.describe()},
                               {"rcsplat:pixel_samples", std::to_string(options.settings.pixel_samples)}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);

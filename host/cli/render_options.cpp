@@ -13,9 +13,9 @@ GiMethod parse_gi_method(const std::string& name) {
 }
 
 BounceMethod parse_bounce_method(const std::string& name) {
-  for (BounceMethod m : {BounceMethod::path, BounceMethod::photons})
+  for (BounceMethod m : {BounceMethod::automatic, BounceMethod::path, BounceMethod::photons})
     if (name == bounce_method_name(m)) return m;
-  throw Error("--bounce-method " + name + ": unknown method (use path or photons)");
+  throw Error("--bounce-method " + name + ": unknown method (use auto, path or photons)");
 }
 
 void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine) {

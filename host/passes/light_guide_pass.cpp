@@ -46,15 +46,17 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
   source_count_ = unsigned(cdf.size());
 }
 
-std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings) {
-  if (!source_count_ || !photon_count || !landings) return {};
-  size_t slots = size_t(photon_count) * landings;
+std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings,
+                                             unsigned first_stored) {
+  if (!source_count_ || !photon_count || first_stored >= landings) return {};
+  size_t slots = size_t(photon_count) * (landings - first_stored);
   cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(PhotonHit), "photons");
   PhotonParams params{};
   params.photon_count = photon_count;
   params.source_count = source_count_;
   params.seed = seed;
   params.landings = landings;
+  params.first_stored = first_stored;
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);

@@ -15,8 +15,9 @@ class LightGuidePass {
   LightGuidePass(GpuContext& gpu, const DeviceScene& scene);
 
   // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
-  // diffusely in between): photon i's landing k at [i * landings + k]; blocks until done.
-  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1);
+  // diffusely in between), landings first_stored .. landings - 1 returned: photon i's landing k at
+  // [i * (landings - first_stored) + k - first_stored]; blocks until done.
+  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0);
 
  private:
   GpuContext& gpu_;

@@ -6,7 +6,7 @@ namespace rcsplat {
 
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
                                                unsigned bounces, unsigned seed) {
-  return reflected_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces), bounces);
+  return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
 PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {

@@ -45,8 +45,13 @@ struct RenderStats {
   unsigned guide_clusters = 0;  // the light guide's clusters (0: records took no guided rays)
   uint64_t guide_photons = 0;
   double guide_s = 0;
+  // Bounces as rendered (chosen from the scene when --bounces was 0, with the scene's measure) and their method.
+  unsigned bounces = 1;
+  BounceMethod bounce_method = BounceMethod::path;
+  bool bounces_chosen = false;
+  double kept_per_bounce = 0;
   // The photon map (--bounce-method photons): photons kept (landings after a reflection), radius (world units).
-  uint64_t photon_map_photons = 0;
+  uint64_t photon_map_paths = 0, photon_map_photons = 0;
   float photon_map_radius = 0;
   double photon_map_s = 0;
   // Path tracing

@@ -33,13 +33,15 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   double program_before = f.gpu.program_seconds();
   const SceneFrame& frame = f.device_scene.frame();
   // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
-  std::vector<PhotonHit> kept = shoot_reflected_photons(f.gpu, f.device_scene, f.settings.photon_paths,
+  const unsigned paths = f.settings.photon_paths ? f.settings.photon_paths : kPhotonLandings / (f.settings.bounces - 1);
+  std::vector<PhotonHit> kept = shoot_reflected_photons(f.gpu, f.device_scene, paths,
                                                         f.settings.bounces, f.settings.seed ^ 0x70686f74u);
   PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                           kPhotonLookupStride);
   f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
   double program_s = f.gpu.program_seconds() - program_before;
   st.program_s += program_s;
+  st.photon_map_paths = paths;
   st.photon_map_photons = grids.all.photons.size();
   st.photon_map_radius = frame.length_to_world(grids.all.params.radius);
   st.photon_map_s = seconds_since(t) - program_s;

@@ -12,6 +12,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "render/indirect.h"
+#include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
 #include "scene/scene_frame.h"
 #include "util/byte_size.h"
@@ -31,7 +32,12 @@ const char* gi_method_name(GiMethod method) {
 }
 
 const char* bounce_method_name(BounceMethod method) {
-  return method == BounceMethod::photons ? "photons" : "path";
+  switch (method) {
+    case BounceMethod::automatic: return "auto";
+    case BounceMethod::path: return "path";
+    case BounceMethod::photons: return "photons";
+  }
+  return "?";
 }
 
 namespace {
@@ -57,17 +63,17 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
 
 }  // namespace
 
-RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {
+  RenderSettings settings = requested;  // with the bounces and their method chosen, below
   if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
   // The command line refuses it too; a caller of the library gets the same words before any work.
-  if (settings.bounces < 1 || settings.bounces > kMaxBounces)
-    throw Error("--bounces must be between 1 and " + std::to_string(kMaxBounces));
-  if (settings.bounce_method == BounceMethod::photons && settings.bounces > 1 && settings.gi != GiMethod::path &&
+  if (settings.bounces > kMaxBounces)
+    throw Error("--bounces must be between 1 and " + std::to_string(kMaxBounces) + " (0: chosen from the scene)");
+  if (settings.bounce_method == BounceMethod::photons && settings.bounces != 1 && settings.gi != GiMethod::path &&
       settings.gi != GiMethod::none && scene.environment.present())
     throw Error("--bounce-method photons: the photons come from the lights and an environment's peak, not from its "
                 "gathered part, so a sky's later bounces would be lost; use --bounce-method path with --sky or "
                 "--environment");
-  if (settings.photon_paths == 0) throw Error("--photons must be at least 1");
   if (settings.hsh_order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
   auto start = Clock::now();
@@ -105,6 +111,13 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   st.hsh_materials = device_scene.lobe_counts()[LOBE_HSH];
   st.specular_brdf = device_scene.has_specular_brdf();
   st.upload_s = seconds_since(t);
+  const BounceChoice bounce_choice = choose_bounces(gpu, scene, device_scene, settings);
+  settings.bounces = bounce_choice.bounces;
+  settings.bounce_method = bounce_choice.method;
+  st.bounces = bounce_choice.bounces;
+  st.bounce_method = bounce_choice.method;
+  st.bounces_chosen = bounce_choice.bounces_chosen;
+  st.kept_per_bounce = bounce_choice.kept_per_bounce;
   double program_before = gpu.program_seconds();
   log_info("compiling kernels for " + st.device);
   GBufferPass gbuffer(gpu, device_scene);

@@ -12,10 +12,12 @@ enum class GiMethod { none, splat, octree, path };
 // How the cache's records find the bounces after the first (--bounces 2 and more): path: each record ray's path goes
 // on from its hit (kernels/bounce.h); photons: the hit reads a photon map (kernels/photon_map.h). The path tracer
 // always continues its paths.
-enum class BounceMethod { path, photons };
+// auto: photons for the cache methods unless the scene has an environment (render/bounce_choice.h).
+enum class BounceMethod { automatic, path, photons };
 const char* bounce_method_name(BounceMethod method);
 
 constexpr unsigned kMaxBounces = 16;
+constexpr unsigned kPhotonLandings = 1u << 21;
 const char* gi_method_name(GiMethod method);
 
 struct PathSettings {
@@ -35,12 +37,14 @@ struct RenderSettings {
   unsigned hsh_order = 0;
   unsigned seed = 0;
   // Indirect bounces every method gathers (kernels/bounce.h): 1 is the first bounce lit directly; each more continues
-  // the path from the bounce's hit. The command line's --bounces.
-  unsigned bounces = 1;  // 1 .. kMaxBounces
-  BounceMethod bounce_method = BounceMethod::path;
-  // --bounce-method photons: photons shot from the lights (each lands up to `bounces` times), and how many of them the
-  // density estimate's radius holds on average over the scene's surface.
-  unsigned photon_paths = 1u << 19;
+  // the path from the bounce's hit. The command line's --bounces, whose default is 0: chosen from the scene
+  // (render/bounce_choice.h); 1 here so that tests see one bounce unless they ask.
+  unsigned bounces = 1;  // 0 .. kMaxBounces
+  BounceMethod bounce_method = BounceMethod::automatic;
+  // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: kPhotonLandings over
+  // bounces - 1, so that a closed scene's map holds about kPhotonLandings photons whatever the bounces), and how many
+  // of them the density estimate's radius holds on average over the scene's surface.
+  unsigned photon_paths = 0;
   unsigned photon_neighbours = 64;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels

@@ -1,0 +1,53 @@
+#include "render/bounce_choice.h"
+
+#include <cmath>
+
+#include "passes/light_guide_pass.h"
+
+namespace rcsplat {
+namespace {
+
+constexpr unsigned kProbePhotons = 1u << 16, kProbeLandings = 4;
+// A seed of its own, the same for every render of the scene: render and reference choose the same count.
+constexpr unsigned kProbeSeed = 0x626f756eu;
+
+// Reflected flux of landings 1 .. 3 over landings 0 .. 2 (luminance); 0 when no photon lands.
+double kept_per_bounce(GpuContext& gpu, const DeviceScene& device_scene) {
+  std::vector<PhotonHit> hits = LightGuidePass(gpu, device_scene).shoot(kProbePhotons, kProbeSeed, kProbeLandings);
+  double flux[kProbeLandings] = {};
+  for (size_t i = 0; i < hits.size(); ++i)
+    flux[i % kProbeLandings] += 0.2126 * hits[i].flux[0] + 0.7152 * hits[i].flux[1] + 0.0722 * hits[i].flux[2];
+  double before = flux[0] + flux[1] + flux[2], after = flux[1] + flux[2] + flux[3];
+  return before > 0.0 && std::isfinite(before) && std::isfinite(after) ? after / before : 0.0;
+}
+
+}  // namespace
+
+unsigned bounces_for(double kept, unsigned max_bounces) {
+  unsigned n = 1;
+  double left_out = kept;  // the share of the indirect light beyond n bounces, for a geometric series
+  while (n < max_bounces && left_out > kMissingIndirectShare) {
+    ++n;
+    left_out *= kept;
+  }
+  return n;
+}
+
+BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
+                            const RenderSettings& settings) {
+  BounceChoice choice;
+  const bool cache = settings.gi == GiMethod::splat || settings.gi == GiMethod::octree;
+  choice.method = settings.bounce_method;
+  if (choice.method == BounceMethod::automatic)
+    choice.method = cache && !scene.environment.present() ? BounceMethod::photons : BounceMethod::path;
+  choice.bounces = settings.bounces;
+  if (settings.bounces == 0) {
+    choice.kept_per_bounce = kept_per_bounce(gpu, device_scene);
+    const bool photons = cache && choice.method == BounceMethod::photons;
+    choice.bounces = bounces_for(choice.kept_per_bounce, photons ? kMaxChosenBouncesPhotons : kMaxChosenBouncesPath);
+    choice.bounces_chosen = true;
+  }
+  return choice;
+}
+
+}  // namespace rcsplat

@@ -1,0 +1,34 @@
+// What --bounces and --bounce-method become when left to the scene (0 and auto): the bounce count from how much light
+// each reflection keeps in this scene, measured by a few photons (the reflected flux of each landing over the last's:
+// albedo and openness together), and the method from what the scene allows.
+#pragma once
+#include "cl/device_scene.h"
+#include "render/settings.h"
+
+namespace rcsplat {
+
+// Bounces are added until the light of those left out is at most this share of the indirect light.
+constexpr double kMissingIndirectShare = 0.05;
+// The most bounces the scene may choose: photons make a bounce nearly free for the records; path continuation costs a
+// record's rays again for each.
+constexpr unsigned kMaxChosenBouncesPhotons = 8, kMaxChosenBouncesPath = 3;
+
+struct BounceChoice {
+  unsigned bounces = 1;
+  BounceMethod method = BounceMethod::path;
+  // The scene's measure: reflected flux of landings 1 .. 3 over that of landings 0 .. 2 (0 without photons: a scene lit
+  // only by a smooth sky, or not at all), and whether the bounce count was chosen from it.
+  double kept_per_bounce = 0.0;
+  bool bounces_chosen = false;
+};
+
+// The method for `settings` (auto: photons for the cache methods where the scene allows, else path) and the bounce
+// count (settings.bounces, or for 0 the fewest that leave out at most kMissingIndirectShare of the indirect light
+// when each bounce keeps kept_per_bounce of the last's, within the method's maximum).
+BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
+                            const RenderSettings& settings);
+
+// The fewest bounces N >= 1 with kept^N <= kMissingIndirectShare, at most max_bounces.
+unsigned bounces_for(double kept_per_bounce, unsigned max_bounces);
+
+}  // namespace rcsplat
