@@ -144,8 +144,9 @@ int main(int argc, char** argv) {
                          "unless the scene has a sky or an environment map")
       ->check(CLI::IsMember({"auto", "path", "photons"}));
   render_cmd->add_option("--photons", render.settings.photon_paths,
-                         "Photons shot for --bounce-method photons; default " + std::to_string(kPhotonLandings) +
-                             " over (bounces - 1), about as many landings in a closed scene")
+                         "Photons shot for --bounce-method photons; default: rounds of " +
+                             std::to_string(kPhotonMapPhotons) + " until the map holds as many (at most " +
+                             std::to_string(kPhotonRounds) + " rounds)")
       ->check(CLI::Range(1u, 1u << 26));
 
   RenderOptions reference;

@@ -4,6 +4,7 @@
 
 #include "passes/photon_map_pass.h"
 #include "render/indirect.h"
+#include "kernels/counter_random.h"
 #include "render/timing.h"
 
 namespace rcsplat {
@@ -33,9 +34,21 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   double program_before = f.gpu.program_seconds();
   const SceneFrame& frame = f.device_scene.frame();
   // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
-  const unsigned paths = f.settings.photon_paths ? f.settings.photon_paths : kPhotonLandings / (f.settings.bounces - 1);
-  std::vector<PhotonHit> kept = shoot_reflected_photons(f.gpu, f.device_scene, paths,
-                                                        f.settings.bounces, f.settings.seed ^ 0x70686f74u);
+  const bool rounds = f.settings.photon_paths == 0;
+  const unsigned per_round = rounds ? kPhotonMapPhotons : f.settings.photon_paths;
+  std::vector<PhotonHit> kept;
+  uint64_t paths = 0;
+  // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double them.
+  for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9; ++round) {
+    std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
+                                                          f.settings.seed ^ 0x70686f74u ^ hash_u32(round));
+    kept.insert(kept.end(), more.begin(), more.end());
+    paths += per_round;
+  }
+  // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
+  const float share = float(per_round) / float(paths);
+  for (PhotonHit& p : kept)
+    for (float& c : p.flux) c *= share;
   PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                           kPhotonLookupStride);
   f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);

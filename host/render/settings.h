@@ -17,7 +17,9 @@ enum class BounceMethod { automatic, path, photons };
 const char* bounce_method_name(BounceMethod method);
 
 constexpr unsigned kMaxBounces = 16;
-constexpr unsigned kPhotonLandings = 1u << 21;
+// --photons 0: photons are shot in rounds of this many until the map holds as many (at most kPhotonRounds rounds: an
+// open scene loses most of its photons to the sky).
+constexpr unsigned kPhotonMapPhotons = 1u << 19, kPhotonRounds = 8;
 const char* gi_method_name(GiMethod method);
 
 struct PathSettings {
@@ -41,9 +43,9 @@ struct RenderSettings {
   // (render/bounce_choice.h); 1 here so that tests see one bounce unless they ask.
   unsigned bounces = 1;  // 0 .. kMaxBounces
   BounceMethod bounce_method = BounceMethod::automatic;
-  // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: kPhotonLandings over
-  // bounces - 1, so that a closed scene's map holds about kPhotonLandings photons whatever the bounces), and how many
-  // of them the density estimate's radius holds on average over the scene's surface.
+  // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: in rounds, until the
+  // map holds kPhotonMapPhotons), and how many of them the density estimate's radius holds on average over the scene's
+  // surface.
   unsigned photon_paths = 0;
   unsigned photon_neighbours = 64;
   GiMethod gi = GiMethod::splat;
