@@ -145,8 +145,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "path", "photons"}));
   render_cmd->add_option("--photons", render.settings.photon_paths,
                          "Photons shot for --bounce-method photons; default: rounds of " +
-                             std::to_string(kPhotonMapPhotons) + " until the map holds as many (at most " +
-                             std::to_string(kPhotonRounds) + " rounds)")
+                             std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
+                             std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
+                             " rounds)")
       ->check(CLI::Range(1u, 1u << 26));
 
   RenderOptions reference;

@@ -52,7 +52,7 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
     if (s.photon_map_photons)
-      std::printf("photon map   bounces 2..%u at the records' hits: %llu photons kept of %llu shot, radius %.4g (%.3f s)\n",
+      std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g (%.3f s)\n",
                   s.bounces, (unsigned long long)s.photon_map_photons, (unsigned long long)s.photon_map_paths,
                   s.photon_map_radius, s.photon_map_s);
     else if (s.bounces > 1)

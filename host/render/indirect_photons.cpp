@@ -1,5 +1,7 @@
 // The photon map for a frame's records (--bounce-method photons): shot once, shared by the irradiance and radiance
 // records.
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 #include "passes/photon_map_pass.h"
@@ -35,7 +37,10 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   const SceneFrame& frame = f.device_scene.frame();
   // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
   const bool rounds = f.settings.photon_paths == 0;
-  const unsigned per_round = rounds ? kPhotonMapPhotons : f.settings.photon_paths;
+  // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths fills
+  // a closed scene's map.
+  const unsigned per_round =
+      rounds ? std::max(kPhotonMapPhotons / (f.settings.bounces - 1), 1024u) : f.settings.photon_paths;
   std::vector<PhotonHit> kept;
   uint64_t paths = 0;
   // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double them.

@@ -43,8 +43,8 @@ struct RenderSettings {
   // (render/bounce_choice.h); 1 here so that tests see one bounce unless they ask.
   unsigned bounces = 1;  // 0 .. kMaxBounces
   BounceMethod bounce_method = BounceMethod::automatic;
-  // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: in rounds, until the
-  // map holds kPhotonMapPhotons), and how many of them the density estimate's radius holds on average over the scene's
+  // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: in rounds of
+  // kPhotonMapPhotons / (bounces - 1), until the map holds about kPhotonMapPhotons), and how many of them the density estimate's radius holds on average over the scene's
   // surface.
   unsigned photon_paths = 0;
   unsigned photon_neighbours = 64;
