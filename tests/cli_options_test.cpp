@@ -62,6 +62,13 @@ void write_rgb_exr(const std::string& path, int w, int h, float value, bool with
   write_exr(path, w, h, layers, attributes);
 }
 
+// Runs compare and reads back the JSON it wrote.
+nlohmann::json compare_json(const CompareOptions& o) {
+  EXPECT_EQ(run_compare(o), 0);
+  std::ifstream in(o.json_path);
+  return nlohmann::json::parse(in);
+}
+
 // A reference of another environment, bounce count or coarser pixel sampling measures a difference, not an error:
 // compare names it. A reference on a finer sub-pixel grid integrates the pixels' area more closely: an error, noted.
 TEST(Compare, NamesWhatTheTwoRendersDidDifferently) {
@@ -74,9 +81,7 @@ TEST(Compare, NamesWhatTheTwoRendersDidDifferently) {
   o.image_path = dir + "/b.exr";
   o.reference_path = dir + "/a.exr";
   o.json_path = dir + "/cmp.json";
-  EXPECT_EQ(run_compare(o), 0);
-  std::ifstream in(o.json_path);
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = compare_json(o);
   ASSERT_EQ(j["rendered_differently"].size(), 1u) << j.dump();
   EXPECT_EQ(j["rendered_differently"][0]["attribute"], "rcsplat:pixel_samples");
   EXPECT_EQ(j["rendered_differently"][0]["image"], "4");
@@ -84,18 +89,14 @@ TEST(Compare, NamesWhatTheTwoRendersDidDifferently) {
   EXPECT_FALSE(j["finer_pixel_reference"]);
 
   std::swap(o.image_path, o.reference_path);  // the image at 1 sample against the reference at 4
-  EXPECT_EQ(run_compare(o), 0);
-  std::ifstream again(o.json_path);
-  const nlohmann::json area = nlohmann::json::parse(again);
+  const nlohmann::json area = compare_json(o);
   EXPECT_EQ(area["rendered_differently"].size(), 0u) << area.dump();
   EXPECT_TRUE(area["finer_pixel_reference"]);
 
   write_rgb_exr(dir + "/c.exr", 8, 6, 1.0f, true,
                 {{"rcsplat:pixel_samples", "1"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "3"}});
   o.reference_path = dir + "/c.exr";
-  EXPECT_EQ(run_compare(o), 0);
-  std::ifstream third(o.json_path);
-  const nlohmann::json bounces = nlohmann::json::parse(third);
+  const nlohmann::json bounces = compare_json(o);
   ASSERT_EQ(bounces["rendered_differently"].size(), 1u) << bounces.dump();
   EXPECT_EQ(bounces["rendered_differently"][0]["attribute"], "rcsplat:bounces");
 }

@@ -10,6 +10,7 @@
 #include "cache/light_guide.h"
 #include "cl/device_scene.h"
 #include "passes/light_guide_pass.h"
+#include "closed_cube.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -17,20 +18,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// A closed cube [-0.5, 0.5]^3 (already in device units), every face of albedo 0.5, facing in.
-Scene closed_cube() {
-  Scene s;
-  s.source = "closed cube";
-  s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
-  const float h = 0.5f;
-  s.add_quad({-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h}, 0);
-  s.add_quad({-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h}, 0);
-  s.add_quad({-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h}, 0);
-  s.add_quad({h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h}, 0);
-  s.add_quad({-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h}, 0);
-  s.add_quad({-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}, 0);
-  return s;
-}
+using test::closed_cube;
 
 double reflected_flux(const std::vector<PhotonHit>& photons, size_t* hits = nullptr) {
   double sum = 0.0;

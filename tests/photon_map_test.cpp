@@ -16,6 +16,7 @@
 #include "passes/photon_map_pass.h"
 #include "render/bounce_choice.h"
 #include "scene/environment.h"
+#include "closed_cube.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -23,18 +24,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// A closed cube [-0.5, 0.5]^3 (device units), every face of albedo 0.5, facing in, lit by a point light of 3 cd.
+// The closed cube (albedo 0.5) lit by a point light of 3 cd.
 Scene lit_closed_cube() {
-  Scene s;
-  s.source = "closed cube";
-  s.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
-  const float h = 0.5f;
-  s.add_quad({-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h}, 0);
-  s.add_quad({-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h}, 0);
-  s.add_quad({-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h}, 0);
-  s.add_quad({h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h}, 0);
-  s.add_quad({-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h}, 0);
-  s.add_quad({-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}, 0);
+  Scene s = test::closed_cube();
   s.lights.push_back({"point", LightType::point, {0.1f, 0.2f, -0.1f}, {0, 0, -1}, glm::vec3(3.0f)});
   return s;
 }
