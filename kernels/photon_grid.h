@@ -9,8 +9,11 @@
 // the two sides of a wall, and a floor and the wall it meets, apart.
 #define PHOTON_MIN_NORMAL_COSINE 0.5f
 
-// The grid cell along one axis holding coordinate x.
-inline int photon_cell(float x, float origin, float cell_size) { return (int)floor((x - origin) / cell_size); }
+// The grid cell along one axis holding coordinate x; clamped (a NaN to a bound) so that the conversion is defined
+// even for a radius far below the scene's size.
+inline int photon_cell(float x, float origin, float cell_size) {
+  return (int)rc_fmax(rc_fmin(floor((x - origin) / cell_size), 16777216.0f), -16777216.0f);
+}
 
 // The bucket of cell (cx, cy, cz) among bucket_count (a power of two). Different cells may share a bucket: lookups
 // test each photon's distance, and visit a bucket once.

@@ -41,7 +41,7 @@ inline float3 photon_map_radiance(PHOTON_MAP_ARGS, float3 x, float3 ng) {
                            photon_cell(x.z, o.z, map.cell_size), map.bucket_count);
   nearest_in_bucket(PHOTON_MAP, own, x, ng, &nearest, &l);
   if (nearest < map.radius * map.radius) return l;
-  int3 first = convert_int3(floor((x - o) / map.cell_size - 0.5f));
+  int3 first = convert_int3_sat(floor((x - o) / map.cell_size - 0.5f));
   uint visited[9];
   uint visited_count = 1;
   visited[0] = own;
