@@ -36,10 +36,12 @@ void validate_cache_settings(const CacheSettings& c) {
     throw Error("--spacing MIN,MAX: need 0 < MIN <= MAX, in pixels");
   if (c.guide_rays > 4096) throw Error("--guide-rays must be between 0 and 4096 (given " + std::to_string(c.guide_rays) + ")");
   if (c.coarsest_spacing_pixels < 1) throw Error("the coarsest placement spacing must be at least 1 pixel");
+  if (c.finest_spacing_pixels < 1 || c.finest_spacing_pixels > c.coarsest_spacing_pixels)
+    throw Error("the finest placement spacing must be between 1 pixel and the coarsest");
 }
 
 HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int spacing) {
-  bool fine = spacing == 1 && c.fine_theta_strata > 0;
+  bool fine = spacing <= c.finest_spacing_pixels && c.fine_theta_strata > 0;
   HemisphereParams hp{};
   hp.theta_strata = fine ? c.fine_theta_strata : c.theta_strata;
   hp.phi_strata = fine ? c.fine_phi_strata : c.phi_strata;

@@ -20,6 +20,10 @@ struct CacheSettings {
   float min_reach_pixels = 3.0f;
   float max_reach_pixels = 20.0f;
   int coarsest_spacing_pixels = 32;
+  // Placement stops at this spacing (with its extra rounds). Anti-aliasing sets it to one output pixel in sub-pixels, so
+  // records are placed as at one sample; the sub-pixels they leave unreached take the best-weighted record near them
+  // (the splat's fill_uncovered).
+  int finest_spacing_pixels = 1;
   // The light guide (kernels/light_guide.h): rays per record aimed at the brightest directly lit places, beside the
   // M x N strata (0: no guide), and the photons that find those places. The command line's --guide-rays.
   unsigned guide_rays = 64;
@@ -33,8 +37,8 @@ constexpr float kMaxAccuracy = MAX_ACCURACY;
 // range: the command line refuses such values when it parses them, and render() before it starts.
 void validate_cache_settings(const CacheSettings& cache);
 
-// The record kernel's sampling parameters for records placed at this grid spacing: the fine hemisphere at spacing 1
-// when one is set, and the reach clamps turned into radius clamps.
+// The record kernel's sampling parameters for records placed at this grid spacing: the fine hemisphere at the finest
+// spacing when one is set, and the reach clamps turned into radius clamps.
 HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, int spacing);
 // The radius clamp's minimum in pixel footprints (the minimum reach over a).
 float min_radius_pixels(const CacheSettings& cache);

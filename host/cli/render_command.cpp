@@ -34,12 +34,12 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 s.bounces, 100.0 * s.kept_per_bounce, 100.0 * kMissingIndirectShare);
   if (s.pixel_samples > 1)
     std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
-                "averaged); record reach and placement spacing are in output pixels, so records keep their world-space size; "
-                "the finest placement levels work on sub-pixels (spacings below are in sub-pixels) and add records along "
-                "edges\n",
+                "averaged); record reach and placement spacing are in output pixels (spacings below are in sub-pixels), "
+                "and placement stops one output pixel apart, so the records are those one sample places; %llu sub-pixels "
+                "no record reached (edges) took the best-weighted record near them\n",
                 s.pixel_samples, pixel_sample_side(s.pixel_samples), pixel_sample_side(s.pixel_samples),
                 image.width * int(pixel_sample_side(s.pixel_samples)),
-                image.height * int(pixel_sample_side(s.pixel_samples)));
+                image.height * int(pixel_sample_side(s.pixel_samples)), (unsigned long long)s.filled_sub_pixels);
   std::printf("BVH          %zu nodes, %zu triangle blocks, depth %d\n", s.bvh_nodes, s.bvh_blocks, s.bvh_depth);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary_rays,
               (unsigned long long)s.shadow_rays);
@@ -134,7 +134,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
     j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
                   {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
                   {"spacing", {c.min_reach_pixels, c.max_reach_pixels}}, {"records", s.records}, {"levels", levels},
-                  {"uncovered_pixels", s.uncovered_pixels}, {"at_min_radius", s.records_at_min_radius},
+                  {"uncovered_pixels", s.uncovered_pixels}, {"filled_sub_pixels", s.filled_sub_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius},
                   {"light_guide", {{"rays_per_record", s.guide_clusters ? c.guide_rays : 0u},
                                    {"clusters", s.guide_clusters}, {"photons", s.guide_photons},

@@ -29,6 +29,7 @@ class PlacementPass {
                         float min_radius_pixels);
 
   std::vector<int32_t> record_at_pixel();  // record index, -1 where none sits
+  const cl::Buffer& record_at_pixel_buffer() const { return record_map_; }
 
  private:
   GpuContext& gpu_;

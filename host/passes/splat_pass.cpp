@@ -11,7 +11,8 @@ SplatPass::SplatPass(GpuContext& gpu)
       clear_(gpu.kernel("splat.cl", "clear_accumulators")),
       max_irradiance_(gpu.kernel("splat.cl", "max_record_irradiance")),
       splat_(gpu.kernel("splat.cl", "splat_records")),
-      resolve_(gpu.kernel("splat.cl", "resolve_indirect")) {
+      resolve_(gpu.kernel("splat.cl", "resolve_indirect")),
+      fill_(gpu.kernel("splat.cl", "fill_uncovered")) {
   max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
 }
 
@@ -53,6 +54,19 @@ void SplatPass::resolve(const GBufferView& gbuffer) {
   resolve_.set_buffer<cl_long>("sums", sums_).set("params", params_).set_buffer<cl_float4>("irradiance_out", irradiance_);
   resolve_.launch(pixels_, gpu_.groups().per_item);
   gpu_.queue().finish();
+}
+
+uint32_t SplatPass::fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records,
+                                   const cl::Buffer& record_at_pixel, int window) {
+  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
+  gbuffer.bind(fill_);
+  fill_.set_buffer<CacheRecord>("records", records)
+      .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
+      .set("window", cl_int(window))
+      .set_buffer<cl_float4>("irradiance_out", irradiance_)
+      .set_buffer<cl_uint>("filled", filled);
+  fill_.launch(pixels_, gpu_.groups().per_item);
+  return gpu_.download<cl_uint>(filled, 1)[0];
 }
 
 std::vector<float> SplatPass::irradiance_rgbw() { return gpu_.download<float>(irradiance_, pixels_ * 4); }

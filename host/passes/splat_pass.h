@@ -19,6 +19,10 @@ class SplatPass {
   void splat_all(const GBufferView& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy);
   // Divides: the irradiance per pixel.
   void resolve(const GBufferView& gbuffer);
+  // After resolve: pixels with geometry that no record reached take the best-weighted record sitting within `window`
+  // pixels (record_at_pixel: placement's map, -1 where none sits); returns how many did (kernels/splat.cl).
+  uint32_t fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records, const cl::Buffer& record_at_pixel,
+                          int window);
 
   const cl::Buffer& irradiance() const { return irradiance_; }  // float4: E.rgb, sum w
   std::vector<float> irradiance_rgbw();
@@ -26,7 +30,7 @@ class SplatPass {
 
  private:
   GpuContext& gpu_;
-  NamedKernel clear_, max_irradiance_, splat_, resolve_;
+  NamedKernel clear_, max_irradiance_, splat_, resolve_, fill_;
   cl::Buffer sums_, counts_, max_bits_, irradiance_;
   SplatParams params_{};
   size_t pixels_ = 0;

@@ -24,6 +24,7 @@ class DeviceRecordIndex final : public RecordIndex {
     pass_.clamp_neighbours(records.records(), count, first_new, clamp_older, min_radius_pixels_);
   }
   std::vector<int32_t> record_at_pixel() { return pass_.record_at_pixel(); }
+  const cl::Buffer& record_at_pixel_buffer() const { return pass_.record_at_pixel_buffer(); }
 
  private:
   PlacementPass pass_;

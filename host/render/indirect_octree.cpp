@@ -88,7 +88,10 @@ class OctreeRecordIndex final : public RecordIndex {
 }  // namespace
 
 void octree_indirect(IndirectFrame& f) {
-  const CacheSettings& cs = f.settings.cache;
+  // The octree interpolates where records reach and nowhere else: with sub-pixels its placement goes down to one
+  // sub-pixel (the splat's fill_uncovered has no octree counterpart).
+  CacheSettings cs = f.settings.cache;
+  cs.finest_spacing_pixels = 1;
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const size_t pixels = size_t(img.width) * size_t(img.height);

@@ -81,6 +81,7 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   // Radiance caching's stricter accuracy for glossier lobes: a times the sharpest cached roughness (the lobe's
   // angular width goes as roughness^2 = alpha; roughness itself keeps records from crowding), at least a / 2.
   CacheSettings cs = f.settings.cache;
+  cs.finest_spacing_pixels = 1;  // radiance records cover every sub-pixel they serve (no fill for HSH lobes)
   cs.accuracy = f.settings.cache.accuracy * std::max(0.5f, sharpest);
   st.radiance_accuracy = cs.accuracy;
 

@@ -30,6 +30,9 @@ void splat_indirect(IndirectFrame& f) {
   st.splat_s += seconds_since(t);
   t = Clock::now();
   splat.resolve(gbuffer);
+  if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
+    st.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
+                                                int(std::ceil(cs.max_reach_pixels)));
   st.resolve_s = seconds_since(t);
   std::unique_ptr<RadianceSplatPass> radiance = radiance_cached_lobes(f);
   compose_cached_indirect(f, splat.irradiance(), radiance.get());

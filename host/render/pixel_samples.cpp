@@ -34,13 +34,9 @@ RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height
   sub.cache.min_reach_pixels *= float(side);
   sub.cache.max_reach_pixels *= float(side);
   sub.cache.coarsest_spacing_pixels *= int(side);
-  // The finest level places records one sub-pixel apart, along edges: each serves about a sub-pixel's area, so its
-  // hemisphere shrinks with it (M / s x N / s, at least 4 x 8), as --fine-hemisphere does for one-pixel records;
-  // a --fine-hemisphere given by the user is kept.
-  if (!sub.cache.fine_theta_strata) {
-    sub.cache.fine_theta_strata = std::max(4u, s.cache.theta_strata / side);
-    sub.cache.fine_phi_strata = std::max(8u, s.cache.phi_strata / side);
-  }
+  // Placement stops one output pixel apart, as at one sample: the records (and their rays) are one sample's, and
+  // sub-pixels that none reaches (slivers along edges) take the best-weighted record near them.
+  sub.cache.finest_spacing_pixels *= int(side);
   return sub;
 }
 

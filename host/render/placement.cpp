@@ -1,5 +1,6 @@
 #include "render/placement.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/timing.h"
@@ -20,9 +21,10 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
   int coarsest = coarsest_placement_spacing(cache);
   Progress progress(progress_label, size_t(std::log2(coarsest)) + 1);
   uint32_t total = 0;
-  for (int spacing = coarsest, level = 0; spacing >= 1; spacing /= 2, ++level) {
+  const int finest = std::min(cache.finest_spacing_pixels, coarsest);
+  for (int spacing = coarsest, level = 0; spacing >= finest; spacing /= 2, ++level) {
     uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
-    for (int round = 0; round < (spacing == 1 ? kRoundsAtFinestSpacing : 1); ++round) {
+    for (int round = 0; round < (spacing == finest ? kRoundsAtFinestSpacing : 1); ++round) {
       auto t = Clock::now();
       uint32_t count = index.find_uncovered(records, total, spacing, unchanged);
       st.placement_s += seconds_since(t);
