@@ -71,8 +71,10 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
   cmd->add_option("--pixel-samples", o.settings.pixel_samples,
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
-                  "and path samples are per pixel, records keep their world-space size (default 1)")
+                  "and path samples are per pixel, records are those of one sample; default 4 (1 where --spp does not "
+                  "divide by 4)")
       ->check(CLI::Range(1u, 64u));
+  o.settings.pixel_samples = 0;  // chosen by render() (render/pixel_samples.h)
   o.settings.bounces = 0;
   cmd->add_option("--bounces", o.settings.bounces,
                   "Indirect bounces: 1 lights the first bounce's hit directly, each more adds a reflection (every "

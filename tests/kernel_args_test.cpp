@@ -8,6 +8,7 @@
 #include "cl/device_scene.h"
 #include "passes/ray_cast_pass.h"
 #include "passes/splat_pass.h"
+#include "passes/photon_map_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "test_support.h"
@@ -29,6 +30,19 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     settings.gi = gi;
     render(gpu, scene, settings);
   }
+  // The photon map (two bounces) and the sub-pixels' fill (four pixel samples) run only when asked for.
+  settings.gi = GiMethod::splat;
+  settings.bounces = 2;
+  settings.bounce_method = BounceMethod::photons;
+  settings.photon_paths = 1024;
+  settings.pixel_samples = 4;
+  render(gpu, scene, settings);
+  PhotonHit photon{};
+  photon.hit = 1;
+  photon.normal[1] = 1.0f;
+  photon.flux[0] = 1.0f;
+  PhotonMapPass map(gpu, build_photon_map({photon}, 1.0, 1, 1));
+  EXPECT_GT(map.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);
   RayCastPass caster(gpu, device);
@@ -43,7 +57,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   for (const char* expected : {"gbuffer", "direct_light", "compute_records", "mark_covered", "find_uncovered",
                                "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
                                "max_record_irradiance", "splat_records", "resolve_indirect", "path_indirect",
-                               "cast_closest", "cast_occlusion"})
+                               "cast_closest", "cast_occlusion", "fill_uncovered", "shoot_photons",
+                               "estimate_photon_radiance", "look_up_photon_radiance"})
     EXPECT_TRUE(built.count(expected)) << expected << " was not built";
   for (const std::string& name : built) {
     auto launched = gpu.launched_kernels().find(name);

@@ -49,7 +49,13 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
       bounces_in_file == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_in_file->second);
   if (o.settings.bounces) refuse_other("rcsplat:bounces", "1", true, std::to_string(o.settings.bounces), "--bounces");
   refuse_other("rcsplat:environment", "none", false, scene.environment.describe(), "environment");
-  refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
+  // Pixel samples left to rcsplat (0) continue with the file's.
+  auto pixel_samples_in_file = attributes.find("rcsplat:pixel_samples");
+  const unsigned file_pixel_samples =
+      pixel_samples_in_file == attributes.end() ? 1u
+                                                : parse_count(path, "rcsplat:pixel_samples", pixel_samples_in_file->second);
+  if (o.settings.pixel_samples)
+    refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));
@@ -67,6 +73,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
 
   RenderSettings more = o.settings;
   more.bounces = file_bounces;
+  more.pixel_samples = file_pixel_samples;
   more.path.samples = o.settings.path.samples - samples_before;
   more.seed = seed + samples_before;  // differs from every earlier part's seed: the parts are independent
   more.light_samples = o.settings.light_samples > lights_before ? o.settings.light_samples - lights_before : 0;

@@ -194,7 +194,7 @@ int run_render(const RenderOptions& options) {
                               {"rcsplat:bounces", std::to_string(image.stats.bounces)},
                               {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
                               {"rcsplat:environment", scene.environment.describe()},
-                              {"rcsplat:pixel_samples", std::to_string(options.settings.pixel_samples)}};
+                              {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)}};
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "render/camera.h"
+#include "render/renderer.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -14,6 +16,26 @@ unsigned pixel_sample_side(unsigned pixel_samples) {
     throw Error("--pixel-samples " + std::to_string(pixel_samples) + ": must be a square number from 1 to 64 (1, 4, 9, "
                 "16, ...): each pixel is a square grid of sub-pixels");
   return side;
+}
+
+unsigned default_pixel_samples(const RenderSettings& s, int width, int height) {
+  const unsigned side = pixel_sample_side(kDefaultPixelSamples);
+  if (s.gi == GiMethod::path && s.path.samples % kDefaultPixelSamples) return 1;
+  if (std::max(width, height) * int(side) > 16384) return 1;
+  return kDefaultPixelSamples;
+}
+
+RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {
+  RenderSettings settings = requested;
+  int width = settings.width, height = settings.height;
+  resolve_resolution(choose_camera(scene, settings.camera, settings.camera_overrides), width, height);
+  if (settings.pixel_samples == 0) settings.pixel_samples = default_pixel_samples(settings, width, height);
+  const unsigned side = pixel_sample_side(settings.pixel_samples);
+  if (side == 1) return render_single_sample(gpu, scene, settings);
+  if (std::max(width, height) * int(side) > 16384)
+    throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
+                std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
+  return average_sub_pixels(render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side)), side);
 }
 
 RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height, unsigned side) {

@@ -7,12 +7,18 @@
 
 namespace rcsplat {
 
+// --pixel-samples left to rcsplat (0, the command line's default): 4, a 2 x 2 grid (anti-aliased edges at about
+// 1.2x one sample's time: records are one sample's), unless path samples do not divide by 4 or the sub-pixel frame
+// would exceed 16384 pixels a side; then 1.
+constexpr unsigned kDefaultPixelSamples = 4;
+unsigned default_pixel_samples(const RenderSettings& settings, int width, int height);
+
 // The side s of the sub-pixel grid; throws rcsplat::Error unless N is 1, 4, 9, 16, ... (up to 64).
 unsigned pixel_sample_side(unsigned pixel_samples);
 
 // The settings of the s-times larger frame: light samples and path samples divided among the sub-pixels (path samples
-// must divide evenly), record reach and placement spacing in sub-pixels so that records keep their world-space size
-// (only the finest level, at one sub-pixel, adds records along edges).
+// must divide evenly), record reach and placement spacing in sub-pixels so that records keep their world-space size,
+// and placement stopping one output pixel apart.
 RenderSettings sub_pixel_settings(const RenderSettings& settings, int width, int height, unsigned side);
 
 // Averages the sub-pixel frame into width x height pixels: light, albedo, normal, irradiance, coverage means;

@@ -177,15 +177,4 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   return img;
 }
 
-RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
-  const unsigned side = pixel_sample_side(settings.pixel_samples);
-  if (side == 1) return render_single_sample(gpu, scene, settings);
-  int width = settings.width, height = settings.height;
-  resolve_resolution(choose_camera(scene, settings.camera, settings.camera_overrides), width, height);
-  if (std::max(width, height) * int(side) > 16384)
-    throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
-                std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
-  return average_sub_pixels(render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side)), side);
-}
-
 }  // namespace rcsplat

@@ -51,7 +51,8 @@ struct RenderSettings {
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are
-  // per output pixel. The command line's --pixel-samples; 1 here so that tests see single samples unless they ask.
+  // per output pixel. The command line's --pixel-samples, whose default is 0: chosen by render() (4 unless --spp does
+  // not divide by 4: render/pixel_samples.h); 1 here so that tests see single samples unless they ask.
   unsigned pixel_samples = 1;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
