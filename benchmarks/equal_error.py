@@ -39,7 +39,7 @@ def render(args, extra, tmp, tag):
 def _render(args, extra, tmp, tag):
     exr, summary = os.path.join(tmp, tag + ".exr"), os.path.join(tmp, tag + ".json")
     cmd = [args.rcsplat, "render", "-q", "--width", str(args.width), "--height", str(args.height),
-           "--light-samples", "1", "-o", exr, "--json", summary] + ([args.scene] if args.scene else []) + extra
+           "--light-samples", "1", "--bounces", "1", "--pixel-samples", "1", "-o", exr, "--json", summary] + ([args.scene] if args.scene else []) + extra
     if args.device:
         cmd += ["--device", args.device]
     run(cmd)

@@ -37,7 +37,7 @@ B=$G/scenes/sibenik/sibenik_textured.gltf
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
   local dev=$1 tag=$2; shift 2
   for i in $(seq 1 $runs); do
-    $rc -q render "$@" --device $dev --width 1024 --height 768 -o $work/$tag.run$i.exr --json $R/$tag.run$i.json \
+    $rc -q render "$@" --device $dev --width 1024 --height 768 --bounces 1 --pixel-samples 1 -o $work/$tag.run$i.exr --json $R/$tag.run$i.json \
       >/dev/null || echo "FAILED: $tag $*"
   done
   for i in $(seq 2 $runs); do  # same input, same device: same bits
@@ -58,9 +58,9 @@ rm -f $work/*.exr
 [[ $parts == *equal_error* ]] || exit 0
 
 # Equal error on the GPU (benchmarks/RESULTS.md has the same on PoCL): references first.
-timeout 120 $rc -q reference $S --device NVIDIA --width 1024 --height 768 --spp 8192 --light-samples 64 -o $work/spref.exr \
+timeout 120 $rc -q reference $S --device NVIDIA --width 1024 --height 768 --bounces 1 --pixel-samples 1 --spp 8192 --light-samples 64 -o $work/spref.exr \
   --json $R/sponza_reference.json
-timeout 60 $rc -q reference --device NVIDIA --width 1024 --height 768 --spp 16384 --light-samples 1024 -o $work/cbref.exr \
+timeout 60 $rc -q reference --device NVIDIA --width 1024 --height 768 --bounces 1 --pixel-samples 1 --spp 16384 --light-samples 1024 -o $work/cbref.exr \
   --json $R/cornell_reference.json
 timeout 150 python3 benchmarks/equal_error.py $S --rcsplat $rc --device NVIDIA --reference $work/spref.exr --accuracy 0.5 0.3 \
   --start-spp 256 --max-spp 8192 --json $R/equal_error_sponza_gpu.json
