@@ -6,6 +6,7 @@
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "kernels/hsh.h"
+#include "render/pixel_samples.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -71,15 +72,16 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
   cmd->add_option("--pixel-samples", o.settings.pixel_samples,
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
-                  "and path samples are per pixel, records are those of one sample; default 4 (1 where --spp does not "
-                  "divide by 4)")
+                  "and path samples are per pixel, records are those of one sample; default 4 for render, 16 for "
+                  "reference (a finer grid, so compare counts a render's edge aliasing as error), fewer where --spp "
+                  "does not divide by them or the frame is very large")
       ->check(CLI::Range(1u, 64u));
   o.settings.pixel_samples = 0;  // chosen by render() (render/pixel_samples.h)
   o.settings.bounces = 0;
   cmd->add_option("--bounces", o.settings.bounces,
                   "Indirect bounces: 1 lights the first bounce's hit directly, each more adds a reflection (every "
                   "method, the reference too); default 0: chosen from the scene, the fewest that leave out at most 5% "
-                  "of the indirect light, as a few photons measure it (at most 8 with photons, 3 by path)")
+                  "of the indirect light, as a few photons measure it (at most 8; 3 with --sky or --environment)")
       ->check(CLI::Range(0u, kMaxBounces));
   env.add(cmd, o.environment);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
   reference.settings.gi = GiMethod::path;
   reference.settings.path.samples = 1024;
   reference.settings.path.stratified = true;
+  reference.settings.preferred_pixel_samples = kReferencePixelSamples;
   bool light_samples_given = false;
   CLI::App* reference_cmd =
       app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");

@@ -245,7 +245,7 @@ TEST(BounceChoice, FewestBouncesThatLeaveOutAtMostFivePercent) {
 }
 
 // The scene's measure: in the closed cube of albedo 0.5 each reflection keeps exactly half (every photon lands again),
-// so five bounces with photons and the path method's three at most; a floor alone under a light keeps nothing (what it
+// so five bounces, for a render and a path-traced reference alike; a floor alone under a light keeps nothing (what it
 // reflects leaves), so one. Auto picks photons for the cache and path under a sky.
 TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
   Scene cube = lit_closed_cube();
@@ -258,8 +258,9 @@ TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
   EXPECT_EQ(choice.bounces, 5u);
   EXPECT_EQ(choice.method, BounceMethod::photons);
   EXPECT_TRUE(choice.bounces_chosen);
-  settings.bounce_method = BounceMethod::path;
-  EXPECT_EQ(choose_bounces(test::gpu(), cube, device, settings).bounces, 3u);
+  settings.gi = GiMethod::path;  // a reference chooses what a render does
+  EXPECT_EQ(choose_bounces(test::gpu(), cube, device, settings).bounces, 5u);
+  settings.gi = GiMethod::splat;
   settings.bounces = 2;
   EXPECT_FALSE(choose_bounces(test::gpu(), cube, device, settings).bounces_chosen);
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "render/pixel_samples.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -119,6 +120,24 @@ TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {
   EXPECT_EQ(image.width, 8);
   EXPECT_EQ(image.stats.path_samples, 8u);
   EXPECT_EQ(image.stats.pixel_samples, 4u);
+}
+
+// --pixel-samples left out: 4 for renders, 16 for references (a finer grid than the render's), fewer where the path
+// samples do not divide by them or the sub-pixel frame would be too large.
+TEST(PixelSamples, DefaultsAreFourForRendersAndSixteenForReferences) {
+  RenderSettings render_settings;
+  EXPECT_EQ(default_pixel_samples(render_settings, 512, 384), 4u);
+  RenderSettings reference;
+  reference.gi = GiMethod::path;
+  reference.preferred_pixel_samples = kReferencePixelSamples;
+  reference.path.samples = 1024;
+  EXPECT_EQ(default_pixel_samples(reference, 1024, 768), 16u);
+  EXPECT_EQ(default_pixel_samples(reference, 2048, 1536), 4u);  // 16 would be 50 M sub-pixels
+  reference.path.samples = 8;
+  EXPECT_EQ(default_pixel_samples(reference, 512, 384), 4u);
+  reference.path.samples = 6;
+  EXPECT_EQ(default_pixel_samples(reference, 512, 384), 1u);
+  EXPECT_EQ(default_pixel_samples(render_settings, 16384, 8), 1u);  // a side above 16384 sub-pixels
 }
 
 }  // namespace

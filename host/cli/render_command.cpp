@@ -32,7 +32,13 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     std::printf("bounces      %u chosen from the scene: each reflection keeps %.0f%% of the light it receives (photons "
                 "measured it), so the bounces left out carry at most %.0f%% of the indirect light (--bounces)\n",
                 s.bounces, 100.0 * s.kept_per_bounce, 100.0 * kMissingIndirectShare);
-  if (s.pixel_samples > 1)
+  if (s.pixel_samples > 1 && s.gi != GiMethod::splat && s.gi != GiMethod::octree)
+    std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
+                "averaged)\n",
+                s.pixel_samples, pixel_sample_side(s.pixel_samples), pixel_sample_side(s.pixel_samples),
+                image.width * int(pixel_sample_side(s.pixel_samples)),
+                image.height * int(pixel_sample_side(s.pixel_samples)));
+  else if (s.pixel_samples > 1)
     std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
                 "averaged); record reach and placement spacing are in output pixels (spacings below are in sub-pixels), "
                 "and placement stops one output pixel apart, so the records are those one sample places; %llu sub-pixels "

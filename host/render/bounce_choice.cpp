@@ -43,8 +43,9 @@ BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceSce
   choice.bounces = settings.bounces;
   if (settings.bounces == 0) {
     choice.kept_per_bounce = kept_per_bounce(gpu, device_scene);
-    const bool photons = cache && choice.method == BounceMethod::photons;
-    choice.bounces = bounces_for(choice.kept_per_bounce, photons ? kMaxChosenBouncesPhotons : kMaxChosenBouncesPath);
+    // From the scene alone, so that a render and its reference (path traced) choose the same count.
+    choice.bounces = bounces_for(choice.kept_per_bounce, scene.environment.present() ? kMaxChosenBouncesPath
+                                                                                     : kMaxChosenBouncesPhotons);
     choice.bounces_chosen = true;
   }
   return choice;

@@ -9,8 +9,9 @@ namespace rcsplat {
 
 // Bounces are added until the light of those left out is at most this share of the indirect light.
 constexpr double kMissingIndirectShare = 0.05;
-// The most bounces the scene may choose: photons make a bounce nearly free for the records; path continuation costs a
-// record's rays again for each.
+// The most bounces the scene may choose: photons make a bounce nearly free for the records; path continuation (what a
+// scene with an environment gets) costs a record's rays again for each. Chosen from the scene, not the method, so that
+// a render and its path-traced reference agree.
 constexpr unsigned kMaxChosenBouncesPhotons = 8, kMaxChosenBouncesPath = 3;
 
 struct BounceChoice {
@@ -24,7 +25,7 @@ struct BounceChoice {
 
 // The method for `settings` (auto: photons for the cache methods where the scene allows, else path) and the bounce
 // count (settings.bounces, or for 0 the fewest that leave out at most kMissingIndirectShare of the indirect light
-// when each bounce keeps kept_per_bounce of the last's, within the method's maximum).
+// when each bounce keeps kept_per_bounce of the last's, at most 8, or 3 in a scene with an environment).
 BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
                             const RenderSettings& settings);
 

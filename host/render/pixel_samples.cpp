@@ -19,10 +19,13 @@ unsigned pixel_sample_side(unsigned pixel_samples) {
 }
 
 unsigned default_pixel_samples(const RenderSettings& s, int width, int height) {
-  const unsigned side = pixel_sample_side(kDefaultPixelSamples);
-  if (s.gi == GiMethod::path && s.path.samples % kDefaultPixelSamples) return 1;
-  if (std::max(width, height) * int(side) > 16384) return 1;
-  return kDefaultPixelSamples;
+  for (unsigned n : {16u, 4u}) {
+    const int side = int(pixel_sample_side(n));
+    if (n > s.preferred_pixel_samples || (s.gi == GiMethod::path && s.path.samples % n)) continue;
+    if (std::max(width, height) * side > 16384 || double(width) * double(height) * n > kMaxDefaultSubPixels) continue;
+    return n;
+  }
+  return 1;
 }
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {

@@ -7,10 +7,11 @@
 
 namespace rcsplat {
 
-// --pixel-samples left to rcsplat (0, the command line's default): 4, a 2 x 2 grid (anti-aliased edges at about
-// 1.2x one sample's time: records are one sample's), unless path samples do not divide by 4 or the sub-pixel frame
-// would exceed 16384 pixels a side; then 1.
-constexpr unsigned kDefaultPixelSamples = 4;
+// --pixel-samples left to rcsplat (0, the command line's default): settings.preferred_pixel_samples (renders 4, a 2 x 2
+// grid: anti-aliased edges at about 1.2x one sample's time, records are one sample's; references 16), else the next
+// smaller of 16, 4, 1 that the path samples divide by and whose sub-pixel frame stays within kMaxDefaultSubPixels.
+constexpr unsigned kReferencePixelSamples = 16;
+constexpr double kMaxDefaultSubPixels = 16.0 * 1024 * 1024;
 unsigned default_pixel_samples(const RenderSettings& settings, int width, int height);
 
 // The side s of the sub-pixel grid; throws rcsplat::Error unless N is 1, 4, 9, 16, ... (up to 64).

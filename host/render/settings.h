@@ -54,6 +54,9 @@ struct RenderSettings {
   // per output pixel. The command line's --pixel-samples, whose default is 0: chosen by render() (4 unless --spp does
   // not divide by 4: render/pixel_samples.h); 1 here so that tests see single samples unless they ask.
   unsigned pixel_samples = 1;
+  // What pixel_samples 0 becomes, where --spp and the frame allow it: 4 for renders, 16 for references (a finer grid
+  // than a render's: compare then counts the render's edge aliasing as its error).
+  unsigned preferred_pixel_samples = 4;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
   CacheSettings cache;
