@@ -35,7 +35,6 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   auto t = Clock::now();
   double program_before = f.gpu.program_seconds();
   const SceneFrame& frame = f.device_scene.frame();
-  // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
   const bool rounds = f.settings.photon_paths == 0;
   // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths fills
   // a closed scene's map.
@@ -45,6 +44,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   uint64_t paths = 0;
   // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double them.
   for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9; ++round) {
+    // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
     std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
                                                           f.settings.seed ^ 0x70686f74u ^ hash_u32(round));
     kept.insert(kept.end(), more.begin(), more.end());
