@@ -181,10 +181,14 @@ int main(int argc, char** argv) {
   info_environment.add(info_cmd, info.environment);
 
   CompareOptions compare;
-  CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means");
+  CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means, FLIP");
   compare_cmd->add_option("image", compare.image_path, "The image to judge (.exr)")->required();
   compare_cmd->add_option("reference", compare.reference_path, "The reference (.exr)")->required();
-  compare_cmd->add_option("--heatmap", compare.heatmap_path, "Write a false-colour relative error image (.png)");
+  compare_cmd->add_option("--heatmap", compare.heatmap_path, "Write a false-colour per-pixel relMSE image (.png)");
+  compare_cmd->add_option("--flip-heatmap", compare.flip_heatmap_path, "Write the per-pixel FLIP image (.png, magma)");
+  compare_cmd->add_option("--heatmap-layer", compare.heatmap_layer, "Layer the heat maps show: full (default) or indirect")
+      ->check(CLI::IsMember({"full", "indirect"}));
+  compare_cmd->add_option("--exposure", compare.exposure, "Exposure in stops of the tone mapping FLIP judges (as for PNGs)");
   compare_cmd->add_option("--json", compare.json_path, "Also write the numbers as JSON");
   compare_cmd->add_option("--block", compare.block,
                           "Also relMSE of BxB pixel means (default 8): noise averages out, a cache's blotches do not")

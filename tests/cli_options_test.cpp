@@ -111,9 +111,14 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
   o.reference_path = dir + "/a.exr";
   o.heatmap_path = dir + "/heat.png";
   o.json_path = dir + "/cmp.json";
+  o.flip_heatmap_path = dir + "/flip.png";
   EXPECT_EQ(run_compare(o), 0);
   EXPECT_TRUE(std::filesystem::exists(o.heatmap_path));
+  EXPECT_TRUE(std::filesystem::exists(o.flip_heatmap_path));
   EXPECT_TRUE(std::filesystem::exists(o.json_path));
+  const nlohmann::json j = compare_json(o);
+  EXPECT_GT(j["full"]["mean_flip"].get<double>(), 0.0) << j.dump();
+  EXPECT_LT(j["full"]["mean_flip"].get<double>(), 0.2) << j.dump();
   ErrorMetrics m = image_error(std::vector<float>(3, 1.1f), std::vector<float>(3, 1.0f));
   EXPECT_NEAR(m.rel_mse, 0.01 / 1.01, 1e-7);
   EXPECT_NEAR(m.rmse, 0.1, 1e-6);
@@ -121,6 +126,7 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
 
   o.reference_path = dir + "/small.exr";
   o.heatmap_path = dir + "/heat2.png";
+  o.flip_heatmap_path = dir + "/flip2.png";
   try {
     run_compare(o);
     ADD_FAILURE() << "images of different sizes were compared";
@@ -128,6 +134,7 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
     EXPECT_NE(std::string(e.what()).find("small.exr"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(o.heatmap_path));
+  EXPECT_FALSE(std::filesystem::exists(o.flip_heatmap_path));
   o.reference_path = dir + "/missing.exr";
   EXPECT_THROW(run_compare(o), Error);
 }

@@ -47,8 +47,10 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth);
 std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth);
 
 struct CompareOptions {
-  std::string image_path, reference_path, heatmap_path, json_path;
-  int block = 8;  // block relMSE over block x block pixel means
+  std::string image_path, reference_path, heatmap_path, flip_heatmap_path, json_path;
+  std::string heatmap_layer = "full";  // or "indirect"
+  int block = 8;                       // block relMSE over block x block pixel means
+  float exposure = 0.0f;               // the tone mapping FLIP judges, in stops as for PNGs
 };
 int run_compare(const CompareOptions& options);
 

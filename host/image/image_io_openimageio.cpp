@@ -8,6 +8,7 @@
 
 #include "image/exr_file.h"
 #include "image/image_io.h"
+#include "image/tone_map.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -25,14 +26,6 @@ void write_pixels(const std::string& path, const OIIO::ImageSpec& spec, const vo
     return ok ? "" : "writing failed: " + out->geterror();
   });
 }
-
-float tone_map(float x) {
-  // Narkowicz 2015, a fit of the ACES filmic curve.
-  x = std::max(x, 0.0f);
-  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-}
-
-float srgb_encode(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; }
 
 }  // namespace
 
@@ -82,12 +75,9 @@ ExrPixels read_exr_file(const std::string& path) {
 }
 
 void write_png(const std::string& path, int width, int height, const std::vector<float>& rgb, float exposure_stops) {
-  float scale = std::exp2(exposure_stops);
+  std::vector<float> display = display_image(rgb, exposure_stops);
   std::vector<uint8_t> bytes(rgb.size());
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    float v = std::isfinite(rgb[i]) ? rgb[i] : 0.0f;
-    bytes[i] = uint8_t(std::lround(255.0f * srgb_encode(tone_map(v * scale))));
-  }
+  for (size_t i = 0; i < rgb.size(); ++i) bytes[i] = uint8_t(std::lround(255.0f * display[i]));
   write_pixels(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), bytes.data());
 }
 
