@@ -194,6 +194,41 @@ int main(int argc, char** argv) {
                           "Also relMSE of BxB pixel means (default 8): noise averages out, a cache's blotches do not")
       ->check(CLI::Range(1, 4096));
 
+  SweepOptions sweep;
+  EnvironmentFlags sweep_environment;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep", "What accuracy costs in time: cache settings and path tracing against a reference, as a CSV and a plot");
+  sweep_cmd->add_option("scene", sweep.scene_path, "glTF 2.0 scene (default: the built-in Cornell box)");
+  sweep_cmd->add_option("--reference", sweep.reference_path,
+                        "Converged reference (.exr from `rcsplat reference`): the frame size and bounces follow it")
+      ->required();
+  sweep_cmd->add_option("-o,--output", sweep.output_dir, "Folder for sweep.csv, accuracy_vs_time.png and the images")
+      ->required();
+  sweep_cmd->add_option("--device", sweep.device, "OpenCL device: index or name substring");
+  sweep_cmd->add_option("--accuracy", sweep.accuracies, "Cache accuracies (default 0.15,0.3,0.6; none: --accuracy \"\")")
+      ->delimiter(',')->expected(0, 64);
+  sweep_cmd->add_option("--hemisphere", sweep.hemispheres, "Rays per record, MxN each (default 16x32)")
+      ->delimiter(',')->expected(0, 64);
+  sweep_cmd->add_option("--hsh-order", sweep.hsh_orders, "HSH orders of radiance-cached lobes (default: chosen)")
+      ->delimiter(',')->expected(0, 64)->check(CLI::Range(1u, unsigned(HSH_MAX_ORDER)));
+  sweep_cmd->add_option("--path-spp", sweep.path_samples,
+                        "Stratified path tracing at these samples per pixel (default 4,16,64; none: --path-spp \"\")")
+      ->delimiter(',')->expected(0, 64);
+  sweep_cmd->add_option("--denoise", sweep.denoise,
+                        "Path tracing plus Intel Open Image Denoise (pyoidn, benchmarks/denoise.py) beside plain: "
+                        "auto (when the benchmark Python has it; default), on, off")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  sweep_cmd->add_flag("!--no-plot", sweep.plot, "Do not draw accuracy_vs_time.png");
+  sweep_cmd->add_option("--light-samples", sweep.light_samples, "Light samples per pixel (default 16)")
+      ->check(CLI::Range(0u, 1u << 20));
+  sweep_cmd->add_option("--pixel-samples", sweep.pixel_samples, "Primary samples per pixel (default: as render)")
+      ->check(CLI::Range(1u, 64u));
+  sweep_cmd->add_option("--bounces", sweep.bounces, "Indirect bounces (default: the reference's)")
+      ->check(CLI::Range(1u, unsigned(kMaxBounces)));
+  sweep_cmd->add_option("--camera", sweep.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--block", sweep.block, "Block size of block relMSE (default 8)")->check(CLI::Range(1, 4096));
+  sweep_environment.add(sweep_cmd, sweep.environment);
+
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Traversal speed: the OpenCL kernel against Embree on the same rays");
   bench_cmd->add_option("scene", bench.scene_path, "glTF scene (default: ../shared/scenes Sponza, else a generated one)");
@@ -228,6 +263,10 @@ int main(int argc, char** argv) {
     if (*info_cmd) {
       info_environment.apply(info.environment);
       return run_info(info);
+    }
+    if (*sweep_cmd) {
+      sweep_environment.apply(sweep.environment);
+      return run_sweep(sweep);
     }
     if (*bench_cmd) return run_bench(bench);
   } catch (const Error& e) {

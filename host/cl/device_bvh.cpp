@@ -3,7 +3,7 @@
 namespace rcsplat {
 
 DeviceBvh::DeviceBvh(GpuContext& gpu, const Bvh8& bvh)
-    : nodes_(gpu.upload(bvh.nodes)), blocks_(gpu.upload(bvh.blocks)), stack_size_(bvh.stack_size()) {}
+    : nodes_(gpu.upload(bvh.nodes, CL_MEM_READ_ONLY, "BVH")), blocks_(gpu.upload(bvh.blocks, CL_MEM_READ_ONLY, "BVH")), stack_size_(bvh.stack_size()) {}
 
 std::string bvh_stack_switch(int stack_size) { return std::to_string((stack_size + 15) / 16 * 16); }
 

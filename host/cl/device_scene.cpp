@@ -9,19 +9,19 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
                          const SceneFrame& frame)
     : bvh_(gpu, bvh), frame_(frame) {
   PackedScene p = pack_scene(scene, frame);
-  triangles_ = gpu.upload(p.triangles);
-  materials_ = gpu.upload(p.materials);
+  triangles_ = gpu.upload(p.triangles, CL_MEM_READ_ONLY, "triangles");
+  materials_ = gpu.upload(p.materials, CL_MEM_READ_ONLY, "materials");
   materials_host_ = p.materials;
-  textures_ = gpu.upload(p.textures);
-  texels_ = gpu.upload(p.texels);
-  lights_ = gpu.upload(p.lights);
-  emitters_ = gpu.upload(p.emitters);
+  textures_ = gpu.upload(p.textures, CL_MEM_READ_ONLY, "textures");
+  texels_ = gpu.upload(p.texels, CL_MEM_READ_ONLY, "textures");
+  lights_ = gpu.upload(p.lights, CL_MEM_READ_ONLY, "lights");
+  emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
   lights_host_ = p.lights;
   emitters_host_ = p.emitters;
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
-  environment_ = gpu.upload(p.environment.texels);  // float4 per texel
-  environment_cdf_ = gpu.upload(p.environment.cdf);
+  environment_ = gpu.upload(p.environment.texels, CL_MEM_READ_ONLY, "environment");  // float4 per texel
+  environment_cdf_ = gpu.upload(p.environment.cdf, CL_MEM_READ_ONLY, "environment");
   counts_.environment_width = p.environment.width;
   counts_.environment_height = p.environment.height;
   counts_.environment_rotation[0] = p.environment.rotation[0];

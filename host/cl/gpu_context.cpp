@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -103,7 +104,52 @@ std::string resolve_kernel_text(const std::string& label, const std::string& tex
   return out;
 }
 
-GpuContext::GpuContext(const DeviceInfo& device) : info_(device) {
+struct GpuContext::MemoryLedger {
+  std::mutex mutex;
+  DeviceMemoryUse use;
+  void add(const std::string& what, size_t bytes) {
+    std::lock_guard<std::mutex> lock(mutex);
+    use.live_bytes += bytes;
+    use.live_by_use[what] += bytes;
+    if (use.live_bytes > use.peak_bytes) {
+      use.peak_bytes = use.live_bytes;
+      use.at_peak_by_use = use.live_by_use;
+    }
+  }
+  void remove(const std::string& what, size_t bytes) {
+    std::lock_guard<std::mutex> lock(mutex);
+    use.live_bytes -= bytes;
+    if ((use.live_by_use[what] -= bytes) == 0) use.live_by_use.erase(what);
+  }
+};
+
+namespace {
+
+struct FreedBuffer {
+  std::shared_ptr<GpuContext::MemoryLedger> ledger;
+  std::string what;
+  size_t bytes;
+};
+
+void CL_CALLBACK buffer_freed(cl_mem, void* user_data) {
+  std::unique_ptr<FreedBuffer> freed(static_cast<FreedBuffer*>(user_data));
+  freed->ledger->remove(freed->what, freed->bytes);
+}
+
+}  // namespace
+
+DeviceMemoryUse GpuContext::memory_use() const {
+  std::lock_guard<std::mutex> lock(memory_->mutex);
+  return memory_->use;
+}
+
+void GpuContext::restart_memory_peak() {
+  std::lock_guard<std::mutex> lock(memory_->mutex);
+  memory_->use.peak_bytes = memory_->use.live_bytes;
+  memory_->use.at_peak_by_use = memory_->use.live_by_use;
+}
+
+GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::make_shared<MemoryLedger>()) {
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
   // A GPU keeps a warp or wavefront per group busy only with 32 or more work-items; PoCL's CPU device prefers few
@@ -210,7 +256,14 @@ cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::strin
   };
   if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");
   try {
-    return cl::Buffer(context_, flags, bytes);
+    cl::Buffer made(context_, flags, bytes);
+    auto* freed = new FreedBuffer{memory_, what, bytes};
+    if (clSetMemObjectDestructorCallback(made(), buffer_freed, freed) == CL_SUCCESS) {
+      memory_->add(what, bytes);
+    } else {
+      delete freed;  // not counted: the ledger could not learn when it is freed
+    }
+    return made;
   } catch (const cl::Error& e) {
     if (is_out_of_memory(e.err())) throw refuse(std::string("the allocation failed (") + e.what() + ")");
     throw;

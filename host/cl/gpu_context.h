@@ -10,6 +10,7 @@
 
 #include "cl/device_info.h"
 #include "cl/named_kernel.h"
+#include "util/memory_use.h"
 
 namespace rcsplat {
 
@@ -59,9 +60,15 @@ class GpuContext {
   // rcsplat::Error naming `what`, the size asked for and what the device has.
   cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
 
+  // Device memory in use now and at its peak (a copy; thread-safe). Buffers count until OpenCL frees them (a
+  // destructor callback), so the peak is what the device had to hold at once. restart_memory_peak: a new frame's
+  // peak starts from what is in use now.
+  DeviceMemoryUse memory_use() const;
+  void restart_memory_peak();
+  struct MemoryLedger;
+
   template <typename T>
-  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY,
-                    const std::string& what = "scene data") {
+  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const char* what = "other") {
     // Zero-sized buffers are invalid in OpenCL: keep one element so a kernel argument is always valid.
     size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
     cl::Buffer buffer = this->buffer(flags, bytes, what);
@@ -87,6 +94,7 @@ class GpuContext {
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
   std::map<std::string, bool> launched_;
   double program_seconds_ = 0.0;
+  std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
 };
 
 // Where kernel sources come from: the embedded copies, or a folder when RCSPLAT_KERNEL_DIR is set (developer mode:

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cl/gpu_context.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/scene_plan.h"
 
@@ -60,6 +61,24 @@ BounceMethod parse_bounce_method(const std::string& name);
 void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine = false);  // "MxN"
 void parse_spacing(const std::string& text, CacheSettings& cache);     // "MIN,MAX"
 
+// `rcsplat sweep`: every combination of cache settings, and path tracing at several sample counts (plain and, where
+// the benchmark Python environment has pyoidn, denoised), rendered on one device and judged against a reference.
+struct SweepOptions {
+  std::string scene_path, reference_path, output_dir, device;
+  std::vector<float> accuracies = {0.15f, 0.3f, 0.6f};
+  std::vector<std::string> hemispheres = {"16x32"};
+  std::vector<unsigned> hsh_orders;  // empty: chosen from the scene
+  std::vector<unsigned> path_samples = {4, 16, 64};
+  std::string denoise = "auto";  // auto | on | off
+  bool plot = true;
+  unsigned light_samples = 16, pixel_samples = 0, bounces = 0;  // bounces 0: the reference's
+  int camera = 0;
+  EnvironmentSettings environment;
+  int block = 8;
+  float exposure = 0.0f;
+};
+int run_sweep(const SweepOptions& options);
+
 struct BenchOptions {
   std::string scene_path;  // empty: Sponza from ../shared/scenes when present, else a generated mesh
   std::string device;
@@ -75,6 +94,9 @@ int run_bench(const BenchOptions& options);
 // With the environment the options ask for (--sky, --environment), which also stands in for the default light.
 Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
                  const EnvironmentSettings& environment = {});
+
+// The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.
+ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings);
 
 // Writes text to path atomically (temporary file, then rename). Throws rcsplat::Error.
 void write_text_file(const std::string& path, const std::string& text);

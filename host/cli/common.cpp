@@ -18,6 +18,20 @@ Scene load_scene(const std::string& path, int camera, const CameraOverrides& ove
   return scene;
 }
 
+ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings) {
+  // What a later --resume needs to know, what compare checks, and what anyone reading the file may want.
+  return {{"rcsplat:scene", scene.source},
+          {"rcsplat:gi", gi_method_name(image.stats.gi)},
+          {"rcsplat:path_samples", std::to_string(image.stats.path_samples)},
+          {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
+          {"rcsplat:seed", std::to_string(settings.seed)},
+          {"rcsplat:stratified", settings.path.stratified ? "1" : "0"},
+          {"rcsplat:bounces", std::to_string(image.stats.bounces)},
+          {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
+          {"rcsplat:environment", scene.environment.describe()},
+          {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)}};
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   namespace fs = std::filesystem;
   fs::path target(path);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
 #include "util/atomic_file.h"
+#include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -19,6 +21,23 @@ namespace rcsplat {
 namespace {
 
 double mrays_per_second(uint64_t rays, double seconds) { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+
+// Device buffers at the frame's peak, largest first, and the process's peak resident memory.
+void print_memory(const DeviceMemoryUse& device) {
+  std::vector<std::pair<size_t, std::string>> uses;
+  for (const auto& [use, bytes] : device.at_peak_by_use) uses.push_back({bytes, use});
+  std::sort(uses.rbegin(), uses.rend());
+  std::printf("memory       device peak %s:", byte_size(double(device.peak_bytes), "MiB").c_str());
+  for (size_t i = 0; i < uses.size() && i < 6; ++i)
+    std::printf("%s %s %s", i ? "," : "", uses[i].second.c_str(), byte_size(double(uses[i].first), "MiB").c_str());
+  if (uses.size() > 6) std::printf(", %zu more", uses.size() - 6);
+  std::printf("; host peak %s\n", byte_size(double(peak_host_bytes()), "MiB").c_str());
+}
+
+nlohmann::json memory_json(const DeviceMemoryUse& device) {
+  return {{"device_peak_bytes", device.peak_bytes}, {"device_at_peak_by_use", device.at_peak_by_use},
+          {"host_peak_bytes", peak_host_bytes()}};
+}
 
 void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImage& image,
                    const RenderSettings& settings, const std::vector<std::string>& outputs) {
@@ -99,6 +118,7 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 settings.path.stratified ? " (stratified)" : "", (unsigned long long)s.path_rays, s.path_s,
                 mrays_per_second(s.path_rays, s.path_s));
   }
+  print_memory(s.device_memory);
   std::printf("total        %.3f s\n", s.total_s);
   for (const std::string& out : outputs) std::printf("wrote        %s\n", out.c_str());
 }
@@ -128,6 +148,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                    {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
                    {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
                    {"path", s.path_s}, {"total", s.total_s}}},
+      {"memory", memory_json(s.device_memory)},
       {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)},
       {"materials", {{"lambertian", s.lambertian_materials}, {"rough", s.rough_materials},
                      {"radiance_cached", s.hsh_materials}, {"glossy", s.glossy_materials},
@@ -190,17 +211,7 @@ int run_render(const RenderOptions& options) {
   } else {
     image = render(gpu, scene, options.settings);
   }
-  // What a later --resume needs to know (and what anyone reading the file may want).
-  ExrAttributes attributes = {{"rcsplat:scene", scene.source},
-                              {"rcsplat:gi", gi_method_name(image.stats.gi)},
-                              {"rcsplat:path_samples", std::to_string(image.stats.path_samples)},
-                              {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},
-                              {"rcsplat:seed", std::to_string(options.settings.seed)},
-                              {"rcsplat:stratified", options.settings.path.stratified ? "1" : "0"},
-                              {"rcsplat:bounces", std::to_string(image.stats.bounces)},
-                              {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
-                              {"rcsplat:environment", scene.environment.describe()},
-                              {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)}};
+  const ExrAttributes attributes = render_attributes(scene, image, options.settings);
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);

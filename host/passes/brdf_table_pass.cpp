@@ -52,7 +52,7 @@ BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int
   params.order = cl_uint(order);
   params.seed = seed;
   size_t items = rows * params.chunk_count, stride = 2 * n2 + 1;
-  cl::Buffer input = gpu_.upload(materials);
+  cl::Buffer input = gpu_.upload(materials, CL_MEM_READ_ONLY, "specular albedo table");
   cl::Buffer partial = gpu_.buffer(CL_MEM_WRITE_ONLY, items * stride * sizeof(float), "lobe table partial sums");
   kernel_.set_buffer<BrdfMaterial>("materials", input).set("params", params).set_buffer<cl_float>("partial", partial);
   kernel_.launch(items, 16);

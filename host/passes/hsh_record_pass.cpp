@@ -65,9 +65,9 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
   if (order < 1 || order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER));
   const HshRotationDerivatives& d = hsh_rotation_derivatives(order);
-  tilt_x_ = gpu_.upload(d.dx);
-  tilt_y_ = gpu_.upload(d.dy);
-  largest_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
+  tilt_x_ = gpu_.upload(d.dx, CL_MEM_READ_ONLY, "radiance records");
+  tilt_y_ = gpu_.upload(d.dy, CL_MEM_READ_ONLY, "radiance records");
+  largest_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "radiance records");
   reserve(256);
 }
 
@@ -92,7 +92,7 @@ void HshRecordPass::project(const cl::Buffer& strata, uint32_t first, uint32_t c
   params.theta_strata = theta_strata;
   params.phi_strata = phi_strata;
   if (phi_strata != table_columns_) {
-    column_table_ = gpu_.upload(hsh_column_table(order_, phi_strata));
+    column_table_ = gpu_.upload(hsh_column_table(order_, phi_strata), CL_MEM_READ_ONLY, "radiance records");
     table_columns_ = phi_strata;
   }
   project_.set_buffer<cl_float4>("strata", strata)

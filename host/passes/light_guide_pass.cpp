@@ -42,7 +42,7 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
   double running = 0.0;
   for (double p : power) cdf.push_back(cl_float((running += p) / total));
   cdf.back() = 1.0f;
-  source_cdf_ = gpu_.upload(cdf);
+  source_cdf_ = gpu_.upload(cdf, CL_MEM_READ_ONLY, "light guide");
   source_count_ = unsigned(cdf.size());
 }
 

@@ -6,7 +6,7 @@ namespace rcsplat {
 
 PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)
     : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("path.cl", "path_indirect", scene.defines())) {
-  ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
+  ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
 }
 
 void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed,
@@ -15,8 +15,8 @@ void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool st
   gbuffer_ = gbuffer;
   pixels_ = gbuffer.pixel_count();
   std::vector<cl_float4> zeros(pixels_, cl_float4{{0, 0, 0, 0}});
-  sum_ = gpu_.upload(zeros, CL_MEM_READ_WRITE);
-  sum_squares_ = gpu_.upload(zeros, CL_MEM_READ_WRITE);
+  sum_ = gpu_.upload(zeros, CL_MEM_READ_WRITE, "path sums");
+  sum_squares_ = gpu_.upload(zeros, CL_MEM_READ_WRITE, "path sums");
   gpu_.queue().enqueueFillBuffer(ray_total_, cl_ulong(0), 0, sizeof(cl_ulong));
   total_ = total_samples;
   done_ = 0;

@@ -39,7 +39,7 @@ std::vector<cl_float4> PhotonMapPass::estimates() { return gpu_.download<cl_floa
 
 std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,
                                                   const std::vector<cl_float4>& normals) {
-  cl::Buffer p = gpu_.upload(points), n = gpu_.upload(normals);
+  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "photon lookups"), n = gpu_.upload(normals, CL_MEM_READ_ONLY, "photon lookups");
   cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("photon_map.cl", "look_up_photon_radiance", {});
   bind(look_up);

@@ -14,8 +14,8 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
       apply_(gpu.kernel("placement.cl", "apply_radii")) {
   size_t pixels = gbuffer.pixel_count();
   candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint), "placement candidates");
-  count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
-  record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE);
+  count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "placement");
+  record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE, "placement");
   covered_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1), "placement covered");
   auto tiles = [](int n) { return size_t((n + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE); };
   tiles_ = tiles(gbuffer.width) * tiles(gbuffer.height);

@@ -15,8 +15,8 @@ RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
   if (lobe.empty()) lobe.push_back(0.0f);
   std::vector<int> rows = table_row_of_material;
   if (rows.empty()) rows.push_back(-1);
-  table_ = gpu_.upload(lobe);
-  table_rows_ = gpu_.upload(rows);
+  table_ = gpu_.upload(lobe, CL_MEM_READ_ONLY, "radiance splat tables");
+  table_rows_ = gpu_.upload(rows, CL_MEM_READ_ONLY, "radiance splat tables");
   params_.order = cl_uint(table.order);
   params_.angle_count = cl_uint(table.angle_count);
 }

@@ -30,7 +30,7 @@ RayCastPass::RayCastPass(GpuContext& gpu, const DeviceScene& scene)
 
 void RayCastPass::set_rays(const std::vector<RayDesc>& rays) {
   ray_count_ = rays.size();
-  rays_ = gpu_.upload(rays);
+  rays_ = gpu_.upload(rays, CL_MEM_READ_ONLY, "rays");
   hits_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(HitDesc), "ray cast hits");
   occluded_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(ray_count_, 1) * sizeof(int), "ray cast occluded");
 }

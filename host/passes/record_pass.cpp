@@ -28,8 +28,8 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       photon_map_(photon_map),
       kernel_(gpu.kernel("records.cl", "compute_records",
                          record_defines(scene, theta_strata, store_strata, photon_map != nullptr))) {
-  ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE);
-  guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}));  // never read while guide_clusters_ is 0
+  ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
+  guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
   reserve(1024);
 }
 
@@ -39,7 +39,7 @@ void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsi
                 std::to_string(GUIDE_MAX_CLUSTERS) + ")");
   guide_clusters_ = rays_per_record ? unsigned(clusters.size()) : 0;
   guide_rays_ = guide_clusters_ ? rays_per_record : 0;
-  if (guide_clusters_) guide_ = gpu_.upload(clusters);
+  if (guide_clusters_) guide_ = gpu_.upload(clusters, CL_MEM_READ_ONLY, "light guide");
 }
 
 void RecordPass::reserve(size_t count) {

@@ -13,7 +13,7 @@ SplatPass::SplatPass(GpuContext& gpu)
       splat_(gpu.kernel("splat.cl", "splat_records")),
       resolve_(gpu.kernel("splat.cl", "resolve_indirect")),
       fill_(gpu.kernel("splat.cl", "fill_uncovered")) {
-  max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
+  max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
 }
 
 void SplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy) {
@@ -58,7 +58,7 @@ void SplatPass::resolve(const GBufferView& gbuffer) {
 
 uint32_t SplatPass::fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records,
                                    const cl::Buffer& record_at_pixel, int window) {
-  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE);
+  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
   gbuffer.bind(fill_);
   fill_.set_buffer<CacheRecord>("records", records)
       .set_buffer<cl_int>("record_at_pixel", record_at_pixel)

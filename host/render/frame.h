@@ -7,6 +7,7 @@
 
 #include "kernels/shared_types.h"
 #include "render/settings.h"
+#include "util/memory_use.h"
 
 namespace rcsplat {
 
@@ -23,6 +24,7 @@ struct RenderStats {
   unsigned light_samples = 0;  // per pixel, all of its sub-pixels together
   unsigned pixel_samples = 1;  // primary samples per pixel (render/pixel_samples.h)
   double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
+  DeviceMemoryUse device_memory;  // this frame's buffers (the scene's included)
   uint64_t primary_rays = 0, shadow_rays = 0;
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
   unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0, hsh_materials = 0;

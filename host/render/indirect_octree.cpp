@@ -132,7 +132,7 @@ void octree_indirect(IndirectFrame& f) {
     if (index.record_at_pixel()[i] >= 0) img.record_positions[i] = 1.0f;
     if (geo[i].valid && img.coverage[i] == 0.0f) ++st.uncovered_pixels;
   }
-  compose_cached_indirect(f, f.gpu.upload(irradiance));
+  compose_cached_indirect(f, f.gpu.upload(irradiance, CL_MEM_READ_ONLY, "octree irradiance"));
   img.records = std::move(index.records());
   count_clamped_radii(img.records, cs, st);
 }

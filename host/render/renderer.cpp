@@ -77,6 +77,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   if (settings.hsh_order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
   auto start = Clock::now();
+  gpu.restart_memory_peak();
   RenderedImage img;
   RenderStats& st = img.stats;
   st.device = gpu.device_info().name;
@@ -174,6 +175,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   }
   for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
   st.total_s = seconds_since(start);
+  st.device_memory = gpu.memory_use();
   return img;
 }
 

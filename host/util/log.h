@@ -7,6 +7,7 @@ namespace rcsplat {
 void log_info(const std::string& message);
 void log_warning(const std::string& message);
 void set_quiet(bool quiet);
+bool is_quiet();
 
 // A one-line progress indicator, redrawn in place on a terminal and printed at each quarter otherwise.
 class Progress {

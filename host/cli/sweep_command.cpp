@@ -1,0 +1,230 @@
+// `rcsplat sweep`: what accuracy costs in time. Renders every combination of the cache settings asked for, and path
+// tracing at several sample counts (plain and denoised), on one device; judges each against a reference with every
+// metric `compare` reports; writes DIR/sweep.csv, each image, and DIR/accuracy_vs_time.png through
+// benchmarks/plot_sweep.py when Python and matplotlib are there.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cl/device_info.h"
+#include "cl/gpu_context.h"
+#include "cli/commands.h"
+#include "image/comparison.h"
+#include "image/image_io.h"
+#include "util/error.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace fs = std::filesystem;
+namespace {
+
+// One configuration to render: a cache setting or a path-traced sample count.
+struct SweepRun {
+  std::string name;  // file stem and the CSV's `config`
+  RenderSettings settings;
+  bool denoise = false;
+};
+
+// The Python the helper scripts run under: $RCSPLAT_PYTHON, else the benchmark environment that
+// benchmarks/setup_python.sh makes, else python3.
+std::string benchmark_python() {
+  if (const char* env = std::getenv("RCSPLAT_PYTHON"); env && *env) return env;
+  const fs::path venv = fs::path(RCSPLAT_SOURCE_DIR) / "benchmarks" / ".venv" / "bin" / "python";
+  return fs::exists(venv) ? venv.string() : "python3";
+}
+
+std::string script_path(const std::string& name) { return (fs::path(RCSPLAT_SOURCE_DIR) / "benchmarks" / name).string(); }
+
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+bool python_has(const std::string& python, const std::string& modules) {
+  return std::system((shell_quoted(python) + " -c " + shell_quoted("import " + modules) + " > /dev/null 2>&1").c_str()) == 0;
+}
+
+std::string float_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::vector<SweepRun> plan_runs(const SweepOptions& o, const RenderSettings& base, bool denoise) {
+  std::vector<SweepRun> runs;
+  std::vector<unsigned> orders = o.hsh_orders.empty() ? std::vector<unsigned>{0} : o.hsh_orders;
+  for (float a : o.accuracies)
+    for (const std::string& hemisphere : o.hemispheres)
+      for (unsigned order : orders) {
+        SweepRun r{"cache_a" + float_text(a) + "_" + hemisphere + (order ? "_hsh" + std::to_string(order) : ""), base};
+        r.settings.gi = GiMethod::splat;
+        r.settings.cache.accuracy = a;
+        parse_hemisphere(hemisphere, r.settings.cache);
+        r.settings.hsh_order = order;
+        runs.push_back(r);
+      }
+  for (unsigned spp : o.path_samples) {
+    SweepRun r{"path_" + std::to_string(spp) + "spp", base};
+    r.settings.gi = GiMethod::path;
+    r.settings.path.samples = spp;
+    r.settings.path.stratified = true;
+    runs.push_back(r);
+    if (denoise) {
+      r.name += "_denoised";
+      r.denoise = true;
+      runs.push_back(r);
+    }
+  }
+  return runs;
+}
+
+// The CSV's metric columns for one layer of a comparison.
+const char* const kMetricColumns[] = {"rel_mse", "rel_mse_less_noise", "rmse", "mae", "block_rel_mse",
+                                      "block_rel_mse_less_noise", "flip"};
+
+std::string metric_cells(const ImageComparison& c, const std::string& layer) {
+  const LayerComparison* l = c.find(layer);
+  if (!l) return ",,,,,,";
+  auto cell = [](std::optional<double> v) { return v ? float_text(*v) : std::string(); };
+  std::optional<double> less_noise, block_less_noise;
+  if (l->reference_noise) less_noise = l->pixel.rel_mse - *l->reference_noise;
+  if (l->block_reference_noise) block_less_noise = *l->block_rel_mse - *l->block_reference_noise;
+  return cell(l->pixel.rel_mse) + "," + cell(less_noise) + "," + cell(l->pixel.rmse) + "," + cell(l->pixel.mae) +
+         "," + cell(l->block_rel_mse) + "," + cell(block_less_noise) + "," + cell(l->mean_flip);
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& o) {
+  if (o.output_dir.empty()) throw Error("sweep: give an output folder with -o DIR");
+  if (o.accuracies.empty() && o.path_samples.empty()) throw Error("sweep: nothing to render (no --accuracy, no --path-spp)");
+  for (float a : o.accuracies)
+    if (!(a >= 0.01f && a <= 100.0f)) throw Error("--accuracy " + float_text(a) + ": must be between 0.01 and 100");
+  for (unsigned spp : o.path_samples)
+    if (spp == 0) throw Error("--path-spp: sample counts must be positive");
+  // The frame and the bounces are the reference's, so that every run shows what the reference shows.
+  int ref_width = 0, ref_height = 0;
+  read_exr_rgb(o.reference_path, ref_width, ref_height);
+  const ExrAttributes reference_attributes = read_exr_attributes(o.reference_path);
+  unsigned bounces = o.bounces;
+  if (!bounces) {
+    auto it = reference_attributes.find("rcsplat:bounces");
+    bounces = it == reference_attributes.end() ? 0u : unsigned(std::atoi(it->second.c_str()));
+  }
+
+  RenderSettings base;
+  base.width = ref_width;
+  base.height = ref_height;
+  base.camera = o.camera;
+  base.light_samples = o.light_samples;
+  base.pixel_samples = o.pixel_samples;
+  base.bounces = bounces;  // 0 (a reference from elsewhere): chosen from the scene, as render does
+  // Checked before any work: every configuration's option text.
+  for (const std::string& h : o.hemispheres) parse_hemisphere(h, base.cache);
+  base.cache = CacheSettings{};
+
+  const std::string python = benchmark_python();
+  bool denoise = o.denoise == "on";
+  if (o.denoise == "auto") {
+    denoise = !o.path_samples.empty() && python_has(python, "pyoidn, OpenEXR, numpy");
+    if (!o.path_samples.empty() && !denoise)
+      log_warning("sweep: no denoised path tracing: " + python + " lacks pyoidn, OpenEXR or numpy "
+                  "(benchmarks/setup_python.sh makes an environment that has them)");
+  }
+  const std::vector<SweepRun> runs = plan_runs(o, base, denoise);
+
+  fs::create_directories(o.output_dir);
+  const std::string csv_path = (fs::path(o.output_dir) / "sweep.csv").string();
+  Scene scene = load_scene(o.scene_path, o.camera, {}, o.environment);
+  DeviceInfo device = select_device(o.device);
+  log_info("sweep: " + std::to_string(runs.size()) + " renders of " + scene.source + " at " +
+           std::to_string(ref_width) + "x" + std::to_string(ref_height) + " on " + device.name);
+  GpuContext gpu(device);
+
+  std::ostringstream csv;
+  csv << "method,config,accuracy,hemisphere,hsh_order,path_spp,denoised,seconds,kernel_build_s,gbuffer_s,direct_s,"
+         "records_s,placement_s,splat_s,resolve_s,photon_map_s,light_guide_s,glossy_s,radiance_s,path_s,denoise_s,"
+         "records,record_rays,path_rays,device_peak_bytes,bounces,pixel_samples";
+  for (const char* layer : {"full", "indirect"})
+    for (const char* m : kMetricColumns) csv << "," << layer << "_" << m;
+  csv << "\n";
+
+  std::printf("%-34s %9s %12s %12s %8s\n", "config", "seconds", "ind relMSE", "ind block", "FLIP");
+  const bool was_quiet = is_quiet();
+  RenderedImage last_path;  // the plain run a denoised run starts from
+  std::string last_path_exr;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const SweepRun& run = runs[i];
+    // Progress on stderr, one line a run; the renders themselves are quiet so that it stays readable.
+    std::fprintf(stderr, "sweep [%zu/%zu] %s\n", i + 1, runs.size(), run.name.c_str());
+    const std::string exr = (fs::path(o.output_dir) / (run.name + ".exr")).string();
+    RenderedImage image;
+    std::string judged = exr;
+    double denoise_s = 0.0;
+    if (run.denoise) {
+      // pyoidn denoises the plain run's image and indirect layer with its albedo and normal layers; the time is
+      // what the script measured around the denoiser itself.
+      image = last_path;
+      const std::string report = (fs::path(o.output_dir) / (run.name + ".json")).string();
+      const std::string command = shell_quoted(python) + " " + shell_quoted(script_path("denoise.py")) + " " + shell_quoted(last_path_exr) +
+                                  " " + shell_quoted(exr) + " --json " + shell_quoted(report) + " > /dev/null";
+      if (std::system(command.c_str()) != 0) throw Error("sweep: denoising failed: " + command);
+      std::ifstream in(report);
+      denoise_s = nlohmann::json::parse(in).at("seconds").get<double>();
+    } else {
+      set_quiet(true);
+      image = render(gpu, scene, run.settings);
+      set_quiet(was_quiet);
+      write_render(exr, image, 0.0f, render_attributes(scene, image, run.settings));
+      if (run.settings.gi == GiMethod::path) {
+        last_path = image;
+        last_path_exr = exr;
+      }
+    }
+    set_quiet(true);
+    const ImageComparison c = compare_exr_files(judged, o.reference_path, o.block, o.exposure);
+    set_quiet(was_quiet);
+    const RenderStats& s = image.stats;
+    // A frame's time without building kernels (once per device and switch set, then cached on disk).
+    const double seconds = s.total_s - s.program_s + denoise_s;
+    const bool cache = run.settings.gi == GiMethod::splat;
+    csv << (cache ? "cache" : run.denoise ? "path+denoise" : "path") << "," << run.name << ","
+        << (cache ? float_text(run.settings.cache.accuracy) : "") << ","
+        << (cache ? std::to_string(run.settings.cache.theta_strata) + "x" + std::to_string(run.settings.cache.phi_strata) : "")
+        << "," << (cache ? std::to_string(s.hsh_order) : "") << ","
+        << (cache ? "" : std::to_string(run.settings.path.samples)) << "," << (run.denoise ? 1 : 0) << "," << seconds
+        << "," << s.program_s << "," << s.gbuffer_s << "," << s.direct_s << "," << s.records_s << "," << s.placement_s
+        << "," << s.splat_s << "," << s.resolve_s << "," << s.photon_map_s << "," << s.guide_s << "," << s.glossy_s
+        << "," << s.radiance_records_s + s.radiance_placement_s + s.radiance_splat_s + s.hsh_table_s << ","
+        << s.path_s << "," << denoise_s << "," << s.records << "," << s.record_rays << "," << s.path_rays << ","
+        << s.device_memory.peak_bytes << "," << s.bounces << "," << s.pixel_samples;
+    for (const char* layer : {"full", "indirect"}) csv << "," << metric_cells(c, layer);
+    csv << "\n";
+    const LayerComparison* ind = c.find("indirect") ? c.find("indirect") : c.find("full");
+    std::printf("%-34s %9.3f %12.4e %12.4e %8.4f\n", run.name.c_str(), seconds, ind->pixel.rel_mse,
+                ind->block_rel_mse.value_or(0.0), ind->mean_flip);
+    std::fflush(stdout);
+    write_text_file(csv_path, csv.str());  // after every run, so an interrupted sweep keeps what it measured
+  }
+  std::printf("wrote        %s\n", csv_path.c_str());
+
+  if (o.plot) {
+    const std::string png = (fs::path(o.output_dir) / "accuracy_vs_time.png").string();
+    if (!python_has(python, "matplotlib")) {
+      log_warning("sweep: no plot: " + python + " lacks matplotlib (benchmarks/setup_python.sh makes an environment "
+                  "that has it); plot later with: python3 benchmarks/plot_sweep.py " + csv_path);
+    } else if (std::system((shell_quoted(python) + " " + shell_quoted(script_path("plot_sweep.py")) + " " + shell_quoted(csv_path) +
+                            " -o " + shell_quoted(png) + " > /dev/null").c_str()) != 0) {
+      log_warning("sweep: benchmarks/plot_sweep.py failed; the CSV is complete");
+    } else {
+      std::printf("wrote        %s\n", png.c_str());
+    }
+  }
+  return 0;
+}
+
+}  // namespace rcsplat
