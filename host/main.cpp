@@ -230,13 +230,26 @@ int main(int argc, char** argv) {
   sweep_environment.add(sweep_cmd, sweep.environment);
 
   BenchOptions bench;
-  CLI::App* bench_cmd = app.add_subcommand("bench", "Traversal speed: the OpenCL kernel against Embree on the same rays");
-  bench_cmd->add_option("scene", bench.scene_path, "glTF scene (default: ../shared/scenes Sponza, else a generated one)");
-  bench_cmd->add_option("--device", bench.device, "OpenCL device: index or name substring");
-  bench_cmd->add_option("--rays", bench.rays, "Rays in the incoherent pattern")->check(CLI::Range(size_t(1), size_t(1) << 26));
-  bench_cmd->add_option("--record-points", bench.record_points, "Points for the 256-ray record pattern")
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "The same frame on each OpenCL device (kernel builds, time per pass, memory), or --traversal");
+  bench_cmd->add_option("scene", bench.scene_path,
+                        "glTF scene (default: the built-in Cornell box; for --traversal ../shared/scenes Sponza, else a "
+                        "generated one)");
+  bench_cmd->add_option("--devices", bench.devices,
+                        "Devices to compare: all (every usable one) or a comma-separated list of indices or name parts; "
+                        "default: the default device");
+  bench_cmd->add_option("--device", bench.device, "One OpenCL device: index or name substring");
+  bench_cmd->add_option("--width", bench.width, "Frame width (default 1024)")->check(CLI::Range(1, 16384));
+  bench_cmd->add_option("--height", bench.height, "Frame height (default 768)")->check(CLI::Range(1, 16384));
+  bench_cmd->add_flag("--traversal", bench.traversal,
+                      "Instead: the traversal kernel against Embree's rtcIntersect1 on the same rays");
+  bench_cmd->add_option("--rays", bench.rays, "--traversal: rays in the incoherent pattern")
+      ->check(CLI::Range(size_t(1), size_t(1) << 26));
+  bench_cmd->add_option("--record-points", bench.record_points, "--traversal: points for the 256-ray record pattern")
       ->check(CLI::Range(size_t(1), size_t(1) << 18));
-  bench_cmd->add_option("--repeats", bench.repeats, "Paired runs (medians are reported)")->check(CLI::Range(1, 1000));
+  bench_cmd->add_option("--repeats", bench.repeats,
+                        "Timed frames per device (default 3), or --traversal's paired runs (default 5); medians")
+      ->check(CLI::Range(1, 1000));
   bench_cmd->add_option("--json", bench.json_path, "Also write the results as JSON");
 
   CLI11_PARSE(app, argc, argv);
@@ -268,7 +281,10 @@ int main(int argc, char** argv) {
       sweep_environment.apply(sweep.environment);
       return run_sweep(sweep);
     }
-    if (*bench_cmd) return run_bench(bench);
+    if (*bench_cmd) {
+      if (!bench.traversal && bench_cmd->count("--repeats") == 0) bench.repeats = 3;
+      return run_bench(bench);
+    }
   } catch (const Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

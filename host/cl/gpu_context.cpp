@@ -163,6 +163,7 @@ constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
 cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
   std::string options = kBaseBuildOptions;
   for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
+  if (!cold_build_nonce_.empty()) options += " -D RCSPLAT_COLD_BUILD=" + cold_build_nonce_;
   std::string key = file + "|" + options;
   auto found = programs_.find(key);
   if (found != programs_.end()) return *found->second;
@@ -200,7 +201,8 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
   fs::path cache_dir = binary_cache_dir();
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(stable_hash(identity)));
-  fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / (std::string(hex) + ".bin");
+  fs::path cache_file =
+      cache_dir.empty() || !cold_build_nonce_.empty() ? fs::path() : cache_dir / (std::string(hex) + ".bin");
 
   std::unique_ptr<cl::Program> program;
   if (!cache_file.empty() && fs::exists(cache_file)) {

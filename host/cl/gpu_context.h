@@ -45,6 +45,10 @@ class GpuContext {
   // A program from source text (its includes resolved from kernels/), for tests of shared kernel code.
   cl::Program& program_from_text(const std::string& label, const std::string& text);
 
+  // Cold builds, for measuring them (`rcsplat bench`): the on-disk cache is neither read nor written, and an unused
+  // define carrying `nonce` makes the driver's own cache (PoCL's, NVIDIA's) miss too.
+  void use_cold_builds(const std::string& nonce) { cold_build_nonce_ = nonce; }
+
   // Seconds spent building (or loading cached) programs so far, for the summary.
   double program_seconds() const { return program_seconds_; }
 
@@ -94,6 +98,7 @@ class GpuContext {
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
   std::map<std::string, bool> launched_;
   double program_seconds_ = 0.0;
+  std::string cold_build_nonce_;
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
 };
 

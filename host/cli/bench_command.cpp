@@ -1,4 +1,4 @@
-// `rcsplat bench`: the device traversal against Embree's rtcIntersect1 on all cores, on the same incoherent
+// `rcsplat bench --traversal`: the device traversal against Embree's rtcIntersect1 on all cores, on the same incoherent
 // hemisphere rays, paired run by run because the machine's speed drifts.
 #include <algorithm>
 #include <chrono>
@@ -46,6 +46,8 @@ double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& ray
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+}  // namespace
+
 std::string default_bench_scene() {
   for (const char* root : {RCSPLAT_SOURCE_DIR, "."}) {
     std::filesystem::path p = std::filesystem::path(root) / ".." / "shared" / "scenes" / "sponza_dabrovic" / "sponza.gltf";
@@ -54,9 +56,8 @@ std::string default_bench_scene() {
   return "";
 }
 
-}  // namespace
-
 int run_bench(const BenchOptions& options) {
+  if (!options.traversal) return run_bench_frames(options);
   std::string path = options.scene_path.empty() ? default_bench_scene() : options.scene_path;
   Scene scene;
   if (path.empty()) {

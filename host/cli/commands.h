@@ -80,14 +80,23 @@ struct SweepOptions {
 int run_sweep(const SweepOptions& options);
 
 struct BenchOptions {
-  std::string scene_path;  // empty: Sponza from ../shared/scenes when present, else a generated mesh
+  std::string scene_path;  // empty: frames of the built-in Cornell box; --traversal: Sponza from ../shared/scenes
+                           // when present, else a generated mesh
   std::string device;
+  // Frames (the default): the same render on each device: "" the default device, "all" every usable one, or a
+  // comma-separated list of indices or name parts.
+  std::string devices;
+  int width = 1024, height = 768;
+  bool traversal = false;  // the traversal kernel against Embree instead
   size_t rays = 1u << 20;
   size_t record_points = 4096;
   int repeats = 5;
   std::string json_path;
 };
 int run_bench(const BenchOptions& options);
+int run_bench_frames(const BenchOptions& options);
+// Sponza from ../shared/scenes beside the source tree, or "" when it is not there.
+std::string default_bench_scene();
 
 // The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
 // placed for the camera the user chose (render/camera.h add_view_defaults).

@@ -1,0 +1,127 @@
+// `rcsplat bench [SCENE] --devices all`: the same frame on every usable OpenCL device, as one table: kernel builds
+// cold (no cache of rcsplat's or the driver's) and cached, the median time of each pass over repeated frames, records,
+// the record pass's ray rate, peak device memory, and the total.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cl/device_info.h"
+#include "cl/gpu_context.h"
+#include "cli/commands.h"
+#include "util/byte_size.h"
+#include "util/error.h"
+#include "util/log.h"
+
+namespace rcsplat {
+namespace {
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+std::vector<DeviceInfo> chosen_devices(const std::string& selection) {
+  if (selection.empty()) return {select_device("")};
+  std::vector<DeviceInfo> chosen;
+  if (selection == "all") {
+    for (const DeviceInfo& d : list_devices())
+      if (d.usable()) chosen.push_back(d);
+    if (chosen.empty()) throw Error("bench --devices all: no usable OpenCL device (see `rcsplat devices`)");
+    return chosen;
+  }
+  std::stringstream list(selection);
+  for (std::string item; std::getline(list, item, ',');) chosen.push_back(select_device(item));
+  return chosen;
+}
+
+// The passes a frame's time is split into, in the order a frame runs them.
+struct PassTime {
+  const char* name;
+  double RenderStats::*seconds;
+};
+const PassTime kPasses[] = {{"bvh", &RenderStats::bvh_build_s},     {"upload", &RenderStats::upload_s},
+                            {"gbuffer", &RenderStats::gbuffer_s},   {"direct", &RenderStats::direct_s},
+                            {"photons", &RenderStats::photon_map_s}, {"guide", &RenderStats::guide_s},
+                            {"records", &RenderStats::records_s},   {"placement", &RenderStats::placement_s},
+                            {"splat", &RenderStats::splat_s},       {"resolve", &RenderStats::resolve_s},
+                            {"glossy", &RenderStats::glossy_s},     {"path", &RenderStats::path_s}};
+
+// A frame's time without its kernel builds (once per device and switch set, then cached on disk).
+double frame_seconds(const RenderStats& s) { return s.total_s - s.program_s; }
+
+}  // namespace
+
+int run_bench_frames(const BenchOptions& o) {
+  const Scene scene = load_scene(o.scene_path);  // empty: the built-in Cornell box, as for render
+  const std::vector<DeviceInfo> devices = chosen_devices(o.devices.empty() ? o.device : o.devices);
+  RenderSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.bounces = 0;        // chosen from the scene, as `render` does
+  settings.pixel_samples = 0;  // likewise
+  const auto nonce = std::chrono::steady_clock::now().time_since_epoch().count();
+
+  nlohmann::json report = {{"scene", scene.source}, {"triangles", scene.triangle_count()}, {"width", o.width},
+                           {"height", o.height}, {"repeats", o.repeats}, {"devices", nlohmann::json::array()}};
+  std::printf("scene %s (%zu triangles), %d x %d, render defaults; per device a cold frame, a warm-up frame, then the "
+              "median of %d frames\n", scene.source.c_str(), scene.triangle_count(), o.width, o.height, o.repeats);
+  std::printf("%-36s %8s %8s %8s", "device", "cold_s", "cold_fr", "cached_s");
+  for (const PassTime& p : kPasses) std::printf(" %9s", p.name);
+  std::printf(" %9s %9s %9s %9s\n", "frame_s", "records", "rec_Mr/s", "peak_MiB");
+  for (const DeviceInfo& device : devices) {
+    log_info("bench: " + device.name);
+    RenderStats cold;
+    {
+      GpuContext gpu(device);
+      gpu.use_cold_builds(std::to_string(nonce) + "_" + std::to_string(device.index));
+      cold = render(gpu, scene, settings).stats;
+    }
+    { GpuContext gpu(device); render(gpu, scene, settings); }  // fills the program cache when it was empty
+    std::vector<RenderStats> frames;
+    for (int r = 0; r < o.repeats; ++r) {
+      GpuContext gpu(device);  // a new process's state: programs come from the on-disk cache
+      frames.push_back(render(gpu, scene, settings).stats);
+    }
+    auto median_field = [&](auto field) {
+      std::vector<double> v;
+      for (const RenderStats& s : frames) v.push_back(double(field(s)));
+      return median_of(v);
+    };
+    const double cached_build = median_field([](const RenderStats& s) { return s.program_s; });
+    const double frame = median_field([](const RenderStats& s) { return frame_seconds(s); });
+    const double record_rate = median_field([](const RenderStats& s) {
+      return s.records_s > 0 ? double(s.record_rays) / s.records_s * 1e-6 : 0.0;
+    });
+    const RenderStats& last = frames.back();
+    std::printf("%-36.36s %8.3f %8.3f %8.3f", device.name.c_str(), cold.program_s, cold.total_s, cached_build);
+    nlohmann::json passes;
+    for (const PassTime& p : kPasses) {
+      const double t = median_field([&](const RenderStats& s) { return s.*(p.seconds); });
+      std::printf(" %9.3f", t);
+      passes[p.name] = t;
+    }
+    std::printf(" %9.3f %9llu %9.2f %9.1f\n", frame, (unsigned long long)last.records, record_rate,
+                double(last.device_memory.peak_bytes) / double(1 << 20));
+    std::fflush(stdout);
+    report["devices"].push_back({{"device", device.name}, {"platform", device.platform_name},
+                                 {"driver", device.driver_version}, {"type", device.type},
+                                 {"kernel_build_cold_s", cold.program_s}, {"cold_frame_s", cold.total_s},
+                                 {"kernel_build_cached_s", cached_build},
+                                 {"median_seconds", passes}, {"frame_s", frame}, {"records", last.records},
+                                 {"record_rays", last.record_rays}, {"record_mrays_per_s", record_rate},
+                                 {"bounces", last.bounces}, {"pixel_samples", last.pixel_samples},
+                                 {"device_peak_bytes", last.device_memory.peak_bytes},
+                                 {"device_at_peak_by_use", last.device_memory.at_peak_by_use}});
+  }
+  std::printf("cold_s, cached_s: kernel builds (clBuildProgram); cold_fr: the whole cold frame, which holds what a "
+              "driver compiles at first launch (PoCL does); passes and frame_s: medians without kernel builds; rec_Mr/s: the "
+              "record pass's rays per second; peak_MiB: device buffers at the frame's peak\n");
+  report["host_peak_bytes"] = peak_host_bytes();
+  if (!o.json_path.empty()) write_text_file(o.json_path, report.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace rcsplat
