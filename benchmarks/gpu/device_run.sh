@@ -32,7 +32,8 @@ rc=$G/rcsplat
 $rc devices
 S=$G/scenes/sponza_dabrovic/sponza.gltf
 B=$G/scenes/sibenik/sibenik_textured.gltf
-[[ $parts == *bench* ]] && for dev in NVIDIA $cpu; do $rc -q bench $S --device $dev --repeats 5 --json $R/bench_sponza_$dev.json; done
+[[ $parts == *bench* ]] && for dev in NVIDIA $cpu; do $rc -q bench --traversal $S --device $dev --repeats 5 --json $R/bench_sponza_$dev.json; done
+[[ $parts == *frames* ]] && $rc -q bench $S --devices all --width 1920 --height 1080 --repeats 3 --json $R/bench_frames_sponza_1080p.json
 
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
   local dev=$1 tag=$2; shift 2

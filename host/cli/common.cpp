@@ -1,9 +1,11 @@
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "cli/commands.h"
+#include "render/camera.h"
 #include "scene/cornell_box.h"
 #include "scene/gltf_loader.h"
 #include "util/error.h"
@@ -19,8 +21,15 @@ Scene load_scene(const std::string& path, int camera, const CameraOverrides& ove
 }
 
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings) {
+  // The view, so that another renderer can render the same picture (benchmarks/mitsuba_peer.py reads it).
+  const SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
+  char view[320];
+  std::snprintf(view, sizeof view, "%s eye %.9g,%.9g,%.9g target %.9g,%.9g,%.9g up %.9g,%.9g,%.9g yfov_degrees %.9g",
+                cam.orthographic ? "orthographic" : "perspective", cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x,
+                cam.target.y, cam.target.z, cam.up.x, cam.up.y, cam.up.z, double(glm::degrees(cam.yfov)));
   // What a later --resume needs to know, what compare checks, and what anyone reading the file may want.
   return {{"rcsplat:scene", scene.source},
+          {"rcsplat:camera", view},
           {"rcsplat:gi", gi_method_name(image.stats.gi)},
           {"rcsplat:path_samples", std::to_string(image.stats.path_samples)},
           {"rcsplat:light_samples", std::to_string(image.stats.light_samples)},

@@ -2,6 +2,7 @@
 // tracing at several sample counts (plain and denoised), on one device; judges each against a reference with every
 // metric `compare` reports; writes DIR/sweep.csv, each image, and DIR/accuracy_vs_time.png through
 // benchmarks/plot_sweep.py when Python and matplotlib are there.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -155,6 +156,20 @@ int run_sweep(const SweepOptions& o) {
 
   std::printf("%-34s %9s %12s %12s %8s\n", "config", "seconds", "ind relMSE", "ind block", "FLIP");
   const bool was_quiet = is_quiet();
+  // A small frame of each method first: drivers that compile at first launch (PoCL) would otherwise charge the first
+  // timed run of each method for it.
+  set_quiet(true);
+  for (GiMethod method : {GiMethod::splat, GiMethod::path}) {
+    for (const SweepRun& run : runs)
+      if (run.settings.gi == method && !run.denoise) {
+        RenderSettings warm = run.settings;
+        warm.width = std::min(ref_width, 64);
+        warm.height = std::min(ref_height, 48);
+        render(gpu, scene, warm);
+        break;
+      }
+  }
+  set_quiet(was_quiet);
   RenderedImage last_path;  // the plain run a denoised run starts from
   std::string last_path_exr;
   for (size_t i = 0; i < runs.size(); ++i) {

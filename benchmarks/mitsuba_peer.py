@@ -1,0 +1,384 @@
+#!/usr/bin/env python3
+"""Mitsuba 3 as a peer (issue 12): renders the glTF subset rcsplat simulates with Mitsuba's path tracer (llvm_ad_rgb)
+from the view and bounce count of an rcsplat reference, and reports
+  (a) agreement: Mitsuba's converged image against rcsplat's reference, mean ratio per channel (over pixels whose
+      reference is not black) and relMSE of 8x8 block means: this validates rcsplat's ground truth. Pixel sampling
+      differs a little (Mitsuba: a box filter over the pixel; rcsplat's reference: a 4x4 sub-pixel grid).
+  (b) equal error: the seconds Mitsuba's path tracer needs to reach the error of an rcsplat cache render, each
+      against its own converged image (rcsplat's cache against rcsplat's reference, Mitsuba against Mitsuba's
+      converged render), per-pixel relMSE and block relMSE of the full image, interpolated in log-log between
+      the sample counts that bracket it.
+
+The glTF subset: triangle meshes (node transforms, POSITION, NORMAL, TEXCOORD_0, indices), base colour factor and
+texture (sRGB), metallic and roughness factors (rcsplat's own BRDF as a Mitsuba plugin, benchmarks/
+mitsuba_gltf_bsdf.py: Mitsuba has no glTF material, and its roughplastic and principled differ from it by 15-30% on a
+rough Cornell box), emissive factor and strength (area lights), KHR_lights_punctual point, spot and directional lights (intensity as radiant intensity, as rcsplat reads
+it). Not converted (named when met): textures other than base colour, vertex colours, alpha, transmission, the range
+of punctual lights. A scene without lights gets rcsplat's default light in rcsplat but none here: refused.
+
+  bash benchmarks/setup_python.sh          # once
+  benchmarks/.venv/bin/python benchmarks/mitsuba_peer.py SCENE.gltf --reference REF.exr [--cache CACHE.exr] \\
+      [--converged-spp 1024] [--spp 4,16,64,256] [-o DIR] [--json OUT.json]
+"""
+import argparse
+import base64
+import glob
+import json
+import math
+import os
+import struct
+import sys
+import time
+
+import numpy as np
+
+from rcsplat_images import attributes, read_layer, write_exr
+
+COMPONENT = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
+DIFFUSE_ONLY = False  # --bsdf diffuse
+COUNT = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+
+
+def find_llvm():
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return
+    for pattern in ["/usr/lib/x86_64-linux-gnu/libLLVM.so.19*", "/usr/lib/llvm-19/lib/libLLVM*.so*",
+                    "/usr/lib/*/libLLVM-1[7-9]*.so*"]:
+        found = sorted(glob.glob(pattern))
+        if found:
+            os.environ["DRJIT_LIBLLVM_PATH"] = found[0]
+            return
+
+
+class Gltf:
+    """Just enough glTF 2.0 to hand Mitsuba what rcsplat renders."""
+
+    def __init__(self, path):
+        self.path, self.dir = path, os.path.dirname(os.path.abspath(path))
+        with open(path) as f:
+            self.doc = json.load(f)
+        self.buffers = [self._buffer(b) for b in self.doc.get("buffers", [])]
+        self.skipped = set()
+
+    def _buffer(self, b):
+        uri = b["uri"]
+        if uri.startswith("data:"):
+            return base64.b64decode(uri.split(",", 1)[1])
+        with open(os.path.join(self.dir, uri), "rb") as f:
+            return f.read()
+
+    def accessor(self, index):
+        a = self.doc["accessors"][index]
+        view = self.doc["bufferViews"][a["bufferView"]]
+        dtype, n = np.dtype(COMPONENT[a["componentType"]]), COUNT[a["type"]]
+        data = self.buffers[view["buffer"]]
+        offset = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+        stride = view.get("byteStride", dtype.itemsize * n)
+        rows = np.lib.stride_tricks.as_strided(np.frombuffer(data, dtype=np.uint8, offset=offset),
+                                               shape=(a["count"], dtype.itemsize * n), strides=(stride, 1))
+        out = np.frombuffer(rows.copy().tobytes(), dtype=dtype).reshape(a["count"], n).astype(np.float64)
+        if a.get("normalized"):
+            out /= float(np.iinfo(dtype).max)
+        return out
+
+    @staticmethod
+    def local_matrix(node):
+        if "matrix" in node:
+            return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T
+        t = np.array(node.get("translation", [0, 0, 0]), dtype=np.float64)
+        x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+        r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+        s = np.array(node.get("scale", [1, 1, 1]), dtype=np.float64)
+        m = np.eye(4)
+        m[:3, :3] = r * s
+        m[:3, 3] = t
+        return m
+
+    def instances(self):
+        """(mesh index, world matrix) for every node with a mesh in the default scene."""
+        scene = self.doc["scenes"][self.doc.get("scene", 0)]
+        stack = [(n, np.eye(4)) for n in scene["nodes"]]
+        while stack:
+            index, parent = stack.pop()
+            node = self.doc["nodes"][index]
+            world = parent @ self.local_matrix(node)
+            if "mesh" in node:
+                yield node["mesh"], world
+            stack.extend((c, world) for c in node.get("children", []))
+        return
+
+    def lights(self):
+        defs = self.doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+        scene = self.doc["scenes"][self.doc.get("scene", 0)]
+        stack = [(n, np.eye(4)) for n in scene["nodes"]]
+        while stack:
+            index, parent = stack.pop()
+            node = self.doc["nodes"][index]
+            world = parent @ self.local_matrix(node)
+            light = node.get("extensions", {}).get("KHR_lights_punctual")
+            if light is not None:
+                yield defs[light["light"]], world
+            stack.extend((c, world) for c in node.get("children", []))
+
+
+def write_ply(path, positions, normals, uvs, faces):
+    """Binary little-endian PLY: float x y z [nx ny nz] [u v], faces as uchar-counted int lists."""
+    with open(path, "wb") as f:
+        header = ["ply", "format binary_little_endian 1.0", f"element vertex {len(positions)}",
+                  "property float x", "property float y", "property float z"]
+        cols = [positions]
+        if normals is not None:
+            header += ["property float nx", "property float ny", "property float nz"]
+            cols.append(normals)
+        if uvs is not None:
+            header += ["property float u", "property float v"]
+            cols.append(uvs)
+        header += [f"element face {len(faces)}", "property list uchar int vertex_indices", "end_header"]
+        f.write(("\n".join(header) + "\n").encode())
+        f.write(np.hstack(cols).astype("<f4").tobytes())
+        face_rows = np.zeros(len(faces), dtype=[("n", "u1"), ("i", "<i4", 3)])
+        face_rows["n"], face_rows["i"] = 3, faces
+        f.write(face_rows.tobytes())
+
+
+def texture_path(g, info):
+    tex = g.doc["textures"][info["index"]]
+    image = g.doc["images"][tex["source"]]
+    if "uri" not in image or image["uri"].startswith("data:"):
+        g.skipped.add("embedded texture images")
+        return None
+    return os.path.join(g.dir, image["uri"])
+
+
+def bsdf_and_emitter(g, material_index):
+    m = g.doc["materials"][material_index] if material_index is not None else {}
+    pbr = m.get("pbrMetallicRoughness", {})
+    factor = pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]
+    base = {"type": "rgb", "value": factor}
+    if "baseColorTexture" in pbr:
+        path = texture_path(g, pbr["baseColorTexture"])
+        if path:
+            base = {"type": "bitmap", "filename": path, "raw": False, "filter_type": "bilinear"}
+            if any(abs(c - 1.0) > 1e-6 for c in factor):
+                g.skipped.add("base colour factor times texture (the texture alone is used)")
+    for key in ("normalTexture", "occlusionTexture", "emissiveTexture"):
+        if key in m:
+            g.skipped.add(key)
+    if "metallicRoughnessTexture" in pbr:
+        g.skipped.add("metallicRoughnessTexture")
+    if m.get("alphaMode", "OPAQUE") != "OPAQUE":
+        g.skipped.add("alpha")
+    if "KHR_materials_transmission" in m.get("extensions", {}):
+        g.skipped.add("transmission (opaque here, as in rcsplat)")
+    metallic, roughness = pbr.get("metallicFactor", 1.0), pbr.get("roughnessFactor", 1.0)
+    if DIFFUSE_ONLY:
+        bsdf = {"type": "diffuse", "reflectance": base}
+    else:
+        bsdf = {"type": "rcsplat_gltf", "base_color": base, "metallic": metallic, "roughness": roughness}
+    bsdf = {"type": "twosided", "bsdf": bsdf}
+    strength = m.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+    emissive = [c * strength for c in m.get("emissiveFactor", [0, 0, 0])]
+    emitter = {"type": "area", "radiance": {"type": "rgb", "value": emissive}} if max(emissive) > 0 else None
+    return bsdf, emitter
+
+
+def parse_camera(text):
+    parts = text.split()
+    values = {parts[i]: parts[i + 1] for i in range(1, len(parts) - 1, 2)}
+    vec = lambda k: [float(v) for v in values[k].split(",")]  # noqa: E731
+    if parts[0] != "perspective":
+        sys.exit("mitsuba_peer: only perspective cameras are converted")
+    return vec("eye"), vec("target"), vec("up"), float(values["yfov_degrees"])
+
+
+def scene_dict(g, mi, camera, width, height, bounces, work):
+    eye, target, up, yfov = camera
+    d = {"type": "scene",
+         "integrator": {"type": "path", "max_depth": bounces + 2, "rr_depth": 1000, "hide_emitters": False},
+         "sensor": {"type": "perspective", "fov_axis": "y", "fov": yfov,
+                    "to_world": mi.ScalarTransform4f().look_at(origin=eye, target=target, up=up),
+                    "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
+                             "pixel_format": "rgb"},
+                    "sampler": {"type": "independent", "sample_count": 1}}}
+    count = 0
+    for mesh_index, world in g.instances():
+        normal_matrix = np.linalg.inv(world[:3, :3]).T
+        for p_index, prim in enumerate(g.doc["meshes"][mesh_index]["primitives"]):
+            if prim.get("mode", 4) != 4:
+                g.skipped.add("non-triangle primitives")
+                continue
+            attrs = prim["attributes"]
+            pos = g.accessor(attrs["POSITION"])
+            pos = (np.hstack([pos, np.ones((len(pos), 1))]) @ world.T)[:, :3]
+            normals = None
+            if "NORMAL" in attrs:
+                normals = g.accessor(attrs["NORMAL"]) @ normal_matrix.T
+                normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-20)
+            uvs = g.accessor(attrs["TEXCOORD_0"]) if "TEXCOORD_0" in attrs else None
+            if "COLOR_0" in attrs:
+                g.skipped.add("vertex colours")
+            faces = (g.accessor(prim["indices"]).astype(np.int64).reshape(-1, 3) if "indices" in prim
+                     else np.arange(len(pos)).reshape(-1, 3))
+            if np.linalg.det(world[:3, :3]) < 0:
+                faces = faces[:, ::-1]
+            ply = os.path.join(work, f"mesh_{count}.ply")
+            write_ply(ply, pos, normals, uvs, faces)
+            bsdf, emitter = bsdf_and_emitter(g, prim.get("material"))
+            shape = {"type": "ply", "filename": ply, "bsdf": bsdf, "face_normals": normals is None}
+            if emitter:
+                shape["emitter"] = emitter
+            d[f"shape_{count}"] = shape
+            count += 1
+    lights = 0
+    for light, world in g.lights():
+        colour = np.array(light.get("color", [1, 1, 1])) * light.get("intensity", 1.0)
+        position = world[:3, 3].tolist()
+        direction = (world[:3, :3] @ np.array([0.0, 0.0, -1.0])).tolist()
+        if light.get("range"):
+            g.skipped.add("punctual light range")
+        if light["type"] == "point":
+            d[f"light_{lights}"] = {"type": "point", "position": position,
+                                    "intensity": {"type": "rgb", "value": colour.tolist()}}
+        elif light["type"] == "spot":
+            spot = light.get("spot", {})
+            d[f"light_{lights}"] = {
+                "type": "spot", "intensity": {"type": "rgb", "value": colour.tolist()},
+                "cutoff_angle": math.degrees(spot.get("outerConeAngle", math.pi / 4)),
+                "beam_width": math.degrees(spot.get("innerConeAngle", 0.0)),
+                "to_world": mi.ScalarTransform4f().look_at(origin=position,
+                                                           target=(np.array(position) + direction).tolist(),
+                                                           up=[0, 1, 0] if abs(direction[1]) < 0.99 else [1, 0, 0])}
+        elif light["type"] == "directional":
+            d[f"light_{lights}"] = {"type": "directional", "direction": direction,
+                                    "irradiance": {"type": "rgb", "value": colour.tolist()}}
+        lights += 1
+    emissive = any("emitter" in v for k, v in d.items() if k.startswith("shape_"))
+    if not lights and not emissive:
+        sys.exit("mitsuba_peer: the scene has no light of its own (rcsplat would add a default one); not converted")
+    return d
+
+
+def rel_mse(image, ref):
+    return float(np.mean((image - ref) ** 2 / (ref ** 2 + 0.01)))
+
+
+def block_means(img, block=8):
+    h, w = (img.shape[0] // block) * block, (img.shape[1] // block) * block
+    return img[:h, :w].reshape(h // block, block, w // block, block, 3).mean(axis=(1, 3))
+
+
+def block_rel_mse(image, ref, block=8):
+    return rel_mse(block_means(image, block), block_means(ref, block))
+
+
+def render(mi, scene, spp, seed):
+    start = time.perf_counter()
+    image = np.array(mi.render(scene, spp=spp, seed=seed), dtype=np.float32)[:, :, :3]
+    return image, time.perf_counter() - start
+
+
+def equal_error_seconds(rows, target, key):
+    """Seconds at which Mitsuba's error equals target, from (spp, seconds, errors) rows, log-log interpolated between
+    the bracketing counts (extrapolated from the last two when even the most samples fall short: flagged)."""
+    rows = sorted(rows, key=lambda r: r["spp"])
+    for a, b in zip(rows, rows[1:]):
+        if a[key] >= target >= b[key]:
+            t = (math.log(target) - math.log(a[key])) / (math.log(b[key]) - math.log(a[key]))
+            return math.exp(math.log(a["seconds"]) + t * (math.log(b["seconds"]) - math.log(a["seconds"]))), False
+    if rows and rows[0][key] <= target:
+        return rows[0]["seconds"], True  # the fewest samples already reach it: an upper bound
+    if len(rows) >= 2:
+        a, b = rows[-2], rows[-1]
+        t = (math.log(target) - math.log(a[key])) / (math.log(b[key]) - math.log(a[key]))
+        return math.exp(math.log(a["seconds"]) + t * (math.log(b["seconds"]) - math.log(a["seconds"]))), True
+    return None, True
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scene")
+    ap.add_argument("--reference", required=True, help="rcsplat reference .exr (its view and bounces are used)")
+    ap.add_argument("--cache", help="an rcsplat cache render of the same view, for the equal-error time")
+    ap.add_argument("--cache-seconds", type=float, help="its frame time (default: not reported)")
+    ap.add_argument("--converged-spp", type=int, default=1024)
+    ap.add_argument("--spp", default="4,16,64,256")
+    ap.add_argument("-o", "--output", default="mitsuba_peer")
+    ap.add_argument("--json")
+    ap.add_argument("--bsdf", default="gltf", choices=["gltf", "diffuse"],
+                    help="gltf: rcsplat's BRDF as a Mitsuba plugin (default); diffuse: Mitsuba's Lambertian")
+    a = ap.parse_args()
+    global DIFFUSE_ONLY
+    DIFFUSE_ONLY = a.bsdf == "diffuse"
+    find_llvm()
+    import mitsuba as mi
+    mi.set_variant("llvm_ad_rgb")
+    import mitsuba_gltf_bsdf
+    mitsuba_gltf_bsdf.register(mi)
+
+    attrs = attributes(a.reference)
+    if "rcsplat:camera" not in attrs:
+        sys.exit(f"{a.reference}: has no rcsplat:camera attribute (render it with this rcsplat)")
+    reference = read_layer(a.reference)
+    height, width = reference.shape[:2]
+    bounces = int(attrs.get("rcsplat:bounces", "1"))
+    if attrs.get("rcsplat:environment", "none") != "none":
+        sys.exit("mitsuba_peer: environment light is not converted")
+    os.makedirs(a.output, exist_ok=True)
+    g = Gltf(a.scene)
+    scene = mi.load_dict(scene_dict(g, mi, parse_camera(attrs["rcsplat:camera"]), width, height, bounces, a.output))
+    if g.skipped:
+        print("not converted:", "; ".join(sorted(g.skipped)))
+
+    render(mi, scene, 1, 7)  # compiles the kernels once
+    converged, converged_s = render(mi, scene, a.converged_spp, 1)
+    write_exr(os.path.join(a.output, f"mitsuba_{a.converged_spp}spp.exr"), converged)
+    # Pixels that see an emitter, and their neighbours, are left out: a pixel split by an emitter's edge is all
+    # pixel filter, and an emitter's radiance is an input, not a result.
+    valid = reference.sum(axis=2) > 1e-4
+    try:
+        emitting = read_layer(a.reference, "emission").sum(axis=2) > 0
+        near = emitting.copy()
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                near |= np.roll(np.roll(emitting, dy, axis=0), dx, axis=1)
+        valid &= ~near
+    except SystemExit:
+        pass
+    ratio = [float(converged[..., c][valid].mean() / reference[..., c][valid].mean()) for c in range(3)]
+    report = {"scene": a.scene, "reference": a.reference, "width": width, "height": height, "bounces": bounces,
+              "mitsuba": mi.__version__, "variant": "llvm_ad_rgb", "not_converted": sorted(g.skipped),
+              "converged_spp": a.converged_spp, "converged_seconds": converged_s,
+              "agreement": {"mean_ratio_rgb": ratio, "block_rel_mse": block_rel_mse(converged, reference),
+                            "rel_mse": rel_mse(converged, reference)}}
+    print(f"agreement: Mitsuba {a.converged_spp} spp / rcsplat reference, mean ratio R {ratio[0]:.4f} G {ratio[1]:.4f} "
+          f"B {ratio[2]:.4f}; 8x8 block relMSE {report['agreement']['block_rel_mse']:.3e} ({converged_s:.1f} s)")
+
+    rows = []
+    for spp in [int(s) for s in a.spp.split(",") if s]:
+        render(mi, scene, spp, 11)  # warm-up: the kernel for this sample count
+        image, seconds = render(mi, scene, spp, 2 + spp)
+        rows.append({"spp": spp, "seconds": seconds, "rel_mse": rel_mse(image, converged),
+                     "block_rel_mse": block_rel_mse(image, converged)})
+        print(f"mitsuba {spp:5d} spp {seconds:8.3f} s  relMSE {rows[-1]['rel_mse']:.3e}  "
+              f"block relMSE {rows[-1]['block_rel_mse']:.3e}")
+    report["mitsuba_runs"] = rows
+    if a.cache:
+        cache = read_layer(a.cache)
+        target = {"rel_mse": rel_mse(cache, reference), "block_rel_mse": block_rel_mse(cache, reference)}
+        report["cache"] = {"image": a.cache, "seconds": a.cache_seconds, **target}
+        for key in ("rel_mse", "block_rel_mse"):
+            seconds, extrapolated = equal_error_seconds(rows, target[key], key)
+            report["cache"][f"mitsuba_seconds_at_equal_{key}"] = seconds
+            report["cache"][f"mitsuba_{key}_extrapolated"] = extrapolated
+            print(f"equal {key}: cache {target[key]:.3e}"
+                  + (f" in {a.cache_seconds:.3f} s" if a.cache_seconds else "")
+                  + f"; Mitsuba needs {seconds:.3f} s" + (" (extrapolated or bound)" if extrapolated else ""))
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(report, f, indent=2)
+
+
+if __name__ == "__main__":
+    main()
