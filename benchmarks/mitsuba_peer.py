@@ -96,31 +96,41 @@ class Gltf:
         m[:3, 3] = t
         return m
 
-    def instances(self):
-        """(mesh index, world matrix) for every node with a mesh in the default scene."""
+    def _walk(self):
+        """(node, world matrix) for every node of the default scene."""
         scene = self.doc["scenes"][self.doc.get("scene", 0)]
         stack = [(n, np.eye(4)) for n in scene["nodes"]]
         while stack:
             index, parent = stack.pop()
             node = self.doc["nodes"][index]
             world = parent @ self.local_matrix(node)
-            if "mesh" in node:
-                yield node["mesh"], world
+            yield node, world
             stack.extend((c, world) for c in node.get("children", []))
-        return
+
+    def instances(self):
+        """(mesh index, world matrix) for every node with a mesh."""
+        return [(node["mesh"], world) for node, world in self._walk() if "mesh" in node]
+
+    def first_camera(self):
+        """(eye, target, up, vertical fov in degrees) of the first node carrying a perspective camera."""
+        for node, world in self._walk():
+            if "camera" in node:
+                cam = self.doc["cameras"][node["camera"]]
+                if cam.get("type") != "perspective":
+                    break
+                eye = world[:3, 3]
+                forward = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
+                up = world[:3, :3] @ np.array([0.0, 1.0, 0.0])
+                return eye.tolist(), (eye + forward).tolist(), up.tolist(), math.degrees(cam["perspective"]["yfov"])
+        sys.exit("mitsuba_peer: the reference has no rcsplat:camera and the scene no perspective camera")
 
     def lights(self):
+        """(KHR_lights_punctual light, world matrix) for every node that carries one."""
         defs = self.doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
-        scene = self.doc["scenes"][self.doc.get("scene", 0)]
-        stack = [(n, np.eye(4)) for n in scene["nodes"]]
-        while stack:
-            index, parent = stack.pop()
-            node = self.doc["nodes"][index]
-            world = parent @ self.local_matrix(node)
+        for node, world in self._walk():
             light = node.get("extensions", {}).get("KHR_lights_punctual")
             if light is not None:
                 yield defs[light["light"]], world
-            stack.extend((c, world) for c in node.get("children", []))
 
 
 def write_ply(path, positions, normals, uvs, faces):
@@ -318,8 +328,6 @@ def main():
     mitsuba_gltf_bsdf.register(mi)
 
     attrs = attributes(a.reference)
-    if "rcsplat:camera" not in attrs:
-        sys.exit(f"{a.reference}: has no rcsplat:camera attribute (render it with this rcsplat)")
     reference = read_layer(a.reference)
     height, width = reference.shape[:2]
     bounces = int(attrs.get("rcsplat:bounces", "1"))
@@ -327,7 +335,12 @@ def main():
         sys.exit("mitsuba_peer: environment light is not converted")
     os.makedirs(a.output, exist_ok=True)
     g = Gltf(a.scene)
-    scene = mi.load_dict(scene_dict(g, mi, parse_camera(attrs["rcsplat:camera"]), width, height, bounces, a.output))
+    if "rcsplat:camera" in attrs:
+        camera = parse_camera(attrs["rcsplat:camera"])
+    else:  # a reference from before rcsplat wrote its view: the scene's first camera, as rcsplat's default
+        camera = g.first_camera()
+        print(f"{a.reference}: no rcsplat:camera attribute; using the scene's first camera")
+    scene = mi.load_dict(scene_dict(g, mi, camera, width, height, bounces, a.output))
     if g.skipped:
         print("not converted:", "; ".join(sorted(g.skipped)))
 
