@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <unordered_map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -125,15 +126,27 @@ struct GpuContext::MemoryLedger {
 
 namespace {
 
-struct FreedBuffer {
+// Buffers counted and not yet freed, by handle: the destructor callback finds its ledger here. A map that is never
+// destroyed (callbacks may come while the process exits) and is always reachable (no leak report for buffers a
+// driver keeps until exit).
+struct CountedBuffer {
   std::shared_ptr<GpuContext::MemoryLedger> ledger;
   std::string what;
   size_t bytes;
 };
+std::mutex counted_mutex;
+auto* const counted_buffers = new std::unordered_map<cl_mem, CountedBuffer>();
 
-void CL_CALLBACK buffer_freed(cl_mem, void* user_data) {
-  std::unique_ptr<FreedBuffer> freed(static_cast<FreedBuffer*>(user_data));
-  freed->ledger->remove(freed->what, freed->bytes);
+void CL_CALLBACK buffer_freed(cl_mem buffer, void*) {
+  CountedBuffer freed;
+  {
+    std::lock_guard<std::mutex> lock(counted_mutex);
+    auto it = counted_buffers->find(buffer);
+    if (it == counted_buffers->end()) return;
+    freed = std::move(it->second);
+    counted_buffers->erase(it);
+  }
+  freed.ledger->remove(freed.what, freed.bytes);
 }
 
 }  // namespace
@@ -259,11 +272,15 @@ cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::strin
   if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");
   try {
     cl::Buffer made(context_, flags, bytes);
-    auto* freed = new FreedBuffer{memory_, what, bytes};
-    if (clSetMemObjectDestructorCallback(made(), buffer_freed, freed) == CL_SUCCESS) {
+    {
+      std::lock_guard<std::mutex> lock(counted_mutex);
+      (*counted_buffers)[made()] = CountedBuffer{memory_, what, bytes};
+    }
+    if (clSetMemObjectDestructorCallback(made(), buffer_freed, nullptr) == CL_SUCCESS) {
       memory_->add(what, bytes);
-    } else {
-      delete freed;  // not counted: the ledger could not learn when it is freed
+    } else {  // not counted: the ledger could not learn when it is freed
+      std::lock_guard<std::mutex> lock(counted_mutex);
+      counted_buffers->erase(made());
     }
     return made;
   } catch (const cl::Error& e) {
