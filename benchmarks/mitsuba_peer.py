@@ -289,23 +289,6 @@ def render(mi, scene, spp, seed):
     return image, time.perf_counter() - start
 
 
-def equal_error_seconds(rows, target, key):
-    """Seconds at which Mitsuba's error equals target, from (spp, seconds, errors) rows, log-log interpolated between
-    the bracketing counts (extrapolated from the last two when even the most samples fall short: flagged)."""
-    rows = sorted(rows, key=lambda r: r["spp"])
-    for a, b in zip(rows, rows[1:]):
-        if a[key] >= target >= b[key]:
-            t = (math.log(target) - math.log(a[key])) / (math.log(b[key]) - math.log(a[key]))
-            return math.exp(math.log(a["seconds"]) + t * (math.log(b["seconds"]) - math.log(a["seconds"]))), False
-    if rows and rows[0][key] <= target:
-        return rows[0]["seconds"], True  # the fewest samples already reach it: an upper bound
-    if len(rows) >= 2:
-        a, b = rows[-2], rows[-1]
-        t = (math.log(target) - math.log(a[key])) / (math.log(b[key]) - math.log(a[key]))
-        return math.exp(math.log(a["seconds"]) + t * (math.log(b["seconds"]) - math.log(a["seconds"]))), True
-    return None, True
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene")
@@ -325,6 +308,7 @@ def main():
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
     import mitsuba_gltf_bsdf
+    from sweep_equal_error import seconds_at_error
     mitsuba_gltf_bsdf.register(mi)
 
     attrs = attributes(a.reference)
@@ -382,12 +366,12 @@ def main():
         target = {"rel_mse": rel_mse(cache, reference), "block_rel_mse": block_rel_mse(cache, reference)}
         report["cache"] = {"image": a.cache, "seconds": a.cache_seconds, **target}
         for key in ("rel_mse", "block_rel_mse"):
-            seconds, extrapolated = equal_error_seconds(rows, target[key], key)
+            seconds, flag = seconds_at_error([(r["seconds"], r[key]) for r in rows], target[key])
             report["cache"][f"mitsuba_seconds_at_equal_{key}"] = seconds
-            report["cache"][f"mitsuba_{key}_extrapolated"] = extrapolated
+            report["cache"][f"mitsuba_{key}_bound"] = flag  # ">": extrapolated, "<": the fewest samples reach it
+            needs = "is not reached" if seconds is None else f"needs {flag}{seconds:.3f} s"
             print(f"equal {key}: cache {target[key]:.3e}"
-                  + (f" in {a.cache_seconds:.3f} s" if a.cache_seconds else "")
-                  + f"; Mitsuba needs {seconds:.3f} s" + (" (extrapolated or bound)" if extrapolated else ""))
+                  + (f" in {a.cache_seconds:.3f} s" if a.cache_seconds else "") + f"; Mitsuba {needs}")
     if a.json:
         with open(a.json, "w") as f:
             json.dump(report, f, indent=2)
