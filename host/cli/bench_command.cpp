@@ -16,15 +16,10 @@
 #include "passes/ray_cast_pass.h"
 #include "scene/procedural.h"
 #include "util/log.h"
+#include "util/median.h"
 
 namespace rcsplat {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
 
 // Seconds for Embree to trace all rays with one thread per hardware thread.
 double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& rays, std::vector<EmbreeHit>& hits) {

@@ -13,15 +13,10 @@
 #include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/median.h"
 
 namespace rcsplat {
 namespace {
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
 
 std::vector<DeviceInfo> chosen_devices(const std::string& selection) {
   if (selection.empty()) return {select_device("")};
@@ -48,9 +43,6 @@ const PassTime kPasses[] = {{"bvh", &RenderStats::bvh_build_s},     {"upload", &
                             {"records", &RenderStats::records_s},   {"placement", &RenderStats::placement_s},
                             {"splat", &RenderStats::splat_s},       {"resolve", &RenderStats::resolve_s},
                             {"glossy", &RenderStats::glossy_s},     {"path", &RenderStats::path_s}};
-
-// A frame's time without its kernel builds (once per device and switch set, then cached on disk).
-double frame_seconds(const RenderStats& s) { return s.total_s - s.program_s; }
 
 }  // namespace
 
@@ -88,10 +80,10 @@ int run_bench_frames(const BenchOptions& o) {
     auto median_field = [&](auto field) {
       std::vector<double> v;
       for (const RenderStats& s : frames) v.push_back(double(field(s)));
-      return median_of(v);
+      return median(v);
     };
     const double cached_build = median_field([](const RenderStats& s) { return s.program_s; });
-    const double frame = median_field([](const RenderStats& s) { return frame_seconds(s); });
+    const double frame = median_field([](const RenderStats& s) { return s.seconds_without_builds(); });
     const double record_rate = median_field([](const RenderStats& s) {
       return s.records_s > 0 ? double(s.record_rays) / s.records_s * 1e-6 : 0.0;
     });

@@ -64,7 +64,7 @@ std::vector<SweepRun> plan_runs(const SweepOptions& o, const RenderSettings& bas
         SweepRun r{"cache_a" + float_text(a) + "_" + hemisphere + (order ? "_hsh" + std::to_string(order) : ""), base};
         r.settings.gi = GiMethod::splat;
         r.settings.cache.accuracy = a;
-        parse_hemisphere(hemisphere, r.settings.cache);
+        parse_hemisphere(hemisphere, r.settings.cache);  // checks the whole cache setting, --accuracy too
         r.settings.hsh_order = order;
         runs.push_back(r);
       }
@@ -91,11 +91,9 @@ std::string metric_cells(const ImageComparison& c, const std::string& layer) {
   const LayerComparison* l = c.find(layer);
   if (!l) return ",,,,,,";
   auto cell = [](std::optional<double> v) { return v ? float_text(*v) : std::string(); };
-  std::optional<double> less_noise, block_less_noise;
-  if (l->reference_noise) less_noise = l->pixel.rel_mse - *l->reference_noise;
-  if (l->block_reference_noise) block_less_noise = *l->block_rel_mse - *l->block_reference_noise;
-  return cell(l->pixel.rel_mse) + "," + cell(less_noise) + "," + cell(l->pixel.rmse) + "," + cell(l->pixel.mae) +
-         "," + cell(l->block_rel_mse) + "," + cell(block_less_noise) + "," + cell(l->mean_flip);
+  return cell(l->pixel.rel_mse) + "," + cell(l->rel_mse_less_reference_noise()) + "," + cell(l->pixel.rmse) + "," +
+         cell(l->pixel.mae) + "," + cell(l->block_rel_mse) + "," + cell(l->block_rel_mse_less_reference_noise()) + "," +
+         cell(l->mean_flip);
 }
 
 }  // namespace
@@ -103,8 +101,6 @@ std::string metric_cells(const ImageComparison& c, const std::string& layer) {
 int run_sweep(const SweepOptions& o) {
   if (o.output_dir.empty()) throw Error("sweep: give an output folder with -o DIR");
   if (o.accuracies.empty() && o.path_samples.empty()) throw Error("sweep: nothing to render (no --accuracy, no --path-spp)");
-  for (float a : o.accuracies)
-    if (!(a >= 0.01f && a <= 100.0f)) throw Error("--accuracy " + float_text(a) + ": must be between 0.01 and 100");
   for (unsigned spp : o.path_samples)
     if (spp == 0) throw Error("--path-spp: sample counts must be positive");
   // The frame and the bounces are the reference's, so that every run shows what the reference shows.
@@ -124,9 +120,6 @@ int run_sweep(const SweepOptions& o) {
   base.light_samples = o.light_samples;
   base.pixel_samples = o.pixel_samples;
   base.bounces = bounces;  // 0 (a reference from elsewhere): chosen from the scene, as render does
-  // Checked before any work: every configuration's option text.
-  for (const std::string& h : o.hemispheres) parse_hemisphere(h, base.cache);
-  base.cache = CacheSettings{};
 
   const std::string python = benchmark_python();
   bool denoise = o.denoise == "on";
@@ -178,7 +171,6 @@ int run_sweep(const SweepOptions& o) {
     std::fprintf(stderr, "sweep [%zu/%zu] %s\n", i + 1, runs.size(), run.name.c_str());
     const std::string exr = (fs::path(o.output_dir) / (run.name + ".exr")).string();
     RenderedImage image;
-    std::string judged = exr;
     double denoise_s = 0.0;
     if (run.denoise) {
       // pyoidn denoises the plain run's image and indirect layer with its albedo and normal layers; the time is
@@ -201,11 +193,10 @@ int run_sweep(const SweepOptions& o) {
       }
     }
     set_quiet(true);
-    const ImageComparison c = compare_exr_files(judged, o.reference_path, o.block, o.exposure);
+    const ImageComparison c = compare_exr_files(exr, o.reference_path, o.block, o.exposure);
     set_quiet(was_quiet);
     const RenderStats& s = image.stats;
-    // A frame's time without building kernels (once per device and switch set, then cached on disk).
-    const double seconds = s.total_s - s.program_s + denoise_s;
+    const double seconds = s.seconds_without_builds() + denoise_s;
     const bool cache = run.settings.gi == GiMethod::splat;
     csv << (cache ? "cache" : run.denoise ? "path+denoise" : "path") << "," << run.name << ","
         << (cache ? float_text(run.settings.cache.accuracy) : "") << ","

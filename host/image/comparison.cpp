@@ -108,11 +108,11 @@ nlohmann::json comparison_json(const ImageComparison& c) {
     if (l.block_rel_mse) layer["block_rel_mse"] = *l.block_rel_mse;
     if (l.reference_noise) {
       layer["reference_noise"] = *l.reference_noise;
-      layer["rel_mse_less_reference_noise"] = l.pixel.rel_mse - *l.reference_noise;
+      layer["rel_mse_less_reference_noise"] = *l.rel_mse_less_reference_noise();
     }
     if (l.block_reference_noise) {
       layer["block_reference_noise"] = *l.block_reference_noise;
-      layer["block_rel_mse_less_reference_noise"] = *l.block_rel_mse - *l.block_reference_noise;
+      layer["block_rel_mse_less_reference_noise"] = *l.block_rel_mse_less_reference_noise();
     }
     j[l.layer] = layer;
   }

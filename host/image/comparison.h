@@ -20,6 +20,13 @@ struct LayerComparison {
   double mean_flip = 0.0;
   std::optional<double> reference_noise, block_reference_noise;  // expected relMSEs from the reference's variance
   std::vector<float> flip_map, rel_mse_map;  // per pixel, for heat maps
+  // The relMSEs less the reference's own noise, where the reference carries its variance.
+  std::optional<double> rel_mse_less_reference_noise() const {
+    return reference_noise ? std::optional<double>(pixel.rel_mse - *reference_noise) : std::nullopt;
+  }
+  std::optional<double> block_rel_mse_less_reference_noise() const {
+    return block_reference_noise ? std::optional<double>(*block_rel_mse - *block_reference_noise) : std::nullopt;
+  }
 };
 
 struct ImageComparison {

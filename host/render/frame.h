@@ -24,6 +24,9 @@ struct RenderStats {
   unsigned light_samples = 0;  // per pixel, all of its sub-pixels together
   unsigned pixel_samples = 1;  // primary samples per pixel (render/pixel_samples.h)
   double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
+  // A frame's time without its kernel builds (once per device and switch set, then cached on disk): what `bench` and
+  // `sweep` compare.
+  double seconds_without_builds() const { return total_s - program_s; }
   DeviceMemoryUse device_memory;  // this frame's buffers (the scene's included)
   uint64_t primary_rays = 0, shadow_rays = 0;
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
