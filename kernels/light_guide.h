@@ -86,6 +86,31 @@ inline uint guide_cones(__global const GuideCluster* clusters, uint count, float
   return guide_selection_cdf(cones, kept);
 }
 
+// A record's cones, found once (guide_cones) and read by each of its rays.
+inline void store_guide_cones(const GuideCone* cones, uint count, __global RecordGuideCones* stored) {
+  for (uint c = 0; c < count; ++c) {
+    vstore3(cones[c].axis, 0, stored->cones[c].axis);
+    stored->cones[c].cos_max = cones[c].cos_max;
+    stored->cones[c].inv_solid_angle = cones[c].inv_solid_angle;
+    stored->cones[c].promise = cones[c].promise;
+    stored->cones[c].cdf = cones[c].cdf;
+    stored->cones[c].pad = 0.0f;
+  }
+  stored->count = count;
+}
+
+inline uint load_guide_cones(__global const RecordGuideCones* stored, GuideCone* cones) {
+  uint count = min(stored->count, (uint)GUIDE_MAX_CONES);
+  for (uint c = 0; c < count; ++c) {
+    cones[c].axis = vload3(0, stored->cones[c].axis);
+    cones[c].cos_max = stored->cones[c].cos_max;
+    cones[c].inv_solid_angle = stored->cones[c].inv_solid_angle;
+    cones[c].promise = stored->cones[c].promise;
+    cones[c].cdf = stored->cones[c].cdf;
+  }
+  return count;
+}
+
 inline float guide_selection(const GuideCone* cones, uint c) { return cones[c].cdf - (c > 0 ? cones[c - 1].cdf : 0.0f); }
 
 // The guide's density (per solid angle) of direction dir: the cones that contain it. For a direction the guide drew

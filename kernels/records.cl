@@ -1,15 +1,59 @@
 // Record computation (ALGORITHM.md sections 4 and 5): for each candidate pixel, M x N stratified cosine-weighted rays
 // over the hemisphere of its G-buffer point give the irradiance E, Ward's harmonic mean distance (the validity radius,
 // clamped in screen space) and Ward & Heckbert's rotational and translational gradients, bounded.
+//
+// The work is spread over rays, not only over records (a coarse placement level has a few hundred records but a
+// hundred thousand rays, and a GPU needs that many work-items in flight), in three kernels per launch of candidates:
+//   aim_record_guides   per record: the light guide's cones its rays share (none without a guide);
+//   trace_record_rays   per ray: one stratum's radiance and hit distance, or one guided ray's weighted share of E;
+//   reduce_records      per record: E, the radius, the gradients and the horizon from its samples, summed in one fixed
+//                       order, so a record does not depend on how its rays were scheduled.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
 #include "cache_math.h"
 #include "light_guide.h"
 
-// The host compiles this kernel with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
-// HEMISPHERE_MAX_THETA_STRATA): one column of M strata lives in private memory, so it is sized to M. With
-// STORE_STRATA = 1 (radiance caching) each stratum's radiance (the share the light guide leaves it) and hit distance
-// are also kept, for the HSH projection of kernels/hsh_records.cl, and the record casts no guided rays.
+// The host compiles this file with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
+// HEMISPHERE_MAX_THETA_STRATA): reduce_records keeps one column of M strata in private memory. With STORE_STRATA = 1
+// (radiance caching) the samples buffer is the batch's strata, kept for the HSH projection of
+// kernels/hsh_records.cl, and records cast no guided rays (each pixel samples the guide's share, kernels/glossy.cl).
+
+// Samples per record: its M x N strata, then its guided rays.
+inline uint record_sample_count(HemisphereParams hp) {
+#if STORE_STRATA
+  return hp.theta_strata * hp.phi_strata;
+#else
+  return hp.theta_strata * hp.phi_strata + hp.guide_rays;
+#endif
+}
+
+// Where a record sits and the frame its strata are laid out in (the horizon sectors are measured in it too).
+typedef struct {
+  float3 p, n, ng, origin, t, b;
+  uint key;  // the record's random stream
+} RecordSite;
+
+inline RecordSite record_site(__global const GBufferSample* gbuffer, uint pixel, uint seed) {
+  GBufferSample g = gbuffer[pixel];
+  RecordSite site;
+  site.p = vload3(0, g.position);
+  site.n = vload3(0, g.normal);
+  site.ng = vload3(0, g.geometric_normal);
+  site.origin = offset_ray_origin(site.p, site.ng);
+  tangent_frame(site.n, &site.t, &site.b);
+  site.key = hash_u32(pixel ^ hash_u32(seed));
+  return site;
+}
+
+// n_c p_c / cos(theta): the strata's cosine density, per unit of cos(theta).
+inline float strata_cosine_density(HemisphereParams hp) {
+  return (float)(hp.theta_strata * hp.phi_strata) * RC_INV_PI;
+}
+
+// sin^2(theta) of stratum s's ray (row j = s / N): the trace draws it, the reduction needs it again for the horizon.
+inline float stratum_sin2_theta(HemisphereParams hp, uint key, uint s) {
+  return ((float)(s / hp.phi_strata) + random01(key, s, 0u)) * (1.0f / (float)hp.theta_strata);
+}
 
 // gradient[axis] += direction[axis] * value, for a world-space direction and an RGB value.
 inline void add_outer(float3* gradient, float3 direction, float3 value) {
@@ -25,57 +69,102 @@ inline void bound_gradient(float3* gradient, float3 limit) {
   for (int a = 0; a < 3; ++a) gradient[a] = finite_or_zero(gradient[a] * scale);
 }
 
-// The guide's share of E (kernels/light_guide.h): guided_rays rays into the record's cones, each weighted
-// f / (n_c p_c + n_g p_g) with f = L cos(theta) (the balance heuristic beside the strata's cosine density). Their
-// random numbers follow the strata's, from sample M N on.
-inline float3 guided_irradiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 n, float3 ng, const GuideCone* cones,
-                                uint cone_count, uint guided_rays, float cosine_density, uint key, uint first_sample,
-                                uint bounces, uint* rays) {
-  float3 e = (float3)(0.0f);
-  for (uint g = 0; g < guided_rays; ++g) {
-    uint s = first_sample + g;
-    uint drawn_from;
-    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u),
-                              &drawn_from);
-    float cos_n = dot(dir, n);
-    if (cos_n <= 0.0f || dot(dir, ng) <= 0.0f) continue;
-    float r;
-    float3 l = bounce_radiance(SCENE GATHER_MAP, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               path_continuation(key, s, bounces), &r, rays);
-    e += l * (cos_n / (cosine_density * cos_n +
-                       (float)guided_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from)));
+// Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
+// leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
+inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
+                             const GuideCone* cones, uint cone_count, uint* rays) {
+  const uint N = hp.phi_strata, k = s % N;
+  const float dphi = 2.0f * RC_PI / (float)N;
+  float sin2 = stratum_sin2_theta(hp, site.key, s);
+  float sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
+  float cos_phi, sin_phi = sincos(((float)k + random01(site.key, s, 1u)) * dphi, &cos_phi);
+  float3 dir = (cos_phi * sin_t) * site.t + (sin_phi * sin_t) * site.b + cos_t * site.n;
+  float r = INFINITY;
+  float3 l = (float3)(0.0f);
+  if (dot(dir, site.ng) > 0.0f)  // a direction below the geometric surface sees nothing
+    l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
+                        random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
+  if (cone_count) {
+    float c = strata_cosine_density(hp) * cos_t;
+    l *= c / (c + (float)hp.guide_rays * guide_pdf(cones, cone_count, dir));
   }
-  return e;
+  return (float4)(l, r);
 }
 
-__kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
-                              __global CacheRecord* records,
-                              __global const GuideCluster* guide,
-#if STORE_STRATA
-                              __global float4* strata,
-#endif
-                              __global ulong* ray_total) {
-  uint i = get_global_id(0);
-  if (i >= batch.candidate_count) return;
+// Guided ray s (s >= M N: its random numbers follow the strata's) into the record's cones, weighted
+// f / (n_c p_c + n_g p_g) with f = L cos(theta): its share of E. Zero where the record has no cones.
+inline float4 guided_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
+                            const GuideCone* cones, uint cone_count, uint* rays) {
+  if (!cone_count) return (float4)(0.0f);
+  uint drawn_from;
+  float3 dir = sample_guide(cones, cone_count, random01(site.key, s, 5u), random01(site.key, s, 0u),
+                            random01(site.key, s, 1u), &drawn_from);
+  float cos_n = dot(dir, site.n);
+  if (cos_n <= 0.0f || dot(dir, site.ng) <= 0.0f) return (float4)(0.0f);
+  float r;
+  float3 l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
+                             random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
+  float weight = cos_n / (strata_cosine_density(hp) * cos_n +
+                          (float)hp.guide_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from));
+  return (float4)(l * weight, 0.0f);
+}
+
+// The light guide's cones for each record of the launch (none without a guide): its rays and its strata are weighted
+// by the balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
+__kernel void aim_record_guides(GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
+                                __global const GuideCluster* guide, __global RecordGuideCones* record_guides) {
+  uint q = get_global_id(0);
+  if (q >= batch.launch_count) return;
   const HemisphereParams hp = batch.hemisphere;
-  uint pixel = candidates[i];
-  GBufferSample g = gbuffer[pixel];
-  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
-  float3 origin = offset_ray_origin(p, ng);
-  float3 t, b;
-  tangent_frame(n, &t, &b);  // the frame the horizon sectors are measured in
+  GBufferSample g = gbuffer[candidates[batch.first_candidate + q]];
+  GuideCone cones[GUIDE_MAX_CONES];
+  // A cone larger than GUIDE_MAX_STRATA strata' worth of solid angle is found often enough by the strata themselves.
+  uint count = hp.guide_rays ? guide_cones(guide, hp.guide_clusters, vload3(0, g.position), vload3(0, g.normal),
+                                           GUIDE_MAX_STRATA / strata_cosine_density(hp), cones)
+                             : 0u;
+  store_guide_cones(cones, count, record_guides + q);
+}
+
+// One work-item per batch.samples_per_item consecutive samples of one of the launch's records (candidate
+// first_candidate + q): a GPU takes one sample a work-item, a CPU device several, sharing the record's site and cones.
+__kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
+                                RecordBatchParams batch, __global const RecordGuideCones* record_guides,
+                                __global float4* samples, __global uint* sample_rays) {
+  const HemisphereParams hp = batch.hemisphere;
+  const uint per_record = record_sample_count(hp), per_item = batch.samples_per_item;
+  const uint items_per_record = (per_record + per_item - 1) / per_item;
+  uint id = get_global_id(0), q = id / items_per_record;
+  if (q >= batch.launch_count) return;
+  uint first = (id - q * items_per_record) * per_item, end = min(first + per_item, per_record);
+  uint i = batch.first_candidate + q;
+  RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
+  GuideCone cones[GUIDE_MAX_CONES];
+  uint cone_count = load_guide_cones(record_guides + q, cones);
+  __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
+  __global uint* own_rays = sample_rays + (size_t)q * per_record;
+  for (uint s = first; s < end; ++s) {
+    uint rays = 0;
+    own[s] = s < hp.theta_strata * hp.phi_strata
+                 ? stratum_sample(SCENE GATHER_MAP, site, hp, s, cones, cone_count, &rays)
+                 : guided_sample(SCENE GATHER_MAP, site, hp, s, cones, cone_count, &rays);
+    own_rays[s] = rays;
+  }
+}
+
+// One work-item per record of the launch: its samples reduced in the order of the strata (columns k, rows j within),
+// then its guided rays.
+__kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
+                             __global const float4* samples, __global const uint* sample_rays,
+                             __global CacheRecord* records, __global ulong* ray_total) {
+  uint q = get_global_id(0);
+  if (q >= batch.launch_count) return;
+  const HemisphereParams hp = batch.hemisphere;
+  const uint i = batch.first_candidate + q, pixel = candidates[i], per_record = record_sample_count(hp);
+  RecordSite site = record_site(gbuffer, pixel, hp.seed);
+  __global const float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
+  __global const uint* own_rays = sample_rays + (size_t)q * per_record;
   const uint M = hp.theta_strata, N = hp.phi_strata;
   const float inv_m = 1.0f / (float)M, dphi = 2.0f * RC_PI / (float)N;
-  uint key = hash_u32(pixel ^ hash_u32(hp.seed));
-
-  // The light guide's cones for this record (none without a guide): its rays and the strata are weighted by the
-  // balance heuristic, each sample's weight its technique's share of the combined density n_c p_c + n_g p_g.
-  GuideCone cones[GUIDE_MAX_CONES];
-  const float cosine_density = (float)(M * N) * RC_INV_PI;  // n_c p_c / cos(theta)
-  // A cone larger than GUIDE_MAX_STRATA strata' worth of solid angle is found often enough by the strata themselves.
-  const uint cone_count =
-      hp.guide_rays ? guide_cones(guide, hp.guide_clusters, p, n, GUIDE_MAX_STRATA / cosine_density, cones) : 0u;
-  const float guided_rays = (float)hp.guide_rays;
 
   // Per-row weights, the same in every column: computed once. theta_wall: the wall between rows j - 1 and j, at
   // theta_j- (sin theta cos^2 theta dphi); phi_wall: the integral of cos(theta) over row j (the walls between columns);
@@ -105,37 +194,23 @@ __kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global
   const uint first_low_row = (uint)ceil(HORIZON_MIN_SIN2_THETA * (float)M);
   float horizon[RECORD_HORIZON_SECTORS];
   for (int s = 0; s < RECORD_HORIZON_SECTORS; ++s) horizon[s] = INFINITY;
-  uint rays = 0;
+  ulong rays = 0;
   for (uint k = 0; k < N; ++k) {
     float cos_mid, sin_mid = sincos(((float)k + 0.5f) * dphi, &cos_mid);
     float cos_lo, sin_lo = sincos((float)k * dphi, &cos_lo);
-    float3 u_mid = cos_mid * t + sin_mid * b, v_mid = -sin_mid * t + cos_mid * b, v_lo = -sin_lo * t + cos_lo * b;
+    float3 u_mid = cos_mid * site.t + sin_mid * site.b, v_mid = -sin_mid * site.t + cos_mid * site.b,
+           v_lo = -sin_lo * site.t + cos_lo * site.b;
     float3 rotation = (float3)(0.0f), l_below = (float3)(0.0f);
     float r_below = INFINITY, column_horizon = INFINITY;
     for (uint j = 0; j < M; ++j) {
       uint s = j * N + k;
-      float sin2 = ((float)j + random01(key, s, 0u)) * inv_m;
-      float sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
-      float cos_phi, sin_phi = sincos(((float)k + random01(key, s, 1u)) * dphi, &cos_phi);
-      float3 dir = (cos_phi * sin_t) * t + (sin_phi * sin_t) * b + cos_t * n;
-      float r = INFINITY;
-      float3 l = (float3)(0.0f);
-      if (dot(dir, ng) > 0.0f) {  // a direction below the geometric surface sees nothing
-        l = bounce_radiance(SCENE GATHER_MAP, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                            path_continuation(key, s, hp.bounces), &r, &rays);
-      }
-      // What the strata estimate is the part of the light the guide leaves to them; their gradients, and the HSH
-      // projection of radiance records, see that part.
-      if (cone_count) {
-        float c = cosine_density * cos_t;
-        l *= c / (c + guided_rays * guide_pdf(cones, cone_count, dir));
-      }
-#if STORE_STRATA
-      strata[((size_t)i * M + j) * N + k] = (float4)(l, r);
-#endif
+      float4 sample = own[s];
+      float3 l = sample.xyz;
+      float r = sample.w;
+      rays += own_rays[s];
       e += l;
       inverse_distances += 1.0f / r;
-      if (j >= first_low_row) column_horizon = fmin(column_horizon, r * sin_t);
+      if (j >= first_low_row) column_horizon = fmin(column_horizon, r * sqrt(stratum_sin2_theta(hp, site.key, s)));
       rotation += rotation_weight[j] * l;
       if (j > 0) add_outer(grad_t, u_mid, (theta_wall[j] / fmin(r, r_below)) * (l - l_below));
       if (k > 0) add_outer(grad_t, v_lo, (phi_wall[j] / fmin(r, prev_r[j])) * (l - prev_l[j]));
@@ -153,21 +228,18 @@ __kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global
     horizon[sector] = fmin(horizon[sector], column_horizon);
   }
   for (uint j = 0; j < M; ++j)  // the wall at phi = 0 between the last column and the first
-    add_outer(grad_t, b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
+    add_outer(grad_t, site.b, (phi_wall[j] / fmin(first_r[j], prev_r[j])) * (first_l[j] - prev_l[j]));
   float norm = RC_PI / (float)(M * N);
-  // Radiance records (STORE_STRATA) cache only the strata's share; each pixel samples the guide's share itself
-  // (kernels/glossy.cl guided_share), so that a small bright source never goes through the truncated HSH basis.
   float3 e_guided = (float3)(0.0f);
-#if !STORE_STRATA
-  if (cone_count)
-    e_guided = guided_irradiance(SCENE GATHER_MAP, origin, n, ng, cones, cone_count, hp.guide_rays, cosine_density, key, M * N,
-                                 hp.bounces, &rays);
-#endif
+  for (uint s = M * N; s < per_record; ++s) {
+    e_guided += own[s].xyz;
+    rays += own_rays[s];
+  }
   e = finite_or_zero(e * norm + e_guided);
 
   // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
   float harmonic = (float)(M * N) / inverse_distances;
-  float pixel_size = pixel_world_size(camera, p);
+  float pixel_size = pixel_world_size(camera, site.p);
   float radius = clamp(harmonic, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
   if (!(radius > 0.0f)) radius = fmax(hp.min_radius_pixels * pixel_size, 1e-30f);
   // Bounded gradients (ALGORITHM.md section 5): translation changes E by at most E across R, rotation by at most E.
@@ -175,9 +247,9 @@ __kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global
   bound_gradient(grad_r, e);
 
   CacheRecord rec;
-  vstore3(p, 0, rec.position);
+  vstore3(site.p, 0, rec.position);
   rec.radius = radius;
-  vstore3(n, 0, rec.normal);
+  vstore3(site.n, 0, rec.normal);
   rec.pixel = (int)pixel;
   vstore3(e, 0, rec.irradiance);
   rec.pixel_size = pixel_size;
@@ -191,5 +263,5 @@ __kernel void compute_records(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global
   for (int s = 0; s < RECORD_HORIZON_SECTORS; ++s)
     rec.horizon[s] = fmax(horizon[s], 0.5f * pixel_size);
   records[batch.first_record + i] = rec;
-  atom_add(ray_total, (ulong)rays);
+  atom_add(ray_total, rays);
 }

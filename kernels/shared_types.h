@@ -359,13 +359,36 @@ typedef struct {
   rc_uint pad[3];
 } RadianceSplatParams;
 
-// A batch of records: candidates[0 .. candidate_count - 1] become records first_record and up.
+// A batch of records: candidates[0 .. candidate_count - 1] become records first_record and up. The record pass
+// (kernels/records.cl) takes it in launches of launch_count candidates from first_candidate, each candidate's samples
+// (its strata, then its guided rays) in the samples buffer from candidate samples_first_candidate on.
 typedef struct {
   HemisphereParams hemisphere;
   rc_uint candidate_count;
   rc_uint first_record;
+  rc_uint first_candidate;
+  rc_uint launch_count;
+  rc_uint samples_first_candidate;
+  rc_uint samples_per_item;  // consecutive samples of one record each work-item of the trace takes (1 on a GPU)
   rc_uint pad[2];
 } RecordBatchParams;
+
+// One light-guide cone as a record's rays share it (kernels/light_guide.h GuideCone, stored).
+typedef struct {
+  float axis[3];
+  float cos_max;
+  float inv_solid_angle;
+  float promise;
+  float cdf;
+  float pad;
+} StoredGuideCone;
+
+// The cones a record aims its guided rays at, found once per record for all its rays.
+typedef struct {
+  StoredGuideCone cones[GUIDE_MAX_CONES];
+  rc_uint count;
+  rc_uint pad[7];
+} RecordGuideCones;
 
 // Placement's kernels, each reading the fields it needs.
 typedef struct {
@@ -415,7 +438,9 @@ static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);
 static_assert(sizeof(DirectParams) == 16);
 static_assert(sizeof(PathParams) == 32);
-static_assert(sizeof(RecordBatchParams) == 48);
+static_assert(sizeof(RecordBatchParams) == 64);
+static_assert(sizeof(StoredGuideCone) == 32);
+static_assert(sizeof(RecordGuideCones) == 32 * GUIDE_MAX_CONES + 32);
 static_assert(sizeof(HshRecordParams) == 32);
 static_assert(sizeof(GlossyParams) == 32);
 static_assert(sizeof(RadianceSplatParams) == 32);

@@ -54,7 +54,7 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   EXPECT_GE(caster.closest_hits()[0].prim, 0);
 
   std::set<std::string> built = gpu.built_kernel_names();
-  for (const char* expected : {"gbuffer", "direct_light", "compute_records", "mark_covered", "find_uncovered",
+  for (const char* expected : {"gbuffer", "direct_light", "aim_record_guides", "trace_record_rays", "reduce_records", "mark_covered", "find_uncovered",
                                "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
                                "max_record_irradiance", "splat_records", "resolve_indirect", "path_indirect",
                                "cast_closest", "cast_occlusion", "fill_uncovered", "shoot_photons",

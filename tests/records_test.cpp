@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "cache/host_records.h"
@@ -183,6 +184,46 @@ TEST(RecordKernel, GuidedRaysMatchHostDoublePrecisionRecords) {
   size_t guided = expect_records_match_host(SceneFrame::fitted(corridor).device_scene(corridor), true);
   std::printf("%zu of 200 records took guided rays\n", guided);
   EXPECT_GT(guided, 100u);
+}
+
+// The record trace's shape is the device's choice (a ray per work-item on a GPU, 32 samples on PoCL, launches of at
+// most record_samples_per_launch samples); the reduction sums each record's samples in one fixed order, so every
+// shape must give the same records, bit for bit, guided rays included.
+TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
+  const Scene corridor = test::bright_patch_corridor();
+  test::TwinScene twin(SceneFrame::fitted(corridor).device_scene(corridor));
+  GpuContext& gpu = test::gpu();
+  GBufferPass gbuffer(gpu, twin.device);
+  std::vector<GBufferSample> g = camera_gbuffer(gbuffer, twin.scene, 48, 48);
+  std::vector<uint32_t> pixels = random_covered_pixels(g, 100, 5);
+  HemisphereParams hp = clamped_hemisphere();
+  std::vector<GuideCluster> guide = cluster_photons(LightGuidePass(gpu, twin.device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS);
+  hp.guide_rays = 16;
+  hp.guide_clusters = uint32_t(guide.size());
+  const GroupSizes device_choice = gpu.groups();
+  auto records_with = [&](size_t samples_per_item, size_t samples_per_launch) {
+    GroupSizes shape = device_choice;
+    shape.record_samples_per_item = samples_per_item;
+    shape.record_samples_per_launch = samples_per_launch;
+    gpu.set_groups(shape);
+    RecordPass pass(gpu, twin.device, hp.theta_strata);
+    pass.set_light_guide(guide, hp.guide_rays);
+    pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
+    gpu.set_groups(device_choice);
+    return std::make_pair(pass.download(0, pixels.size()), pass.rays_cast());
+  };
+  const auto [expected, expected_rays] = records_with(1, size_t(1) << 21);  // a GPU's shape, one launch
+  size_t per_record = size_t(hp.theta_strata) * hp.phi_strata + hp.guide_rays;
+  for (auto [per_item, per_launch] : {std::pair<size_t, size_t>{32, size_t(1) << 21}, {7, 3 * per_record},
+                                      {per_record, per_record / 2}}) {
+    const auto [records, rays] = records_with(per_item, per_launch);
+    EXPECT_EQ(rays, expected_rays) << per_item << " samples per work-item, " << per_launch << " per launch";
+    ASSERT_EQ(records.size(), expected.size());
+    for (size_t i = 0; i < records.size(); ++i)
+      ASSERT_EQ(std::memcmp(&records[i], &expected[i], sizeof(CacheRecord)), 0)
+          << "record " << i << " differs with " << per_item << " samples per work-item, " << per_launch
+          << " per launch";
+  }
 }
 
 // Central finite differences of the kernel's own E against its Ward-Heckbert gradients, at points where the

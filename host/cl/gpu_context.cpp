@@ -177,9 +177,12 @@ void GpuContext::restart_memory_peak() {
 GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::make_shared<MemoryLedger>()) {
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
-  // A GPU keeps a warp or wavefront per group busy only with 32 or more work-items; PoCL's CPU device prefers few
-  // heavy work-items per group (measured on the record pass).
-  if (info_.device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) groups_.per_record = 32;
+  // A GPU keeps a warp or wavefront per group busy only with 32 or more work-items, and its threads in flight only
+  // with a ray per work-item; PoCL's CPU device prefers few heavy work-items (measured on the record pass).
+  if (info_.device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) {
+    groups_.per_record = 32;
+    groups_.record_samples_per_item = 1;
+  }
 }
 
 // Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.

@@ -20,7 +20,13 @@ using KernelDefines = std::map<std::string, std::string>;
 // Work-group sizes by kind of kernel, chosen for the device at run time.
 struct GroupSizes {
   size_t traversal = 64;  // a ray (or pixel) per work-item, tracing: PoCL runs 15% slower when it picks the size
-  size_t per_record = 8;  // a record per work-item with hundreds of rays each: a coarse level has few records
+  size_t per_record = 8;  // a record per work-item, reducing its hundreds of samples
+  // Samples of one record a work-item of the record trace takes: a GPU wants a work-item per ray; PoCL's CPU device
+  // ran Sponza's record pass 14% slower that way than with 32 (the record's site and cones loaded once for all).
+  size_t record_samples_per_item = 32;
+  // Samples a launch of the record trace takes at most (20 bytes each kept until reduced): 2^21 fills any GPU many
+  // times over and keeps 40 MiB.
+  size_t record_samples_per_launch = size_t(1) << 21;
   size_t per_item = 64;   // light per-pixel or per-record work
   size_t tile_side = 8;   // 2-D launches over the image, tile_side x tile_side pixels a group
 };
@@ -53,6 +59,8 @@ class GpuContext {
   double program_seconds() const { return program_seconds_; }
 
   const GroupSizes& groups() const { return groups_; }
+  // Another device's shapes on this one (tests: a GPU's record trace on PoCL must give the same records).
+  void set_groups(const GroupSizes& groups) { groups_ = groups; }
 
   // Every kernel of every program built so far, and for each kernel launched whether its last launch set all its
   // parameters by name in the kernel's own order (tests/kernel_args_test.cpp).

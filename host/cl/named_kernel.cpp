@@ -1,5 +1,7 @@
 #include "cl/named_kernel.h"
 
+#include <algorithm>
+
 #include "cl/gpu_context.h"
 #include "util/error.h"
 
@@ -30,6 +32,11 @@ NamedKernel::NamedKernel(GpuContext& gpu, cl::Program& program, const std::strin
     if (status == CL_SUCCESS) parameters_[i].type = plain_type(kernel_.getArgInfo<CL_KERNEL_ARG_TYPE_NAME>(i, &status));
     by_name_ = status == CL_SUCCESS;
   }
+  // The largest group this kernel can run with on this device (registers and local memory limit it on a GPU), and
+  // the multiple the device runs groups in (a warp, a wavefront, PoCL's vector width).
+  const cl::Device& device = gpu.device_info().device;
+  max_group_ = std::max<size_t>(kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device), 1);
+  group_multiple_ = std::max<size_t>(kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device), 1);
   // The strings OpenCL returns may carry their terminating zero.
   for (Parameter& p : parameters_)
     for (std::string* s : {&p.name, &p.type})
@@ -68,8 +75,15 @@ void NamedKernel::forget_arguments() {
   in_order_ = true;
 }
 
+size_t NamedKernel::fitted_group(size_t wanted) const {
+  size_t group = std::min(std::max<size_t>(wanted, 1), max_group_);
+  if (group >= group_multiple_) group -= group % group_multiple_;
+  return group;
+}
+
 void NamedKernel::launch(size_t items, size_t group) {
   if (items == 0) return forget_arguments();
+  group = fitted_group(group);
   enqueue(cl::NDRange(round_up(items, group)), cl::NDRange(group));
 }
 

@@ -48,6 +48,7 @@ RCSPLAT_CL_TYPE_NAME(PathParams, "PathParams")
 RCSPLAT_CL_TYPE_NAME(GlossyParams, "GlossyParams")
 RCSPLAT_CL_TYPE_NAME(RecordBatchParams, "RecordBatchParams")
 RCSPLAT_CL_TYPE_NAME(GuideCluster, "GuideCluster")
+RCSPLAT_CL_TYPE_NAME(RecordGuideCones, "RecordGuideCones")
 RCSPLAT_CL_TYPE_NAME(PhotonHit, "PhotonHit")
 RCSPLAT_CL_TYPE_NAME(PhotonParams, "PhotonParams")
 RCSPLAT_CL_TYPE_NAME(PhotonMapParams, "PhotonMapParams")
@@ -80,10 +81,13 @@ class NamedKernel {
     return *this;
   }
 
-  // Enqueues `items` work-items (rounded up to whole groups) in groups of `group`, or a 2-D grid of tiles; every
-  // parameter must have been set since the last launch.
+  // Enqueues `items` work-items (rounded up to whole groups) in groups of `group` fitted to the kernel on this device
+  // (fitted_group), or a 2-D grid of tiles; every parameter must have been set since the last launch.
   void launch(size_t items, size_t group);
   void launch_2d(size_t width, size_t height, size_t tile_side);
+  // `wanted` cut to what the kernel can run with on its device, and to a whole number of the device's preferred
+  // multiple where it is at least one.
+  size_t fitted_group(size_t wanted) const;
   const std::string& name() const { return name_; }
   // Whether the driver reported the parameters' names and types (else the order of the set() calls binds).
   bool bound_by_name() const { return by_name_; }
@@ -102,6 +106,7 @@ class NamedKernel {
   std::string name_;
   std::vector<Parameter> parameters_;
   bool by_name_ = false;  // the driver reported the parameters' names
+  size_t max_group_ = 1, group_multiple_ = 1;
   cl_uint next_in_order_ = 0;
   bool in_order_ = true;  // this launch's parameters were set in the kernel's order
 };

@@ -7,7 +7,7 @@
 namespace rcsplat {
 namespace {
 
-// The kernel keeps one column of M strata in private memory: sizing it to M keeps that memory small.
+// The reduction keeps one column of M strata in private memory: sizing it to M keeps that memory small.
 KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
@@ -26,7 +26,11 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
       photon_map_(photon_map),
-      kernel_(gpu.kernel("records.cl", "compute_records",
+      aim_(gpu.kernel("records.cl", "aim_record_guides",
+                      record_defines(scene, theta_strata, store_strata, photon_map != nullptr))),
+      trace_(gpu.kernel("records.cl", "trace_record_rays",
+                        record_defines(scene, theta_strata, store_strata, photon_map != nullptr))),
+      reduce_(gpu.kernel("records.cl", "reduce_records",
                          record_defines(scene, theta_strata, store_strata, photon_map != nullptr))) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
   guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
@@ -51,6 +55,48 @@ void RecordPass::reserve(size_t count) {
   capacity_ = grown;
 }
 
+void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size_t batch) {
+  auto grow = [&](cl::Buffer& buffer, size_t& capacity, size_t needed, size_t element, const char* what) {
+    if (needed <= capacity) return;
+    capacity = std::max(needed, capacity * 2);
+    buffer = gpu_.buffer(CL_MEM_READ_WRITE, capacity * element, what);
+  };
+  grow(record_guides_, guides_capacity_, records, sizeof(RecordGuideCones), "record guide cones");
+  grow(samples_, samples_capacity_, (store_strata_ ? batch : records) * samples_per_record, sizeof(cl_float4),
+       store_strata_ ? "record strata" : "record samples");
+  grow(sample_rays_, sample_rays_capacity_, records * samples_per_record, sizeof(cl_uint), "record samples");
+}
+
+void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates,
+                                const RecordBatchParams& batch, size_t samples_per_record) {
+  gbuffer.bind(aim_);
+  aim_.set_buffer<cl_uint>("candidates", candidates)
+      .set("batch", batch)
+      .set_buffer<GuideCluster>("guide", guide_)
+      .set_buffer<RecordGuideCones>("record_guides", record_guides_);
+  aim_.launch(batch.launch_count, gpu_.groups().per_item);
+
+  scene_.bind(trace_);
+  if (photon_map_) photon_map_->bind(trace_);
+  gbuffer.bind(trace_);
+  trace_.set_buffer<cl_uint>("candidates", candidates)
+      .set("batch", batch)
+      .set_buffer<RecordGuideCones>("record_guides", record_guides_)
+      .set_buffer<cl_float4>("samples", samples_)
+      .set_buffer<cl_uint>("sample_rays", sample_rays_);
+  const size_t items_per_record = (samples_per_record + batch.samples_per_item - 1) / batch.samples_per_item;
+  trace_.launch(size_t(batch.launch_count) * items_per_record, gpu_.groups().traversal);
+
+  gbuffer.bind(reduce_);
+  reduce_.set_buffer<cl_uint>("candidates", candidates)
+      .set("batch", batch)
+      .set_buffer<cl_float4>("samples", samples_)
+      .set_buffer<cl_uint>("sample_rays", sample_rays_)
+      .set_buffer<CacheRecord>("records", records_)
+      .set_buffer<cl_ulong>("ray_total", ray_total_);
+  reduce_.launch(batch.launch_count, gpu_.groups().per_record);
+}
+
 void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
                          const HemisphereParams& params) {
   if (params.theta_strata == 0 || params.theta_strata > theta_capacity_ || params.phi_strata == 0 ||
@@ -67,23 +113,19 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   batch.hemisphere.bounces = bounces_;
   batch.candidate_count = count;
   batch.first_record = first;
-  scene_.bind(kernel_);
-  if (photon_map_) photon_map_->bind(kernel_);
-  gbuffer.bind(kernel_);
-  kernel_.set_buffer<cl_uint>("candidates", candidates)
-      .set("batch", batch)
-      .set_buffer<CacheRecord>("records", records_)
-      .set_buffer<GuideCluster>("guide", guide_)
-      .set_buffer<cl_ulong>("ray_total", ray_total_);
-  if (store_strata_) {
-    size_t strata = size_t(count) * params.theta_strata * params.phi_strata;
-    if (strata > strata_capacity_) {
-      strata_capacity_ = std::max(strata, strata_capacity_ * 2);
-      strata_ = gpu_.buffer(CL_MEM_READ_WRITE, strata_capacity_ * sizeof(cl_float4), "record strata");
-    }
-    kernel_.set_buffer<cl_float4>("strata", strata_);
+  batch.samples_per_item = unsigned(gpu_.groups().record_samples_per_item);
+  // Records with stored strata cast no guided rays (kernels/records.cl record_sample_count).
+  const size_t samples_per_record =
+      size_t(params.theta_strata) * params.phi_strata + (store_strata_ ? 0u : guide_rays_);
+  const size_t per_launch = std::clamp<size_t>(gpu_.groups().record_samples_per_launch / samples_per_record, 1, count);
+  reserve_samples(per_launch, samples_per_record, count);
+  for (size_t at = 0; at < count; at += per_launch) {
+    batch.first_candidate = uint32_t(at);
+    batch.launch_count = uint32_t(std::min(per_launch, count - at));
+    // Stored strata keep the whole batch; otherwise each launch's samples start the buffer.
+    batch.samples_first_candidate = store_strata_ ? 0u : batch.first_candidate;
+    compute_launch(gbuffer, candidates, batch, samples_per_record);
   }
-  kernel_.launch(count, gpu_.groups().per_record);
   gpu_.queue().finish();
 }
 

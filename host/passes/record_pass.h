@@ -1,5 +1,6 @@
-// Record computation (kernels/records.cl): owns the record array, which grows as placement adds batches. Both cache
-// methods compute their records here, so they are the same records.
+// Record computation (kernels/records.cl): owns the record array, which grows as placement adds batches, and the
+// per-ray samples a launch traces before they are reduced into records. Both cache methods compute their records here,
+// so they are the same records.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -34,22 +35,31 @@ class RecordPass {
   // With store_strata, of the last batch: float4 (L.rgb, hit distance) per stratum, [(i * M + row) * N + column] for
   // its record i, L the share of the light the light guide leaves to the strata (such records cast no guided rays:
   // each pixel samples the guide's share, kernels/glossy.cl).
-  const cl::Buffer& strata() const { return strata_; }
+  const cl::Buffer& strata() const { return samples_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t first, size_t count);
 
  private:
   void reserve(size_t count);  // grows the array, keeping what it holds
+  // Buffers for launches of `records` records of `samples_per_record` samples each; with store_strata the strata of
+  // a whole batch of `batch` records.
+  void reserve_samples(size_t records, size_t samples_per_record, size_t batch);
+  // Traces and reduces candidates batch.first_candidate .. + batch.launch_count - 1.
+  void compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates, const RecordBatchParams& batch,
+                      size_t samples_per_record);
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
   unsigned theta_capacity_;
   bool store_strata_;
   const PhotonMapPass* photon_map_;
-  NamedKernel kernel_;
-  cl::Buffer records_, ray_total_, strata_, guide_;
+  NamedKernel aim_, trace_, reduce_;
+  cl::Buffer records_, ray_total_, guide_;
+  // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast. With store_strata,
+  // samples_ is the whole batch's strata (strata()).
+  cl::Buffer record_guides_, samples_, sample_rays_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
-  size_t capacity_ = 0, strata_capacity_ = 0;
+  size_t capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0;
 };
 
 }  // namespace rcsplat
