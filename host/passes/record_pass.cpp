@@ -56,15 +56,21 @@ void RecordPass::reserve(size_t count) {
 }
 
 void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size_t batch) {
-  auto grow = [&](cl::Buffer& buffer, size_t& capacity, size_t needed, size_t element, const char* what) {
+  // Doubling spares a reallocation per placement level, but never past what one launch can hold: launches are
+  // capped (record_samples_per_launch), so that cap bounds the samples' memory.
+  const size_t most_records = std::max<size_t>(gpu_.groups().record_samples_per_launch / samples_per_record, 1);
+  auto grow = [&](cl::Buffer& buffer, size_t& capacity, size_t needed, size_t element, size_t ceiling,
+                  const char* what) {
     if (needed <= capacity) return;
-    capacity = std::max(needed, capacity * 2);
+    capacity = std::max(needed, std::min(capacity * 2, ceiling));
     buffer = gpu_.buffer(CL_MEM_READ_WRITE, capacity * element, what);
   };
-  grow(record_guides_, guides_capacity_, records, sizeof(RecordGuideCones), "record guide cones");
+  const size_t launch_samples = most_records * samples_per_record;
+  grow(record_guides_, guides_capacity_, records, sizeof(RecordGuideCones), most_records, "record guide cones");
   grow(samples_, samples_capacity_, (store_strata_ ? batch : records) * samples_per_record, sizeof(cl_float4),
-       store_strata_ ? "record strata" : "record samples");
-  grow(sample_rays_, sample_rays_capacity_, records * samples_per_record, sizeof(cl_uint), "record samples");
+       store_strata_ ? batch * samples_per_record : launch_samples, store_strata_ ? "record strata" : "record samples");
+  grow(sample_rays_, sample_rays_capacity_, records * samples_per_record, sizeof(cl_uint), launch_samples,
+       "record samples");
 }
 
 void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates,
