@@ -25,13 +25,11 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       scene_(scene),
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
-      photon_map_(photon_map),
-      aim_(gpu.kernel("records.cl", "aim_record_guides",
-                      record_defines(scene, theta_strata, store_strata, photon_map != nullptr))),
-      trace_(gpu.kernel("records.cl", "trace_record_rays",
-                        record_defines(scene, theta_strata, store_strata, photon_map != nullptr))),
-      reduce_(gpu.kernel("records.cl", "reduce_records",
-                         record_defines(scene, theta_strata, store_strata, photon_map != nullptr))) {
+      photon_map_(photon_map) {
+  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_map != nullptr);
+  aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
+  trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
+  reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
   guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
   reserve(1024);
