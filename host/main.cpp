@@ -124,6 +124,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--spacing", spacing,
                          "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
                              shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));
+  render_cmd->add_option("--hessian-error", render.settings.cache.hessian_error,
+                         "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
+                         "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
+                             shortest(cache_defaults.hessian_error))
+      ->check(CLI::Range(0.0f, 1e6f));
   render_cmd->add_option("--guide-rays", render.settings.cache.guide_rays,
                          "Rays per record aimed at the brightest directly lit places (photons from the lights find "
                          "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +

@@ -12,6 +12,7 @@
 #include "bounce.h"
 #include "cache_math.h"
 #include "light_guide.h"
+#include "record_hessian.h"
 
 // The host compiles this file with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
 // HEMISPHERE_MAX_THETA_STRATA): reduce_records keeps one column of M strata in private memory. With STORE_STRATA = 1
@@ -71,14 +72,19 @@ inline void bound_gradient(float3* gradient, float3 limit) {
 
 // Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
 // leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
-inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                             const GuideCone* cones, uint cone_count, uint* rays) {
+// Stratum s's ray direction (row j = s / N, column k = s % N), jittered in its stratum by the record's stream.
+inline float3 stratum_direction(RecordSite site, HemisphereParams hp, uint s) {
   const uint N = hp.phi_strata, k = s % N;
-  const float dphi = 2.0f * RC_PI / (float)N;
   float sin2 = stratum_sin2_theta(hp, site.key, s);
   float sin_t = sqrt(sin2), cos_t = sqrt(1.0f - sin2);
-  float cos_phi, sin_phi = sincos(((float)k + random01(site.key, s, 1u)) * dphi, &cos_phi);
-  float3 dir = (cos_phi * sin_t) * site.t + (sin_phi * sin_t) * site.b + cos_t * site.n;
+  float cos_phi, sin_phi = sincos(((float)k + random01(site.key, s, 1u)) * (2.0f * RC_PI / (float)N), &cos_phi);
+  return (cos_phi * sin_t) * site.t + (sin_phi * sin_t) * site.b + cos_t * site.n;
+}
+
+inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
+                             const GuideCone* cones, uint cone_count, uint* rays) {
+  float3 dir = stratum_direction(site, hp, s);
+  float cos_t = sqrt(1.0f - stratum_sin2_theta(hp, site.key, s));
   float r = INFINITY;
   float3 l = (float3)(0.0f);
   if (dot(dir, site.ng) > 0.0f)  // a direction below the geometric surface sees nothing
@@ -149,6 +155,87 @@ __kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __glob
                  : guided_sample(SCENE GATHER_MAP, site, hp, s, cones, cone_count, &rays);
     own_rays[s] = rays;
   }
+}
+
+// Column k of the strata's hit points relative to the record's origin (xyz, distance in w) and their relative values.
+// Distances are held in [near, far]: misses go far beyond the scene, and hits nearer than near (whose 1/d^6 terms
+// would overflow float) count as at near, where the radius' lower clamp rules anyway.
+inline void hessian_mesh_column(__global const float4* own, RecordSite site, HemisphereParams hp, uint k, float near,
+                                float far, float value_scale, float value_floor, float4* points, float* values) {
+  for (uint j = 0; j < hp.theta_strata; ++j) {
+    uint s = j * hp.phi_strata + k;
+    float4 sample = own[s];
+    float d = clamp(sample.w, near, far);
+    points[j] = (float4)(d * stratum_direction(site, hp, s), d);
+    values[j] = dot(sample.xyz, (float3)(0.2126f, 0.7152f, 0.0722f)) * value_scale + value_floor;
+  }
+}
+
+// The value a triangle of the mesh takes: its farthest vertex's (Schwarzhaupt et al.: a triangle spanning a depth
+// step shows the background, not the occluder's edge).
+inline float back_value(float4 p0, float v0, float4 p1, float v1, float4 p2, float v2) {
+  float v = p1.w > p0.w ? v1 : v0, d = fmax(p0.w, p1.w);
+  return p2.w > d ? v2 : v;
+}
+
+// The tangent-plane Hessian of the record's relative irradiance (E over the strata's mean, per world length^2), from
+// the mesh its strata's hits make. Vertices V(j, k) (row j, column k, k wrapping at N); each cell between rows j and
+// j + 1 and columns k and k + 1 holds triangles A = V(j,k) V(j+1,k) V(j,k+1) and B = V(j+1,k+1) V(j,k+1) V(j+1,k),
+// and row 0 closes into one polygon around the zenith (the cap, its vertices' mean value). Each edge is evaluated once,
+// weighted by the difference of the values on its two sides; the gap below the last row (half a stratum above the
+// horizon) is left open, as Schwarzhaupt et al. leave theirs. Values are luminance over the strata's mean, times 0.99,
+// plus 0.01 (their robust relative metric: black occluders before black still count); all 1 where the strata saw no
+// light at all, which leaves the geometric Hessian.
+inline TangentBlock relative_irradiance_hessian(__global const float4* own, RecordSite site, HemisphereParams hp,
+                                                float near, float far) {
+  const uint M = hp.theta_strata, N = hp.phi_strata;
+  float luminance_sum = 0.0f;
+  for (uint s = 0; s < M * N; ++s) luminance_sum += dot(own[s].xyz, (float3)(0.2126f, 0.7152f, 0.0722f));
+  float value_scale = 0.0f, value_floor = 1.0f;
+  if (luminance_sum > 0.0f && isfinite(luminance_sum)) {
+    value_scale = 0.99f * (float)(M * N) / luminance_sum;
+    value_floor = 0.01f;
+  }
+  float4 first_p[THETA_STRATA_CAPACITY], cur_p[THETA_STRATA_CAPACITY], next_p[THETA_STRATA_CAPACITY];
+  float first_v[THETA_STRATA_CAPACITY], cur_v[THETA_STRATA_CAPACITY], next_v[THETA_STRATA_CAPACITY];
+  float first_a[THETA_STRATA_CAPACITY], prev_b[THETA_STRATA_CAPACITY];  // A(j, 0); B(j, k - 1)
+  hessian_mesh_column(own, site, hp, 0, near, far, value_scale, value_floor, first_p, first_v);
+  float cap = 0.0f;
+  for (uint k = 0; k < N; ++k) cap += dot(own[k].xyz, (float3)(0.2126f, 0.7152f, 0.0722f)) * value_scale + value_floor;
+  cap /= (float)N;
+  for (uint j = 0; j < M; ++j) {
+    cur_p[j] = first_p[j];
+    cur_v[j] = first_v[j];
+  }
+  const float3 n = site.n, t = site.t, b = site.b;
+  TangentBlock h = (TangentBlock)(0.0f);
+  for (uint k = 0; k < N; ++k) {
+    if (k + 1 < N) hessian_mesh_column(own, site, hp, k + 1, near, far, value_scale, value_floor, next_p, next_v);
+    else
+      for (uint j = 0; j < M; ++j) {
+        next_p[j] = first_p[j];
+        next_v[j] = first_v[j];
+      }
+    float above = cap;  // the value above row j's edge V(j,k) V(j,k+1): the cap, then B(j - 1, k)
+    for (uint j = 0; j + 1 < M; ++j) {
+      float va = back_value(cur_p[j], cur_v[j], cur_p[j + 1], cur_v[j + 1], next_p[j], next_v[j]);
+      float vb = back_value(next_p[j + 1], next_v[j + 1], next_p[j], next_v[j], cur_p[j + 1], cur_v[j + 1]);
+      h += (va - vb) * edge_form_factor_hessian(cur_p[j + 1].xyz, next_p[j].xyz, n, t, b);  // the diagonal
+      h += (above - va) * edge_form_factor_hessian(cur_p[j].xyz, next_p[j].xyz, n, t, b);    // row j's edge
+      if (k > 0) h += (va - prev_b[j]) * edge_form_factor_hessian(cur_p[j].xyz, cur_p[j + 1].xyz, n, t, b);
+      else first_a[j] = va;
+      prev_b[j] = vb;
+      above = vb;
+    }
+    h += above * edge_form_factor_hessian(cur_p[M - 1].xyz, next_p[M - 1].xyz, n, t, b);  // the open bottom row
+    for (uint j = 0; j < M; ++j) {
+      cur_p[j] = next_p[j];
+      cur_v[j] = next_v[j];
+    }
+  }
+  for (uint j = 0; j + 1 < M; ++j)  // column 0's edges between A(j, 0) and B(j, N - 1)
+    h += (first_a[j] - prev_b[j]) * edge_form_factor_hessian(first_p[j].xyz, first_p[j + 1].xyz, n, t, b);
+  return h;
 }
 
 // One work-item per record of the launch: its samples reduced in the order of the strata (columns k, rows j within),
@@ -237,10 +324,17 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
   }
   e = finite_or_zero(e * norm + e_guided);
 
-  // Radius: Ward's harmonic mean distance, clamped to [min, max] pixel footprints at the record.
+  // Radius: Ward's harmonic mean distance, or the occlusion Hessian's, clamped to [min, max] pixel footprints.
   float harmonic = (float)(M * N) / inverse_distances;
   float pixel_size = pixel_world_size(camera, site.p);
-  float radius = clamp(harmonic, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
+  float unclamped = harmonic;
+  if (hp.hessian_error > 0.0f) {
+    float near = 0.25f * pixel_size, far = 1e3f * hp.max_radius_pixels * pixel_size;
+    float curvature =
+        largest_curvature(relative_irradiance_hessian(own, site, hp, near, far)) * pixel_size * pixel_size;
+    unclamped = curvature > 0.0f ? pixel_size * sqrt(sqrt(hp.hessian_error / curvature)) : INFINITY;
+  }
+  float radius = clamp(unclamped, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
   if (!(radius > 0.0f)) radius = fmax(hp.min_radius_pixels * pixel_size, 1e-30f);
   // Bounded gradients (ALGORITHM.md section 5): translation changes E by at most E across R, rotation by at most E.
   bound_gradient(grad_t, e / radius);

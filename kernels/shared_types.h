@@ -214,6 +214,10 @@ typedef struct {
   rc_uint guide_rays;       // rays aimed at the light guide's clusters, beside the M x N strata (0: none)
   rc_uint guide_clusters;   // clusters in the guide, 0 .. GUIDE_MAX_CLUSTERS
   rc_uint bounces;          // indirect bounces each ray gathers (kernels/bounce.h; 0 counts as 1)
+  // The radius rule: 0 for Ward's harmonic mean distance; otherwise the occlusion Hessian's error budget C, the
+  // radius then (C / lambda)^(1/4) pixel footprints for the relative irradiance's largest curvature lambda per pixel^2
+  // (kernels/record_hessian.h). Either is clamped to [min, max].
+  float hessian_error;
 } HemisphereParams;
 
 // The light guide (kernels/light_guide.cl, kernels/light_guide.h): where the scene's directly lit surfaces send the
@@ -370,7 +374,7 @@ typedef struct {
   rc_uint launch_count;
   rc_uint samples_first_candidate;
   rc_uint samples_per_item;  // consecutive samples of one record each work-item of the trace takes (1 on a GPU)
-  rc_uint pad[2];
+  rc_uint pad;
 } RecordBatchParams;
 
 // One light-guide cone as a record's rays share it (kernels/light_guide.h GuideCone, stored).
@@ -428,7 +432,7 @@ static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
-static_assert(sizeof(HemisphereParams) == 32);
+static_assert(sizeof(HemisphereParams) == 36);
 static_assert(sizeof(GuideCluster) == 48);
 static_assert(sizeof(PhotonHit) == 48);
 static_assert(sizeof(PhotonParams) == 32);

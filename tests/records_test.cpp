@@ -116,13 +116,14 @@ std::vector<uint32_t> random_covered_pixels(const std::vector<GBufferSample>& g,
 
 // The record kernel against compute_host_record on 200 random pixels of the scene's camera view; with a light guide
 // (photons from the scene's lights, clustered), guided rays too. Returns how many records took guided rays.
-size_t expect_records_match_host(const Scene& scene, bool guided) {
+size_t expect_records_match_host(const Scene& scene, bool guided, const HemisphereParams& hp_in = clamped_hemisphere(),
+                                 double radius_tolerance = 1e-4) {
   test::TwinScene twin(scene);
   GpuContext& gpu = test::gpu();
   GBufferPass gbuffer(gpu, twin.device);
   std::vector<GBufferSample> g = camera_gbuffer(gbuffer, twin.scene, 48, 48);
   std::vector<uint32_t> pixels = random_covered_pixels(g, 200, 3);
-  HemisphereParams hp = clamped_hemisphere();
+  HemisphereParams hp = hp_in;
   RecordPass pass(gpu, twin.device, hp.theta_strata);
   std::vector<GuideCluster> guide;
   if (guided) {
@@ -138,6 +139,7 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
   // Float directions and hit points differ from double ones by ~1e-7: a ray grazing an edge may land elsewhere, so a
   // few records may differ by one ray's share; the bulk must agree to float precision.
   std::vector<double> e_err, r_err, g_err, h_err;
+  size_t unclamped = 0;
   for (size_t i = 0; i < pixels.size(); ++i) {
     HostRecord host = host_record_at(twin, g[pixels[i]], pixels[i], device[i].pixel_size, hp, guide);
     with_guided_rays += host.rays > hp.theta_strata * hp.phi_strata;
@@ -155,6 +157,8 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
     }
     e_err.push_back(e_diff / e_scale);
     r_err.push_back(std::abs(device[i].radius - host.radius) / host.radius);
+    double pixel = device[i].pixel_size;
+    unclamped += host.radius > 1.001 * hp.min_radius_pixels * pixel && host.radius < 0.999 * hp.max_radius_pixels * pixel;
     for (size_t s = 0; s < host.horizon.size(); ++s) {
       double h = host.horizon[s], d = device[i].horizon[s];
       h_err.push_back(std::isinf(h) || std::isinf(d) ? (std::isinf(h) && std::isinf(d) ? 0.0 : 1.0) : std::abs(d - h) / h);
@@ -168,7 +172,10 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
   // Guided terms span more decades (a tiny cone's 1 / pdf against a stratum's), so float sums round a little more.
   EXPECT_LT(quantile(e_err, 0.5), guided ? 3e-5 : 1e-5);
   EXPECT_LT(quantile(e_err, 0.95), 1e-3);
-  EXPECT_LT(quantile(r_err, 0.95), 1e-4);
+  EXPECT_LT(quantile(r_err, 0.95), radius_tolerance);
+  std::printf("radii inside their clamps: %zu of %zu; relative radius error: median %.2e, 95%% %.2e\n", unclamped,
+              pixels.size(), quantile(r_err, 0.5), quantile(r_err, 0.95));
+  if (hp.hessian_error > 0.0f) EXPECT_GT(unclamped, pixels.size() / 2) << "the Hessian's radii are barely tested";
   EXPECT_LT(quantile(h_err, 0.95), 1e-4);
   EXPECT_LT(quantile(g_err, 0.5), 1e-4);
   EXPECT_LT(quantile(g_err, 0.95), 1e-2);
@@ -176,6 +183,19 @@ size_t expect_records_match_host(const Scene& scene, bool guided) {
 }
 
 TEST(RecordKernel, MatchesHostDoublePrecisionRecords) { expect_records_match_host(make_cornell_box(), false); }
+
+// Radii from the occlusion Hessian (kernels/record_hessian.h): the kernel's closed form per mesh edge, in float,
+// against the host's central differences of Lambert's exact form factors of the same mesh, in double. Clamps wide
+// open, so that the radii compared are the Hessian's own. Measured: relative radius error median 1.4e-7, 95% 8e-7
+// (float hit points; fourth roots quarter a curvature's relative error), hence 1e-5. The recurrences taken from an
+// edge's far end instead gave 0.46 at the 95% quantile.
+TEST(RecordKernel, HessianRadiiMatchHostFiniteDifferences) {
+  HemisphereParams hp = hemisphere(8, 16);
+  hp.min_radius_pixels = 1e-3f;
+  hp.max_radius_pixels = 1e3f;
+  hp.hessian_error = 1000.0f;
+  expect_records_match_host(make_cornell_box(), false, hp, 1e-5);
+}
 
 // The corridor lit by a small bright patch (issue 10), in its own device frame as render() would trace it: the light
 // guide's cones, ray directions and balance-heuristic weights must match the host's double-precision ones.

@@ -19,6 +19,9 @@ struct CacheSettings {
   // open areas. The command line's --spacing MIN,MAX.
   float min_reach_pixels = 3.0f;
   float max_reach_pixels = 20.0f;
+  // The radius rule: 0 for Ward's split sphere (the harmonic mean hit distance); otherwise the error budget C of the
+  // occlusion Hessian (Schwarzhaupt et al. 2012; kernels/record_hessian.h). The command line's --hessian-error.
+  float hessian_error = 0.0f;
   int coarsest_spacing_pixels = 32;
   // Placement stops at this spacing (with its extra rounds). Anti-aliasing sets it to one output pixel in sub-pixels, so
   // records are placed as at one sample; the sub-pixels they leave unreached take the best-weighted record near them

@@ -37,6 +37,74 @@ void frame_around(const dvec3& n, dvec3& t, dvec3& b) {
 
 dvec3 load3(const float* v) { return dvec3(v[0], v[1], v[2]); }
 
+// Lambert's form factor of the polygon seen from x with normal n: 1/(2 pi) sum_edges angle * n.(r_i x r_i+1)/|..|,
+// signed by the polygon's winding.
+double polygon_form_factor(const std::vector<dvec3>& polygon, const dvec3& x, const dvec3& n) {
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    dvec3 ra = polygon[i] - x, rb = polygon[(i + 1) % polygon.size()] - x, c = glm::cross(ra, rb);
+    double len = glm::length(c);
+    if (len > 0.0) sum += std::atan2(len, glm::dot(ra, rb)) * glm::dot(n, c) / len;
+  }
+  return sum / (2.0 * kPi);
+}
+
+// The largest curvature (eigenvalue magnitude) of the record's relative irradiance along its tangent plane, for the
+// occlusion-Hessian radius: the mesh of kernels/records.cl relative_irradiance_hessian (hit points, values, the
+// farthest vertex's value per triangle, the cap), its irradiance sum_polygons value * form factor evaluated exactly at
+// offsets of the receiver, and the Hessian by central differences (not the kernel's closed form per edge).
+double relative_irradiance_curvature(const std::vector<dvec3>& dirs, const std::vector<dvec3>& L,
+                                     const std::vector<double>& r, int M, int N, const dvec3& n, const dvec3& t,
+                                     const dvec3& b, double near, double far) {
+  auto luminance = [](const dvec3& l) { return 0.2126 * l.x + 0.7152 * l.y + 0.0722 * l.z; };
+  double sum = 0.0;
+  for (const dvec3& l : L) sum += luminance(l);
+  double scale = 0.0, floor = 1.0;
+  if (sum > 0.0 && std::isfinite(sum)) {
+    scale = 0.99 * M * N / sum;
+    floor = 0.01;
+  }
+  auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };
+  std::vector<dvec3> point(L.size());
+  std::vector<double> dist(L.size()), value(L.size());
+  for (size_t s = 0; s < L.size(); ++s) {
+    dist[s] = std::clamp(r[s], near, far);
+    point[s] = dirs[s] * dist[s];
+    value[s] = luminance(L[s]) * scale + floor;
+  }
+  std::vector<std::vector<dvec3>> polygons;
+  std::vector<double> values;
+  std::vector<dvec3> cap;
+  double cap_value = 0.0;
+  for (int k = 0; k < N; ++k) {
+    cap.push_back(point[at(0, k)]);
+    cap_value += value[at(0, k)] / N;
+  }
+  polygons.push_back(cap);
+  values.push_back(cap_value);
+  for (int j = 0; j + 1 < M; ++j)
+    for (int k = 0; k < N; ++k)
+      for (auto tri : {std::array<size_t, 3>{at(j, k), at(j + 1, k), at(j, k + 1)},
+                       std::array<size_t, 3>{at(j + 1, k + 1), at(j, k + 1), at(j + 1, k)}}) {
+        size_t farthest = tri[0];
+        for (size_t v : tri)
+          if (dist[v] > dist[farthest]) farthest = v;
+        polygons.push_back({point[tri[0]], point[tri[1]], point[tri[2]]});
+        values.push_back(value[farthest]);
+      }
+  auto irradiance = [&](double dt, double db) {
+    dvec3 x = dt * t + db * b;
+    double e = 0.0;
+    for (size_t i = 0; i < polygons.size(); ++i) e += values[i] * polygon_form_factor(polygons[i], x, n);
+    return e;
+  };
+  double h = 1e-3 * *std::min_element(dist.begin(), dist.end()), e0 = irradiance(0, 0);
+  double tt = (irradiance(h, 0) - 2.0 * e0 + irradiance(-h, 0)) / (h * h);
+  double bb = (irradiance(0, h) - 2.0 * e0 + irradiance(0, -h)) / (h * h);
+  double tb = (irradiance(h, h) - irradiance(h, -h) - irradiance(-h, h) + irradiance(-h, -h)) / (4.0 * h * h);
+  return std::abs(0.5 * (tt + bb)) + std::hypot(0.5 * (tt - bb), tb);
+}
+
 // The cluster's flux leaving a disc toward p: Phi cos cos' / (pi d^2), visibility ignored, d at least the radius.
 double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n) {
   dvec3 to = load3(g.centre) - p;
@@ -120,7 +188,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
       hp.guide_rays ? host_guide_cones(guide, p, n, M * N) : std::vector<HostGuideCone>{};
   const double guided = cones.empty() ? 0.0 : double(hp.guide_rays), strata_density = M * N / kPi;
 
-  std::vector<dvec3> L(size_t(M * N));
+  std::vector<dvec3> L(size_t(M * N)), dirs(size_t(M * N));
   std::vector<double> r(size_t(M * N)), sin_theta(size_t(M * N));
   HostRecord rec;
   for (int j = 0; j < M; ++j)
@@ -131,6 +199,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
       double st = std::sqrt(sin2), ct = std::sqrt(1.0 - sin2);
       sin_theta[size_t(s)] = st;
       dvec3 dir = std::cos(phi) * st * t + std::sin(phi) * st * b + ct * n;
+      dirs[size_t(s)] = dir;
       double dist = std::numeric_limits<double>::infinity();
       dvec3 l(0.0);
       if (glm::dot(dir, ng) > 0.0) {
@@ -207,7 +276,15 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   rec.harmonic_distance = double(M * N) / inverse_distances;
   rec.pixel_size = pixel_size;
   rec.pixel = pixel;
-  rec.radius = std::clamp(rec.harmonic_distance, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
+  double unclamped = rec.harmonic_distance;
+  if (hp.hessian_error > 0.0f) {
+    double curvature = relative_irradiance_curvature(dirs, L, r, M, N, n, t, b, 0.25 * pixel_size,
+                                                     1e3 * hp.max_radius_pixels * pixel_size) *
+                       pixel_size * pixel_size;
+    unclamped = curvature > 0.0 ? pixel_size * std::pow(hp.hessian_error / curvature, 0.25)
+                                : std::numeric_limits<double>::infinity();
+  }
+  rec.radius = std::clamp(unclamped, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
   bound(rec.grad_translation, rec.irradiance / rec.radius);
   bound(rec.grad_rotation, rec.irradiance);
   return rec;

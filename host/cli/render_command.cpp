@@ -75,7 +75,9 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     const CacheSettings& c = settings.cache;
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
-    std::printf(", record spacing %g..%g pixels\n", c.min_reach_pixels, c.max_reach_pixels);
+    std::printf(", record spacing %g..%g pixels, ", c.min_reach_pixels, c.max_reach_pixels);
+    if (c.hessian_error > 0.0f) std::printf("radii from the occlusion Hessian (error budget %g)\n", c.hessian_error);
+    else std::printf("radii from Ward's split sphere\n");
     if (s.photon_map_photons)
       std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g (%.3f s)\n",
                   s.bounces, (unsigned long long)s.photon_map_photons, (unsigned long long)s.photon_map_paths,
@@ -160,7 +162,9 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
     for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing_pixels}, {"records", l.records}});
     j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
                   {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
-                  {"spacing", {c.min_reach_pixels, c.max_reach_pixels}}, {"records", s.records}, {"levels", levels},
+                  {"spacing", {c.min_reach_pixels, c.max_reach_pixels}},
+                  {"radius_rule", c.hessian_error > 0.0f ? "occlusion_hessian" : "split_sphere"},
+                  {"hessian_error", c.hessian_error}, {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"filled_sub_pixels", s.filled_sub_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius},
                   {"light_guide", {{"rays_per_record", s.guide_clusters ? c.guide_rays : 0u},
