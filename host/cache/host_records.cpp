@@ -64,7 +64,17 @@ double relative_irradiance_curvature(const std::vector<dvec3>& dirs, const std::
     scale = 0.99 * M * N / sum;
     floor = 0.01;
   }
-  auto at = [&](int j, int k) { return size_t(j * N + ((k % N) + N) % N); };
+  // The mesh: rows and columns of the strata taken every step-th (4 of each where they divide evenly), the rows
+  // ending at the last; kernels/records.cl hessian_mesh.
+  auto step_of = [](int strata) {
+    int step = strata / 4;
+    return step > 1 && strata % step == 0 ? step : 1;
+  };
+  const int row_step = step_of(M), column_step = step_of(N), rows = M / row_step, columns = N / column_step;
+  const int row_first = M - 1 - (rows - 1) * row_step;
+  auto at = [&](int j, int k) {
+    return size_t((row_first + j * row_step) * N + ((k % columns) + columns) % columns * column_step);
+  };
   std::vector<dvec3> point(L.size());
   std::vector<double> dist(L.size()), value(L.size());
   for (size_t s = 0; s < L.size(); ++s) {
@@ -76,14 +86,14 @@ double relative_irradiance_curvature(const std::vector<dvec3>& dirs, const std::
   std::vector<double> values;
   std::vector<dvec3> cap;
   double cap_value = 0.0;
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k < columns; ++k) {
     cap.push_back(point[at(0, k)]);
-    cap_value += value[at(0, k)] / N;
+    cap_value += value[at(0, k)] / columns;
   }
   polygons.push_back(cap);
   values.push_back(cap_value);
-  for (int j = 0; j + 1 < M; ++j)
-    for (int k = 0; k < N; ++k)
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int k = 0; k < columns; ++k)
       for (auto tri : {std::array<size_t, 3>{at(j, k), at(j + 1, k), at(j, k + 1)},
                        std::array<size_t, 3>{at(j + 1, k + 1), at(j, k + 1), at(j + 1, k)}}) {
         size_t farthest = tri[0];
@@ -98,7 +108,10 @@ double relative_irradiance_curvature(const std::vector<dvec3>& dirs, const std::
     for (size_t i = 0; i < polygons.size(); ++i) e += values[i] * polygon_form_factor(polygons[i], x, n);
     return e;
   };
-  double h = 1e-3 * *std::min_element(dist.begin(), dist.end()), e0 = irradiance(0, 0);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < rows; ++j)
+    for (int k = 0; k < columns; ++k) nearest = std::min(nearest, dist[at(j, k)]);
+  double h = 1e-3 * nearest, e0 = irradiance(0, 0);
   double tt = (irradiance(h, 0) - 2.0 * e0 + irradiance(-h, 0)) / (h * h);
   double bb = (irradiance(0, h) - 2.0 * e0 + irradiance(0, -h)) / (h * h);
   double tb = (irradiance(h, h) - irradiance(h, -h) - irradiance(-h, h) + irradiance(-h, -h)) / (4.0 * h * h);

@@ -58,6 +58,9 @@ RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height
   // Record reach and placement in sub-pixels: the same world-space records as at one sample.
   sub.cache.min_reach_pixels *= float(side);
   sub.cache.max_reach_pixels *= float(side);
+  // The Hessian's radius is (C / lambda)^(1/4) footprints for lambda per footprint^2, so sqrt(footprint) * (C /
+  // lambda_world)^(1/4) in world units: side^2 times C keeps it one output pixel's.
+  sub.cache.hessian_error *= float(side * side);
   sub.cache.coarsest_spacing_pixels *= int(side);
   // Placement stops one output pixel apart, as at one sample: the records (and their rays) are one sample's, and
   // sub-pixels that none reaches (slivers along edges) take the best-weighted record near them.
