@@ -1,6 +1,6 @@
 // Record computation (ALGORITHM.md sections 4 and 5): for each candidate pixel, M x N stratified cosine-weighted rays
-// over the hemisphere of its G-buffer point give the irradiance E, the validity radius (from the occlusion Hessian of
-// the irradiance, or Ward's harmonic mean distance; clamped in screen space) and Ward & Heckbert's rotational and
+// over the hemisphere of its G-buffer point give the irradiance E, the validity radius (Ward's harmonic mean distance,
+// or with hessian_error the occlusion Hessian's; clamped in screen space) and Ward & Heckbert's rotational and
 // translational gradients, bounded.
 //
 // The work is spread over rays, not only over records (a coarse placement level has a few hundred records but a

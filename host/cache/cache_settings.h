@@ -19,12 +19,13 @@ struct CacheSettings {
   // open areas. The command line's --spacing MIN,MAX.
   float min_reach_pixels = 3.0f;
   float max_reach_pixels = 20.0f;
-  // The radius rule: the error budget C of the occlusion Hessian (Schwarzhaupt et al. 2012; kernels/record_hessian.h),
-  // or 0 for Ward's split sphere (the harmonic mean hit distance). The command line's --hessian-error. In output
-  // pixels: anti-aliasing's sub-pixel frame scales it (host/render/pixel_samples.cpp). 750: on Sponza at 1024 x 768
-  // the same error as the split sphere with 7% fewer records in 0.87x the frame time; on the Cornell box 7% less
-  // relMSE and 14% less block error (benchmarks/RESULTS.md "Record radii").
-  float hessian_error = 750.0f;
+  // The radius rule: 0 for Ward's split sphere (the harmonic mean hit distance), or the error budget C of the
+  // occlusion Hessian (Schwarzhaupt et al. 2012; kernels/record_hessian.h), per output pixel: anti-aliasing's sub-pixel
+  // frame scales it (host/render/pixel_samples.cpp). The command line's --hessian-error. Not the default: C = 750
+  // gave Sponza 1024 x 768 the same error in 0.91x the frame and the Cornell box 7% / 14% less relMSE / block error,
+  // but Sibenik 2-5x the block error (noise read as curvature shrinks radii where its few bright patches make records
+  // noisy; benchmarks/RESULTS.md "Record radii").
+  float hessian_error = 0.0f;
   int coarsest_spacing_pixels = 32;
   // Placement stops at this spacing (with its extra rounds). Anti-aliasing sets it to one output pixel in sub-pixels, so
   // records are placed as at one sample; the sub-pixels they leave unreached take the best-weighted record near them
