@@ -72,8 +72,6 @@ inline void bound_gradient(float3* gradient, float3 limit) {
   for (int a = 0; a < 3; ++a) gradient[a] = finite_or_zero(gradient[a] * scale);
 }
 
-// Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
-// leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
 // Stratum s's ray direction (row j = s / N, column k = s % N), jittered in its stratum by the record's stream.
 inline float3 stratum_direction(RecordSite site, HemisphereParams hp, uint s) {
   const uint N = hp.phi_strata, k = s % N;
@@ -83,6 +81,8 @@ inline float3 stratum_direction(RecordSite site, HemisphereParams hp, uint s) {
   return (cos_phi * sin_t) * site.t + (sin_phi * sin_t) * site.b + cos_t * site.n;
 }
 
+// Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
+// leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
 inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
                              const GuideCone* cones, uint cone_count, uint* rays) {
   float3 dir = stratum_direction(site, hp, s);
@@ -194,7 +194,7 @@ inline void hessian_mesh_column(__global const float4* own, RecordSite site, Hem
     float4 sample = own[s];
     float d = clamp(sample.w, near, far);
     points[m] = (float4)(d * stratum_direction(site, hp, s), d);
-    values[m] = dot(sample.xyz, (float3)(0.2126f, 0.7152f, 0.0722f)) * value_scale + value_floor;
+    values[m] = luminance(sample.xyz) * value_scale + value_floor;
   }
 }
 
@@ -217,7 +217,7 @@ inline TangentBlock relative_irradiance_hessian(__global const float4* own, Reco
                                                 float near, float far) {
   const uint strata = hp.theta_strata * hp.phi_strata;
   float luminance_sum = 0.0f;
-  for (uint s = 0; s < strata; ++s) luminance_sum += dot(own[s].xyz, (float3)(0.2126f, 0.7152f, 0.0722f));
+  for (uint s = 0; s < strata; ++s) luminance_sum += luminance(own[s].xyz);
   float value_scale = 0.0f, value_floor = 1.0f;
   if (luminance_sum > 0.0f && isfinite(luminance_sum)) {
     value_scale = 0.99f * (float)strata / luminance_sum;
@@ -231,9 +231,7 @@ inline TangentBlock relative_irradiance_hessian(__global const float4* own, Reco
   hessian_mesh_column(own, site, hp, mesh, 0, near, far, value_scale, value_floor, first_p, first_v);
   float cap = 0.0f;
   for (uint k = 0; k < N; ++k)
-    cap += dot(own[mesh.row_first * hp.phi_strata + k * mesh.column_step].xyz, (float3)(0.2126f, 0.7152f, 0.0722f)) *
-               value_scale +
-           value_floor;
+    cap += luminance(own[mesh.row_first * hp.phi_strata + k * mesh.column_step].xyz) * value_scale + value_floor;
   cap /= (float)N;
   for (uint j = 0; j < M; ++j) {
     cur_p[j] = first_p[j];
