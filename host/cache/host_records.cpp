@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels/counter_random.h"
+#include "util/luminance.h"
 #include "util/ray_offset.h"
 
 namespace rcsplat {
@@ -56,7 +57,6 @@ double polygon_form_factor(const std::vector<dvec3>& polygon, const dvec3& x, co
 double relative_irradiance_curvature(const std::vector<dvec3>& dirs, const std::vector<dvec3>& L,
                                      const std::vector<double>& r, int M, int N, const dvec3& n, const dvec3& t,
                                      const dvec3& b, double near, double far) {
-  auto luminance = [](const dvec3& l) { return 0.2126 * l.x + 0.7152 * l.y + 0.0722 * l.z; };
   double sum = 0.0;
   for (const dvec3& l : L) sum += luminance(l);
   double scale = 0.0, floor = 1.0;
@@ -125,7 +125,7 @@ double promised_irradiance(const GuideCluster& g, const dvec3& p, const dvec3& n
   dvec3 axis = to / d, cn = load3(g.normal);
   double cos_here = std::clamp(glm::dot(axis, n) + radius / d, 0.0, 1.0);
   double cos_there = std::clamp(-glm::dot(cn, axis) + (1.0 - std::min(glm::length(cn), 1.0)) + radius / d, 0.0, 1.0);
-  double flux = 0.2126 * g.flux[0] + 0.7152 * g.flux[1] + 0.0722 * g.flux[2];
+  double flux = luminance(g.flux);
   return flux * cos_here * cos_there / (kPi * d * d);
 }
 

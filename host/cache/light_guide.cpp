@@ -9,10 +9,10 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "util/luminance.h"
+
 namespace rcsplat {
 namespace {
-
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 glm::dvec3 load(const float* v) { return glm::dvec3(v[0], v[1], v[2]); }
 

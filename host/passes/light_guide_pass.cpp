@@ -4,12 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "util/luminance.h"
+
 namespace rcsplat {
-namespace {
-
-double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
-}  // namespace
 
 std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
                                         const std::vector<EmissiveTriangle>& emitters) {

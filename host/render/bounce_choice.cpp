@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "passes/light_guide_pass.h"
+#include "util/luminance.h"
 
 namespace rcsplat {
 namespace {
@@ -16,7 +17,7 @@ double kept_per_bounce(GpuContext& gpu, const DeviceScene& device_scene) {
   std::vector<PhotonHit> hits = LightGuidePass(gpu, device_scene).shoot(kProbePhotons, kProbeSeed, kProbeLandings);
   double flux[kProbeLandings] = {};
   for (size_t i = 0; i < hits.size(); ++i)
-    flux[i % kProbeLandings] += 0.2126 * hits[i].flux[0] + 0.7152 * hits[i].flux[1] + 0.0722 * hits[i].flux[2];
+    flux[i % kProbeLandings] += luminance(hits[i].flux);
   double before = flux[0] + flux[1] + flux[2], after = flux[1] + flux[2] + flux[3];
   return before > 0.0 && std::isfinite(before) && std::isfinite(after) ? after / before : 0.0;
 }

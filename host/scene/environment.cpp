@@ -4,13 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "util/luminance.h"
+
 
 namespace rcsplat {
-namespace {
-
-double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
-}  // namespace
 
 std::string format_rgb(const glm::vec3& c) {
   char text[96];
