@@ -213,11 +213,10 @@ inline float back_value(float4 p0, float v0, float4 p1, float v1, float4 p2, flo
 // last row (half a stratum above the horizon) is left open, as Schwarzhaupt et al. leave theirs. Values are luminance
 // over the strata's mean, times 0.99, plus 0.01 (their robust relative metric: black occluders before black still
 // count); all 1 where the strata saw no light at all, which leaves the geometric Hessian.
+// luminance_sum: of all the strata's radiance (the reduction has summed it already).
 inline TangentBlock relative_irradiance_hessian(__global const float4* own, RecordSite site, HemisphereParams hp,
-                                                float near, float far) {
+                                                float luminance_sum, float near, float far) {
   const uint strata = hp.theta_strata * hp.phi_strata;
-  float luminance_sum = 0.0f;
-  for (uint s = 0; s < strata; ++s) luminance_sum += luminance(own[s].xyz);
   float value_scale = 0.0f, value_floor = 1.0f;
   if (luminance_sum > 0.0f && isfinite(luminance_sum)) {
     value_scale = 0.99f * (float)strata / luminance_sum;
@@ -352,6 +351,7 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
     e_guided += own[s].xyz;
     rays += own_rays[s];
   }
+  const float strata_luminance = luminance(e);  // before e becomes the irradiance
   e = finite_or_zero(e * norm + e_guided);
 
   // Radius: Ward's harmonic mean distance, or the occlusion Hessian's, clamped to [min, max] pixel footprints.
@@ -360,8 +360,8 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
   float unclamped = harmonic;
   if (hp.hessian_error > 0.0f) {
     float near = 0.25f * pixel_size, far = 1e3f * hp.max_radius_pixels * pixel_size;
-    float curvature =
-        largest_curvature(relative_irradiance_hessian(own, site, hp, near, far)) * pixel_size * pixel_size;
+    TangentBlock hessian = relative_irradiance_hessian(own, site, hp, strata_luminance, near, far);
+    float curvature = largest_curvature(hessian) * pixel_size * pixel_size;
     unclamped = curvature > 0.0f ? pixel_size * sqrt(sqrt(hp.hessian_error / curvature)) : INFINITY;
   }
   float radius = clamp(unclamped, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
