@@ -74,8 +74,12 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
                   "and path samples are per pixel, records are those of one sample; default 4 for render, 16 for "
                   "reference (a finer grid, so compare counts a render's edge aliasing as error), fewer where --spp "
-                  "does not divide by them or the frame is very large")
+                  "does not divide by them or the frame is very large; path tracing takes each sample at a random "
+                  "point of its cell of the grid, so it integrates over the pixel's area")
       ->check(CLI::Range(1u, 64u));
+  cmd->add_flag("!--sub-pixel-centres", o.settings.path.pixel_area,
+                "Path tracing: take each pixel sample at the centre of its grid cell (the points a cache render "
+                "shades) instead of a random point of it");
   o.settings.pixel_samples = 0;  // chosen by render() (render/pixel_samples.h)
   o.settings.bounces = 0;
   cmd->add_option("--bounces", o.settings.bounces,

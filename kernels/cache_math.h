@@ -71,6 +71,44 @@ inline bool record_reaches(RC_GLOBAL const CacheRecord* rec, rc_float3 t, rc_flo
   return record_usable(w, accuracy, p, n, pk, nk, radius) && within_record_horizon(rec, t, b, p);
 }
 
+// A pixel no record reaches (with sub-pixels, placement stops one output pixel apart, so slivers along edges stay
+// uncovered) takes a record sitting within `window` pixels of (x, y) (record_at_pixel: placement's map, -1 where none
+// sits): the best Ward weight among those that face it, are not behind it and whose horizon does not hide it, else the
+// best-weighted that faces it. Returns the record, -1 where none faces the pixel; *weight: its weight there. The splat,
+// the radiance splat and the octree fill with this one rule.
+inline int record_for_uncovered_pixel(RC_GLOBAL const CacheRecord* records, RC_GLOBAL const int* record_at_pixel,
+                                      int width, int height, int x, int y, int window, rc_float3 p, rc_float3 n,
+                                      float* weight) {
+  float best = 0.0f, best_facing = 0.0f;
+  int chosen = -1, facing = -1;
+  for (int yy = y - window < 0 ? 0 : y - window; yy <= y + window && yy < height; ++yy) {
+    for (int xx = x - window < 0 ? 0 : x - window; xx <= x + window && xx < width; ++xx) {
+      int k = record_at_pixel[yy * width + xx];
+      if (k < 0) continue;
+      RC_GLOBAL const CacheRecord* rec = records + k;
+      rc_float3 pk = rc_load3(0, rec->position), nk = rc_load3(0, rec->normal);
+      if (rc_dot(n, nk) <= 0.0f) continue;
+      float w = ward_weight(p, n, pk, nk, rec->radius);
+      if (w > best_facing) {
+        best_facing = w;
+        facing = k;
+      }
+      rc_float3 tk, bk;
+      tangent_frame(nk, &tk, &bk);
+      if (w > best && not_in_front_of_record(p, n, pk, nk, rec->radius) && within_record_horizon(rec, tk, bk, p)) {
+        best = w;
+        chosen = k;
+      }
+    }
+  }
+  if (chosen < 0) {
+    chosen = facing;
+    best = best_facing;
+  }
+  *weight = best;
+  return chosen;
+}
+
 // E_k(P) = max(0, E + (nk x n) . grad_r + (P - Pk) . grad_t), per channel.
 inline rc_float3 extrapolated_irradiance(RC_GLOBAL const CacheRecord* rec, rc_float3 p, rc_float3 n) {
   rc_float3 dp = p - rc_load3(0, rec->position);

@@ -1,21 +1,33 @@
-// Primary visibility: what the ray through each pixel's centre hits, with its normals, albedo and emission (where it
+// Primary visibility: what the ray through each pixel's centre (or a jittered point of it) hits, with its normals, albedo and emission (where it
 // leaves the scene, the environment it sees).
 // traverse.h first: its FP_CONTRACT OFF must also cover surface.h's interpolation, as in every tracing kernel.
 #include "traverse.h"
 #include "environment.h"
 #include "scene_args.h"
 #include "surface.h"
+#include "counter_random.h"
 
-inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int y) {
-  float sx = (2.0f * ((float)x + 0.5f) / (float)cam->width - 1.0f) * cam->tan_half_fov_y * cam->aspect;
-  float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)cam->height) * cam->tan_half_fov_y;
+// Where in pixel (x, y) its camera ray passes, in pixels from its top-left corner: the centre of the camera's jitter
+// cell, or a random point of it.
+inline float2 pixel_offset(__global const CameraParams* cam, int x, int y) {
+  float2 u = (float2)(0.5f);
+  if (cam->jitter_seed) {
+    uint pixel = (uint)(y * cam->width + x);
+    u = (float2)(random01(cam->jitter_seed, pixel, 0u), random01(cam->jitter_seed, pixel, 1u));
+  }
+  return vload2(0, cam->jitter_origin) + cam->jitter_cell * u;
+}
+
+inline float3 camera_ray_direction(__global const CameraParams* cam, int x, int y, float2 offset) {
+  float sx = (2.0f * ((float)x + offset.x) / (float)cam->width - 1.0f) * cam->tan_half_fov_y * cam->aspect;
+  float sy = (1.0f - 2.0f * ((float)y + offset.y) / (float)cam->height) * cam->tan_half_fov_y;
   return normalize(vload3(0, cam->forward) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up));
 }
 
-// An orthographic camera's ray through pixel (x, y) starts on the plane through the eye, at the pixel's centre.
-inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, int y) {
-  float sx = (2.0f * ((float)x + 0.5f) / (float)cam->width - 1.0f) * cam->half_height * cam->aspect;
-  float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)cam->height) * cam->half_height;
+// An orthographic camera's ray through pixel (x, y) starts on the plane through the eye, at the pixel's offset point.
+inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, int y, float2 offset) {
+  float sx = (2.0f * ((float)x + offset.x) / (float)cam->width - 1.0f) * cam->half_height * cam->aspect;
+  float sy = (1.0f - 2.0f * ((float)y + offset.y) / (float)cam->height) * cam->half_height;
   return vload3(0, cam->eye) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up);
 }
 
@@ -23,8 +35,9 @@ inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, i
 __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
-  float3 org = camera->orthographic ? orthographic_ray_origin(camera, x, y) : vload3(0, camera->eye);
-  float3 dir = camera->orthographic ? vload3(0, camera->forward) : camera_ray_direction(camera, x, y);
+  float2 offset = pixel_offset(camera, x, y);
+  float3 org = camera->orthographic ? orthographic_ray_origin(camera, x, y, offset) : vload3(0, camera->eye);
+  float3 dir = camera->orthographic ? vload3(0, camera->forward) : camera_ray_direction(camera, x, y, offset);
   RayPrecomp r = ray_precompute(org, dir);
   TraceHit hit;
   GBufferSample g;

@@ -147,6 +147,12 @@ typedef struct {
   rc_int height;
   rc_int orthographic;  // 0: perspective, 1: orthographic
   float half_height;    // orthographic: half the view's height in world units (glTF's ymag)
+  // Where in its pixel a camera ray passes (kernels/gbuffer.cl): through jitter_origin + jitter_cell * u, in pixels
+  // from the pixel's top-left corner, with u = (0.5, 0.5) (the centre: origin 0, cell 1) or, for jitter_seed != 0, a
+  // random point of the cell (path tracing over the pixel's area, one cell of an s x s grid a round).
+  rc_uint jitter_seed;
+  float jitter_cell;
+  float jitter_origin[2];
   float pad[2];
 } CameraParams;
 
@@ -427,7 +433,7 @@ static_assert(sizeof(Material) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);
-static_assert(sizeof(CameraParams) == 80);
+static_assert(sizeof(CameraParams) == 96);
 static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);

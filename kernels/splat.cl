@@ -58,10 +58,9 @@ __kernel void resolve_indirect(GBUFFER_ARGS, __global const long* sums, SplatPar
 }
 
 // Anti-aliasing places records one output pixel apart (CacheSettings::finest_spacing_pixels), so a sub-pixel may be
-// left where no record reaches at the accuracy: a sliver along an edge. It takes the irradiance of the record, among
-// those sitting within `window` sub-pixels, with the largest Ward weight there that faces its way, does not lie behind
-// it and whose horizon does not hide it (no weight threshold: the bias stays within such slivers); failing that, of the
-// best-weighted one that faces its way. Its weight goes to .w so that it counts as covered; none: it stays without.
+// left where no record reaches at the accuracy: a sliver along an edge. It takes the irradiance of the record that
+// record_for_uncovered_pixel (cache_math.h) chooses among those sitting within `window` sub-pixels, with no weight
+// threshold (the bias stays within such slivers); its weight goes to .w so that it counts as covered.
 __kernel void fill_uncovered(GBUFFER_ARGS, __global const CacheRecord* records, __global const int* record_at_pixel,
                              int window, __global float4* irradiance_out, __global uint* filled) {
   uint i = get_global_id(0);
@@ -69,34 +68,10 @@ __kernel void fill_uncovered(GBUFFER_ARGS, __global const CacheRecord* records, 
   if (i >= (uint)(width * height)) return;
   if (gbuffer[i].triangle < 0 || irradiance_out[i].w > 0.0f) return;
   float3 p = vload3(0, gbuffer[i].position), n = vload3(0, gbuffer[i].normal);
-  const int x = (int)i % width, y = (int)i / width;
-  float best = 0.0f, best_facing = 0.0f;
-  int chosen = -1, facing = -1;
-  for (int yy = max(y - window, 0); yy <= min(y + window, height - 1); ++yy) {
-    for (int xx = max(x - window, 0); xx <= min(x + window, width - 1); ++xx) {
-      int k = record_at_pixel[yy * width + xx];
-      if (k < 0) continue;
-      __global const CacheRecord* rec = records + k;
-      float3 pk = vload3(0, rec->position), nk = vload3(0, rec->normal);
-      float w = ward_weight(p, n, pk, nk, rec->radius);
-      if (dot(n, nk) <= 0.0f) continue;
-      if (w > best_facing) {
-        best_facing = w;
-        facing = k;
-      }
-      float3 tk, bk;
-      tangent_frame(nk, &tk, &bk);
-      if (w > best && not_in_front_of_record(p, n, pk, nk, rec->radius) && within_record_horizon(rec, tk, bk, p)) {
-        best = w;
-        chosen = k;
-      }
-    }
-  }
-  if (chosen < 0) {
-    chosen = facing;
-    best = best_facing;
-  }
+  float w;
+  int chosen = record_for_uncovered_pixel(records, record_at_pixel, width, height, (int)i % width, (int)i / width,
+                                          window, p, n, &w);
   if (chosen < 0) return;
-  irradiance_out[i] = (float4)(vload3(0, records[chosen].irradiance), fmax(best, FLT_MIN));
+  irradiance_out[i] = (float4)(vload3(0, records[chosen].irradiance), fmax(w, FLT_MIN));
   atomic_inc(filled);
 }

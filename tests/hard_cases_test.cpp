@@ -105,6 +105,7 @@ CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_refe
   RenderSettings path_settings = settings;
   path_settings.gi = GiMethod::path;
   path_settings.path.stratified = true;
+  path_settings.path.pixel_area = false;  // the quadrature's points, the pixels' centres
   path_settings.path.samples = 1;
   const double rays_per_sample = double(render(test::gpu(), corridor, path_settings).stats.path_rays);
   const double cache_rays =
@@ -120,6 +121,7 @@ CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_refe
     RenderSettings long_path_settings = settings;
     long_path_settings.gi = GiMethod::path;
     long_path_settings.path.samples = 2048;
+    long_path_settings.path.pixel_area = false;
     const RenderedImage long_path = render(test::gpu(), corridor, long_path_settings);
     const double noise = block_rel_mse_of_noise(long_path.indirect_variance, exact, settings.width, settings.height, 8);
     std::printf("2048 spp %.3e, its variance predicts %.3e\n", block_error(long_path), noise);
@@ -315,6 +317,7 @@ TEST(HardCases, RadianceCacheBoundaryAndHighestOrderAgreeWithPathTracing) {
   RenderSettings path = settings;
   path.gi = GiMethod::path;
   path.path.samples = 1024;
+  path.path.pixel_area = false;  // the points the cache shades: the floor's pixels are the same ones
   const double reference = floor_indirect_mean(at, render(test::gpu(), at, path));
   std::printf("metal floor's mean indirect: sampled at 0.4499 %.4f, cached at 0.45 %.4f, order %d %.4f (order used "
               "%u), path-traced %.4f\n",

@@ -41,6 +41,7 @@ TEST(Sweep, WritesEveryConfigurationsTimeAndErrorsToTheCsv) {
   reference.settings.path.samples = 64;
   reference.settings.light_samples = 64;
   reference.settings.path.stratified = true;
+  reference.settings.path.pixel_area = false;  // the renders' points: at 24 x 18, jittered emitter edges dominate
   reference.settings.bounces = 1;
   ASSERT_EQ(run_render(reference), 0);
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "render/pixel_samples.h"
@@ -39,21 +40,27 @@ double area_below(double x0, double x1, double y0, double y1, double k, double d
   return 0.5 * std::abs(twice);
 }
 
-// An emitter of radiance 1 below the slanted line y = 0.3 x + 0.1 of the plane z = 0, seen by an orthographic camera
-// whose view is [-1, 1]^2 of that plane.
-Scene slanted_edge() {
+// An emitter of radiance 1, the quad a-b-c-d of the plane z = 0, seen by an orthographic camera whose view is
+// [-1, 1]^2 of that plane.
+Scene lamp_under_orthographic_camera(const char* name, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
   Scene s;
-  s.source = "slanted edge";
+  s.source = name;
   s.materials.push_back({"lamp", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), -1, glm::vec3(1.0f), false});
-  s.add_quad({-3.0f, -3.0f, 0.0f}, {3.0f, -3.0f, 0.0f}, {3.0f, 1.0f, 0.0f}, {-3.0f, -0.8f, 0.0f}, 0);
-  SceneCamera c;
-  c.orthographic = true;
-  c.eye = {0.0f, 0.0f, 5.0f};
-  c.target = {0.0f, 0.0f, 0.0f};
-  c.xmag = c.ymag = 1.0f;
-  c.aspect = 1.0f;
-  s.cameras.push_back(c);
+  s.add_quad(a, b, c, d, 0);
+  SceneCamera cam;
+  cam.orthographic = true;
+  cam.eye = {0.0f, 0.0f, 5.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.xmag = cam.ymag = 1.0f;
+  cam.aspect = 1.0f;
+  s.cameras.push_back(cam);
   return s;
+}
+
+// The emitter below the slanted line y = 0.3 x + 0.1.
+Scene slanted_edge() {
+  return lamp_under_orthographic_camera("slanted edge", {-3.0f, -3.0f, 0.0f}, {3.0f, -3.0f, 0.0f}, {3.0f, 1.0f, 0.0f},
+                                        {-3.0f, -0.8f, 0.0f});
 }
 
 struct EdgeError {
@@ -103,6 +110,43 @@ TEST(PixelSamples, EdgePixelsHoldTheirCoveredFraction) {
     EXPECT_LT(e.mean_abs, 0.4 / side) << n << " samples";
     EXPECT_LT(std::abs(e.mean_signed), 0.05) << n << " samples";
   }
+}
+
+// The emitter right of the vertical line x = -1 + 16.1 / 16: at 32 pixels across, pixel column 16 is 0.9 covered.
+Scene vertical_edge() {
+  const float edge = -1.0f + 16.1f / 16.0f;
+  return lamp_under_orthographic_camera("vertical edge", {edge, -3.0f, 0.0f}, {3.0f, -3.0f, 0.0f}, {3.0f, 3.0f, 0.0f},
+                                        {edge, 3.0f, 0.0f});
+}
+
+// Column 16's mean value less its covered fraction 0.9, path traced with 16 pixel samples.
+double column_error(bool pixel_area) {
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.gi = GiMethod::path;
+  settings.bounces = 1;
+  settings.path.samples = 16;
+  settings.pixel_samples = 16;
+  settings.path.pixel_area = pixel_area;
+  const RenderedImage image = render(test::gpu(), vertical_edge(), settings);
+  double sum = 0.0;
+  for (int y = 0; y < settings.height; ++y) sum += image.emission[3 * (size_t(y) * settings.width + 16)];
+  EXPECT_EQ(image.emission[3 * 15], 0.0f);
+  EXPECT_EQ(image.emission[3 * 17], 1.0f);
+  return sum / settings.height - 0.9;
+}
+
+// Path tracing integrates over the pixel's area (PathSettings::pixel_area): the edge lies 0.1 pixel into column 16,
+// left of every cell centre of a 4 x 4 grid, so the centres see 1.0 there (off by +0.1), while a random point of each
+// cell converges to 0.9. Its tolerance, from the variance: the four cells the edge crosses are lit with probability
+// 0.6, so a pixel's variance is 4 (1/16)^2 0.6 * 0.4 = 3.75e-3 and the column's mean over 32 pixels has a standard
+// deviation of 0.011; four of them is 0.044.
+TEST(PixelSamples, PathTracingIntegratesOverThePixelsArea) {
+  const double jittered = column_error(true), centres = column_error(false);
+  std::printf("column 16 less its covered fraction: random points of the cells %+.4f, their centres %+.4f\n", jittered,
+              centres);
+  EXPECT_LT(std::abs(jittered), 0.044);
+  EXPECT_NEAR(centres, 0.1, 1e-6);
 }
 
 TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {

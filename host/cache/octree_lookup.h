@@ -10,6 +10,7 @@ namespace rcsplat {
 
 inline glm::vec3 record_position(const CacheRecord& r) { return rc_load3(0, r.position); }
 inline glm::vec3 record_normal(const CacheRecord& r) { return rc_load3(0, r.normal); }
+inline glm::vec3 record_irradiance(const CacheRecord& r) { return rc_load3(0, r.irradiance); }
 
 struct PixelGeometry {
   glm::vec3 p, n;

@@ -38,7 +38,8 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:bounces", std::to_string(image.stats.bounces)},
           {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
           {"rcsplat:environment", scene.environment.describe()},
-          {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)}};
+          {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)},
+          {"rcsplat:pixel_points", image.stats.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres"}};
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

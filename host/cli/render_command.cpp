@@ -51,7 +51,12 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     std::printf("bounces      %u chosen from the scene: each reflection keeps %.0f%% of the light it receives (photons "
                 "measured it), so the bounces left out carry at most %.0f%% of the indirect light (--bounces)\n",
                 s.bounces, 100.0 * s.kept_per_bounce, 100.0 * kMissingIndirectShare);
-  if (s.pixel_samples > 1 && s.gi != GiMethod::splat && s.gi != GiMethod::octree)
+  if (s.gi == GiMethod::path && settings.path.pixel_area)
+    std::printf("pixels       %u primary sample%s each, at random points of the cells of a %ux%u grid over the pixel "
+                "(%u rounds of the frame, averaged: the pixel's area integral)\n",
+                s.pixel_samples, s.pixel_samples == 1 ? "" : "s", pixel_sample_side(s.pixel_samples),
+                pixel_sample_side(s.pixel_samples), s.pixel_samples);
+  else if (s.pixel_samples > 1 && s.gi != GiMethod::splat && s.gi != GiMethod::octree)
     std::printf("pixels       %u primary samples each (a %ux%u sub-pixel grid, rendered as a %d x %d frame and "
                 "averaged)\n",
                 s.pixel_samples, pixel_sample_side(s.pixel_samples), pixel_sample_side(s.pixel_samples),
@@ -107,12 +112,13 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                   (unsigned long long)s.glossy_rays, s.glossy_s, mrays_per_second(s.glossy_rays, s.glossy_s));
     if (s.hsh_order)
       std::printf("radiance     %llu radiance-cached pixels: HSH order %u (%u coefficients a channel, holds %.0f%% of the "
-                  "sharpest cached lobe), a = %g, %llu records, %llu rays (%.2f Mrays/s)\n"
+                  "sharpest cached lobe), a = %g, %llu records, %llu rays (%.2f Mrays/s), %llu sub-pixels filled\n"
                   "time         lobe table %.3f s, records %.3f s, placement %.3f s, splat %.3f s\n",
                   (unsigned long long)s.hsh_pixels, s.hsh_order, s.hsh_order * s.hsh_order,
                   100.0 * s.hsh_captured_energy, double(s.radiance_accuracy), (unsigned long long)s.radiance_records,
                   (unsigned long long)s.radiance_record_rays,
-                  mrays_per_second(s.radiance_record_rays, s.radiance_records_s), s.hsh_table_s, s.radiance_records_s,
+                  mrays_per_second(s.radiance_record_rays, s.radiance_records_s),
+                  (unsigned long long)s.radiance_filled_sub_pixels, s.hsh_table_s, s.radiance_records_s,
                   s.radiance_placement_s, s.radiance_splat_s);
   }
   if (s.gi == GiMethod::path) {
@@ -142,6 +148,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"gi", gi_method_name(s.gi)}, {"bounces", s.bounces}, {"bounces_chosen", s.bounces_chosen},
       {"kept_per_bounce", s.kept_per_bounce}, {"light_samples", s.light_samples},
       {"pixel_samples", s.pixel_samples},
+      {"pixel_points", s.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres"},
       {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
       {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}, {"records", s.record_rays},
@@ -180,7 +187,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
     if (s.hsh_order)
       j["radiance_cache"] = {{"pixels", s.hsh_pixels}, {"order", s.hsh_order}, {"captured_energy", s.hsh_captured_energy},
                              {"accuracy", s.radiance_accuracy}, {"records", s.radiance_records},
-                             {"rays", s.radiance_record_rays},
+                             {"rays", s.radiance_record_rays}, {"filled_sub_pixels", s.radiance_filled_sub_pixels},
                              {"seconds", {{"lobe_table", s.hsh_table_s}, {"records", s.radiance_records_s},
                                           {"placement", s.radiance_placement_s}, {"splat", s.radiance_splat_s}}}};
   }

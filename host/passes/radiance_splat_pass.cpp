@@ -10,7 +10,8 @@ RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
       keep_(gpu.kernel("radiance_splat.cl", "keep_radiance_cached_pixels")),
       clear_(gpu.kernel("radiance_splat.cl", "clear_radiance_sums")),
       splat_(gpu.kernel("radiance_splat.cl", "splat_radiance")),
-      resolve_(gpu.kernel("radiance_splat.cl", "resolve_radiance")) {
+      resolve_(gpu.kernel("radiance_splat.cl", "resolve_radiance")),
+      fill_(gpu.kernel("radiance_splat.cl", "fill_uncovered_radiance")) {
   std::vector<float> lobe = table.lobe;
   if (lobe.empty()) lobe.push_back(0.0f);
   std::vector<int> rows = table_row_of_material;
@@ -69,6 +70,24 @@ void RadianceSplatPass::resolve(const GBufferView& gbuffer) {
   resolve_.set_buffer<cl_long>("sums", sums_).set("params", params_).set_buffer<cl_float4>("lobe_out", lobe_radiance_);
   resolve_.launch(pixels_, gpu_.groups().per_item);
   gpu_.queue().finish();
+}
+
+uint32_t RadianceSplatPass::fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records,
+                                           const cl::Buffer& coefficients, const cl::Buffer& record_at_pixel,
+                                           int window) {
+  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "radiance splat sums");
+  gbuffer.bind(fill_);
+  fill_.set_buffer<CacheRecord>("records", records)
+      .set_buffer<cl_float>("coefficients", coefficients)
+      .set_buffer<cl_float>("lobe_table", table_)
+      .set_buffer<cl_int>("table_row_of_material", table_rows_)
+      .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
+      .set("window", cl_int(window))
+      .set("params", params_)
+      .set_buffer<cl_float4>("lobe_out", lobe_radiance_)
+      .set_buffer<cl_uint>("filled", filled);
+  fill_.launch(pixels_, gpu_.groups().per_item);
+  return gpu_.download<cl_uint>(filled, 1)[0];
 }
 
 std::vector<float> RadianceSplatPass::lobe_radiance_rgbw() { return gpu_.download<float>(lobe_radiance_, pixels_ * 4); }

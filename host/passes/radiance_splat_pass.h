@@ -26,6 +26,10 @@ class RadianceSplatPass {
   void splat_all(const GBufferView& gbuffer, const cl::Buffer& records, const cl::Buffer& coefficients, uint32_t count,
                  float accuracy, float radiance_scale);
   void resolve(const GBufferView& gbuffer);
+  // After resolve, with the records and coefficients of splat_all: radiance-cached pixels that no record reached take
+  // the record that placement sat within `window` pixels of them (kernels/radiance_splat.cl); returns how many did.
+  uint32_t fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records, const cl::Buffer& coefficients,
+                          const cl::Buffer& record_at_pixel, int window);
   const cl::Buffer& lobe_radiance() const { return lobe_radiance_; }  // float4: L_o.rgb, sum w
   std::vector<float> lobe_radiance_rgbw();
 
@@ -33,7 +37,7 @@ class RadianceSplatPass {
   void size_for(const GBufferView& gbuffer);
 
   GpuContext& gpu_;
-  NamedKernel keep_, clear_, splat_, resolve_;
+  NamedKernel keep_, clear_, splat_, resolve_, fill_;
   cl::Buffer table_, table_rows_, kept_samples_, sums_, lobe_radiance_;
   GBufferView kept_;
   RadianceSplatParams params_{};

@@ -98,6 +98,7 @@ CameraParams camera_params(const SceneCamera& camera, int width, int height) {
   p.aspect = float(width) / float(height);
   p.width = width;
   p.height = height;
+  p.jitter_cell = 1.0f;  // rays through the pixels' centres
   return p;
 }
 

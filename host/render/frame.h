@@ -39,6 +39,7 @@ struct RenderStats {
   // Radiance caching (LOBE_HSH pixels): order, the radiance records (placed on those pixels alone, at a stricter
   // accuracy), what the lobe table and the splat cost, and the smallest share of a cached lobe the order holds.
   uint64_t hsh_pixels = 0, radiance_records = 0, radiance_record_rays = 0;
+  uint64_t radiance_filled_sub_pixels = 0;  // as filled_sub_pixels, for the radiance records
   unsigned hsh_order = 0;
   float radiance_accuracy = 0, hsh_captured_energy = 0;
   double hsh_table_s = 0, radiance_records_s = 0, radiance_placement_s = 0, radiance_splat_s = 0;

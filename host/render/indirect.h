@@ -13,6 +13,7 @@
 #include "passes/record_pass.h"
 #include "render/frame.h"
 #include "render/timing.h"
+#include "util/log.h"
 
 namespace rcsplat {
 
@@ -29,6 +30,9 @@ struct IndirectFrame {
   std::optional<std::vector<GuideCluster>> light_guide{};
   // The photon map once attach_photon_map has built it: the irradiance and radiance records share it.
   std::unique_ptr<PhotonMapPass> photon_map{};
+  // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
+  Progress* progress = nullptr;
+  size_t progress_done_before = 0;
 };
 
 // Radiance cache splatting on the device: coarse-to-fine placement, records, neighbour clamping, splat, resolve.

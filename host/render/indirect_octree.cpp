@@ -1,6 +1,9 @@
 // The classic irradiance cache (Ward et al. 1988), the baseline the paper measured against: the same coarse-to-fine
 // placement and the same records as the splat (render/placement.h), but coverage, neighbour clamping and every
 // pixel's interpolation go through a loose octree of the records on the host, on C++ threads.
+#include <atomic>
+#include <cfloat>
+#include <cmath>
 #include <numbers>
 
 #include "cache/octree_lookup.h"
@@ -88,10 +91,7 @@ class OctreeRecordIndex final : public RecordIndex {
 }  // namespace
 
 void octree_indirect(IndirectFrame& f) {
-  // The octree interpolates where records reach and nowhere else: with sub-pixels its placement goes down to one
-  // sub-pixel (the splat's fill_uncovered has no octree counterpart).
-  CacheSettings cs = f.settings.cache;
-  cs.finest_spacing_pixels = 1;
+  const CacheSettings& cs = f.settings.cache;
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const size_t pixels = size_t(img.width) * size_t(img.height);
@@ -114,11 +114,27 @@ void octree_indirect(IndirectFrame& f) {
   img.records_per_pixel.assign(pixels, 0.0f);
   img.record_positions.assign(pixels, 0.0f);
   std::vector<cl_float4> irradiance(pixels, cl_float4{{0, 0, 0, 0}});
+  // With sub-pixels, placement stops one output pixel apart: a sub-pixel no record reaches (a sliver along an edge)
+  // takes the splat's choice of a record near it (record_for_uncovered_pixel), so records stay one sample's.
+  const bool fill = cs.finest_spacing_pixels > 1;
+  const int window = int(std::ceil(cs.max_reach_pixels));
+  std::atomic<uint32_t> filled{0};
   parallel_for(pixels, [&](size_t i) {
     if (!geo[i].valid) return;
     Interpolation in = interpolate(index.octree(), index.records(), geo[i], cs.accuracy);
-    img.coverage[i] = float(in.weight);
     img.records_per_pixel[i] = float(in.count);
+    if (in.weight == 0.0 && fill) {
+      float w = 0.0f;
+      int k = record_for_uncovered_pixel(index.records().data(), index.record_at_pixel().data(), img.width,
+                                         img.height, int(i % size_t(img.width)), int(i / size_t(img.width)), window,
+                                         geo[i].p, geo[i].n, &w);
+      if (k >= 0) {
+        in.weight = std::fmax(w, FLT_MIN);
+        in.weighted = in.weight * dvec3(record_irradiance(index.records()[size_t(k)]));
+        ++filled;
+      }
+    }
+    img.coverage[i] = float(in.weight);
     if (in.weight == 0.0) return;
     dvec3 e = in.weighted / in.weight;
     for (int c = 0; c < 3; ++c) {
@@ -128,6 +144,7 @@ void octree_indirect(IndirectFrame& f) {
     irradiance[i].s[3] = float(in.weight);
   }, 256);
   st.resolve_s = seconds_since(t);
+  st.filled_sub_pixels = filled;
   for (size_t i = 0; i < pixels; ++i) {
     if (index.record_at_pixel()[i] >= 0) img.record_positions[i] = 1.0f;
     if (geo[i].valid && img.coverage[i] == 0.0f) ++st.uncovered_pixels;

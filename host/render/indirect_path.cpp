@@ -23,8 +23,9 @@ void path_traced_indirect(IndirectFrame& f) {
   unsigned halves = ps.stratified && ps.samples >= 2 ? 2 : 1;
   std::vector<std::vector<float>> means;
   std::vector<unsigned> counts;
-  Progress progress("path tracing", ps.samples);
-  unsigned done_before = 0;
+  Progress own_progress("path tracing", ps.samples);
+  Progress& progress = f.progress ? *f.progress : own_progress;
+  size_t done_before = f.progress ? f.progress_done_before : 0;
   for (unsigned h = 0; h < halves; ++h) {
     unsigned samples = halves == 1 ? ps.samples : (h == 0 ? ps.samples / 2 : ps.samples - ps.samples / 2);
     path.begin(f.gbuffer.view(), samples, ps.stratified, f.settings.seed + 0x9e3779b9u * h, f.settings.bounces);
@@ -40,7 +41,7 @@ void path_traced_indirect(IndirectFrame& f) {
     counts.push_back(samples);
     if (halves == 1) img.indirect_variance = path.mean_variance_rgb();
   }
-  progress.finish();
+  if (!f.progress) progress.finish();
   st.path_s = seconds_since(t);
   st.path_samples = ps.samples;
   img.indirect = means[0];

@@ -81,7 +81,6 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   // Radiance caching's stricter accuracy for glossier lobes: a times the sharpest cached roughness (the lobe's
   // angular width goes as roughness^2 = alpha; roughness itself keeps records from crowding), at least a / 2.
   CacheSettings cs = f.settings.cache;
-  cs.finest_spacing_pixels = 1;  // radiance records cover every sub-pixel they serve (no fill for HSH lobes)
   cs.accuracy = f.settings.cache.accuracy * std::max(0.5f, sharpest);
   st.radiance_accuracy = cs.accuracy;
 
@@ -110,6 +109,10 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   t = Clock::now();
   splat->splat_all(gbuffer, records.records(), hsh.coefficients(), total, cs.accuracy, hsh.largest_radiance());
   splat->resolve(gbuffer);
+  if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
+    st.radiance_filled_sub_pixels = splat->fill_uncovered(gbuffer, records.records(), hsh.coefficients(),
+                                                          index.record_at_pixel_buffer(),
+                                                          int(std::ceil(cs.max_reach_pixels)));
   st.radiance_splat_s = seconds_since(t);
   return splat;
 }

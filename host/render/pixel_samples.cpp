@@ -34,7 +34,9 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   resolve_resolution(choose_camera(scene, settings.camera, settings.camera_overrides), width, height);
   if (settings.pixel_samples == 0) settings.pixel_samples = default_pixel_samples(settings, width, height);
   const unsigned side = pixel_sample_side(settings.pixel_samples);
-  if (side == 1) return render_single_sample(gpu, scene, settings);
+  // Path tracing over the pixel's area traces rounds of the output frame itself (renderer.cpp).
+  if (side == 1 || (settings.gi == GiMethod::path && settings.path.pixel_area))
+    return render_single_sample(gpu, scene, settings);
   if (std::max(width, height) * int(side) > 16384)
     throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
                 std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");

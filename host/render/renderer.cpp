@@ -8,6 +8,7 @@
 
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
+#include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
@@ -61,6 +62,149 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
                 " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
 }
 
+// Primary visibility through `camera`, direct light (strata x strata samples a pixel) and the indirect light of one
+// frame, into img (whose statistics already hold the setup's); progress: the path tracer's, shared by rounds.
+void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene, const SceneFrame& scene_frame,
+                 GBufferPass& gbuffer, DirectPass& direct, const CameraParams& camera, unsigned strata,
+                 const RenderSettings& settings, RenderedImage& img, Progress* progress = nullptr,
+                 size_t progress_done_before = 0) {
+  RenderStats& st = img.stats;
+  auto t = Clock::now();
+  gbuffer.run(camera);
+  st.gbuffer_s = seconds_since(t);
+  t = Clock::now();
+  direct.run(gbuffer.view(), strata, settings.seed);
+  st.direct_s = seconds_since(t);
+
+  std::vector<GBufferSample> g = gbuffer.download();
+  std::vector<float> d = direct.download_rgba();
+  size_t pixels = g.size();
+  img.color.resize(pixels * 3);
+  img.direct.resize(pixels * 3);
+  img.emission.resize(pixels * 3);
+  img.albedo.resize(pixels * 3);
+  img.normal.resize(pixels * 3);
+  img.position.resize(pixels * 3);
+  img.depth.resize(pixels);
+  img.triangle.resize(pixels);
+  st.primary_rays = pixels;
+  for (size_t i = 0; i < pixels; ++i) {
+    const GBufferSample& s = g[i];
+    img.triangle[i] = s.triangle;
+    if (s.triangle >= 0) {
+      st.rough_pixels += s.lobe == LOBE_ROUGH;
+      st.glossy_pixels += s.lobe == LOBE_GLOSSY;
+      st.hsh_pixels += s.lobe == LOBE_HSH;
+    }
+    img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
+    const glm::vec3 world = s.triangle >= 0 ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
+                                            : glm::vec3(0.0f);
+    st.shadow_rays += uint64_t(d[4 * i + 3]);
+    for (int c = 0; c < 3; ++c) {
+      img.direct[3 * i + c] = d[4 * i + c];
+      img.emission[3 * i + c] = s.emission[c];
+      img.albedo[3 * i + c] = s.albedo[c];
+      img.normal[3 * i + c] = s.normal[c];
+      img.position[3 * i + c] = world[c];
+      img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
+    }
+  }
+
+  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img};
+  frame.progress = progress;
+  frame.progress_done_before = progress_done_before;
+  switch (settings.gi) {
+    case GiMethod::none: break;
+    case GiMethod::splat: splat_indirect(frame); break;
+    case GiMethod::octree: octree_indirect(frame); break;
+    case GiMethod::path: path_traced_indirect(frame); break;
+  }
+}
+
+// Adds round's layers that path tracing fills to sum's (sum empty: takes them).
+void add_round(RenderedImage& sum, const RenderedImage& round) {
+  auto add = [](std::vector<float>& a, const std::vector<float>& b) {
+    if (a.empty()) {
+      a = b;
+      return;
+    }
+    for (size_t i = 0; i < a.size(); ++i) a[i] += b[i];
+  };
+  add(sum.color, round.color);
+  add(sum.direct, round.direct);
+  add(sum.emission, round.emission);
+  add(sum.albedo, round.albedo);
+  add(sum.normal, round.normal);
+  add(sum.indirect, round.indirect);
+  add(sum.indirect_variance, round.indirect_variance);
+  RenderStats& a = sum.stats;
+  const RenderStats& b = round.stats;
+  a.gbuffer_s += b.gbuffer_s;
+  a.direct_s += b.direct_s;
+  a.path_s += b.path_s;
+  a.primary_rays += b.primary_rays;
+  a.shadow_rays += b.shadow_rays;
+  a.path_rays += b.path_rays;
+  a.path_samples += b.path_samples;
+  a.rough_pixels += b.rough_pixels;
+  a.glossy_pixels += b.glossy_pixels;
+  a.hsh_pixels += b.hsh_pixels;
+}
+
+// Path tracing over the pixels' area (PathSettings::pixel_area): settings.pixel_samples = s^2 rounds of the frame,
+// round r's camera rays through a random point of cell r of an s x s grid over each pixel (stratified jitter), each
+// with its share of the light and path samples, averaged. The position, depth and triangle layers are those of the
+// round whose cell holds the pixel's centre. The BVH, the kernels and the buffers serve every round.
+void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
+                           const SceneFrame& scene_frame, GBufferPass& gbuffer, DirectPass& direct,
+                           const CameraParams& camera, const RenderSettings& settings, RenderedImage& img) {
+  const unsigned side = pixel_sample_side(std::max(1u, settings.pixel_samples)), rounds = side * side;
+  if (settings.path.samples % rounds)
+    throw Error("--spp " + std::to_string(settings.path.samples) + " must be a multiple of --pixel-samples " +
+                std::to_string(rounds) + ": each sub-pixel takes the same share");
+  RenderSettings round_settings = settings;
+  round_settings.path.samples = settings.path.samples / rounds;
+  round_settings.light_samples = settings.light_samples ? std::max(1u, (settings.light_samples + rounds - 1) / rounds) : 0;
+  const unsigned strata =
+      round_settings.light_samples ? unsigned(std::ceil(std::sqrt(double(round_settings.light_samples)))) : 0;
+  const unsigned centre_round = (side / 2) * side + side / 2;
+  RenderedImage sum;
+  sum.width = img.width;
+  sum.height = img.height;
+  sum.stats = img.stats;
+  Progress progress("path tracing", size_t(settings.path.samples));
+  for (unsigned r = 0; r < rounds; ++r) {
+    CameraParams round_camera = camera;
+    round_camera.jitter_seed = hash_u32(settings.seed ^ hash_u32(r + 0x6a697474u)) | 1u;  // never 0: jittered
+    round_camera.jitter_cell = 1.0f / float(side);
+    round_camera.jitter_origin[0] = float(r % side) / float(side);
+    round_camera.jitter_origin[1] = float(r / side) / float(side);
+    round_settings.seed = r == 0 ? settings.seed : hash_u32(settings.seed + 0x9e3779b9u * r);
+    RenderedImage round;
+    round.width = img.width;
+    round.height = img.height;
+    round.stats = img.stats;
+    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, round_camera, strata, round_settings, round,
+                &progress, size_t(r) * round_settings.path.samples);
+    if (r == centre_round) {
+      sum.position = std::move(round.position);
+      sum.depth = std::move(round.depth);
+      sum.triangle = std::move(round.triangle);
+    }
+    add_round(sum, round);
+  }
+  progress.finish();
+  const float mean = 1.0f / float(rounds), variance_of_mean = mean * mean;
+  for (std::vector<float>* layer : {&sum.color, &sum.direct, &sum.emission, &sum.albedo, &sum.normal, &sum.indirect})
+    for (float& v : *layer) v *= mean;
+  for (float& v : sum.indirect_variance) v *= variance_of_mean;  // independent rounds: the mean's variance
+  sum.stats.light_samples = strata * strata * rounds;
+  sum.stats.pixel_samples = rounds;
+  sum.stats.rough_pixels /= rounds;
+  sum.stats.glossy_pixels /= rounds;
+  sum.stats.hsh_pixels /= rounds;
+  img = std::move(sum);
+}
 }  // namespace
 
 RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {
@@ -125,54 +269,10 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   DirectPass direct(gpu, device_scene);
   st.program_s = gpu.program_seconds() - program_before;
 
-  t = Clock::now();
-  gbuffer.run(params);
-  st.gbuffer_s = seconds_since(t);
-  t = Clock::now();
-  direct.run(gbuffer.view(), strata, settings.seed);
-  st.direct_s = seconds_since(t);
-
-  std::vector<GBufferSample> g = gbuffer.download();
-  std::vector<float> d = direct.download_rgba();
-  size_t pixels = g.size();
-  img.color.resize(pixels * 3);
-  img.direct.resize(pixels * 3);
-  img.emission.resize(pixels * 3);
-  img.albedo.resize(pixels * 3);
-  img.normal.resize(pixels * 3);
-  img.position.resize(pixels * 3);
-  img.depth.resize(pixels);
-  img.triangle.resize(pixels);
-  st.primary_rays = pixels;
-  for (size_t i = 0; i < pixels; ++i) {
-    const GBufferSample& s = g[i];
-    img.triangle[i] = s.triangle;
-    if (s.triangle >= 0) {
-      st.rough_pixels += s.lobe == LOBE_ROUGH;
-      st.glossy_pixels += s.lobe == LOBE_GLOSSY;
-      st.hsh_pixels += s.lobe == LOBE_HSH;
-    }
-    img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
-    const glm::vec3 world = s.triangle >= 0 ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
-                                            : glm::vec3(0.0f);
-    st.shadow_rays += uint64_t(d[4 * i + 3]);
-    for (int c = 0; c < 3; ++c) {
-      img.direct[3 * i + c] = d[4 * i + c];
-      img.emission[3 * i + c] = s.emission[c];
-      img.albedo[3 * i + c] = s.albedo[c];
-      img.normal[3 * i + c] = s.normal[c];
-      img.position[3 * i + c] = world[c];
-      img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
-    }
-  }
-
-  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img};
-  switch (settings.gi) {
-    case GiMethod::none: break;
-    case GiMethod::splat: splat_indirect(frame); break;
-    case GiMethod::octree: octree_indirect(frame); break;
-    case GiMethod::path: path_traced_indirect(frame); break;
-  }
+  if (settings.gi == GiMethod::path && settings.path.pixel_area)
+    path_trace_pixel_area(gpu, scene, device_scene, scene_frame, gbuffer, direct, params, settings, img);
+  else
+    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, params, strata, settings, img);
   for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
   st.total_s = seconds_since(start);
   st.device_memory = gpu.memory_use();

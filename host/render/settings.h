@@ -25,6 +25,11 @@ const char* gi_method_name(GiMethod method);
 struct PathSettings {
   unsigned samples = 64;  // per pixel
   bool stratified = false;
+  // Over the pixel's area: --pixel-samples N = s^2 becomes N rounds of the frame, round r's camera rays through a
+  // random point of cell r of an s x s grid over each pixel (stratified jitter, so the pixel's value converges to its
+  // area integral, edges to their covered fraction). false: one s-times larger frame through the cells' centres, the
+  // very points a cache render shades (tests that isolate the cache's error compare there).
+  bool pixel_area = true;
 };
 
 struct RenderSettings {
