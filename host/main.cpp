@@ -186,6 +186,9 @@ int main(int argc, char** argv) {
       "info", "What a scene contains and what rcsplat will simulate for it, with the kernel switches it compiles");
   info_cmd->add_option("scene", info.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
   info_cmd->add_option("--json", info.json_path, "Also write it as JSON");
+  info_cmd->add_option("--device", info.device,
+                       "OpenCL device for the bounce probe (the bounce count a render chooses); without one, info "
+                       "says so and prints the rest");
   EnvironmentFlags info_environment;
   info_environment.add(info_cmd, info.environment);
 

@@ -26,6 +26,16 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
   float select = source_cdf[source] - (source > 0 ? source_cdf[source - 1] : 0.0f);
   float u = random01(key, 0u, 1u), v = random01(key, 0u, 2u);
   float3 origin, dir, power;
+#if HAS_ENVIRONMENT
+  if (params.sky_source && source == (int)params.source_count - 1) {
+    // The sky's smooth part: a direction uniform over the sphere, the photon entering through the unit disc facing it
+    // beyond the scene, carrying radiance times the disc's area over the direction's density, L pi 4 pi.
+    float3 toward = cone_direction((float3)(0.0f, 0.0f, 1.0f), 2.0f * u, v);
+    origin = unit_disc_point(toward, random01(key, 0u, 4u), random01(key, 0u, 5u)) + 2.0f * toward;
+    dir = -toward;
+    power = environment_smooth(environment, scene_counts, toward) * (4.0f * RC_PI * RC_PI);
+  } else
+#endif
   if (source < (int)scene_counts.light_count) {
     PunctualLight light = lights[source];
     float3 intensity = vload3(0, light.intensity), axis = vload3(0, light.direction);

@@ -260,7 +260,10 @@ typedef struct {
   // Landings before this one are not stored: landing k of photon i at photons[i * (landings - first_stored) + k -
   // first_stored] (the photon map keeps the landings after a reflection, the light guide the first).
   rc_uint first_stored;
-  rc_uint pad[3];
+  // 1: the last source is the environment's smooth part, a sky (the bounce probe only, host/render/bounce_choice.cpp:
+  // the light guide and the photon map gather a sky's smooth light and never shoot it).
+  rc_uint sky_source;
+  rc_uint pad[2];
 } PhotonParams;
 
 // The photon map (--bounce-method photons; kernels/photon_map.h): photon landings after at least one reflection, sorted

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "image/error_metrics.h"
 #include "image/image_io.h"
+#include "render/renderer.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -195,6 +196,33 @@ TEST(Reference, ResumeAddsIndependentSamples) {
   RenderOptions anti_aliased = o;
   anti_aliased.settings.pixel_samples = 4;
   refused(anti_aliased, "rendered with --pixel-samples 1, not 4");
+  RenderOptions centres = o;
+  centres.settings.path.pixel_area = false;
+  refused(centres, "rendered with pixel points jittered, not centres");
+}
+
+// info runs the bounce probe a render runs (the built-in Cornell box keeps half of each reflection: 5 bounces) and
+// says why not when it has no device, printing the rest.
+TEST(Info, NamesTheBouncesARenderChooses) {
+  const std::string dir = test::scratch_dir();
+  InfoOptions o;
+  o.json_path = dir + "/info.json";
+  ASSERT_EQ(run_info(o), 0);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(o.json_path));
+  EXPECT_EQ(j["bounces"]["chosen"], 5);
+  EXPECT_NEAR(j["bounces"]["kept_per_bounce"].get<double>(), 0.50, 0.03);
+  EXPECT_EQ(j["bounces"]["cache_method"], "photons");
+  RenderSettings settings;
+  settings.width = settings.height = 8;
+  settings.bounces = 0;
+  EXPECT_EQ(render(test::gpu(), load_scene(""), settings).stats.bounces, 5u) << "what a render chooses";
+
+  o.device = "no such device";
+  ASSERT_EQ(run_info(o), 0);
+  j = nlohmann::json::parse(std::ifstream(o.json_path));
+  EXPECT_TRUE(j["bounces"]["chosen"].is_null());
+  EXPECT_NE(j["bounces"]["why_not"].get<std::string>().find("no such device"), std::string::npos);
+  EXPECT_EQ(j["triangles"], 32);
 }
 
 }  // namespace

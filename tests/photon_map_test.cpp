@@ -3,6 +3,8 @@
 // nearest facing photon's estimate.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -280,6 +282,58 @@ TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
   sky.sky = glm::vec3(1.0f);
   floor.environment = make_environment(sky);
   EXPECT_EQ(choose_bounces(test::gpu(), floor, floor_device, settings).method, BounceMethod::path);
+}
+
+// A scene lit by a sky alone: the probe shoots the sky's smooth part too (a direction uniform over the sphere, through
+// a disc beyond the scene). A floor under the sky keeps nothing, as under a light. A well (1 x 1, 4 deep, open at the
+// top, albedo 0.5, in a black shell so that only its inside is lit) keeps a good part of each reflection, less than
+// its albedo (some leaves through the opening), so it takes more than one bounce; before the sky was a source it
+// measured 0 and took one.
+TEST(BounceChoice, ASkyAloneIsMeasuredToo) {
+  EnvironmentSettings sky_settings;
+  sky_settings.sky = glm::vec3(1.0f);
+  RenderSettings settings;
+  settings.bounces = 0;
+
+  Scene floor;
+  floor.source = "floor under a sky";
+  floor.materials.push_back({"white", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), -1, glm::vec3(0.0f), false});
+  floor.add_quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, 0);
+  floor.environment = make_environment(sky_settings);
+  Bvh8 floor_bvh = build_bvh8(floor.positions);
+  DeviceScene floor_device(test::gpu(), floor, floor_bvh);
+  EXPECT_EQ(choose_bounces(test::gpu(), floor, floor_device, settings).bounces, 1u);
+
+  Scene well;
+  well.source = "well under a sky";
+  well.materials.push_back({"grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
+  const float h = 4.0f;
+  well.add_quad({-0.5f, 0, -0.5f}, {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, 0);
+  well.add_quad({-0.5f, 0, -0.5f}, {-0.5f, h, -0.5f}, {-0.5f, h, 0.5f}, {-0.5f, 0, 0.5f}, 0);
+  well.add_quad({0.5f, 0, -0.5f}, {0.5f, 0, 0.5f}, {0.5f, h, 0.5f}, {0.5f, h, -0.5f}, 0);
+  well.add_quad({-0.5f, 0, -0.5f}, {0.5f, 0, -0.5f}, {0.5f, h, -0.5f}, {-0.5f, h, -0.5f}, 0);
+  well.add_quad({-0.5f, 0, 0.5f}, {-0.5f, h, 0.5f}, {0.5f, h, 0.5f}, {0.5f, 0, 0.5f}, 0);
+  // The black shell: walls 0.05 outside the well's, a bottom below it and a rim around the opening.
+  well.materials.push_back({"black", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), -1, glm::vec3(0.0f), false});
+  const float o = 0.55f, i = 0.5f;
+  well.add_quad({-o, -0.1f, -o}, {-o, -0.1f, o}, {o, -0.1f, o}, {o, -0.1f, -o}, 1);
+  well.add_quad({-o, -0.1f, -o}, {-o, h, -o}, {-o, h, o}, {-o, -0.1f, o}, 1);
+  well.add_quad({o, -0.1f, -o}, {o, -0.1f, o}, {o, h, o}, {o, h, -o}, 1);
+  well.add_quad({-o, -0.1f, -o}, {o, -0.1f, -o}, {o, h, -o}, {-o, h, -o}, 1);
+  well.add_quad({-o, -0.1f, o}, {-o, h, o}, {o, h, o}, {o, -0.1f, o}, 1);
+  well.add_quad({-o, h, -o}, {-o, h, o}, {-i, h, o}, {-i, h, -o}, 1);
+  well.add_quad({i, h, -o}, {i, h, o}, {o, h, o}, {o, h, -o}, 1);
+  well.add_quad({-i, h, -o}, {-i, h, -i}, {i, h, -i}, {i, h, -o}, 1);
+  well.add_quad({-i, h, i}, {-i, h, o}, {i, h, o}, {i, h, i}, 1);
+  well.environment = make_environment(sky_settings);
+  Bvh8 well_bvh = build_bvh8(well.positions);
+  DeviceScene well_device(test::gpu(), well, well_bvh);
+  const BounceChoice choice = choose_bounces(test::gpu(), well, well_device, settings);
+  std::printf("well under a sky: each reflection keeps %.3f, %u bounces\n", choice.kept_per_bounce, choice.bounces);
+  EXPECT_GT(choice.kept_per_bounce, 0.2);
+  EXPECT_LT(choice.kept_per_bounce, 0.5);
+  EXPECT_GE(choice.bounces, 2u);
+  EXPECT_EQ(choice.method, BounceMethod::path);
 }
 
 }  // namespace

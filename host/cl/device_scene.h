@@ -45,6 +45,7 @@ class DeviceScene {
   const SceneFrame& frame() const { return frame_; }
   // The environment's peak: the sum of its luminance times solid angle (0: none; kernels/environment.h).
   float environment_peak_power() const { return counts_.environment_peak_power; }
+  bool environment_present() const { return counts_.environment_width > 0; }
 
  private:
   DeviceBvh bvh_;

@@ -39,6 +39,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
 struct InfoOptions {
   std::string scene_path;  // empty: the built-in Cornell box
   std::string json_path;
+  std::string device;  // for the bounce probe; none available: info says so and goes on
   EnvironmentSettings environment;
 };
 int run_info(const InfoOptions& options);

@@ -1,12 +1,17 @@
 // `rcsplat info SCENE`: what the scene contains and what rcsplat will simulate for it (scene/scene_plan.h), the same
-// lines the render summary prints, and the kernel switches a render compiles. Needs no OpenCL device.
+// lines the render summary prints, and the kernel switches a render compiles. The bounce count a render chooses comes
+// from a photon probe on an OpenCL device; without one, info says so and prints the rest.
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "bvh/bvh8.h"
 #include "cl/device_bvh.h"
+#include "cl/device_scene.h"
+#include "cl/gpu_context.h"
 #include "cli/commands.h"
+#include "render/bounce_choice.h"
 #include "scene/scene_frame.h"
+#include "util/error.h"
 
 namespace rcsplat {
 
@@ -79,16 +84,48 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
           {"switches", plan_switches(plan, bvh_depth)}};
 }
 
+namespace {
+
+// What --bounces and --bounce-method become when left out, as a render chooses them (render/bounce_choice.h), or why
+// info cannot tell: the probe's photons need an OpenCL device.
+nlohmann::json probe_bounces(const Scene& scene, const SceneFrame& frame, const Bvh8& bvh, const std::string& device) {
+  try {
+    GpuContext gpu(select_device(device));
+    DeviceScene device_scene(gpu, scene, bvh, {}, frame);
+    RenderSettings settings;
+    settings.bounces = 0;
+    const BounceChoice cache = choose_bounces(gpu, scene, device_scene, settings);
+    std::printf("bounces      %u when --bounces is left out: each reflection keeps %.0f%% of the light it receives "
+                "(photons measured it on %s), so the bounces left out carry at most %.0f%% of the indirect light; "
+                "the cache takes the bounces after the first %s\n",
+                cache.bounces, 100.0 * cache.kept_per_bounce, gpu.device_info().name.c_str(),
+                100.0 * kMissingIndirectShare,
+                cache.bounces == 1 ? "(none)"
+                : cache.method == BounceMethod::photons ? "from a photon map"
+                                                        : "by path continuation");
+    return {{"chosen", cache.bounces}, {"kept_per_bounce", cache.kept_per_bounce},
+            {"cache_method", bounce_method_name(cache.method)}, {"device", gpu.device_info().name}};
+  } catch (const std::exception& e) {  // no OpenCL platform or device, or one that cannot run the probe
+    std::printf("bounces      chosen when rendering (the photon probe needs an OpenCL device: %s)\n", e.what());
+    return {{"chosen", nullptr}, {"why_not", e.what()}};
+  }
+}
+
+}  // namespace
+
 int run_info(const InfoOptions& options) {
   const Scene scene = load_scene(options.scene_path, 0, {}, options.environment);
   const ScenePlan plan = plan_scene(scene);
   // The BVH a render builds: over the scene in its fitted device frame (scene/scene_frame.h), so the depth matches.
-  const Bvh8 bvh = build_bvh8(SceneFrame::fitted(scene).device_scene(scene).positions);
+  const SceneFrame frame = SceneFrame::fitted(scene);
+  const Bvh8 bvh = build_bvh8(frame.device_positions(scene));
   std::printf("scene        %s\n", scene.source.c_str());
   print_scene_plan(plan, bvh.depth);
+  const nlohmann::json bounces = probe_bounces(scene, frame, bvh, options.device);
   if (!options.json_path.empty()) {
     nlohmann::json report = scene_plan_json(plan, bvh.depth);
     report["scene"] = scene.source;
+    report["bounces"] = bounces;
     write_text_file(options.json_path, report.dump(2) + "\n");
   }
   return 0;

@@ -27,11 +27,14 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
   return power;
 }
 
-LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene)
+LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power)
     : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("light_guide.cl", "shoot_photons", scene.defines())) {
   std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
   // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
   if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);
+  // The sky's smooth part last, for the bounce probe.
+  sky_source_ = sky_power > 0.0 && std::isfinite(sky_power) && scene.environment_present();
+  if (sky_source_) power.push_back(sky_power);
   double total = 0.0;
   for (double p : power) total += p;
   if (!(total > 0.0)) return;
@@ -54,6 +57,7 @@ std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned see
   params.seed = seed;
   params.landings = landings;
   params.first_stored = first_stored;
+  params.sky_source = sky_source_ ? 1u : 0u;
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);

@@ -12,7 +12,8 @@ namespace rcsplat {
 
 class LightGuidePass {
  public:
-  LightGuidePass(GpuContext& gpu, const DeviceScene& scene);
+  // sky_power > 0: the environment's smooth part is a source too, of that power (the bounce probe's; see PhotonParams).
+  LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power = 0.0);
 
   // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
   // diffusely in between), landings first_stored .. landings - 1 returned: photon i's landing k at
@@ -25,6 +26,7 @@ class LightGuidePass {
   NamedKernel kernel_;
   cl::Buffer source_cdf_;
   unsigned source_count_ = 0;
+  bool sky_source_ = false;
 };
 
 // Each source's emitted power (luminance, device units): punctual lights, then emissive triangles, as the kernel

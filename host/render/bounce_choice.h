@@ -1,6 +1,7 @@
 // What --bounces and --bounce-method become when left to the scene (0 and auto): the bounce count from how much light
-// each reflection keeps in this scene, measured by a few photons (the reflected flux of each landing over the last's:
-// albedo and openness together), and the method from what the scene allows.
+// each reflection keeps in this scene, measured by a few photons from its lights and its environment, the sky's
+// smooth part included (the reflected flux of each landing over the last's: albedo and openness together), and the
+// method from what the scene allows.
 #pragma once
 #include "cl/device_scene.h"
 #include "render/settings.h"
@@ -18,7 +19,7 @@ struct BounceChoice {
   unsigned bounces = 1;
   BounceMethod method = BounceMethod::path;
   // The scene's measure: reflected flux of landings 1 .. 3 over that of landings 0 .. 2 (0 without photons: a scene lit
-  // only by a smooth sky, or not at all), and whether the bounce count was chosen from it.
+  // by nothing), and whether the bounce count was chosen from it.
   double kept_per_bounce = 0.0;
   bool bounces_chosen = false;
 };
