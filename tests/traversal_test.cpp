@@ -119,6 +119,38 @@ TEST(Traversal, RandomSoupsMatchEmbree) {
   }
 }
 
+// The bench's packet opponent (EmbreeScene::intersect_packet, rtcIntersect8/16) finds what rtcIntersect1 finds, full
+// packets and a last partial one alike (the rays' count is not a multiple of 16).
+TEST(Traversal, EmbreePacketsFindWhatSingleRaysFind) {
+  std::vector<glm::vec3> soup = random_soup(3000, 7);
+  EmbreeScene embree(soup);
+  std::vector<RayDesc> rays = random_rays(20005, 8, INFINITY);
+  std::vector<glm::vec3> org, dir;
+  std::vector<float> tmin, tmax;
+  for (const RayDesc& r : rays) {
+    org.push_back(ray_origin(r));
+    dir.push_back(ray_direction(r));
+    tmin.push_back(r.tmin);
+    tmax.push_back(r.tmax);
+  }
+  for (int width : {8, 16}) {
+    std::vector<EmbreeHit> packets(rays.size());
+    for (size_t i = 0; i < rays.size(); i += size_t(width))
+      embree.intersect_packet(width, int(std::min(rays.size() - i, size_t(width))), &org[i], &dir[i], &tmin[i],
+                              &tmax[i], &packets[i]);
+    size_t differ = 0, hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EmbreeHit single = embree.intersect(org[i], dir[i], tmin[i], tmax[i]);
+      hits += single.prim >= 0;
+      if (single.prim != packets[i].prim || std::fabs(single.t - packets[i].t) > 1e-5f * std::max(1.0f, single.t))
+        ++differ;
+    }
+    EXPECT_GT(hits, rays.size() / 10) << width;
+    EXPECT_LE(differ, rays.size() / 10000) << width << "-wide packets";
+  }
+  EXPECT_THROW(embree.intersect_packet(8, 9, org.data(), dir.data(), tmin.data(), tmax.data(), nullptr), Error);
+}
+
 TEST(Traversal, FiniteTmaxIsRespected) {
   std::vector<glm::vec3> soup = random_soup(3000, 9);
   Agreement a = compare_with_embree(soup, random_rays(100000, 10, 0.7f));

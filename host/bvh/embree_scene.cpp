@@ -56,6 +56,49 @@ EmbreeHit EmbreeScene::intersect(const glm::vec3& org, const glm::vec3& dir, flo
   return {rh.ray.tfar, rh.hit.u, rh.hit.v, int(rh.hit.primID)};
 }
 
+namespace {
+
+// One packet of N rays through rtcIntersectN (RayHitN: RTCRayHit8 or RTCRayHit16).
+template <int N, typename RayHitN, typename IntersectN>
+void trace_packet(RTCScene scene, IntersectN intersect, int count, const glm::vec3* org, const glm::vec3* dir,
+                  const float* tmin, const float* tmax, EmbreeHit* out) {
+  alignas(64) int valid[N];
+  alignas(64) RayHitN rh;
+  for (int i = 0; i < N; ++i) {
+    const bool live = i < count;
+    valid[i] = live ? -1 : 0;
+    const int k = live ? i : 0;
+    rh.ray.org_x[i] = org[k].x, rh.ray.org_y[i] = org[k].y, rh.ray.org_z[i] = org[k].z;
+    rh.ray.dir_x[i] = dir[k].x, rh.ray.dir_y[i] = dir[k].y, rh.ray.dir_z[i] = dir[k].z;
+    rh.ray.tnear[i] = tmin[k];
+    rh.ray.tfar[i] = tmax[k];
+    rh.ray.mask[i] = ~0u;
+    rh.ray.time[i] = 0.0f;
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  intersect(valid, scene, &context, &rh);
+  for (int i = 0; i < count; ++i)
+    out[i] = rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+                 ? EmbreeHit{tmax[i], 0.0f, 0.0f, -1}
+                 : EmbreeHit{rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], int(rh.hit.primID[i])};
+}
+
+}  // namespace
+
+void EmbreeScene::intersect_packet(int width, int count, const glm::vec3* org, const glm::vec3* dir,
+                                   const float* tmin, const float* tmax, EmbreeHit* out) const {
+  if (width == 16 && count <= 16)
+    trace_packet<16, RTCRayHit16>(scene_, rtcIntersect16, count, org, dir, tmin, tmax, out);
+  else if (width == 8 && count <= 8)
+    trace_packet<8, RTCRayHit8>(scene_, rtcIntersect8, count, org, dir, tmin, tmax, out);
+  else
+    throw Error("Embree packets hold 8 or 16 rays, not " + std::to_string(count) + " of " + std::to_string(width));
+}
+
 bool EmbreeScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tmin, float tmax) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -22,6 +22,11 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   EmbreeHit intersect(const glm::vec3& org, const glm::vec3& dir, float tmin, float tmax) const;
+  // Embree's packet API (rtcIntersect8 / rtcIntersect16, flagged coherent): `count` rays (at most `width`, 8 or 16)
+  // from org[i], dir[i], tmin[i], tmax[i] as one packet, hits into out[0 .. count - 1]. The fairer opponent for rays
+  // that share an origin (a record's hemisphere).
+  void intersect_packet(int width, int count, const glm::vec3* org, const glm::vec3* dir, const float* tmin,
+                        const float* tmax, EmbreeHit* out) const;
   bool occluded(const glm::vec3& org, const glm::vec3& dir, float tmin, float tmax) const;
 
  private:
