@@ -192,6 +192,7 @@ void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScen
       sum.triangle = std::move(round.triangle);
     }
     add_round(sum, round);
+    sum.stats.program_s += round.stats.program_s - img.stats.program_s;  // the path pass's kernels, once cached
   }
   progress.finish();
   const float mean = 1.0f / float(rounds), variance_of_mean = mean * mean;
