@@ -54,10 +54,31 @@ inline void add_separable(__global float* part, int order, const float* factor, 
     }
 }
 
+// Bounds a record's translational gradients as kernels/records.cl bounds the irradiance's (|grad E| <= E / R): per
+// channel, the gradients' L2 norm over the hemisphere (the basis is orthonormal) at most the radiance's own over the
+// radius, so that moving a record's light across its reach never changes it by more than the light itself. Unbounded,
+// a record beside a wall (hit distances far below its radius) extrapolated its brightest strata into hot pixels.
+inline void bound_hsh_gradients(__global const float* lambda, __global float* grad_t, __global float* grad_b, int n2,
+                                float radius) {
+  float3 light = (float3)(0.0f), change = (float3)(0.0f);
+  for (int k = 0; k < n2; ++k) {
+    float3 l = vload3(k, lambda), gt = vload3(k, grad_t), gb = vload3(k, grad_b);
+    light += l * l;
+    change += gt * gt + gb * gb;
+  }
+  float3 limit = sqrt(light) / radius, norm = sqrt(change);
+  float3 scale = select((float3)(1.0f), limit / norm, isgreater(norm, limit));
+  scale = select(scale, (float3)(0.0f), isnan(scale) | isless(scale, 0.0f));
+  for (int k = 0; k < n2; ++k) {
+    vstore3(vload3(k, grad_t) * scale, k, grad_t);
+    vstore3(vload3(k, grad_b) * scale, k, grad_b);
+  }
+}
+
 // One work item per record of the batch.
 __kernel void project_radiance_records(__global const float4* strata, __global const float* column_table,
-                                       HshRecordParams params, __global float* coefficients,
-                                       __global uint* max_radiance_bits) {
+                                       __global const CacheRecord* records, HshRecordParams params,
+                                       __global float* coefficients, __global uint* max_radiance_bits) {
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
   const int order = (int)params.order, n2 = order * order, width = 2 * order - 1;
@@ -110,6 +131,7 @@ __kernel void project_radiance_records(__global const float4* strata, __global c
     add_separable(grad_b, order, theta_integrals, side_b);
   }
   for (int k = 0; k < 3 * 3 * n2; ++k) block[k] = isfinite(block[k]) ? block[k] : 0.0f;
+  bound_hsh_gradients(lambda, grad_t, grad_b, n2, records[params.first_record + i].radius);
   if (isfinite(largest)) atomic_max(max_radiance_bits, as_uint(largest));
 }
 

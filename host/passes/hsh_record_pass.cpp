@@ -81,8 +81,8 @@ void HshRecordPass::reserve(size_t records) {
   capacity_ = grown;
 }
 
-void HshRecordPass::project(const cl::Buffer& strata, uint32_t first, uint32_t count, unsigned theta_strata,
-                            unsigned phi_strata) {
+void HshRecordPass::project(const cl::Buffer& strata, const cl::Buffer& records, uint32_t first, uint32_t count,
+                            unsigned theta_strata, unsigned phi_strata) {
   if (count == 0) return;
   reserve(size_t(first) + count);
   HshRecordParams params{};
@@ -97,6 +97,7 @@ void HshRecordPass::project(const cl::Buffer& strata, uint32_t first, uint32_t c
   }
   project_.set_buffer<cl_float4>("strata", strata)
       .set_buffer<cl_float>("column_table", column_table_)
+      .set_buffer<CacheRecord>("records", records)
       .set("params", params)
       .set_buffer<cl_float>("coefficients", coefficients_)
       .set_buffer<cl_uint>("max_radiance_bits", largest_bits_);

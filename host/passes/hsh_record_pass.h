@@ -21,8 +21,10 @@ class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
 
-  // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each); blocks.
-  void project(const cl::Buffer& strata, uint32_t first, uint32_t count, unsigned theta_strata, unsigned phi_strata);
+  // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each), their
+  // gradients bounded by the records' radii (records: the record pass's buffer); blocks.
+  void project(const cl::Buffer& strata, const cl::Buffer& records, uint32_t first, uint32_t count,
+               unsigned theta_strata, unsigned phi_strata);
   const cl::Buffer& coefficients() const { return coefficients_; }
   int order() const { return order_; }
   float largest_radiance();  // the brightest stratum any record saw (a bound on what a lobe can reflect)

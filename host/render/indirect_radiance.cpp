@@ -98,7 +98,7 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   uint32_t total = place_records(
       index, records, kept, cs, f.settings.seed ^ 0x68736831u, placed,
       [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
-        hsh.project(records.strata(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
+        hsh.project(records.strata(), records.records(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
       },
       "radiance cache");
   st.radiance_records = total;
