@@ -1,5 +1,6 @@
 // The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light (punctual,
-// emissive triangle, or the environment's peak, a sun: kernels/environment.h), chosen in proportion to its power, to
+// emissive triangle, the environment's peak, a sun: kernels/environment.h, or for the bounce probe alone the sky's
+// smooth part: PhotonParams::sky_source), chosen in proportion to its power, to
 // the first surface it lands on, and records the flux that surface reflects (power times albedo). The host clusters
 // the hits into the few bright places records should aim rays at. With more landings the photons go on bouncing and
 // their later landings make the photon map of --bounce-method photons (host/passes/photon_map_pass.h).
