@@ -1,5 +1,7 @@
 #include "cl/device_scene.h"
 
+#include <numbers>
+
 #include "scene/scene_plan.h"
 
 namespace rcsplat {
@@ -27,6 +29,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   counts_.environment_rotation[0] = p.environment.rotation[0];
   counts_.environment_rotation[1] = p.environment.rotation[1];
   counts_.environment_peak_power = p.environment.peak_power;
+  environment_smooth_power_ = p.environment.mean_luminance * 4.0 * std::numbers::pi * (1.0 - p.environment.peak_fraction);
 
   for (const Material& m : p.materials) ++lobe_counts_[size_t(m.lobe)];
   for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), forced_switches))

@@ -45,12 +45,15 @@ class DeviceScene {
   const SceneFrame& frame() const { return frame_; }
   // The environment's peak: the sum of its luminance times solid angle (0: none; kernels/environment.h).
   float environment_peak_power() const { return counts_.environment_peak_power; }
+  // Its smooth part (what is gathered, not sampled): luminance times solid angle over the sphere (0: no environment).
+  double environment_smooth_power() const { return environment_smooth_power_; }
   bool environment_present() const { return counts_.environment_width > 0; }
 
  private:
   DeviceBvh bvh_;
   cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
   SceneCounts counts_{};
+  double environment_smooth_power_ = 0.0;
   KernelDefines defines_;
   std::array<unsigned, LOBE_KINDS> lobe_counts_{};
   std::vector<Material> materials_host_;

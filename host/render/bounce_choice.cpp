@@ -5,7 +5,6 @@
 #include <numbers>
 
 #include "passes/light_guide_pass.h"
-#include "scene/environment.h"
 #include "util/luminance.h"
 
 namespace rcsplat {
@@ -14,14 +13,6 @@ namespace {
 constexpr unsigned kProbePhotons = 1u << 16, kProbeLandings = 4;
 // A seed of its own, the same for every render of the scene: render and reference choose the same count.
 constexpr unsigned kProbeSeed = 0x626f756eu;
-
-// The power of the environment's smooth part as the probe's photons carry it: pi (the unit disc they cross) times its
-// luminance integrated over the sphere.
-double smooth_sky_power(const Scene& scene) {
-  if (!scene.environment.present()) return 0.0;
-  const PackedEnvironment packed = pack_environment(scene.environment);
-  return std::numbers::pi * packed.mean_luminance * 4.0 * std::numbers::pi * (1.0 - packed.peak_fraction);
-}
 
 // Reflected flux of landings 1 .. 3 over landings 0 .. 2 (luminance) of photons from the lights and the
 // environment's peak, and, with sky_power > 0, its smooth part; 0 when no photon lands.
@@ -38,8 +29,10 @@ double kept_per_bounce(GpuContext& gpu, const DeviceScene& device_scene, double 
 // The larger of the lights' measure and the measure with the sky's smooth part added: a sky mostly lights a scene's
 // outside, whose reflections leave (Sponza under a white sky: 8% against its sun's 41%), and must not take away the
 // bounces the lights' light needs inside; a scene lit by a sky alone gets the sky's.
-double kept_per_bounce(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene) {
-  const double lights = kept_per_bounce(gpu, device_scene, 0.0), sky = smooth_sky_power(scene);
+double kept_per_bounce(GpuContext& gpu, const DeviceScene& device_scene) {
+  // The sky's power as the probe's photons carry it: pi (the unit disc they cross) times its luminance over the sphere.
+  const double lights = kept_per_bounce(gpu, device_scene, 0.0),
+               sky = std::numbers::pi * device_scene.environment_smooth_power();
   return sky > 0.0 ? std::max(lights, kept_per_bounce(gpu, device_scene, sky)) : lights;
 }
 
@@ -64,7 +57,7 @@ BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceSce
     choice.method = cache && !scene.environment.present() ? BounceMethod::photons : BounceMethod::path;
   choice.bounces = settings.bounces;
   if (settings.bounces == 0) {
-    choice.kept_per_bounce = kept_per_bounce(gpu, scene, device_scene);
+    choice.kept_per_bounce = kept_per_bounce(gpu, device_scene);
     // From the scene alone, so that a render and its reference (path traced) choose the same count.
     choice.bounces = bounces_for(choice.kept_per_bounce, scene.environment.present() ? kMaxChosenBouncesPath
                                                                                      : kMaxChosenBouncesPhotons);
