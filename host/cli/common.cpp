@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "render/camera.h"
+#include "render/pixel_samples.h"
 #include "scene/cornell_box.h"
 #include "scene/gltf_loader.h"
 #include "util/error.h"
@@ -39,7 +40,7 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:bounce_method", bounce_method_name(image.stats.bounce_method)},
           {"rcsplat:environment", scene.environment.describe()},
           {"rcsplat:pixel_samples", std::to_string(image.stats.pixel_samples)},
-          {"rcsplat:pixel_points", image.stats.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres"}};
+          {"rcsplat:pixel_points", pixel_points_name(settings)}};
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

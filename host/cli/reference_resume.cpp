@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "render/camera.h"
+#include "render/pixel_samples.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -56,8 +57,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
                                                 : parse_count(path, "rcsplat:pixel_samples", pixel_samples_in_file->second);
   if (o.settings.pixel_samples)
     refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
-  refuse_other("rcsplat:pixel_points", "centres", false, o.settings.path.pixel_area ? "jittered" : "centres",
-               "pixel points");
+  refuse_other("rcsplat:pixel_points", "centres", false, pixel_points_name(o.settings), "pixel points");
   unsigned samples_before = parse_count(path, "rcsplat:path_samples", need("rcsplat:path_samples"));
   unsigned lights_before = parse_count(path, "rcsplat:light_samples", need("rcsplat:light_samples"));
   unsigned seed = parse_count(path, "rcsplat:seed", need("rcsplat:seed"));

@@ -148,7 +148,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"gi", gi_method_name(s.gi)}, {"bounces", s.bounces}, {"bounces_chosen", s.bounces_chosen},
       {"kept_per_bounce", s.kept_per_bounce}, {"light_samples", s.light_samples},
       {"pixel_samples", s.pixel_samples},
-      {"pixel_points", s.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres"},
+      {"pixel_points", pixel_points_name(settings)},
       {"triangles", s.triangles},
       {"bvh", {{"nodes", s.bvh_nodes}, {"blocks", s.bvh_blocks}, {"depth", s.bvh_depth}}},
       {"rays", {{"primary", s.primary_rays}, {"shadow", s.shadow_rays}, {"records", s.record_rays},

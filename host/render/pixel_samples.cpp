@@ -43,13 +43,8 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   return average_sub_pixels(render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side)), side);
 }
 
-RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height, unsigned side) {
-  const unsigned n = side * side;
+RenderSettings samples_per_sub_pixel(const RenderSettings& s, unsigned n) {
   RenderSettings sub = s;
-  sub.pixel_samples = 1;
-  sub.width = width * int(side);
-  sub.height = height * int(side);
-  // Per output pixel: light samples split among the sub-pixels (at least one each).
   sub.light_samples = s.light_samples ? std::max(1u, (s.light_samples + n - 1) / n) : 0;
   if (s.gi == GiMethod::path) {
     if (s.path.samples % n)
@@ -57,6 +52,22 @@ RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height
                   std::to_string(n) + ": each sub-pixel takes the same share");
     sub.path.samples = s.path.samples / n;
   }
+  return sub;
+}
+
+unsigned light_sample_strata(unsigned light_samples) {
+  return light_samples ? unsigned(std::ceil(std::sqrt(double(light_samples)))) : 0;
+}
+
+const char* pixel_points_name(const RenderSettings& settings) {
+  return settings.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres";
+}
+
+RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height, unsigned side) {
+  RenderSettings sub = samples_per_sub_pixel(s, side * side);  // per output pixel, split among the sub-pixels
+  sub.pixel_samples = 1;
+  sub.width = width * int(side);
+  sub.height = height * int(side);
   // Record reach and placement in sub-pixels: the same world-space records as at one sample.
   sub.cache.min_reach_pixels *= float(side);
   sub.cache.max_reach_pixels *= float(side);

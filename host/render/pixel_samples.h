@@ -17,6 +17,17 @@ unsigned default_pixel_samples(const RenderSettings& settings, int width, int he
 // The side s of the sub-pixel grid; throws rcsplat::Error unless N is 1, 4, 9, 16, ... (up to 64).
 unsigned pixel_sample_side(unsigned pixel_samples);
 
+// Light and path samples per output pixel divided among its n sub-pixels (or rounds): light samples rounded up, at
+// least one each; path samples must divide evenly (throws rcsplat::Error naming --spp and --pixel-samples).
+RenderSettings samples_per_sub_pixel(const RenderSettings& settings, unsigned n);
+
+// The light-sample strata a pixel's direct light takes (kernels/direct.cl): sqrt(samples) rounded up, squared.
+unsigned light_sample_strata(unsigned light_samples);
+
+// "jittered" where path tracing integrates over the pixel's area (PathSettings::pixel_area), else "centres": the
+// EXR attribute rcsplat:pixel_points, the JSON's pixel_points, and what --resume compares.
+const char* pixel_points_name(const RenderSettings& settings);
+
 // The settings of the s-times larger frame: light samples and path samples divided among the sub-pixels (path samples
 // must divide evenly), record reach and placement spacing in sub-pixels so that records keep their world-space size,
 // and placement stopping one output pixel apart.

@@ -159,14 +159,8 @@ void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScen
                            const SceneFrame& scene_frame, GBufferPass& gbuffer, DirectPass& direct,
                            const CameraParams& camera, const RenderSettings& settings, RenderedImage& img) {
   const unsigned side = pixel_sample_side(std::max(1u, settings.pixel_samples)), rounds = side * side;
-  if (settings.path.samples % rounds)
-    throw Error("--spp " + std::to_string(settings.path.samples) + " must be a multiple of --pixel-samples " +
-                std::to_string(rounds) + ": each sub-pixel takes the same share");
-  RenderSettings round_settings = settings;
-  round_settings.path.samples = settings.path.samples / rounds;
-  round_settings.light_samples = settings.light_samples ? std::max(1u, (settings.light_samples + rounds - 1) / rounds) : 0;
-  const unsigned strata =
-      round_settings.light_samples ? unsigned(std::ceil(std::sqrt(double(round_settings.light_samples)))) : 0;
+  RenderSettings round_settings = samples_per_sub_pixel(settings, rounds);
+  const unsigned strata = light_sample_strata(round_settings.light_samples);
   const unsigned centre_round = (side / 2) * side + side / 2;
   RenderedImage sum;
   sum.width = img.width;
@@ -239,7 +233,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   // position and depth layers and the records go back to world units below.
   const SceneFrame scene_frame = SceneFrame::fitted(scene);
   CameraParams params = camera_params(scene_frame.device_camera(cam), img.width, img.height);
-  unsigned strata = settings.light_samples ? unsigned(std::ceil(std::sqrt(double(settings.light_samples)))) : 0;
+  const unsigned strata = light_sample_strata(settings.light_samples);
   st.light_samples = strata * strata;
 
   log_info("building the BVH over " + std::to_string(st.triangles) + " triangles");
