@@ -22,24 +22,31 @@
 namespace rcsplat {
 namespace {
 
-// Seconds for Embree to trace all rays with one thread per hardware thread.
-double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& rays, std::vector<EmbreeHit>& hits) {
-  hits.resize(rays.size());
+// Seconds to run body(i, n) over [0, count) in steps of `step` (n <= step items from i), 4096-item chunks dealt in
+// turn to one thread per hardware thread (4096 is a multiple of every step: a step never straddles two chunks).
+template <typename Body>
+double seconds_on_all_threads(size_t count, size_t step, const Body& body) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   auto start = std::chrono::steady_clock::now();
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) {
     pool.emplace_back([&, t] {
       const size_t chunk = 4096;
-      for (size_t begin = t * chunk; begin < rays.size(); begin += threads * chunk)
-        for (size_t i = begin; i < std::min(rays.size(), begin + chunk); ++i) {
-          const RayDesc& r = rays[i];
-          hits[i] = embree.intersect(ray_origin(r), ray_direction(r), r.tmin, r.tmax);
-        }
+      for (size_t begin = t * chunk; begin < count; begin += threads * chunk)
+        for (size_t i = begin; i < std::min(count, begin + chunk); i += step) body(i, std::min(count - i, step));
     });
   }
   for (std::thread& th : pool) th.join();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Seconds for Embree to trace all rays with one thread per hardware thread.
+double embree_seconds(const EmbreeScene& embree, const std::vector<RayDesc>& rays, std::vector<EmbreeHit>& hits) {
+  hits.resize(rays.size());
+  return seconds_on_all_threads(rays.size(), 1, [&](size_t i, size_t) {
+    const RayDesc& r = rays[i];
+    hits[i] = embree.intersect(ray_origin(r), ray_direction(r), r.tmin, r.tmax);
+  });
 }
 
 // Seconds for Embree to trace all rays as packets of `width` consecutive rays (8 or 16), one thread per hardware
@@ -55,21 +62,9 @@ double embree_packet_seconds(const EmbreeScene& embree, const std::vector<RayDes
     tmin[i] = rays[i].tmin;
     tmax[i] = rays[i].tmax;
   }
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  auto start = std::chrono::steady_clock::now();
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) {
-    pool.emplace_back([&, t] {
-      const size_t chunk = 4096;  // a multiple of 16: packets never straddle chunks
-      for (size_t begin = t * chunk; begin < rays.size(); begin += threads * chunk)
-        for (size_t i = begin; i < std::min(rays.size(), begin + chunk); i += size_t(width)) {
-          int count = int(std::min(rays.size() - i, size_t(width)));
-          embree.intersect_packet(width, count, &org[i], &dir[i], &tmin[i], &tmax[i], &hits[i]);
-        }
-    });
-  }
-  for (std::thread& th : pool) th.join();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return seconds_on_all_threads(rays.size(), size_t(width), [&](size_t i, size_t n) {
+    embree.intersect_packet(width, int(n), &org[i], &dir[i], &tmin[i], &tmax[i], &hits[i]);
+  });
 }
 
 size_t hit_miss_disagreements(const std::vector<HitDesc>& a, const std::vector<EmbreeHit>& b) {
