@@ -69,6 +69,15 @@ struct PathReference {
   double noise = 0.0;
 };
 
+// The frame most tests here render: 48 x 48, 4 light samples a pixel, `pixel_samples` primary samples.
+RenderSettings small_frame(unsigned pixel_samples = 1) {
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  settings.light_samples = 4;
+  settings.pixel_samples = pixel_samples;
+  return settings;
+}
+
 PathReference path_reference(const Scene& scene, RenderSettings settings, unsigned samples) {
   settings.gi = GiMethod::path;
   settings.path.samples = samples;
@@ -119,9 +128,7 @@ TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
 // against stratified references of 2048 samples less their own noise.
 TEST(GlobalIllumination, SplatConvergesToPathTracingForOneTwoAndThreeBounces) {
   Scene scene = make_cornell_box();
-  RenderSettings settings;
-  settings.width = settings.height = 48;
-  settings.light_samples = 4;
+  RenderSettings settings = small_frame();
   double previous_mean = 0.0;
   for (unsigned bounces : {1u, 2u, 3u}) {
     settings.bounces = bounces;
@@ -156,11 +163,8 @@ TEST(GlobalIllumination, SplatConvergesToPathTracingForOneTwoAndThreeBounces) {
 // (kernels/cache_math.h) chooses.
 TEST(GlobalIllumination, AntiAliasedSplatConvergesWithTheRecordsOfOneSample) {
   Scene scene = make_cornell_box();
-  RenderSettings settings;
-  settings.width = settings.height = 48;
-  settings.light_samples = 4;
-  RenderSettings sub_pixels = settings;
-  sub_pixels.pixel_samples = 4;
+  RenderSettings settings = small_frame();
+  RenderSettings sub_pixels = small_frame(4);
   PathReference reference = path_reference(scene, sub_pixels, 2048);
   // Both radius rules: the split sphere, and the Hessian, whose C the sub-pixel frame must scale by side^2 to keep
   // the records' world radii (unscaled: 528 records against one sample's 449); and the octree, whose interpolation
@@ -266,9 +270,7 @@ double lobe_pixel_error(const RenderedImage& img, const RenderedImage& ref) {
 TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
   Scene scene = cornell_box_with_lobes(0.3f, 0.4f);
 
-  RenderSettings settings;
-  settings.width = settings.height = 48;
-  settings.light_samples = 4;
+  RenderSettings settings = small_frame();
   PathReference reference = path_reference(scene, settings, 4096);
   const RenderedImage& ref = reference.image;
   const double ref_noise = reference.noise;
@@ -296,9 +298,7 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
 TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
   Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
 
-  RenderSettings settings;
-  settings.width = settings.height = 48;
-  settings.light_samples = 4;
+  RenderSettings settings = small_frame();
   PathReference reference = path_reference(scene, settings, 4096);
   const RenderedImage& ref = reference.image;
   settings.gi = GiMethod::splat;
@@ -326,11 +326,8 @@ TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
 // cached lobes' pixels converge to the same sub-pixels' path-traced reference as at one sample.
 TEST(GlobalIllumination, AntiAliasedRadianceRecordsAreOneSamplesAndConverge) {
   Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
-  RenderSettings settings;
-  settings.width = settings.height = 48;
-  settings.light_samples = 4;
-  RenderSettings sub_pixels = settings;
-  sub_pixels.pixel_samples = 4;
+  RenderSettings settings = small_frame();
+  RenderSettings sub_pixels = small_frame(4);
   PathReference reference = path_reference(scene, sub_pixels, 4096);
   PathReference single_reference = path_reference(scene, settings, 4096);
   settings.gi = sub_pixels.gi = GiMethod::splat;
