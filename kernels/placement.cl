@@ -3,6 +3,9 @@
 #include "footprint.h"
 #include "scene_args.h"
 
+// The first multiple of the grid at or after v (v >= 0).
+inline int grid_ceil(int v, int grid) { return (v + grid - 1) / grid * grid; }
+
 // Coverage on the grid of the given spacing: 1 where some record is usable (w > 1/a and not in front). The same test
 // as the splat's, but only on the grid pixels placement looks at, and a plain store (every writer stores 1), so a
 // level costs about 1/spacing^2 of a splat.
@@ -17,7 +20,7 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
   float3 tk, bk;
   tangent_frame(nk, &tk, &bk);
   PixelRect rect = sphere_footprint(camera, pk, accuracy * radius);
-  int x0 = (rect.x0 + spacing - 1) / spacing * spacing, y0 = (rect.y0 + spacing - 1) / spacing * spacing;
+  int x0 = grid_ceil(rect.x0, spacing), y0 = grid_ceil(rect.y0, spacing);
   for (int y = y0; y <= rect.y1; y += spacing) {
     for (int x = x0; x <= rect.x1; x += spacing) {
       uint pixel = (uint)(y * camera->width + x);
@@ -64,6 +67,7 @@ __kernel void clamp_neighbours(GBUFFER_ARGS, __global const CacheRecord* records
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
   const uint first_new = params.first_new;
+  const int grid = params.spacing;  // every record sits on a pixel of this grid: only those pixels are read
   const int clamp_older = params.clamp_older;
   float3 pi = vload3(0, records[i].position);
   float radius = records[i].radius;
@@ -80,8 +84,8 @@ __kernel void clamp_neighbours(GBUFFER_ARGS, __global const CacheRecord* records
       if (old && !new_in_tile[ty * tiles_x + tx]) continue;  // an old record only pairs with new ones
       int x_begin = tx * PLACEMENT_TILE_SIZE, y_begin = ty * PLACEMENT_TILE_SIZE;
       int y_end = min(rect.y1, y_begin + PLACEMENT_TILE_SIZE - 1), x_end = min(rect.x1, x_begin + PLACEMENT_TILE_SIZE - 1);
-      for (int y = max(rect.y0, y_begin); y <= y_end; ++y) {
-        for (int x = max(rect.x0, x_begin); x <= x_end; ++x) {
+      for (int y = grid_ceil(max(rect.y0, y_begin), grid); y <= y_end; y += grid) {
+        for (int x = grid_ceil(max(rect.x0, x_begin), grid); x <= x_end; x += grid) {
           int j = record_at_pixel[y * camera->width + x];
           if (j < 0 || (uint)j == i || (old && (uint)j < first_new)) continue;
           clamped = fmin(clamped, neighbour_radius_bound(pi, vload3(0, records[j].position), records[j].radius));

@@ -408,7 +408,7 @@ typedef struct {
   rc_uint first_record;  // the records a kernel visits: first_record .. first_record + record_count - 1
   rc_uint record_count;
   float accuracy;   // a
-  rc_int spacing;   // the placement grid's spacing in pixels
+  rc_int spacing;   // the placement grid's spacing in pixels (for neighbour clamping, the finest searched so far)
   rc_uint first_new;  // neighbour clamping: records first_new and up are the newest batch
   rc_int clamp_older;  // neighbour clamping: older records may shrink too (first round of a level)
   float min_radius_pixels;  // the radius clamp's minimum, in pixel footprints at the record

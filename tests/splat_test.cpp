@@ -250,6 +250,11 @@ TEST(Splat, OctreeMethodPlacesTheSameRecords) {
   fine.cache.min_reach_pixels = 1.5f;
   fine.cache.max_reach_pixels = 40.0f;
   expect_same_placement(make_cornell_box(), fine);
+  // Sub-pixels: records sit one output pixel apart, and the device's neighbour clamping reads only that grid.
+  RenderSettings anti_aliased = fine;
+  anti_aliased.width = anti_aliased.height = 48;
+  anti_aliased.pixel_samples = 4;
+  expect_same_placement(make_cornell_box(), anti_aliased);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "passes/placement_pass.h"
 
+#include <algorithm>
+
 #include "kernels/cache_math.h"
 
 namespace rcsplat {
@@ -27,6 +29,8 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
   PlacementParams params{};
   params.accuracy = accuracy;
   params.spacing = spacing;
+  // Placement runs coarse to fine on power-of-two grids, so every record placed so far sits on this grid.
+  record_grid_ = record_grid_ ? std::min(record_grid_, spacing) : spacing;
   if (!unchanged_before) gpu_.queue().enqueueFillBuffer(covered_, cl_uchar(0), 0, gbuffer_.pixel_count());
   if (record_count > unchanged_before) {
     params.first_record = unchanged_before;
@@ -73,6 +77,7 @@ void PlacementPass::clamp_neighbours(const cl::Buffer& records, uint32_t count, 
   params.first_new = first_new;
   params.clamp_older = clamp_older ? 1 : 0;
   params.min_radius_pixels = min_radius_pixels;
+  params.spacing = std::max(record_grid_, 1);
   gbuffer_.bind(clamp_);
   clamp_.set_buffer<CacheRecord>("records", records)
       .set("params", params)

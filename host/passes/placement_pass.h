@@ -38,6 +38,7 @@ class PlacementPass {
   cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;
+  int record_grid_ = 0;  // the finest placement grid searched so far: every record sits on one of its pixels
 };
 
 }  // namespace rcsplat
