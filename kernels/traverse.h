@@ -206,6 +206,18 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
           ref = refs[i0];
           continue;
         }
+        if (any_hit) {  // any occluder ends the ray, wherever it lies: visit the children in lane order
+          stack_ref[sp] = refs[i0];
+          stack_t[sp++] = 0.0f;
+          while (mask) {
+            int i = lowest_bit(mask);
+            mask &= mask - 1;
+            stack_ref[sp] = refs[i];
+            stack_t[sp++] = 0.0f;
+          }
+          ref = stack_ref[--sp];
+          continue;
+        }
         int i1 = lowest_bit(mask);
         mask &= mask - 1;
         if (!mask) {  // two children: descend into the nearer, keep the farther
