@@ -133,6 +133,11 @@ int main(int argc, char** argv) {
                          "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
                              shortest(cache_defaults.hessian_error))
       ->check(CLI::Range(0.0f, 1e6f));
+  render_cmd->add_option("--adaptive-rays", render.settings.cache.adaptive_error,
+                         "Adaptive rays: trace each record with half the strata each way first, and again with all "
+                         "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
+                             shortest(cache_defaults.adaptive_error))
+      ->check(CLI::Range(0.0f, 1e6f));
   render_cmd->add_option("--guide-rays", render.settings.cache.guide_rays,
                          "Rays per record aimed at the brightest directly lit places (photons from the lights find "
                          "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +

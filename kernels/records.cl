@@ -304,6 +304,9 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
   float3 grad_t[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
   float3 grad_r[3] = {(float3)(0.0f), (float3)(0.0f), (float3)(0.0f)};
   float inverse_distances = 0.0f;
+  // Collapsed strata (Cochran, Sampling Techniques 5A.12): columns k - 1 and k (k odd) pair up row by row, and the
+  // squared differences of their luminance estimate the sum's variance (conservatively: the pair's own slope counts).
+  float pair_variance = 0.0f;
   // The horizon: per column, the nearest occluder the low rows (elevation below 30 degrees) found, measured along the
   // tangent plane; per sector, the nearest of its columns' (conservative: a wall seen obliquely hides the whole sector
   // beyond it).
@@ -329,6 +332,10 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
       if (j >= first_low_row) column_horizon = fmin(column_horizon, r * sqrt(stratum_sin2_theta(hp, site.key, s)));
       rotation += rotation_weight[j] * l;
       if (j > 0) add_outer(grad_t, u_mid, (theta_wall[j] / fmin(r, r_below)) * (l - l_below));
+      if (k & 1u) {
+        float d = luminance(l) - luminance(prev_l[j]);
+        pair_variance += d * d;
+      }
       if (k > 0) add_outer(grad_t, v_lo, (phi_wall[j] / fmin(r, prev_r[j])) * (l - prev_l[j]));
       else {
         first_l[j] = l;
@@ -353,6 +360,10 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
   }
   const float strata_luminance = luminance(e);  // before e becomes the irradiance
   e = finite_or_zero(e * norm + e_guided);
+  // The strata's sum times norm is E's estimate: its standard error over E's luminance (infinite where E is black but
+  // the strata were not; 0 where everything was black).
+  const float error_sum = norm * sqrt(pair_variance), e_luminance = luminance(e);
+  const float relative_error = error_sum > 0.0f ? (e_luminance > 0.0f ? error_sum / e_luminance : INFINITY) : 0.0f;
 
   // Radius: Ward's harmonic mean distance, or the occlusion Hessian's, clamped to [min, max] pixel footprints.
   float harmonic = (float)(M * N) / inverse_distances;
@@ -382,7 +393,7 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
     vstore3(grad_r[a], a, rec.grad_rotation);
   }
   rec.harmonic_distance = harmonic;
-  rec.pad = 0.0f;
+  rec.relative_error = relative_error;
   // A sector no column falls in (N < 8) hides nothing; a record always reaches its own pixel's half-footprint.
   for (int s = 0; s < RECORD_HORIZON_SECTORS; ++s)
     rec.horizon[s] = fmax(horizon[s], 0.5f * pixel_size);

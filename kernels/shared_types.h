@@ -200,7 +200,9 @@ typedef struct {
   float grad_translation[9];
   float grad_rotation[9];
   float harmonic_distance;  // Ward's harmonic mean hit distance, before any clamp
-  float pad;
+  // The strata's estimate of E's relative standard error (luminance; kernels/records.cl): where adaptive rays are on,
+  // a record above the threshold is traced again with the full hemisphere.
+  float relative_error;
   // Per azimuth sector of the record's tangent plane (kernels/cache_math.h horizon_sector): the distance beyond which
   // its low rays found an occluder (a wall it stands beside): points farther in that direction are hidden from it.
   float horizon[RECORD_HORIZON_SECTORS];

@@ -283,3 +283,53 @@ TEST(Splat, AtMostOneRecordPerPixelAndEveryPixelCovered) {
 
 }  // namespace
 }  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+std::vector<CacheRecord> records_by_pixel(std::vector<CacheRecord> r) {
+  std::sort(r.begin(), r.end(), [](const CacheRecord& a, const CacheRecord& b) { return a.pixel < b.pixel; });
+  return r;
+}
+
+void expect_same_records_and_image(const RenderedImage& a, const RenderedImage& b, const char* what) {
+  std::vector<CacheRecord> ra = records_by_pixel(a.records), rb = records_by_pixel(b.records);
+  ASSERT_EQ(ra.size(), rb.size()) << what;
+  for (size_t k = 0; k < ra.size(); ++k)
+    ASSERT_EQ(0, std::memcmp(&ra[k], &rb[k], sizeof(CacheRecord))) << what << ": record at pixel " << ra[k].pixel;
+  EXPECT_EQ(a.indirect, b.indirect) << what;
+}
+
+// Adaptive rays trace every record with half the strata each way first and again with all of them where its error
+// score is above the threshold: at a threshold nothing passes, the frame is the full hemisphere's, bit for bit; at one
+// everything passes, the half hemisphere's; in between, some records are traced again.
+TEST(Splat, AdaptiveRaysGiveTheFullOrTheHalfHemispheresRecords) {
+  Scene scene = make_cornell_box();
+  RenderSettings full = small_splat(64), half = small_splat(64);
+  half.cache.theta_strata /= 2;
+  half.cache.phi_strata /= 2;
+  RenderedImage full_img = render(test::gpu(), scene, full), half_img = render(test::gpu(), scene, half);
+
+  RenderSettings strict = full;
+  strict.cache.adaptive_error = 1e-12f;
+  RenderedImage strict_img = render(test::gpu(), scene, strict);
+  EXPECT_EQ(strict_img.stats.adaptive_records, strict_img.stats.records);
+  expect_same_records_and_image(strict_img, full_img, "every record traced again");
+
+  RenderSettings lax = full;
+  lax.cache.adaptive_error = 1e30f;
+  RenderedImage lax_img = render(test::gpu(), scene, lax);
+  EXPECT_EQ(lax_img.stats.adaptive_records, 0u);
+  expect_same_records_and_image(lax_img, half_img, "no record traced again");
+
+  RenderSettings between = full;
+  between.cache.adaptive_error = 0.3f;
+  RenderedImage between_img = render(test::gpu(), scene, between);
+  EXPECT_GT(between_img.stats.adaptive_records, between_img.stats.records / 10);
+  EXPECT_LT(between_img.stats.adaptive_records, between_img.stats.records * 9 / 10);
+  std::printf("adaptive rays at 0.3: %llu of %llu records traced again\n",
+              (unsigned long long)between_img.stats.adaptive_records, (unsigned long long)between_img.stats.records);
+}
+
+}  // namespace
+}  // namespace rcsplat

@@ -34,6 +34,8 @@ void validate_cache_settings(const CacheSettings& c) {
   if (c.fine_theta_strata) check_hemisphere("--fine-hemisphere", c.fine_theta_strata, c.fine_phi_strata);
   if (!(c.min_reach_pixels > 0.0f) || !(c.max_reach_pixels >= c.min_reach_pixels) || !std::isfinite(c.max_reach_pixels))
     throw Error("--spacing MIN,MAX: need 0 < MIN <= MAX, in pixels");
+  if (!(c.adaptive_error >= 0.0f) || !std::isfinite(c.adaptive_error))
+    throw Error("--adaptive-rays must be 0 (off) or positive (given " + number(c.adaptive_error) + ")");
   if (!(c.hessian_error >= 0.0f) || !std::isfinite(c.hessian_error))
     throw Error("--hessian-error must be 0 (the split sphere) or positive (given " + number(c.hessian_error) + ")");
   if (c.guide_rays > 4096) throw Error("--guide-rays must be between 0 and 4096 (given " + std::to_string(c.guide_rays) + ")");

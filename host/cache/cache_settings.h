@@ -26,6 +26,10 @@ struct CacheSettings {
   // but Sibenik 2-5x the block error (noise read as curvature shrinks radii where its few bright patches make records
   // noisy; benchmarks/RESULTS.md "Record radii").
   float hessian_error = 0.0f;
+  // Adaptive rays: above 0, each record is first traced with half the strata each way (M/2 x N/2), and those whose
+  // relative error (kernels/records.cl) is above this are traced again with all M x N. The command line's
+  // --adaptive-rays.
+  float adaptive_error = 0.0f;
   int coarsest_spacing_pixels = 32;
   // Placement stops at this spacing (with its extra rounds). Anti-aliasing sets it to one output pixel in sub-pixels, so
   // records are placed as at one sample; the sub-pixels they leave unreached take the best-weighted record near them

@@ -287,6 +287,12 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   rec.normal = n;
   rec.irradiance = std::isfinite(e.x + e.y + e.z) ? e : dvec3(0.0);
   rec.harmonic_distance = double(M * N) / inverse_distances;
+  double paired_squares = 0.0;  // collapsed strata: each pair's difference squared estimates twice its variance
+  for (int j = 0; j < M; ++j)
+    for (int k = 1; k < N; k += 2) paired_squares += std::pow(luminance(L[at(j, k)]) - luminance(L[at(j, k - 1)]), 2);
+  double standard_error = kPi / (M * N) * std::sqrt(paired_squares);
+  // 0 where every stratum was black; infinite where E is black but strata were not (as the kernel says).
+  rec.relative_error = standard_error > 0.0 ? standard_error / luminance(rec.irradiance) : 0.0;
   rec.pixel_size = pixel_size;
   rec.pixel = pixel;
   double unclamped = rec.harmonic_distance;
@@ -318,6 +324,7 @@ CacheRecord to_cache_record(const HostRecord& r) {
   out.pixel = int32_t(r.pixel);
   out.pixel_size = float(r.pixel_size);
   out.harmonic_distance = float(r.harmonic_distance);
+  out.relative_error = float(r.relative_error);
   for (size_t s = 0; s < r.horizon.size(); ++s) out.horizon[s] = float(r.horizon[s]);
   return out;
 }

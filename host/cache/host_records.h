@@ -16,6 +16,7 @@ struct HostRecord {
   glm::dvec3 position{0.0}, normal{0.0}, irradiance{0.0};
   std::array<glm::dvec3, 3> grad_translation{}, grad_rotation{};  // row per axis, RGB
   double radius = 0, harmonic_distance = 0, pixel_size = 0;
+  double relative_error = 0;  // E's standard error over E (luminance), from columns paired 2k, 2k + 1 row by row
   std::array<double, RECORD_HORIZON_SECTORS> horizon{};  // per 45-degree sector from t toward b
   uint32_t pixel = 0;
   uint64_t rays = 0;

@@ -81,6 +81,9 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
     if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels, ", c.min_reach_pixels, c.max_reach_pixels);
+    if (c.adaptive_error > 0.0f)
+      std::printf("adaptive rays (%ux%u first, all where the error score is above %g: %llu records), ",
+                  c.theta_strata / 2, c.phi_strata / 2, c.adaptive_error, (unsigned long long)s.adaptive_records);
     if (c.hessian_error > 0.0f) std::printf("radii from the occlusion Hessian (error budget %g)\n", c.hessian_error);
     else std::printf("radii from Ward's split sphere\n");
     if (s.photon_map_photons)
@@ -171,7 +174,9 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                   {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
                   {"spacing", {c.min_reach_pixels, c.max_reach_pixels}},
                   {"radius_rule", c.hessian_error > 0.0f ? "occlusion_hessian" : "split_sphere"},
-                  {"hessian_error", c.hessian_error}, {"records", s.records}, {"levels", levels},
+                  {"hessian_error", c.hessian_error},
+                  {"adaptive_rays", {{"error", c.adaptive_error}, {"records_traced_again", s.adaptive_records}}},
+                  {"records", s.records}, {"levels", levels},
                   {"uncovered_pixels", s.uncovered_pixels}, {"filled_sub_pixels", s.filled_sub_pixels}, {"at_min_radius", s.records_at_min_radius},
                   {"at_max_radius", s.records_at_max_radius},
                   {"light_guide", {{"rays_per_record", s.guide_clusters ? c.guide_rays : 0u},

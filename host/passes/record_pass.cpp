@@ -133,6 +133,39 @@ void RecordPass::compute(const GBufferView& gbuffer, const cl::Buffer& candidate
   gpu_.queue().finish();
 }
 
+float adaptive_error_score(const CacheRecord& record, const HemisphereParams& hemisphere) {
+  // A record's noise shows as a blotch as wide as its reach: one reaching a pixel or two averages out within an 8 x 8
+  // block, one reaching dozens does not. So its relative error counts in proportion to its radius over the smallest
+  // radius allowed (measured on Sponza: RESULTS.md "Adaptive rays").
+  double reach = double(record.radius) / (double(record.pixel_size) * hemisphere.min_radius_pixels);
+  return float(double(record.relative_error) * std::max(reach, 1.0));
+}
+
+uint32_t RecordPass::compute_adaptive(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count,
+                                      uint32_t first, const HemisphereParams& coarse, const HemisphereParams& full,
+                                      float max_relative_error) {
+  if (store_strata_) throw Error("records: adaptive rays need records that keep no strata");
+  compute(gbuffer, candidates, count, first, coarse);
+  std::vector<CacheRecord> batch = download(first, count);
+  std::vector<cl_uint> uncertain_pixels;
+  std::vector<uint32_t> uncertain;  // their places in the batch, in candidate order (the same bits every run)
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!(adaptive_error_score(batch[i], full) <= max_relative_error)) {
+      uncertain.push_back(i);
+      uncertain_pixels.push_back(cl_uint(batch[i].pixel));
+    }
+  }
+  if (uncertain.empty()) return 0;
+  // Traced again past the batch's end, then moved into place.
+  cl::Buffer again = gpu_.upload(uncertain_pixels, CL_MEM_READ_ONLY, "adaptive record candidates");
+  compute(gbuffer, again, uint32_t(uncertain.size()), first + count, full);
+  std::vector<CacheRecord> traced = download(size_t(first) + count, uncertain.size());
+  for (size_t u = 0; u < uncertain.size(); ++u) batch[uncertain[u]] = traced[u];
+  gpu_.queue().enqueueWriteBuffer(records_, CL_TRUE, size_t(first) * sizeof(CacheRecord),
+                                  batch.size() * sizeof(CacheRecord), batch.data());
+  return uint32_t(uncertain.size());
+}
+
 uint64_t RecordPass::rays_cast() { return gpu_.download<cl_ulong>(ray_total_, 1)[0]; }
 
 std::vector<CacheRecord> RecordPass::download(size_t first, size_t count) {

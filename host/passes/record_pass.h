@@ -13,6 +13,10 @@
 
 namespace rcsplat {
 
+// What adaptive rays compare with their threshold: the record's relative error (CacheRecord::relative_error) times
+// its radius over the smallest the hemisphere allows (at least 1).
+float adaptive_error_score(const CacheRecord& record, const HemisphereParams& hemisphere);
+
 class RecordPass {
  public:
   // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
@@ -26,6 +30,11 @@ class RecordPass {
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
   void compute(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
                const HemisphereParams& params);
+  // Adaptive rays: computes the records with `coarse` (fewer strata), then traces those whose adaptive_error_score is
+  // above max_relative_error again with `full`, in place. Returns how many were traced again. Not with store_strata
+  // (the strata of one batch must share one hemisphere).
+  uint32_t compute_adaptive(const GBufferView& gbuffer, const cl::Buffer& candidates, uint32_t count, uint32_t first,
+                            const HemisphereParams& coarse, const HemisphereParams& full, float max_relative_error);
   // Aims rays_per_record rays of every later record at these clusters (kernels/light_guide.h), beside its M x N
   // strata; no clusters or no rays: none. Records computed without a guide ignore HemisphereParams' guide fields.
   void set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record);

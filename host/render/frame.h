@@ -48,6 +48,7 @@ struct RenderStats {
   uint64_t records = 0, record_rays = 0, uncovered_pixels = 0;
   uint64_t filled_sub_pixels = 0;  // anti-aliasing: sub-pixels no record reached, given the best-weighted one near
   uint64_t records_at_min_radius = 0, records_at_max_radius = 0;  // radius at a screen-space clamp
+  uint64_t adaptive_records = 0;  // records traced again with the full hemisphere (--adaptive-rays)
   double records_s = 0, placement_s = 0, splat_s = 0, resolve_s = 0;
   unsigned guide_clusters = 0;  // the light guide's clusters (0: records took no guided rays)
   uint64_t guide_photons = 0;

@@ -31,7 +31,14 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
       if (!count) break;
       t = Clock::now();
       HemisphereParams hemisphere = hemisphere_params(cache, seed, spacing);
-      records.compute(gbuffer, index.candidates(), count, total, hemisphere);
+      HemisphereParams coarse = hemisphere;
+      coarse.theta_strata /= 2;
+      coarse.phi_strata /= 2;
+      if (cache.adaptive_error > 0.0f && !after_batch && coarse.theta_strata > 0 && coarse.phi_strata > 0)
+        st.adaptive_records += records.compute_adaptive(gbuffer, index.candidates(), count, total, coarse, hemisphere,
+                                                        cache.adaptive_error);
+      else
+        records.compute(gbuffer, index.candidates(), count, total, hemisphere);
       if (after_batch) after_batch(total, count, hemisphere);
       st.records_s += seconds_since(t);
       t = Clock::now();
