@@ -37,6 +37,7 @@ expect_refused("unknown output format" "out.tiff: unknown output format" render 
 expect_refused("invalid JSON" "broken.gltf: cannot be loaded" render broken.gltf -o out.exr)
 expect_refused("missing scene" "nothing.gltf" render nothing.gltf -o out.exr)
 expect_refused("accuracy out of range" "--accuracy" render -o out.exr --accuracy 0)
+expect_refused("negative adaptive rays" "--adaptive-rays: Value -1" render -o out.exr --adaptive-rays -1)
 expect_refused("info on invalid JSON" "broken.gltf: cannot be loaded" info broken.gltf --json out.json)
 expect_refused("bounces 17" "--bounces: Value 17" render -o out.exr --bounces 17)
 expect_refused("unknown bounce method" "--bounce-method: photon not in" render -o out.exr --bounce-method photon)

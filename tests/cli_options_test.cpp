@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -53,6 +54,16 @@ TEST(CliOptions, BadValuesAreRefusedByName) {
   CacheSettings bad_accuracy;
   bad_accuracy.accuracy = -1.0f;
   EXPECT_THROW(validate_cache_settings(bad_accuracy), Error);
+  for (float bad : {-0.1f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    CacheSettings bad_adaptive;
+    bad_adaptive.adaptive_error = bad;
+    try {
+      validate_cache_settings(bad_adaptive);
+      ADD_FAILURE() << "--adaptive-rays " << bad << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--adaptive-rays"), std::string::npos) << e.what();
+    }
+  }
 }
 
 void write_rgb_exr(const std::string& path, int w, int h, float value, bool with_indirect,
