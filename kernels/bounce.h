@@ -23,12 +23,6 @@
 #define GATHER_MAP
 #endif
 
-// A surface a ray found, oriented toward the ray (surfaces reflect on both sides, as in the G-buffer).
-typedef struct {
-  SurfacePoint s;
-  float3 ns, ng, albedo;
-} HitSurface;
-
 inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
@@ -43,18 +37,19 @@ inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, 
   h->ng = back ? -h->s.geometric_normal : h->s.geometric_normal;
   h->ns = back ? -h->s.shading_normal : h->s.shading_normal;
   if (dot(h->ns, h->ng) <= 0.0f) h->ns = h->ng;
-  h->albedo = surface_albedo(materials, textures, texels, &h->s);
+  h->albedo_read = h->lobe_read = 0;
   return true;
 }
 
 // The directly lit radiance the surface reflects back along -dir; (u, v) pick the light sample, u_lobe the lobe of its
 // BRDF sample where the surface is glossy.
-inline float3 hit_direct(SCENE_ARGS, const HitSurface* h, float3 dir, float u, float v, float u_lobe, uint* rays) {
+inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe, uint* rays) {
 #if HAS_SPECULAR_BRDF
-  SurfaceLobe lobe = surface_lobe(materials, textures, texels, &h->s);
-  if (lobe.lobe != LOBE_NONE)
-    return direct_reflected(SCENE, surface_brdf(h->albedo, lobe), lobe.lobe, h->s.position, h->ns, h->ng, -dir, u, v,
-                            u_lobe, rays);
+  const int lobe = hit_lobe_kind(materials, textures, texels, h);
+  if (lobe != LOBE_NONE) {
+    LazyBrdf brdf = lazy_hit_brdf(h);
+    return direct_reflected(SCENE, &brdf, lobe, h->s.position, h->ns, h->ng, -dir, u, v, u_lobe, rays);
+  }
 #endif
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
                                h->s.position, h->ns, h->ng, u, v, rays);
@@ -62,7 +57,8 @@ inline float3 hit_direct(SCENE_ARGS, const HitSurface* h, float3 dir, float u, f
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
 #endif
-  return finite_or_zero(h->albedo * RC_INV_PI * e);
+  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);  // what any albedo times it would give
+  return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
 }
 
 // The bounces after the first (--bounces N: N - 1 of them): from each hit the path goes on along a direction drawn
@@ -87,13 +83,13 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
     float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
     float3 next;
 #if HAS_SPECULAR_BRDF
-    SurfaceLobe lobe = surface_lobe(materials, textures, texels, &h.s);
+    SurfaceLobe lobe = hit_lobe(materials, textures, texels, &h);
     if (lobe.lobe != LOBE_NONE) {
       ShadingFrame frame = shading_frame(h.ns);
       float3 wi;
       float pdf;
-      throughput *= brdf_sample(surface_brdf(h.albedo, lobe), view_local(frame, -dir),
-                                random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
+      BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, &h), lobe);
+      throughput *= brdf_sample(brdf, view_local(frame, -dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
       next = to_world(frame, wi);
     } else
 #endif
@@ -101,7 +97,7 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
       float3 t, b;
       tangent_frame(h.ns, &t, &b);
       next = cosine_direction(t, b, h.ns, u1, u2);
-      throughput *= h.albedo;  // cosine-weighted: f cos / pdf = albedo
+      throughput *= hit_albedo(materials, textures, texels, &h);  // cosine-weighted: f cos / pdf = albedo
     }
     if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f) || dot(next, h.ng) <= 0.0f) break;
     float distance;

@@ -29,10 +29,10 @@ inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world
                                     uint* rays) {
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
-  BrdfInputs in = gbuffer_brdf(g);
+  LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
   ShadingFrame frame = shading_frame(n);
   float3 wo = view_local(frame, wo_world);
-  float3 result = punctual_reflected(SCENE, in, frame, wo, p, origin, ng, rays);
+  float3 result = punctual_reflected(SCENE, &brdf, frame, wo, p, origin, ng, rays);
 #if HAS_EMITTERS
   if (scene_counts.emitter_count > 0 && strata_per_axis > 0) {
     float3 sum = (float3)(0.0f);
@@ -40,7 +40,7 @@ inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world
     for (uint j = 0; j < strata_per_axis; ++j) {
       for (uint i = 0; i < strata_per_axis; ++i) {
         float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
-        sum += emitters_reflected(SCENE, in, g.lobe, frame, wo, p, origin, ng, uv.x, uv.y,
+        sum += emitters_reflected(SCENE, &brdf, g.lobe, frame, wo, p, origin, ng, uv.x, uv.y,
                                   random01(key, j * strata_per_axis + i, 2u), rays);
       }
     }
@@ -54,7 +54,7 @@ inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world
     for (uint j = 0; j < strata_per_axis; ++j) {
       for (uint i = 0; i < strata_per_axis; ++i) {
         float2 uv = light_stratum_sample(key ^ ENVIRONMENT_KEY, i, j, strata_per_axis);
-        sum += environment_peak_reflected(SCENE, in, frame, wo, origin, ng, uv.x, uv.y, rays);
+        sum += environment_peak_reflected(SCENE, &brdf, frame, wo, origin, ng, uv.x, uv.y, rays);
       }
     }
     result += sum * (inv * inv);

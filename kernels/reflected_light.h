@@ -14,6 +14,41 @@ inline BrdfInputs surface_brdf(float3 base_color, SurfaceLobe lobe) {
   return brdf_inputs(base_color, lobe.metallic, lobe.roughness, lobe.specular);
 }
 
+// The BRDF of a surface, built where a light sample first needs it (lazy_brdf_inputs): from the G-buffer's stored
+// inputs (built), or from a ray's hit, whose textures are then read once (hit_albedo, surface_lobe). Each use below
+// sits where the eager code evaluated the BRDF, so the results are the same bits.
+typedef struct {
+  BrdfInputs in;
+  int built;
+  HitSurface* hit;  // what to build it from while !built
+} LazyBrdf;
+
+inline LazyBrdf built_brdf(BrdfInputs in) {
+  LazyBrdf b;
+  b.in = in;
+  b.built = 1;
+  b.hit = 0;
+  return b;
+}
+
+inline LazyBrdf lazy_hit_brdf(HitSurface* hit) {
+  LazyBrdf b;
+  b.built = 0;
+  b.hit = hit;
+  return b;
+}
+
+inline BrdfInputs lazy_brdf_inputs(__global const Material* materials, __global const TextureInfo* textures,
+                                   __global const uint* texels, LazyBrdf* b) {
+  if (!b->built) {
+    b->in = surface_brdf(hit_albedo(materials, textures, texels, b->hit),
+                         hit_lobe(materials, textures, texels, b->hit));
+    b->built = 1;
+  }
+  return b->in;
+}
+#define BRDF_IN lazy_brdf_inputs(materials, textures, texels, brdf)
+
 // The power heuristic's weight for a sample of the technique with density a against one with density b.
 inline float power_heuristic(float a, float b) {
   float a2 = a * a, b2 = b * b;
@@ -41,14 +76,14 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
 #endif
 
 // Punctual lights' radiance reflected toward wo (world, unit) at p.
-inline float3 punctual_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local, float3 p,
+inline float3 punctual_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local, float3 p,
                                  float3 origin, float3 ng, uint* rays) {
   float3 sum = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
   for (uint i = 0; i < scene_counts.light_count; ++i) {
     float3 wi;
     float3 e = punctual_irradiance(BVH, lights[i], p, origin, frame.n, ng, &wi, rays);
-    if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) sum += brdf_eval(in, wo_local, to_local(frame, wi)) * e;
+    if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) sum += brdf_eval(BRDF_IN, wo_local, to_local(frame, wi)) * e;
   }
 #endif
   return sum;
@@ -60,7 +95,7 @@ inline bool lobe_takes_brdf_samples(int lobe) { return lobe == LOBE_GLOSSY || lo
 // One estimate of the emitters' radiance reflected toward wo: a light sample at (u, v), and for a glossy lobe also a
 // BRDF sample at (u_lobe, u, v), the two weighed by multiple importance sampling. Reusing (u, v) keeps each technique
 // unbiased on its own, and the weights sum to one at every direction, so their sum is too.
-inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFrame frame, float3 wo_local, float3 p,
+inline float3 emitters_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, ShadingFrame frame, float3 wo_local, float3 p,
                                  float3 origin, float3 ng, float u, float v, float u_lobe, uint* rays) {
   float3 sum = (float3)(0.0f);
 #if HAS_EMITTERS
@@ -71,13 +106,13 @@ inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFra
                             rays);
   if (light_pdf > 0.0f) {
     float3 wi_local = to_local(frame, wi);
-    float weight = lobe_takes_brdf_samples(lobe) ? power_heuristic(light_pdf, brdf_pdf(in, wo_local, wi_local)) : 1.0f;
-    sum += brdf_eval(in, wo_local, wi_local) * e * weight;
+    float weight = lobe_takes_brdf_samples(lobe) ? power_heuristic(light_pdf, brdf_pdf(BRDF_IN, wo_local, wi_local)) : 1.0f;
+    sum += brdf_eval(BRDF_IN, wo_local, wi_local) * e * weight;
   }
   if (lobe_takes_brdf_samples(lobe)) {
     float3 wi_local;
     float brdf_pdf_value;
-    float3 throughput = brdf_sample(in, wo_local, u_lobe, u, v, &wi_local, &brdf_pdf_value);
+    float3 throughput = brdf_sample(BRDF_IN, wo_local, u_lobe, u, v, &wi_local, &brdf_pdf_value);
     float3 dir = to_world(frame, wi_local);
     if (brdf_pdf_value > 0.0f && dot(dir, ng) > 0.0f) {
       float pdf_of_light;
@@ -92,24 +127,24 @@ inline float3 emitters_reflected(SCENE_ARGS, BrdfInputs in, int lobe, ShadingFra
 #if HAS_ENVIRONMENT
 // One light-sample estimate of the environment's peak reflected toward wo: the smooth part is left to the rays that
 // gather (kernels/environment.h).
-inline float3 environment_peak_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local,
+inline float3 environment_peak_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local,
                                          float3 origin, float3 ng, float u1, float u2, uint* rays) {
   float3 wi;
   float3 e = environment_peak_irradiance(SCENE, origin, frame.n, ng, u1, u2, &wi, rays);
   if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);
-  return brdf_eval(in, wo_local, to_local(frame, wi)) * e;
+  return brdf_eval(BRDF_IN, wo_local, to_local(frame, wi)) * e;
 }
 
 // The environment reflected toward wo by a surface a gathering ray found: the peak by a light sample, the smooth part
 // by a BRDF sample that must escape. Its random numbers come from the light sample's (u, v).
-inline float3 environment_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame frame, float3 wo_local, float3 origin,
+inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local, float3 origin,
                                     float3 ng, float u, float v, uint* rays) {
   if (!environment_present(scene_counts)) return (float3)(0.0f);
   float2 peak_u = environment_extra_randoms(u, v, 0u), lobe_u = environment_extra_randoms(u, v, 1u);
-  float3 sum = environment_peak_reflected(SCENE, in, frame, wo_local, origin, ng, peak_u.x, peak_u.y, rays);
+  float3 sum = environment_peak_reflected(SCENE, brdf, frame, wo_local, origin, ng, peak_u.x, peak_u.y, rays);
   float3 wi_local;
   float pdf;
-  float3 throughput = brdf_sample(in, wo_local, environment_extra_randoms(u, v, 2u).x, lobe_u.x, lobe_u.y, &wi_local,
+  float3 throughput = brdf_sample(BRDF_IN, wo_local, environment_extra_randoms(u, v, 2u).x, lobe_u.x, lobe_u.y, &wi_local,
                                   &pdf);
   float3 dir = to_world(frame, wi_local);
   if (pdf > 0.0f && dot(dir, ng) > 0.0f && escapes(BVH, origin, dir, rays))
@@ -120,15 +155,15 @@ inline float3 environment_reflected(SCENE_ARGS, BrdfInputs in, ShadingFrame fram
 
 // Direct light reflected toward wo_world (unit, pointing away from p) by a surface with a specular lobe: every
 // punctual light, one emitter estimate and, where there is one, one estimate of the environment.
-inline float3 direct_reflected(SCENE_ARGS, BrdfInputs in, int lobe, float3 p, float3 n, float3 ng, float3 wo_world,
+inline float3 direct_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, float3 p, float3 n, float3 ng, float3 wo_world,
                                float u, float v, float u_lobe, uint* rays) {
   ShadingFrame frame = shading_frame(n);
   float3 wo_local = view_local(frame, wo_world);
   float3 origin = offset_ray_origin(p, ng);
-  float3 l = punctual_reflected(SCENE, in, frame, wo_local, p, origin, ng, rays) +
-             emitters_reflected(SCENE, in, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays);
+  float3 l = punctual_reflected(SCENE, brdf, frame, wo_local, p, origin, ng, rays) +
+             emitters_reflected(SCENE, brdf, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays);
 #if HAS_ENVIRONMENT
-  l += environment_reflected(SCENE, in, frame, wo_local, origin, ng, u, v, rays);
+  l += environment_reflected(SCENE, brdf, frame, wo_local, origin, ng, u, v, rays);
 #endif
   return finite_or_zero(l);
 }

@@ -144,4 +144,42 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
   return l;
 }
 
+// A surface a ray found, oriented toward the ray (surfaces reflect on both sides, as in the G-buffer). Its albedo and
+// lobe are read on first use (hit_albedo, hit_lobe): a hit no light reaches never reads its texels, which were a tenth
+// of Sponza's record pass, most of whose ray hits lie in shadow.
+typedef struct {
+  SurfacePoint s;
+  float3 ns, ng, albedo;
+  SurfaceLobe lobe;
+  int albedo_read, lobe_read;
+} HitSurface;
+
+inline float3 hit_albedo(__global const Material* materials, __global const TextureInfo* textures,
+                         __global const uint* texels, HitSurface* h) {
+  if (!h->albedo_read) {
+    h->albedo = surface_albedo(materials, textures, texels, &h->s);
+    h->albedo_read = 1;
+  }
+  return h->albedo;
+}
+
+inline SurfaceLobe hit_lobe(__global const Material* materials, __global const TextureInfo* textures,
+                            __global const uint* texels, HitSurface* h) {
+  if (!h->lobe_read) {
+    h->lobe = surface_lobe(materials, textures, texels, &h->s);
+    h->lobe_read = 1;
+  }
+  return h->lobe;
+}
+
+// The lobe kind at a hit: the material's, unless its metallic-roughness texture may change it there.
+inline int hit_lobe_kind(__global const Material* materials, __global const TextureInfo* textures,
+                         __global const uint* texels, HitSurface* h) {
+  __global const Material* m = materials + h->s.material;
+#if HAS_TEXTURES
+  if (m->lobe != LOBE_NONE && m->metallic_roughness_texture >= 0) return hit_lobe(materials, textures, texels, h).lobe;
+#endif
+  return m->lobe;
+}
+
 #endif
