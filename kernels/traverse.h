@@ -79,6 +79,21 @@ inline RayPrecomp ray_precompute(float3 org, float3 dir) {
   return r;
 }
 
+// Bit i set where lane i of a comparison is true. On a little-endian device: the lanes narrowed to bytes (lane i in
+// byte i), one bit kept per byte, and a multiply that adds the eight bytes into the top one (the bits are distinct,
+// so nothing carries); measured 2-3% faster traversal on PoCL than OR-ing the halves (RESULTS.md).
+inline uint lane_mask(int8 lanes) {
+#ifdef __ENDIAN_LITTLE__
+  ulong bytes = as_ulong(convert_char8(lanes)) & 0x8040201008040201ul;
+  return (uint)((bytes * 0x0101010101010101ul) >> 56);
+#else
+  int8 bits = lanes & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+  int4 b4 = bits.lo | bits.hi;
+  int2 b2 = b4.lo | b4.hi;
+  return (uint)(b2.x | b2.y);
+#endif
+}
+
 // Index of the lowest set bit of a non-zero mask (ctz is OpenCL 2.0; this is 1.2).
 inline int lowest_bit(uint mask) { return 31 - (int)clz(mask & (0u - mask)); }
 
@@ -96,11 +111,8 @@ inline uint node_hit_mask(__global const float8* node, const RayPrecomp* r, floa
   float8 fz = fma(node[r->near_z ^ 1], (float8)(r->inv_dir.z), (float8)(-r->org_inv.z));
   float8 tn = SEL_MAX(SEL_MAX(nx, ny), SEL_MAX(nz, (float8)(t_min)));
   float8 tf = SEL_MIN(SEL_MIN(fx, fy), SEL_MIN(fz, (float8)(t_far)));
-  int8 bits = (tn <= tf) & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
-  int4 b4 = bits.lo | bits.hi;
-  int2 b2 = b4.lo | b4.hi;
   *t_entry = tn;
-  return (uint)(b2.x | b2.y);
+  return lane_mask(tn <= tf);
 }
 
 // The watertight test on eight triangles at once. Returns the lanes hit within (t_min, t_max) and their distances and
@@ -126,10 +138,7 @@ inline uint block_hit_mask(__global const float8* block, const RayPrecomp* r, fl
   // Compare t * det against the range without dividing: flip t's sign with det's.
   float8 t_signed = as_float8(as_int8(t_scaled) ^ (as_int8(det) & (int8)(0x80000000)));
   int8 ok = ~mixed & (det != 0.0f) & (t_signed > t_min * abs_det) & (t_signed < t_max * abs_det);
-  int8 bits = ok & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
-  int4 b4 = bits.lo | bits.hi;
-  int2 b2 = b4.lo | b4.hi;
-  uint mask = (uint)(b2.x | b2.y);
+  uint mask = lane_mask(ok);
   if (mask) {
     float8 inv_det = 1.0f / det;
     *t_out = t_scaled * inv_det;
