@@ -192,8 +192,9 @@ inline uint solid_lanes(BVH_ARGS, uint mask, __global const float8* block, float
 // Visits the BVH for one ray. ANY_HIT stops at the first hit within range (shadow rays); otherwise the closest hit wins.
 // Returns whether anything was hit; on a closest hit *hit holds it.
 inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, bool any_hit, TraceHit* hit) {
-  int stack_ref[BVH_STACK_SIZE];
-  float stack_t[BVH_STACK_SIZE];
+  // A stack entry is a subtree's entry distance (float bits, which order like the distances: they are never negative)
+  // in the high word and its reference in the low word: one load and one store per move.
+  ulong stack[BVH_STACK_SIZE];
   int sp = 0;
   int ref = 0;  // the root is always an inner node
   bool found = false;
@@ -205,9 +206,9 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
       float8 t_entry;
       uint mask = node_hit_mask(node, r, t_min, t_max, &t_entry);
       if (mask) {
-        float te[8];
+        uint te[8];
         int refs[8];
-        vstore8(t_entry, 0, te);
+        vstore8(as_uint8(t_entry), 0, te);
         vstore8(as_int8(node[6]), 0, refs);
         int i0 = lowest_bit(mask);
         mask &= mask - 1;
@@ -216,15 +217,13 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
           continue;
         }
         if (any_hit) {  // any occluder ends the ray, wherever it lies: visit the children in lane order
-          stack_ref[sp] = refs[i0];
-          stack_t[sp++] = 0.0f;
+          stack[sp++] = (uint)refs[i0];
           while (mask) {
             int i = lowest_bit(mask);
             mask &= mask - 1;
-            stack_ref[sp] = refs[i];
-            stack_t[sp++] = 0.0f;
+            stack[sp++] = (uint)refs[i];
           }
-          ref = stack_ref[--sp];
+          ref = (int)(uint)stack[--sp];
           continue;
         }
         int i1 = lowest_bit(mask);
@@ -232,37 +231,30 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
         if (!mask) {  // two children: descend into the nearer, keep the farther
           int near_i = te[i0] <= te[i1] ? i0 : i1;
           int far_i = near_i == i0 ? i1 : i0;
-          stack_ref[sp] = refs[far_i];
-          stack_t[sp] = te[far_i];
-          ++sp;
+          stack[sp++] = ((ulong)te[far_i] << 32) | (uint)refs[far_i];
           ref = refs[near_i];
           continue;
         }
         // Three or more: push all, sorted so that the nearest ends on top.
         int base = sp;
-        stack_ref[sp] = refs[i0];
-        stack_t[sp++] = te[i0];
-        stack_ref[sp] = refs[i1];
-        stack_t[sp++] = te[i1];
+        stack[sp++] = ((ulong)te[i0] << 32) | (uint)refs[i0];
+        stack[sp++] = ((ulong)te[i1] << 32) | (uint)refs[i1];
         while (mask) {
           int i = lowest_bit(mask);
           mask &= mask - 1;
-          stack_ref[sp] = refs[i];
-          stack_t[sp++] = te[i];
+          stack[sp++] = ((ulong)te[i] << 32) | (uint)refs[i];
         }
         for (int a = base + 1; a < sp; ++a) {
-          float ta = stack_t[a];
-          int ra = stack_ref[a];
+          ulong entry = stack[a];
+          uint ta = (uint)(entry >> 32);
           int b = a - 1;
-          while (b >= base && stack_t[b] < ta) {
-            stack_t[b + 1] = stack_t[b];
-            stack_ref[b + 1] = stack_ref[b];
+          while (b >= base && (uint)(stack[b] >> 32) < ta) {
+            stack[b + 1] = stack[b];
             --b;
           }
-          stack_t[b + 1] = ta;
-          stack_ref[b + 1] = ra;
+          stack[b + 1] = entry;
         }
-        ref = stack_ref[--sp];
+        ref = (int)(uint)stack[--sp];
         continue;
       }
     } else {
@@ -300,11 +292,12 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
       }
     }
     // Pop the next subtree that may still hold something nearer than the current hit.
+    const uint t_max_bits = as_uint(t_max);
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack_t[sp] > t_max);
-    ref = stack_ref[sp];
+    } while ((uint)(stack[sp] >> 32) > t_max_bits);
+    ref = (int)(uint)stack[sp];
   }
 }
 
