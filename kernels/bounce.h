@@ -89,7 +89,8 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
       float3 wi;
       float pdf;
       BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, &h), lobe);
-      throughput *= brdf_sample(brdf, view_local(frame, -dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
+      throughput *=
+          brdf_sample(brdf, view_local(frame, -dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
       next = to_world(frame, wi);
     } else
 #endif

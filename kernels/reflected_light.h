@@ -106,7 +106,8 @@ inline float3 emitters_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, ShadingFr
                             rays);
   if (light_pdf > 0.0f) {
     float3 wi_local = to_local(frame, wi);
-    float weight = lobe_takes_brdf_samples(lobe) ? power_heuristic(light_pdf, brdf_pdf(BRDF_IN, wo_local, wi_local)) : 1.0f;
+    float weight =
+        lobe_takes_brdf_samples(lobe) ? power_heuristic(light_pdf, brdf_pdf(BRDF_IN, wo_local, wi_local)) : 1.0f;
     sum += brdf_eval(BRDF_IN, wo_local, wi_local) * e * weight;
   }
   if (lobe_takes_brdf_samples(lobe)) {

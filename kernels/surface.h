@@ -145,8 +145,8 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
 }
 
 // A surface a ray found, oriented toward the ray (surfaces reflect on both sides, as in the G-buffer). Its albedo and
-// lobe are read on first use (hit_albedo, hit_lobe): a hit no light reaches never reads its texels, which were a tenth
-// of Sponza's record pass, most of whose ray hits lie in shadow.
+// lobe are read on first use (hit_albedo, hit_lobe): a hit no light reaches never reads its texels, which cost a tenth
+// of Sponza's record pass when every hit read them.
 typedef struct {
   SurfacePoint s;
   float3 ns, ng, albedo;

@@ -287,7 +287,7 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   rec.normal = n;
   rec.irradiance = std::isfinite(e.x + e.y + e.z) ? e : dvec3(0.0);
   rec.harmonic_distance = double(M * N) / inverse_distances;
-  double paired_squares = 0.0;  // collapsed strata: each pair's difference squared estimates twice its variance
+  double paired_squares = 0.0;  // collapsed strata: a pair's difference squared estimates its two strata's variance
   for (int j = 0; j < M; ++j)
     for (int k = 1; k < N; k += 2) paired_squares += std::pow(luminance(L[at(j, k)]) - luminance(L[at(j, k - 1)]), 2);
   double standard_error = kPi / (M * N) * std::sqrt(paired_squares);

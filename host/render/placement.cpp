@@ -22,6 +22,11 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
   Progress progress(progress_label, size_t(std::log2(coarsest)) + 1);
   uint32_t total = 0;
   const int finest = std::min(cache.finest_spacing_pixels, coarsest);
+  // Radiance records project each batch's strata onto HSH (after_batch), which needs one hemisphere per batch.
+  const bool adaptive = cache.adaptive_error > 0.0f && !after_batch;
+  if (cache.adaptive_error > 0.0f && after_batch)
+    log_warning("--adaptive-rays: radiance records keep all their strata (their HSH projection takes one hemisphere "
+                "per batch)");
   for (int spacing = coarsest, level = 0; spacing >= finest; spacing /= 2, ++level) {
     uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
     for (int round = 0; round < (spacing == finest ? kRoundsAtFinestSpacing : 1); ++round) {
@@ -34,7 +39,7 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
       HemisphereParams coarse = hemisphere;
       coarse.theta_strata /= 2;
       coarse.phi_strata /= 2;
-      if (cache.adaptive_error > 0.0f && !after_batch && coarse.theta_strata > 0 && coarse.phi_strata > 0)
+      if (adaptive && coarse.theta_strata > 0 && coarse.phi_strata > 0)
         st.adaptive_records += records.compute_adaptive(gbuffer, index.candidates(), count, total, coarse, hemisphere,
                                                         cache.adaptive_error);
       else
