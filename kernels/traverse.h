@@ -192,8 +192,9 @@ inline uint solid_lanes(BVH_ARGS, uint mask, __global const float8* block, float
 // Visits the BVH for one ray. ANY_HIT stops at the first hit within range (shadow rays); otherwise the closest hit wins.
 // Returns whether anything was hit; on a closest hit *hit holds it.
 inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, bool any_hit, TraceHit* hit) {
-  // A stack entry is a subtree's entry distance (float bits, which order like the distances: they are never negative)
-  // in the high word and its reference in the low word: one load and one store per move.
+  // A stack entry is a subtree's entry distance in the high word and its reference in the low word: one load and one
+  // store per move. The distance's float bits order like the distances only where they are not negative, so entries
+  // behind the origin (a negative t_min) are kept as +0: never culled, and visited in lane order among themselves.
   ulong stack[BVH_STACK_SIZE];
   int sp = 0;
   int ref = 0;  // the root is always an inner node
@@ -208,7 +209,7 @@ inline bool bvh_trace(BVH_ARGS, const RayPrecomp* r, float t_min, float t_max, b
       if (mask) {
         uint te[8];
         int refs[8];
-        vstore8(as_uint8(t_entry), 0, te);
+        vstore8(as_uint8(SEL_MAX(t_entry, (float8)(0.0f))), 0, te);
         vstore8(as_int8(node[6]), 0, refs);
         int i0 = lowest_bit(mask);
         mask &= mask - 1;

@@ -158,6 +158,26 @@ TEST(Traversal, FiniteTmaxIsRespected) {
   EXPECT_LE(a.distance_off, a.rays / 10000);
 }
 
+// A negative tmin finds hits behind the origin: the same as Embree's for the ray started tmin along it (Embree's tnear
+// is not negative), distances shifted by tmin. The traversal's stack orders and culls subtrees by their entry
+// distances, which such a ray makes negative.
+TEST(Traversal, NegativeTminIsRespected) {
+  std::vector<glm::vec3> soup = random_soup(3000, 11);
+  std::vector<RayDesc> rays = random_rays(100000, 12, 2.0f);
+  for (RayDesc& r : rays) r.tmin = -0.5f;
+  EmbreeScene embree(soup);
+  std::vector<HitDesc> hits = DeviceRays(soup).closest(rays);
+  size_t hit_miss = 0, distance_off = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayDesc& r = rays[i];
+    EmbreeHit e = embree.intersect(ray_origin(r) + r.tmin * ray_direction(r), ray_direction(r), 0.0f, r.tmax - r.tmin);
+    if ((e.prim < 0) != (hits[i].prim < 0)) ++hit_miss;
+    else if (e.prim >= 0 && std::fabs(e.t + r.tmin - hits[i].t) > 1e-4f * std::max(1.0f, std::fabs(hits[i].t))) ++distance_off;
+  }
+  EXPECT_LE(hit_miss, rays.size() / 10000);
+  EXPECT_LE(distance_off, rays.size() / 10000);
+}
+
 // A closed mesh with shared edges: rays from inside must never escape through a crack (watertightness).
 TEST(Traversal, ClosedMeshIsWatertight) {
   Scene sphere = make_bumpy_sphere(5, 1.0f);  // 20,480 triangles
