@@ -15,7 +15,7 @@ inline BrdfInputs surface_brdf(float3 base_color, SurfaceLobe lobe) {
 }
 
 // The BRDF of a surface, built where a light sample first needs it (lazy_brdf_inputs): from the G-buffer's stored
-// inputs (built), or from a ray's hit, whose textures are then read once (hit_albedo, surface_lobe). Each use below
+// inputs (built), or from a ray's hit, whose textures are then read once (hit_albedo, hit_lobe). Each use below
 // sits where the eager code evaluated the BRDF, so the results are the same bits.
 typedef struct {
   BrdfInputs in;
