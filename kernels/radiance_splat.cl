@@ -37,7 +37,6 @@ inline void lobe_at_view(__global const float* table, int row, int angle_count, 
   }
 }
 
-// One work-item per record, visiting its footprint.
 // Record r's reflected radiance at pixel g (a radiance-cached one, its table row `row`): the pixel's own lobe for its
 // own view, dotted with the record's coefficients moved to the pixel; (tk, bk): the record's frame.
 inline float3 record_lobe_radiance(__global const CameraParams* camera, __global const GBufferSample* g,
@@ -61,6 +60,7 @@ inline __global const float* record_coefficients(__global const float* coefficie
   return coefficients + (size_t)r * (size_t)(HSH_RECORD_PARTS * 3 * order * order);
 }
 
+// One work-item per record, visiting its footprint.
 __kernel void splat_radiance(GBUFFER_ARGS, __global const CacheRecord* records, __global const float* coefficients,
                              __global const float* lobe_table, __global const int* table_row_of_material,
                              RadianceSplatParams params, __global long* sums) {
