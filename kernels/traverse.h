@@ -79,11 +79,15 @@ inline RayPrecomp ray_precompute(float3 org, float3 dir) {
   return r;
 }
 
-// Bit i set where lane i of a comparison is true. On a little-endian device: the lanes narrowed to bytes (lane i in
-// byte i), one bit kept per byte, and a multiply that adds the eight bytes into the top one (the bits are distinct,
-// so nothing carries); measured 2-3% faster traversal on PoCL than OR-ing the halves (RESULTS.md).
+// Bit i set where lane i of a comparison is true. On an x86 device with AVX (PoCL's CPU devices), one movmskps of the
+// lanes' sign bits, which LLVM turns into a single kmov from the comparison's mask register on AVX-512: 9-10% faster
+// traversal than the byte trick below (RESULTS.md). Elsewhere on a little-endian device: the lanes narrowed to bytes
+// (lane i in byte i), one bit kept per byte, and a multiply that adds the eight bytes into the top one (the bits are
+// distinct, so nothing carries); 2-3% faster on PoCL than OR-ing the halves, the portable fallback.
 inline uint lane_mask(int8 lanes) {
-#ifdef __ENDIAN_LITTLE__
+#if defined(__AVX__) && defined(__clang__)
+  return (uint)__builtin_ia32_movmskps256(as_float8(lanes));
+#elif defined(__ENDIAN_LITTLE__)
   ulong bytes = as_ulong(convert_char8(lanes)) & 0x8040201008040201ul;
   return (uint)((bytes * 0x0101010101010101ul) >> 56);
 #else
