@@ -77,9 +77,9 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
                   "does not divide by them or the frame is very large; path tracing takes each sample at a random "
                   "point of its cell of the grid, so it integrates over the pixel's area")
       ->check(CLI::Range(1u, 64u));
-  cmd->add_flag("!--sub-pixel-centres", o.settings.path.pixel_area,
-                "Path tracing: take each pixel sample at the centre of its grid cell (the points a cache render "
-                "shades) instead of a random point of it");
+  cmd->add_flag("!--sub-pixel-grid", o.settings.path.pixel_area,
+                "Path tracing: take the pixel samples at the fixed points a cache render shades (a rotated grid, one "
+                "point in each cell of the s x s grid) instead of a random point of each cell");
   o.settings.pixel_samples = 0;  // chosen by render() (render/pixel_samples.h)
   o.settings.bounces = 0;
   cmd->add_option("--bounces", o.settings.bounces,

@@ -8,12 +8,19 @@
 #include "counter_random.h"
 
 // Where in pixel (x, y) its camera ray passes, in pixels from its top-left corner: the centre of the camera's jitter
-// cell, or a random point of it.
+// cell, a random point of it, or, in the s-times larger frame of s x s pixel samples, a point of a rotated grid.
 inline float2 pixel_offset(__global const CameraParams* cam, int x, int y) {
   float2 u = (float2)(0.5f);
   if (cam->jitter_seed) {
     uint pixel = (uint)(y * cam->width + x);
     u = (float2)(random01(cam->jitter_seed, pixel, 0u), random01(cam->jitter_seed, pixel, 1u));
+  } else if (cam->sub_pixel_side > 1) {
+    // Sub-pixel (i, j) of its output pixel moves within its cell to ((s - 1 - j + 1/2) / s, (i + 1/2) / s): the
+    // output pixel's s^2 points then have s^2 different x and s^2 different y (a grid rotated by atan(1/s); 2 x 2
+    // is the rotated-grid pattern of RGSS). A near-vertical or near-horizontal edge, which the cells' centres see in
+    // steps of 1/s of the pixel, is seen in steps of 1/s^2, at no cost.
+    const int s = cam->sub_pixel_side, i = x % s, j = y % s;
+    u = (float2)(((float)(s - 1 - j) + 0.5f) / (float)s, ((float)i + 0.5f) / (float)s);
   }
   return vload2(0, cam->jitter_origin) + cam->jitter_cell * u;
 }

@@ -153,7 +153,10 @@ typedef struct {
   rc_uint jitter_seed;
   float jitter_cell;
   float jitter_origin[2];
-  float pad[2];
+  // Where this frame is the s-times larger frame of --pixel-samples s^2 (render/pixel_samples.h), s; else 0 or 1.
+  // Without jitter, sub-pixel (i, j) of an output pixel then takes u on a rotated grid (kernels/gbuffer.cl).
+  rc_int sub_pixel_side;
+  float pad;
 } CameraParams;
 
 // The G-buffer: what the primary ray through each pixel's centre sees.

@@ -207,9 +207,9 @@ TEST(Reference, ResumeAddsIndependentSamples) {
   RenderOptions anti_aliased = o;
   anti_aliased.settings.pixel_samples = 4;
   refused(anti_aliased, "rendered with --pixel-samples 1, not 4");
-  RenderOptions centres = o;
-  centres.settings.path.pixel_area = false;
-  refused(centres, "rendered with pixel points jittered, not centres");
+  RenderOptions grid = o;
+  grid.settings.path.pixel_area = false;
+  refused(grid, "rendered with pixel points jittered, not rotated grid");
 }
 
 // info runs the bounce probe a render runs (the built-in Cornell box keeps half of each reflection: 5 bounces) and

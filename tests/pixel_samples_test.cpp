@@ -94,9 +94,10 @@ EdgeError edge_error(unsigned pixel_samples) {
   return e;
 }
 
-// With s x s sub-pixels at the cells' centres a straight edge is off by at most about one sub-pixel column's share
-// of the pixel, 1 / s (an edge that misses every centre of a column), and by much less on average; one sample a pixel
-// gives 0 or 1, off by a quarter on average (the jagged edge). Signed errors cancel along the edge: the image's
+// With s x s sub-pixels, one in each cell of the grid, a straight edge is off by at most about one sub-pixel column's
+// share of the pixel, 1 / s, and by much less on average; one sample a pixel gives 0 or 1, off by a quarter on average
+// (the jagged edge). (This edge's slope, 0.3, is near the rows of the 4 x 4 rotated grid, at 14 degrees, its worst
+// case: 0.021 mean against the centres' 0.013; averaged over all orientations the two are equal.) Signed errors cancel along the edge: the image's
 // total is right to within a few hundredths of a pixel per edge pixel.
 TEST(PixelSamples, EdgePixelsHoldTheirCoveredFraction) {
   const EdgeError one = edge_error(1);
@@ -112,9 +113,10 @@ TEST(PixelSamples, EdgePixelsHoldTheirCoveredFraction) {
   }
 }
 
-// The emitter right of the vertical line x = -1 + 16.1 / 16: at 32 pixels across, pixel column 16 is 0.9 covered.
-Scene vertical_edge() {
-  const float edge = -1.0f + 16.1f / 16.0f;
+// The emitter right of the vertical line x = -1 + (16 + into) / 16: at 32 pixels across, the line lies `into` of a
+// pixel into column 16, which is 1 - into covered.
+Scene vertical_edge(float into = 0.1f) {
+  const float edge = -1.0f + (16.0f + into) / 16.0f;
   return lamp_under_orthographic_camera("vertical edge", {edge, -3.0f, 0.0f}, {3.0f, -3.0f, 0.0f}, {3.0f, 3.0f, 0.0f},
                                         {edge, 3.0f, 0.0f});
 }
@@ -137,16 +139,33 @@ double column_error(bool pixel_area) {
 }
 
 // Path tracing integrates over the pixel's area (PathSettings::pixel_area): the edge lies 0.1 pixel into column 16,
-// left of every cell centre of a 4 x 4 grid, so the centres see 1.0 there (off by +0.1), while a random point of each
-// cell converges to 0.9. Its tolerance, from the variance: the four cells the edge crosses are lit with probability
-// 0.6, so a pixel's variance is 4 (1/16)^2 0.6 * 0.4 = 3.75e-3 and the column's mean over 32 pixels has a standard
-// deviation of 0.011; four of them is 0.044.
+// where a random point of each cell converges to 0.9. Its tolerance, from the variance: the four cells the edge
+// crosses are lit with probability 0.6, so a pixel's variance is 4 (1/16)^2 0.6 * 0.4 = 3.75e-3 and the column's mean
+// over 32 pixels has a standard deviation of 0.011; four of them is 0.044. The fixed points of a cache render (the
+// rotated grid, kernels/gbuffer.cl) sit at x = (k + 1/2) / 16, k = 0 .. 15, of which the first two lie left of 0.1:
+// 14/16 lit, off by exactly -0.025 in every pixel (the cells' centres, at x = 1/8, 3/8, ..., were off by +0.1).
 TEST(PixelSamples, PathTracingIntegratesOverThePixelsArea) {
-  const double jittered = column_error(true), centres = column_error(false);
-  std::printf("column 16 less its covered fraction: random points of the cells %+.4f, their centres %+.4f\n", jittered,
-              centres);
+  const double jittered = column_error(true), grid = column_error(false);
+  std::printf("column 16 less its covered fraction: random points of the cells %+.4f, the rotated grid %+.4f\n",
+              jittered, grid);
   EXPECT_LT(std::abs(jittered), 0.044);
-  EXPECT_NEAR(centres, 0.1, 1e-6);
+  EXPECT_NEAR(grid, 14.0 / 16.0 - 0.9, 1e-6);
+}
+
+// A cache render's sub-pixels (and --sub-pixel-grid's) sit on a rotated grid (kernels/gbuffer.cl): at 4 samples their
+// x within the pixel are 1/8, 3/8, 5/8 and 7/8, so an edge 0.3 of a pixel into column 16 (0.7 covered) leaves three of
+// four lit, 0.75 in every row, where the cells' centres (x = 1/4, 3/4) gave 0.5. Exact: four sub-pixels of 0 or 1.
+TEST(PixelSamples, RotatedGridResolvesNearVerticalEdges) {
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.gi = GiMethod::none;
+  settings.pixel_samples = 4;
+  const RenderedImage image = render(test::gpu(), vertical_edge(0.3f), settings);
+  for (int y = 0; y < settings.height; ++y) {
+    EXPECT_EQ(image.emission[3 * (size_t(y) * settings.width + 15)], 0.0f) << "row " << y;
+    EXPECT_EQ(image.emission[3 * (size_t(y) * settings.width + 16)], 0.75f) << "row " << y;
+    EXPECT_EQ(image.emission[3 * (size_t(y) * settings.width + 17)], 1.0f) << "row " << y;
+  }
 }
 
 TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {

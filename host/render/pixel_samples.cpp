@@ -60,12 +60,13 @@ unsigned light_sample_strata(unsigned light_samples) {
 }
 
 const char* pixel_points_name(const RenderSettings& settings) {
-  return settings.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "centres";
+  return settings.gi == GiMethod::path && settings.path.pixel_area ? "jittered" : "rotated grid";
 }
 
 RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height, unsigned side) {
   RenderSettings sub = samples_per_sub_pixel(s, side * side);  // per output pixel, split among the sub-pixels
   sub.pixel_samples = 1;
+  sub.sub_pixel_side = side;
   sub.width = width * int(side);
   sub.height = height * int(side);
   // Record reach and placement in sub-pixels: the same world-space records as at one sample.

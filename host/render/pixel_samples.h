@@ -1,6 +1,8 @@
-// Anti-aliasing (--pixel-samples N): each pixel is an s x s grid of sub-pixels (N = s^2), at the centres of the grid's
-// cells (a stratified pattern, the same for every method, so a reference integrates the very points a cache render
-// shades). The frame is rendered s times larger and averaged back; records stay in world space.
+// Anti-aliasing (--pixel-samples N): each pixel is an s x s grid of sub-pixels (N = s^2), each cell's point moved so
+// that the N points form a rotated grid (kernels/gbuffer.cl: N different columns and rows, so near-vertical and
+// near-horizontal edges are resolved in steps of 1/N of the pixel, not 1/s; the same for every method, so a reference
+// can integrate the very points a cache render shades). The frame is rendered s times larger and averaged back;
+// records stay in world space.
 #pragma once
 #include "render/frame.h"
 #include "render/settings.h"
@@ -24,8 +26,9 @@ RenderSettings samples_per_sub_pixel(const RenderSettings& settings, unsigned n)
 // The light-sample strata a pixel's direct light takes (kernels/direct.cl): sqrt(samples) rounded up, squared.
 unsigned light_sample_strata(unsigned light_samples);
 
-// "jittered" where path tracing integrates over the pixel's area (PathSettings::pixel_area), else "centres": the
-// EXR attribute rcsplat:pixel_points, the JSON's pixel_points, and what --resume compares.
+// "jittered" where path tracing integrates over the pixel's area (PathSettings::pixel_area), else "rotated grid" (at
+// one sample a pixel, its centre; files written before the rotated grid say "centres"): the EXR attribute
+// rcsplat:pixel_points, the JSON's pixel_points, and what --resume compares.
 const char* pixel_points_name(const RenderSettings& settings);
 
 // The settings of the s-times larger frame: light samples and path samples divided among the sub-pixels (path samples

@@ -233,6 +233,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   // position and depth layers and the records go back to world units below.
   const SceneFrame scene_frame = SceneFrame::fitted(scene);
   CameraParams params = camera_params(scene_frame.device_camera(cam), img.width, img.height);
+  params.sub_pixel_side = int(settings.sub_pixel_side);
   const unsigned strata = light_sample_strata(settings.light_samples);
   st.light_samples = strata * strata;
 

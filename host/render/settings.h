@@ -27,8 +27,9 @@ struct PathSettings {
   bool stratified = false;
   // Over the pixel's area: --pixel-samples N = s^2 becomes N rounds of the frame, round r's camera rays through a
   // random point of cell r of an s x s grid over each pixel (stratified jitter, so the pixel's value converges to its
-  // area integral, edges to their covered fraction). false: one s-times larger frame through the cells' centres, the
-  // very points a cache render shades (tests that isolate the cache's error compare there).
+  // area integral, edges to their covered fraction). false: one s-times larger frame through the rotated grid's
+  // points (render/pixel_samples.h), the very points a cache render shades (tests that isolate the cache's error
+  // compare there).
   bool pixel_area = true;
 };
 
@@ -62,6 +63,9 @@ struct RenderSettings {
   // What pixel_samples 0 becomes, where --spp and the frame allow it: 4 for renders, 16 for references (a finer grid
   // than a render's: compare then counts the render's edge aliasing as its error).
   unsigned preferred_pixel_samples = 4;
+  // Set by render() for the s-times larger frame it renders (render/pixel_samples.h): s, whose sub-pixels then take
+  // their points on a rotated grid (CameraParams::sub_pixel_side); 1 for a frame of its own.
+  unsigned sub_pixel_side = 1;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
   CacheSettings cache;
