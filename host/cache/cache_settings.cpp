@@ -46,7 +46,7 @@ void validate_cache_settings(const CacheSettings& c) {
 
 HemisphereStrata fine_hemisphere(const CacheSettings& c) {
   if (c.fine_theta_strata > 0) return {c.fine_theta_strata, c.fine_phi_strata};
-  return {std::max(1u, (c.theta_strata * 5 + 4) / 8), std::max(1u, (c.phi_strata * 5 + 4) / 8)};
+  return {std::max(1u, c.theta_strata / 2), std::max(1u, c.phi_strata / 2)};
 }
 
 HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int spacing) {

@@ -12,12 +12,10 @@ struct CacheSettings {
   float accuracy = 0.3f;       // a: smaller means more records and less error (MIN_ACCURACY .. MAX_ACCURACY)
   unsigned theta_strata = 16;  // hemisphere rays per record: M x N
   unsigned phi_strata = 32;
-  // Rays for the irradiance records placed at the finest level (spacing 1), which reach only a few pixels each; 0: 5/8
-  // of M and of N, rounded (10 x 20 of 16 x 32; fine_hemisphere below; radiance records then keep M x N,
-  // host/render/indirect_radiance.cpp). Measured on Sponza 1024 x 768 with the rotated pixel grid: the record pass at
-  // 0.69x, per-pixel and block error below 16 x 32's without the rotated grid on every seed (8 x 16 saved more but
-  // left the block error worse on two seeds of four; benchmarks/RESULTS.md "Record pass, fourth step"). Give M x N
-  // for the same rays everywhere.
+  // Rays for the irradiance records placed at the finest level (spacing 1), which reach only a few pixels each; 0: half
+  // of M and of N (fine_hemisphere below; radiance records then keep M x N, host/render/indirect_radiance.cpp). Measured on Sponza 512 x 384 with the rotated pixel grid, four seeds: 8 x 16 there
+  // takes the record pass to 0.65x with both errors below 16 x 32's without the rotated grid (benchmarks/RESULTS.md
+  // "Record pass, fourth step"); give M x N for the same rays everywhere.
   unsigned fine_theta_strata = 0, fine_phi_strata = 0;
   // A record's reach a * R is clamped to [min, max] pixel footprints at the record (as pbrt-v2 clamps its
   // contribution extent), so R itself to [min, max] / a. Keeps records from crowding corners and from vanishing on
@@ -53,8 +51,8 @@ constexpr float kMaxAccuracy = MAX_ACCURACY;
 // range: the command line refuses such values when it parses them, and render() before it starts.
 void validate_cache_settings(const CacheSettings& cache);
 
-// The strata of the records placed at the finest spacing: fine_theta_strata x fine_phi_strata where given, else 5/8
-// of M and of N, rounded (at least 1).
+// The strata of the records placed at the finest spacing: fine_theta_strata x fine_phi_strata where given, else half
+// of M x N each way (at least 1).
 struct HemisphereStrata {
   unsigned theta, phi;
 };
