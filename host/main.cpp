@@ -124,9 +124,7 @@ int main(int argc, char** argv) {
   std::string fine_hemisphere;
   render_cmd->add_option("--fine-hemisphere", fine_hemisphere,
                          "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
-                         "few pixels each, as MxN; default: half of --hemisphere each way (8x16) for irradiance "
-                         "records, --hemisphere for radiance records; give the same as --hemisphere for the same "
-                         "rays everywhere");
+                         "few pixels each, as MxN; default: as --hemisphere");
   render_cmd->add_option("--spacing", spacing,
                          "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
                              shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));

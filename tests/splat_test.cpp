@@ -308,12 +308,6 @@ TEST(Splat, AdaptiveRaysGiveTheFullOrTheHalfHemispheresRecords) {
   RenderSettings full = small_splat(64), half = small_splat(64);
   half.cache.theta_strata /= 2;
   half.cache.phi_strata /= 2;
-  // The same hemisphere at every level (not the finest level's default half): a record whose 2 x 4 strata all agree
-  // has no error to find, and would not be traced again even at the strictest threshold.
-  for (RenderSettings* s : {&full, &half}) {
-    s->cache.fine_theta_strata = s->cache.theta_strata;
-    s->cache.fine_phi_strata = s->cache.phi_strata;
-  }
   RenderedImage full_img = render(test::gpu(), scene, full), half_img = render(test::gpu(), scene, half);
 
   RenderSettings strict = full;

@@ -44,17 +44,11 @@ void validate_cache_settings(const CacheSettings& c) {
     throw Error("the finest placement spacing must be between 1 pixel and the coarsest");
 }
 
-HemisphereStrata fine_hemisphere(const CacheSettings& c) {
-  if (c.fine_theta_strata > 0) return {c.fine_theta_strata, c.fine_phi_strata};
-  return {std::max(1u, c.theta_strata / 2), std::max(1u, c.phi_strata / 2)};
-}
-
 HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int spacing) {
-  const bool fine = spacing <= c.finest_spacing_pixels;
-  const HemisphereStrata fine_strata = fine_hemisphere(c);
+  bool fine = spacing <= c.finest_spacing_pixels && c.fine_theta_strata > 0;
   HemisphereParams hp{};
-  hp.theta_strata = fine ? fine_strata.theta : c.theta_strata;
-  hp.phi_strata = fine ? fine_strata.phi : c.phi_strata;
+  hp.theta_strata = fine ? c.fine_theta_strata : c.theta_strata;
+  hp.phi_strata = fine ? c.fine_phi_strata : c.phi_strata;
   hp.seed = seed;
   hp.min_radius_pixels = c.min_reach_pixels / c.accuracy;
   hp.max_radius_pixels = c.max_reach_pixels / c.accuracy;
@@ -64,7 +58,7 @@ HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int sp
 
 float min_radius_pixels(const CacheSettings& c) { return c.min_reach_pixels / c.accuracy; }
 
-unsigned largest_theta_strata(const CacheSettings& c) { return std::max(c.theta_strata, fine_hemisphere(c).theta); }
+unsigned largest_theta_strata(const CacheSettings& c) { return std::max(c.theta_strata, c.fine_theta_strata); }
 
 int coarsest_placement_spacing(const CacheSettings& c) {
   int coarsest = 1;

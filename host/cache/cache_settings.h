@@ -12,10 +12,7 @@ struct CacheSettings {
   float accuracy = 0.3f;       // a: smaller means more records and less error (MIN_ACCURACY .. MAX_ACCURACY)
   unsigned theta_strata = 16;  // hemisphere rays per record: M x N
   unsigned phi_strata = 32;
-  // Rays for the irradiance records placed at the finest level (spacing 1), which reach only a few pixels each; 0: half
-  // of M and of N (fine_hemisphere below; radiance records then keep M x N, host/render/indirect_radiance.cpp). Measured on Sponza 512 x 384 with the rotated pixel grid, four seeds: 8 x 16 there
-  // takes the record pass to 0.65x with both errors below 16 x 32's without the rotated grid (benchmarks/RESULTS.md
-  // "Record pass, fourth step"); give M x N for the same rays everywhere.
+  // Rays for the records placed at the finest level (spacing 1), which reach only a few pixels each; 0: M x N too.
   unsigned fine_theta_strata = 0, fine_phi_strata = 0;
   // A record's reach a * R is clamped to [min, max] pixel footprints at the record (as pbrt-v2 clamps its
   // contribution extent), so R itself to [min, max] / a. Keeps records from crowding corners and from vanishing on
@@ -51,15 +48,8 @@ constexpr float kMaxAccuracy = MAX_ACCURACY;
 // range: the command line refuses such values when it parses them, and render() before it starts.
 void validate_cache_settings(const CacheSettings& cache);
 
-// The strata of the records placed at the finest spacing: fine_theta_strata x fine_phi_strata where given, else half
-// of M x N each way (at least 1).
-struct HemisphereStrata {
-  unsigned theta, phi;
-};
-HemisphereStrata fine_hemisphere(const CacheSettings& cache);
-
 // The record kernel's sampling parameters for records placed at this grid spacing: the fine hemisphere at the finest
-// spacing, and the reach clamps turned into radius clamps.
+// spacing when one is set, and the reach clamps turned into radius clamps.
 HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, int spacing);
 // The radius clamp's minimum in pixel footprints (the minimum reach over a).
 float min_radius_pixels(const CacheSettings& cache);

@@ -78,9 +78,8 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
               mrays_per_second(s.primary_rays + s.shadow_rays, s.gbuffer_s + s.direct_s));
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
-    const HemisphereStrata fine = fine_hemisphere(c);
-    std::printf("cache        a = %g, %ux%u rays per record (%ux%u at the finest spacing)", c.accuracy, c.theta_strata,
-                c.phi_strata, fine.theta, fine.phi);
+    std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
+    if (c.fine_theta_strata) std::printf(" (%ux%u at spacing 1)", c.fine_theta_strata, c.fine_phi_strata);
     std::printf(", record spacing %g..%g pixels, ", c.min_reach_pixels, c.max_reach_pixels);
     if (c.adaptive_error > 0.0f)
       std::printf("adaptive rays (%ux%u first, all where the error score is above %g: %llu records), ",
@@ -172,7 +171,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
     nlohmann::json levels = nlohmann::json::array();
     for (const PlacementLevel& l : s.levels) levels.push_back({{"spacing", l.spacing_pixels}, {"records", l.records}});
     j["cache"] = {{"accuracy", c.accuracy}, {"hemisphere", {c.theta_strata, c.phi_strata}},
-                  {"fine_hemisphere", {fine_hemisphere(c).theta, fine_hemisphere(c).phi}},
+                  {"fine_hemisphere", {c.fine_theta_strata, c.fine_phi_strata}},
                   {"spacing", {c.min_reach_pixels, c.max_reach_pixels}},
                   {"radius_rule", c.hessian_error > 0.0f ? "occlusion_hessian" : "split_sphere"},
                   {"hessian_error", c.hessian_error},

@@ -83,12 +83,6 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   CacheSettings cs = f.settings.cache;
   cs.accuracy = f.settings.cache.accuracy * std::max(0.5f, sharpest);
   st.radiance_accuracy = cs.accuracy;
-  // The finest level's half hemisphere is measured for irradiance only; an HSH projection of a quarter of the strata
-  // stopped improving past order 8 on the glossy Cornell box test. Radiance records keep M x N unless told.
-  if (cs.fine_theta_strata == 0) {
-    cs.fine_theta_strata = cs.theta_strata;
-    cs.fine_phi_strata = cs.phi_strata;
-  }
 
   auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, row_of_material);
   const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
