@@ -96,9 +96,9 @@ EdgeError edge_error(unsigned pixel_samples) {
 
 // With s x s sub-pixels, one in each cell of the grid, a straight edge is off by at most about one sub-pixel column's
 // share of the pixel, 1 / s, and by much less on average; one sample a pixel gives 0 or 1, off by a quarter on average
-// (the jagged edge). (This edge's slope, 0.3, is near the rows of the 4 x 4 rotated grid, at 14 degrees, its worst
-// case: 0.021 mean against the centres' 0.013; averaged over all orientations the two are equal.) Signed errors cancel along the edge: the image's
-// total is right to within a few hundredths of a pixel per edge pixel.
+// (the jagged edge). Signed errors cancel along the edge: the image's total is right to within a few hundredths of a
+// pixel per edge pixel. This edge's slope, 0.3, lies near the rows of the 4 x 4 rotated grid (14 degrees), its worst
+// case: 0.021 mean at 16 samples against the cells' centres' 0.013; over all orientations the two are equal.
 TEST(PixelSamples, EdgePixelsHoldTheirCoveredFraction) {
   const EdgeError one = edge_error(1);
   ASSERT_GT(one.pixels, 30u);
