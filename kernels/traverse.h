@@ -98,8 +98,15 @@ inline uint lane_mask(int8 lanes) {
 #endif
 }
 
-// Index of the lowest set bit of a non-zero mask (ctz is OpenCL 2.0; this is 1.2).
-inline int lowest_bit(uint mask) { return 31 - (int)clz(mask & (0u - mask)); }
+// Index of the lowest set bit of a non-zero mask (ctz is OpenCL 2.0; this is 1.2). Clang's builtin is one tzcnt where
+// the device has it; the portable form isolates the bit and counts from the top.
+inline int lowest_bit(uint mask) {
+#ifdef __clang__
+  return __builtin_ctz(mask);
+#else
+  return 31 - (int)clz(mask & (0u - mask));
+#endif
+}
 
 #define SEL_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define SEL_MAX(a, b) ((a) > (b) ? (a) : (b))
