@@ -3,8 +3,9 @@
 #include "sampling.h"
 
 // Reflected radiance at the lookup grid's photon i: the reflected flux of every photon (the `all` grid) within
-// all_grid.radius on a surface facing the same way, over pi (Lambertian) times the disc's area pi r^2. The 3 x 3 x 3 cells
-// around the point hold every such photon (cells are at least r wide).
+// all_grid.radius and PHOTON_DISC_HALF_THICKNESS r of the tangent plane on a surface facing the same way, over pi
+// (Lambertian) times the disc's area pi r^2. The 3 x 3 x 3 cells around the point hold every such photon (cells are at
+// least r wide).
 __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __global const uint* all_buckets,
                                        PhotonMapParams all_grid, __global const PhotonHit* map_photons,
                                        PhotonMapParams map, __global float4* map_radiance) {
@@ -16,7 +17,7 @@ __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __
   int cz = photon_cell(x.z, all_grid.grid_origin[2], all_grid.cell_size);
   uint visited[27];
   uint visited_count = 0;
-  float r2 = all_grid.radius * all_grid.radius;
+  float r2 = all_grid.radius * all_grid.radius, half_thickness = PHOTON_DISC_HALF_THICKNESS * all_grid.radius;
   float3 flux = (float3)(0.0f);
   for (int c = 0; c < 27; ++c) {
     uint bucket = photon_bucket(cx + c % 3 - 1, cy + (c / 3) % 3 - 1, cz + c / 9 - 1, all_grid.bucket_count);
@@ -26,7 +27,8 @@ __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __
     visited[visited_count++] = bucket;
     for (uint j = all_buckets[bucket]; j < all_buckets[bucket + 1u]; ++j) {
       float3 d = vload3(0, all_photons[j].position) - x;
-      if (dot(d, d) < r2 && dot(vload3(0, all_photons[j].normal), n) > PHOTON_MIN_NORMAL_COSINE)
+      if (dot(d, d) < r2 && fabs(dot(d, n)) < half_thickness &&
+          dot(vload3(0, all_photons[j].normal), n) > PHOTON_MIN_NORMAL_COSINE)
         flux += vload3(0, all_photons[j].flux);
     }
   }

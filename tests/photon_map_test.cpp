@@ -94,14 +94,24 @@ RandomPhotons random_photons(unsigned count, unsigned seed) {
 glm::dvec3 position_of(const PhotonHit& p) { return {p.position[0], p.position[1], p.position[2]}; }
 glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.normal[2]}; }
 
-// Each lookup photon's estimate against the sum, in double, of the flux of every photon within the radius on a surface
-// facing the same way, over pi^2 r^2. Photons within 1e-5 r^2 of the disc's rim could fall either way in float: such
-// estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms).
+// Each lookup photon's estimate against the sum, in double, of the flux of every photon within the radius and within
+// half of it of the tangent plane (PHOTON_DISC_HALF_THICKNESS) on a surface facing the same way, over pi^2 r^2. Beside
+// the floor and the wall, two shelves above the floor facing up, at 0.3 r (within the disc: counted by the floor's
+// estimates) and 0.75 r (beyond it: left out). Photons within 1e-5 r of the disc's rim or faces could fall either way
+// in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms).
 TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   RandomPhotons given = random_photons(30000, 11);
-  PhotonMapGrids grids = build_photon_map(given.photons, given.area, 32, 4);
+  const float expected_r = photon_gather_radius(given.area + 2.0, given.photons.size() + 20000, 32);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 20000; ++i) {
+    float height = (i % 2 ? 0.3f : 0.75f) * expected_r;
+    given.photons.push_back(photon_at(u(rng), height, u(rng), {0, 1, 0}, glm::vec3(u(rng), u(rng), u(rng))));
+  }
+  PhotonMapGrids grids = build_photon_map(given.photons, given.area + 2.0, 32, 4);
   const double r = grids.all.params.radius, r2 = r * r;
   ASSERT_GT(r, 0.0);
+  ASSERT_EQ(float(r), expected_r);
   PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> estimates = pass.estimates();
   ASSERT_EQ(estimates.size(), grids.lookup.photons.size());
@@ -114,8 +124,9 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
       glm::dvec3 d = position_of(p) - x;
       double d2 = glm::dot(d, d);
       if (glm::dot(normal_of(p), n) <= 0.5) continue;
-      rim = rim || std::abs(d2 - r2) < 1e-5 * r2;
-      if (d2 < r2) flux += glm::dvec3(p.flux[0], p.flux[1], p.flux[2]);
+      double height = std::abs(glm::dot(d, n));
+      rim = rim || std::abs(d2 - r2) < 1e-5 * r2 || std::abs(height - 0.5 * r) < 1e-5 * r;
+      if (d2 < r2 && height < 0.5 * r) flux += glm::dvec3(p.flux[0], p.flux[1], p.flux[2]);
     }
     if (rim) {
       ++ambiguous;
