@@ -11,8 +11,8 @@
 
 // A density estimate counts the photons within the radius r that also lie within this fraction of r of the tangent
 // plane (a disc of half-thickness r / 2, Jensen's disc compression): a step, a moulding or a ledge facing the same way
-// a little above or below is not the surface the estimate is of. Sponza's map read 2.3% bright without it, 1.6% with
-// it; 0.3 brought it to 1.003 but cut off curved surfaces (columns) and raised the block error (benchmarks/RESULTS.md).
+// a little above or below is not the surface the estimate is of. Sponza's indirect light read 2.3% bright without it,
+// 1.6% with it; 0.3 brought it to 1.003 but cut off curved surfaces (columns) and raised the block error (RESULTS.md).
 #define PHOTON_DISC_HALF_THICKNESS 0.5f
 
 // The grid cell along one axis holding coordinate x; clamped (a NaN to a bound) so that the conversion is defined
