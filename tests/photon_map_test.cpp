@@ -101,14 +101,15 @@ glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.n
 // in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms).
 TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   RandomPhotons given = random_photons(30000, 11);
-  const float expected_r = photon_gather_radius(given.area + 2.0, given.photons.size() + 20000, 32);
+  const double area = given.area + 2.0;  // and the two shelves' tops, 1 x 1 each
+  const float expected_r = photon_gather_radius(area, given.photons.size() + 20000, 32);
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < 20000; ++i) {
     float height = (i % 2 ? 0.3f : 0.75f) * expected_r;
     given.photons.push_back(photon_at(u(rng), height, u(rng), {0, 1, 0}, glm::vec3(u(rng), u(rng), u(rng))));
   }
-  PhotonMapGrids grids = build_photon_map(given.photons, given.area + 2.0, 32, 4);
+  PhotonMapGrids grids = build_photon_map(given.photons, area, 32, 4);
   const double r = grids.all.params.radius, r2 = r * r;
   ASSERT_GT(r, 0.0);
   ASSERT_EQ(float(r), expected_r);
