@@ -167,6 +167,11 @@ int main(int argc, char** argv) {
                              std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                              " rounds)")
       ->check(CLI::Range(1u, 1u << 26));
+  render_cmd->add_option("--short-ray-paths", render.settings.short_ray_paths,
+                         "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
+                         "continue their paths instead of reading the map (0: every ray reads it); default " +
+                             shortest(render.settings.short_ray_paths))
+      ->check(CLI::Range(0.0f, 1.0e6f));
 
   RenderOptions reference;
   CameraFlags reference_camera;

@@ -129,7 +129,10 @@ inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 
   }
   float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
 #if PHOTON_GATHER
-  l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng);
+  if (*distance < map.short_path_distance && more.bounces)
+    l += continued_path(SCENE, h, dir, more, rays);
+  else
+    l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng);
 #else
   if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
 #endif

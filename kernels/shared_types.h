@@ -279,7 +279,10 @@ typedef struct {
   float radius;          // of the density estimate around each photon
   rc_uint bucket_count;  // a power of two
   rc_uint photon_count;
-  rc_uint pad;
+  // A record ray that lands closer than this (device units) continues its path instead of reading the map (0: every
+  // ray reads it): the map's estimate averages a disc of `radius`, which at a short ray's end spans the record's own
+  // neighbourhood, its contacts and recesses (--short-ray-paths, in radii).
+  float short_path_distance;
 } PhotonMapParams;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs

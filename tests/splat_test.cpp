@@ -331,5 +331,30 @@ TEST(Splat, AdaptiveRaysGiveTheFullOrTheHalfHemispheresRecords) {
               (unsigned long long)between_img.stats.adaptive_records, (unsigned long long)between_img.stats.records);
 }
 
+// --short-ray-paths spans the two bounce methods: with every record ray counted short, each continues its path as
+// --bounce-method path does, bit for bit (same random numbers, same code); with none, every one reads the map; the
+// default (one gather radius) continues some of them, so its records are neither's.
+TEST(Splat, ShortRayPathsSpanThePathAndPhotonGathers) {
+  Scene scene = make_cornell_box();
+  RenderSettings path = small_splat(64);
+  path.bounces = 3;
+  path.bounce_method = BounceMethod::path;
+  RenderSettings all_short = path, none_short = path, default_short = path;
+  for (RenderSettings* s : {&all_short, &none_short, &default_short}) s->bounce_method = BounceMethod::photons;
+  all_short.short_ray_paths = 1e6f;
+  none_short.short_ray_paths = 0.0f;
+  RenderedImage path_img = render(test::gpu(), scene, path), all_img = render(test::gpu(), scene, all_short);
+  ASSERT_GT(all_img.stats.photon_map_photons, 0u);
+  EXPECT_EQ(all_img.stats.record_rays, path_img.stats.record_rays);
+  expect_same_records_and_image(all_img, path_img, "every record ray continues its path");
+
+  RenderedImage none_img = render(test::gpu(), scene, none_short), default_img = render(test::gpu(), scene, default_short);
+  EXPECT_LT(none_img.stats.record_rays, default_img.stats.record_rays);
+  EXPECT_LT(default_img.stats.record_rays, all_img.stats.record_rays);
+  std::printf("record rays: map only %llu, short rays continued %llu, every ray continued %llu\n",
+              (unsigned long long)none_img.stats.record_rays, (unsigned long long)default_img.stats.record_rays,
+              (unsigned long long)all_img.stats.record_rays);
+}
+
 }  // namespace
 }  // namespace rcsplat

@@ -87,9 +87,9 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     if (c.hessian_error > 0.0f) std::printf("radii from the occlusion Hessian (error budget %g)\n", c.hessian_error);
     else std::printf("radii from Ward's split sphere\n");
     if (s.photon_map_photons)
-      std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g (%.3f s)\n",
+      std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g, record rays shorter than %.4g continue their paths (%.3f s)\n",
                   s.bounces, (unsigned long long)s.photon_map_photons, (unsigned long long)s.photon_map_paths,
-                  s.photon_map_radius, s.photon_map_s);
+                  s.photon_map_radius, s.photon_map_radius * settings.short_ray_paths, s.photon_map_s);
     else if (s.bounces > 1)
       std::printf("bounces      2..%u at the records' hits by path continuation\n", s.bounces);
     if (s.guide_clusters)
@@ -186,6 +186,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                    {{"method", s.bounces > 1 ? bounce_method_name(s.bounce_method) : "none"},
                     {"photons_shot", s.photon_map_paths},
                     {"photons_kept", s.photon_map_photons}, {"radius", s.photon_map_radius},
+                    {"short_ray_paths_below", s.photon_map_radius * settings.short_ray_paths},
                     {"seconds", s.photon_map_s}}}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
                      {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
