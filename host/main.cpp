@@ -169,7 +169,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1u << 26));
   render_cmd->add_option("--short-ray-paths", render.settings.short_ray_paths,
                          "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
-                         "continue their paths instead of reading the map (0: every ray reads it); default " +
+                         "continue their path one bounce and read the map there (0: every ray reads it where it "
+                         "lands); default " +
                              shortest(render.settings.short_ray_paths))
       ->check(CLI::Range(0.0f, 1.0e6f));
 

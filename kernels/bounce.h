@@ -76,40 +76,49 @@ inline PathContinuation path_continuation(uint key, uint sample, uint bounces) {
   return more;
 }
 
-inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
-  float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-  for (uint k = 0; k < more.bounces; ++k) {
-    uint d = PATH_FIRST_DIMENSION + 6u * k;
-    float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
-    float3 next;
+// Bounce k of a continued path from *h (reached along *dir): draws the next direction from h's BRDF, multiplies
+// *throughput by f cos / pdf, traces it and adds throughput times the new hit's direct light to *sum; *h and *dir
+// move on to that hit. false: the path ends here.
+inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more, uint k,
+                      float3* sum, uint* rays) {
+  uint d = PATH_FIRST_DIMENSION + 6u * k;
+  float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
+  float3 next;
 #if HAS_SPECULAR_BRDF
-    SurfaceLobe lobe = hit_lobe(materials, textures, texels, &h);
-    if (lobe.lobe != LOBE_NONE) {
-      ShadingFrame frame = shading_frame(h.ns);
-      float3 wi;
-      float pdf;
-      BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, &h), lobe);
-      throughput *=
-          brdf_sample(brdf, view_local(frame, -dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
-      next = to_world(frame, wi);
-    } else
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  if (lobe.lobe != LOBE_NONE) {
+    ShadingFrame frame = shading_frame(h->ns);
+    float3 wi;
+    float pdf;
+    BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+    *throughput *=
+        brdf_sample(brdf, view_local(frame, -*dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
+    next = to_world(frame, wi);
+  } else
 #endif
-    {
-      float3 t, b;
-      tangent_frame(h.ns, &t, &b);
-      next = cosine_direction(t, b, h.ns, u1, u2);
-      throughput *= hit_albedo(materials, textures, texels, &h);  // cosine-weighted: f cos / pdf = albedo
-    }
-    if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f) || dot(next, h.ng) <= 0.0f) break;
-    float distance;
-    HitSurface h_next;
-    if (!trace_surface(SCENE, offset_ray_origin(h.s.position, h.ng), next, &h_next, &distance, rays)) break;
-    sum += throughput * hit_direct(SCENE, &h_next, next, random01(more.key, more.sample, d + 3u),
+  {
+    float3 t, b;
+    tangent_frame(h->ns, &t, &b);
+    next = cosine_direction(t, b, h->ns, u1, u2);
+    *throughput *= hit_albedo(materials, textures, texels, h);  // cosine-weighted: f cos / pdf = albedo
+  }
+  if (!(throughput->x > 0.0f || throughput->y > 0.0f || throughput->z > 0.0f) || dot(next, h->ng) <= 0.0f)
+    return false;
+  float distance;
+  HitSurface h_next;
+  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, &h_next, &distance, rays)) return false;
+  *sum += *throughput * hit_direct(SCENE, &h_next, next, random01(more.key, more.sample, d + 3u),
                                    random01(more.key, more.sample, d + 4u), random01(more.key, more.sample, d + 5u),
                                    rays);
-    h = h_next;
-    dir = next;
-  }
+  *h = h_next;
+  *dir = next;
+  return true;
+}
+
+inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
+  float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
+  for (uint k = 0; k < more.bounces; ++k)
+    if (!path_step(SCENE, &h, &dir, &throughput, more, k, &sum, rays)) break;
   return finite_or_zero(sum);
 }
 
@@ -129,10 +138,16 @@ inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 
   }
   float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
 #if PHOTON_GATHER
-  if (*distance < map.short_path_distance && more.bounces)
-    l += continued_path(SCENE, h, dir, more, rays);
-  else
-    l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng);
+  if (*distance < map.short_path_distance && more.bounces) {
+    // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and
+    // reads there the map without its last landing (bounces 3 .. N).
+    float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
+    if (path_step(SCENE, &h, &dir, &throughput, more, 0u, &sum, rays))
+      sum += throughput * photon_map_radiance(PHOTON_MAP, h.s.position, h.ng, true);
+    l += finite_or_zero(sum);
+  } else {
+    l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng, false);
+  }
 #else
   if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
 #endif

@@ -94,7 +94,8 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
   for (uint k = 0; k < params.landings; ++k) {
     PhotonHit out;
     out.hit = 0;
-    out.pad0 = out.pad1 = 0.0f;
+    out.landing = (int)k;
+    out.pad1 = 0.0f;
     vstore3((float3)(0.0f), 0, out.position);
     vstore3((float3)(0.0f), 0, out.normal);
     vstore3((float3)(0.0f), 0, out.flux);

@@ -252,7 +252,7 @@ typedef struct {
   float position[3];
   rc_int hit;      // 0: the photon left the scene
   float normal[3]; // geometric normal on the side the photon came from
-  float pad0;
+  rc_int landing;  // 0: the first surface from the light; k: after k reflections
   float flux[3];   // reflected flux: the photon's power times the surface's albedo
   float pad1;
 } PhotonHit;
@@ -279,9 +279,9 @@ typedef struct {
   float radius;          // of the density estimate around each photon
   rc_uint bucket_count;  // a power of two
   rc_uint photon_count;
-  // A record ray that lands closer than this (device units) continues its path instead of reading the map (0: every
-  // ray reads it): the map's estimate averages a disc of `radius`, which at a short ray's end spans the record's own
-  // neighbourhood, its contacts and recesses (--short-ray-paths, in radii).
+  // A record ray that lands closer than this (device units) continues its path one bounce and reads the map there
+  // (0: every ray reads it where it lands): the map's estimate averages a disc of `radius`, which at a short ray's end
+  // spans the record's own neighbourhood, its contacts and recesses (--short-ray-paths, in radii).
   float short_path_distance;
 } PhotonMapParams;
 

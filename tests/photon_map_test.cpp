@@ -98,7 +98,9 @@ glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.n
 // half of it of the tangent plane (PHOTON_DISC_HALF_THICKNESS) on a surface facing the same way, over pi^2 r^2. Beside
 // the floor and the wall, two shelves above the floor facing up, at 0.3 r (within the disc: counted by the floor's
 // estimates) and 0.75 r (beyond it: left out). Photons within 1e-5 r of the disc's rim or faces could fall either way
-// in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms).
+// in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms). The photons
+// carry landings 1 .. 3; the shallow estimates (a path continued one bounce past a short ray reads them) count only
+// landings 1 and 2.
 TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   RandomPhotons given = random_photons(30000, 11);
   const double area = given.area + 2.0;  // and the two shelves' tops, 1 x 1 each
@@ -109,17 +111,21 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
     float height = (i % 2 ? 0.3f : 0.75f) * expected_r;
     given.photons.push_back(photon_at(u(rng), height, u(rng), {0, 1, 0}, glm::vec3(u(rng), u(rng), u(rng))));
   }
+  for (size_t i = 0; i < given.photons.size(); ++i) given.photons[i].landing = 1 + int(i / 3 % 3);  // not i % 3: that picks the surface
   PhotonMapGrids grids = build_photon_map(given.photons, area, 32, 4);
+  grids.shallow_landings = 3;
   const double r = grids.all.params.radius, r2 = r * r;
   ASSERT_GT(r, 0.0);
   ASSERT_EQ(float(r), expected_r);
   PhotonMapPass pass(test::gpu(), grids);
-  std::vector<cl_float4> estimates = pass.estimates();
+  std::vector<cl_float4> estimates = pass.estimates(), shallow = pass.shallow_estimates();
   ASSERT_EQ(estimates.size(), grids.lookup.photons.size());
+  ASSERT_EQ(shallow.size(), grids.lookup.photons.size());
   size_t compared = 0, ambiguous = 0;
+  double all_sum = 0.0, shallow_sum = 0.0;  // two landings in three count in the shallow estimates
   for (size_t i = 0; i < grids.lookup.photons.size(); ++i) {
     glm::dvec3 x = position_of(grids.lookup.photons[i]), n = normal_of(grids.lookup.photons[i]);
-    glm::dvec3 flux(0.0);
+    glm::dvec3 flux(0.0), shallow_flux(0.0);
     bool rim = false;
     for (const PhotonHit& p : grids.all.photons) {
       glm::dvec3 d = position_of(p) - x;
@@ -127,19 +133,29 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
       if (glm::dot(normal_of(p), n) <= 0.5) continue;
       double height = std::abs(glm::dot(d, n));
       rim = rim || std::abs(d2 - r2) < 1e-5 * r2 || std::abs(height - 0.5 * r) < 1e-5 * r;
-      if (d2 < r2 && height < 0.5 * r) flux += glm::dvec3(p.flux[0], p.flux[1], p.flux[2]);
+      if (d2 < r2 && height < 0.5 * r) {
+        flux += glm::dvec3(p.flux[0], p.flux[1], p.flux[2]);
+        if (p.landing < 3) shallow_flux += glm::dvec3(p.flux[0], p.flux[1], p.flux[2]);
+      }
     }
     if (rim) {
       ++ambiguous;
       continue;
     }
-    glm::dvec3 expected = flux / (kPi * kPi * r2);
-    for (int c = 0; c < 3; ++c)
+    glm::dvec3 expected = flux / (kPi * kPi * r2), expected_shallow = shallow_flux / (kPi * kPi * r2);
+    all_sum += expected.x;
+    shallow_sum += expected_shallow.x;
+    for (int c = 0; c < 3; ++c) {
       ASSERT_NEAR(estimates[i].s[c], expected[c], 1e-4 * expected[c] + 1e-9) << "photon " << i << " channel " << c;
+      ASSERT_NEAR(shallow[i].s[c], expected_shallow[c], 1e-4 * expected_shallow[c] + 1e-9)
+          << "shallow, photon " << i << " channel " << c;
+    }
     ++compared;
   }
-  std::printf("compared %zu estimates, skipped %zu at the rim\n", compared, ambiguous);
+  std::printf("compared %zu estimates, skipped %zu at the rim; shallow over all %.4f\n", compared, ambiguous,
+              shallow_sum / all_sum);
   EXPECT_LT(ambiguous, compared / 100 + 1);
+  EXPECT_NEAR(shallow_sum / all_sum, 2.0 / 3.0, 0.02);
 }
 
 // The nearest lookup photon within r of x on a surface facing n among those in x's bucket (index, or SIZE_MAX) and the

@@ -20,6 +20,9 @@ struct PhotonGrid {
 struct PhotonMapGrids {
   PhotonGrid all;     // every photon kept: the density estimates sum over it
   PhotonGrid lookup;  // every lookup_stride-th of them: where the estimates are made and what lookups search
+  // The shallow estimates (map_shallow) count the photons of landings below this: with N bounces, N - 1 leaves out
+  // the last landing, so that a path continued one bounce past a short ray reads bounces 3 .. N there (0: none).
+  int shallow_landings = 0;
 };
 
 // The density estimate's radius: the disc that holds `neighbours` photons on average when `photons` photons spread over

@@ -87,7 +87,7 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
     if (c.hessian_error > 0.0f) std::printf("radii from the occlusion Hessian (error budget %g)\n", c.hessian_error);
     else std::printf("radii from Ward's split sphere\n");
     if (s.photon_map_photons)
-      std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g, record rays shorter than %.4g continue their paths (%.3f s)\n",
+      std::printf("photon map   bounces 2..%u at the records' hits: %llu landings after a reflection, from %llu photons shot; radius %.4g, record rays shorter than %.4g continue a bounce (%.3f s)\n",
                   s.bounces, (unsigned long long)s.photon_map_photons, (unsigned long long)s.photon_map_paths,
                   s.photon_map_radius, s.photon_map_radius * settings.short_ray_paths, s.photon_map_s);
     else if (s.bounces > 1)

@@ -14,6 +14,8 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
   buckets_ = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
   radiance_ = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(grids.lookup.photons.size(), 1) * sizeof(cl_float4),
                          "photon map radiance");
+  shallow_ = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(grids.lookup.photons.size(), 1) * sizeof(cl_float4),
+                        "photon map shallow radiance");
   if (grids.lookup.photons.empty()) return;
   cl::Buffer all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
   cl::Buffer all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
@@ -23,7 +25,9 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
       .set("all_grid", grids.all.params)
       .set_buffer<PhotonHit>("map_photons", photons_)
       .set("map", params_)
-      .set_buffer<cl_float4>("map_radiance", radiance_);
+      .set("shallow_landings", cl_int(grids.shallow_landings))
+      .set_buffer<cl_float4>("map_radiance", radiance_)
+      .set_buffer<cl_float4>("map_shallow", shallow_);
   estimate.launch(params_.photon_count, gpu.groups().traversal);
   gpu.queue().finish();
 }
@@ -31,11 +35,16 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
 void PhotonMapPass::bind(NamedKernel& kernel) const {
   kernel.set_buffer<PhotonHit>("map_photons", photons_)
       .set_buffer<cl_float4>("map_radiance", radiance_)
+      .set_buffer<cl_float4>("map_shallow", shallow_)
       .set_buffer<cl_uint>("map_buckets", buckets_)
       .set("map", params_);
 }
 
 std::vector<cl_float4> PhotonMapPass::estimates() { return gpu_.download<cl_float4>(radiance_, params_.photon_count); }
+
+std::vector<cl_float4> PhotonMapPass::shallow_estimates() {
+  return gpu_.download<cl_float4>(shallow_, params_.photon_count);
+}
 
 std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,
                                                   const std::vector<cl_float4>& normals) {

@@ -25,13 +25,15 @@ class PhotonMapPass {
   const PhotonMapParams& params() const { return params_; }
   // The lookup photons' estimates (float4: RGB, 0), in the lookup grid's order, for tests.
   std::vector<cl_float4> estimates();
+  // The same without the landings from PhotonMapGrids::shallow_landings on (map_shallow), for tests.
+  std::vector<cl_float4> shallow_estimates();
   // What a record's ray finds at these points (xyz) on surfaces facing these normals, for tests.
   std::vector<cl_float4> radiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
 
  private:
   GpuContext& gpu_;
   PhotonMapParams params_;
-  cl::Buffer photons_, radiance_, buckets_;
+  cl::Buffer photons_, radiance_, shallow_, buckets_;
 };
 
 }  // namespace rcsplat

@@ -57,6 +57,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                           kPhotonLookupStride);
   grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
+  grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
   f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
   double program_s = f.gpu.program_seconds() - program_before;
   st.program_s += program_s;

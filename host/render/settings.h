@@ -54,9 +54,10 @@ struct RenderSettings {
   // surface.
   unsigned photon_paths = 0;
   unsigned photon_neighbours = 64;
-  // --bounce-method photons: record rays that land closer than this many gather radii continue their paths (bounces
-  // 2 ..) instead of reading the map, whose disc would blur their contacts and recesses (Jensen's final gather).
-  float short_ray_paths = 1.0f;
+  // --bounce-method photons: record rays that land closer than this many gather radii continue their path one bounce
+  // and read there the map without its last landing, instead of reading it where they land, whose disc would blur
+  // the record's own contacts and recesses (Jensen's final gather; benchmarks/RESULTS.md "Short record rays").
+  float short_ray_paths = 2.0f;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are
