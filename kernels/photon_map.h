@@ -1,6 +1,7 @@
 // Final gathering from a photon map (--bounce-method photons, ALGORITHM.md section 8): a record's ray that lands on a
 // surface takes the light of the bounces after the first from the photons that landed near it, instead of continuing
-// its path. Each map photon carries a radiance estimate made once per frame (kernels/photon_map.cl); a lookup returns
+// its path. Each map photon carries a radiance estimate made once per frame (kernels/photon_map.cl), and a shallow one
+// without the map's last landing for a path continued one bounce past a short ray (kernels/bounce.h); a lookup returns
 // the nearest one's (Christensen 1999, "Faster photon map global illumination").
 #ifndef RCSPLAT_PHOTON_MAP_H
 #define RCSPLAT_PHOTON_MAP_H

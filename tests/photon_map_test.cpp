@@ -98,9 +98,9 @@ glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.n
 // half of it of the tangent plane (PHOTON_DISC_HALF_THICKNESS) on a surface facing the same way, over pi^2 r^2. Beside
 // the floor and the wall, two shelves above the floor facing up, at 0.3 r (within the disc: counted by the floor's
 // estimates) and 0.75 r (beyond it: left out). Photons within 1e-5 r of the disc's rim or faces could fall either way
-// in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms). The photons
-// carry landings 1 .. 3; the shallow estimates (a path continued one bounce past a short ray reads them) count only
-// landings 1 and 2.
+// in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms). The
+// photons carry landings 1 .. 3; the shallow estimates (a path continued one bounce past a short ray reads them) count
+// only landings 1 and 2.
 TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   RandomPhotons given = random_photons(30000, 11);
   const double area = given.area + 2.0;  // and the two shelves' tops, 1 x 1 each
@@ -111,7 +111,8 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
     float height = (i % 2 ? 0.3f : 0.75f) * expected_r;
     given.photons.push_back(photon_at(u(rng), height, u(rng), {0, 1, 0}, glm::vec3(u(rng), u(rng), u(rng))));
   }
-  for (size_t i = 0; i < given.photons.size(); ++i) given.photons[i].landing = 1 + int(i / 3 % 3);  // not i % 3: that picks the surface
+  // Landings by i / 3, not i: random_photons picks the surface by i % 3.
+  for (size_t i = 0; i < given.photons.size(); ++i) given.photons[i].landing = 1 + int(i / 3 % 3);
   PhotonMapGrids grids = build_photon_map(given.photons, area, 32, 4);
   grids.shallow_landings = 3;
   const double r = grids.all.params.radius, r2 = r * r;

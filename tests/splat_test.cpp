@@ -333,8 +333,8 @@ TEST(Splat, AdaptiveRaysGiveTheFullOrTheHalfHemispheresRecords) {
 
 // --short-ray-paths: a short record ray continues its path one bounce and reads the map there without its last
 // landing. With two bounces that map is empty, so with every ray counted short the frame is --bounce-method path's,
-// bit for bit (same random numbers, same code); with none, every ray reads the map; the default (one gather radius)
-// continues some of them, so its records are neither's.
+// bit for bit (same random numbers, same code); with none, every ray reads the map; the default
+// (two gather radii) continues some of them, so its records are neither's.
 TEST(Splat, ShortRayPathsSpanThePathAndPhotonGathers) {
   Scene scene = make_cornell_box();
   RenderSettings path = small_splat(64);
@@ -347,9 +347,10 @@ TEST(Splat, ShortRayPathsSpanThePathAndPhotonGathers) {
   RenderedImage path_img = render(test::gpu(), scene, path), all_img = render(test::gpu(), scene, all_short);
   ASSERT_GT(all_img.stats.photon_map_photons, 0u);
   EXPECT_EQ(all_img.stats.record_rays, path_img.stats.record_rays);
-  expect_same_records_and_image(all_img, path_img, "every record ray continues its path");
+  expect_same_records_and_image(all_img, path_img, "every record ray continues a bounce (two bounces: the path's)");
 
-  RenderedImage none_img = render(test::gpu(), scene, none_short), default_img = render(test::gpu(), scene, default_short);
+  RenderedImage none_img = render(test::gpu(), scene, none_short);
+  RenderedImage default_img = render(test::gpu(), scene, default_short);
   EXPECT_LT(none_img.stats.record_rays, default_img.stats.record_rays);
   EXPECT_LT(default_img.stats.record_rays, all_img.stats.record_rays);
   std::printf("record rays: map only %llu, short rays continued %llu, every ray continued %llu\n",

@@ -56,7 +56,8 @@ struct RenderSettings {
   unsigned photon_neighbours = 64;
   // --bounce-method photons: record rays that land closer than this many gather radii continue their path one bounce
   // and read there the map without its last landing, instead of reading it where they land, whose disc would blur
-  // the record's own contacts and recesses (Jensen's final gather; benchmarks/RESULTS.md "Short record rays").
+  // the record's own contacts and recesses (Jensen's final gather; benchmarks/RESULTS.md "Short record rays continue
+  // a bounce").
   float short_ray_paths = 2.0f;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
