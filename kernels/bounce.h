@@ -115,6 +115,36 @@ inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput
   return true;
 }
 
+#if PHOTON_GATHER
+// The later bounces' light that *h (reached along dir) reflects back along -dir, from the photon map's two estimates
+// at the nearest lookup photon (kernels/photon_map.h): R, the light its neighbours reflect (their albedo averaged in:
+// no texel read here), and E, the irradiance, both over pi. Lambertian: R. With a specular lobe, the incident light
+// taken as even over directions, as composition reflects a rough pixel's cached irradiance (kernels/compose.cl): the
+// diffuse base (1 - metallic)(1 - F(n.v)) R plus the lobe's directional albedo c0 T0 + c1 T1 (kernels/brdf_frame.h)
+// times E, whose metallic part of c0 (base colour) and of c1 (1 - base) reads R and E - R. shallow: without the map's
+// last landing.
+inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 dir, bool shallow) {
+  int nearest = photon_map_nearest(PHOTON_MAP, h->s.position, h->ng);
+  if (nearest < 0) return (float3)(0.0f);
+  __global const float4* estimates = shallow ? map_shallow : map_radiance;
+  float3 reflected = estimates[2 * nearest].xyz;
+#if HAS_SPECULAR_BRDF
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  if (lobe.lobe != LOBE_NONE) {
+    float3 irradiance = estimates[2 * nearest + 1].xyz;
+    BrdfInputs in = brdf_inputs((float3)(1.0f), lobe.metallic, lobe.roughness, lobe.specular);
+    float3 wo = view_local(shading_frame(h->ns), -dir);
+    float2 terms = specular_albedo_split(map_specular_albedo, in, wo);
+    float dielectric = (1.0f - in.metallic) * in.specular;
+    float3 c0 = dielectric * DIELECTRIC_F0 * irradiance + in.metallic * reflected;
+    float3 c1 = dielectric * (1.0f - DIELECTRIC_F0) * irradiance + in.metallic * (irradiance - reflected);
+    return (1.0f - in.metallic) * brdf_diffuse_weight(in, wo.z) * reflected + terms.x * c0 + terms.y * c1;
+  }
+#endif
+  return reflected;
+}
+#endif
+
 inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
   float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
   for (uint k = 0; k < more.bounces; ++k)
@@ -143,10 +173,10 @@ inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 
     // reads there the map without its last landing (bounces 3 .. N).
     float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
     if (path_step(SCENE, &h, &dir, &throughput, more, 0u, &sum, rays))
-      sum += throughput * photon_map_radiance(PHOTON_MAP, h.s.position, h.ng, true);
+      sum += throughput * photon_gather(SCENE, PHOTON_MAP, &h, dir, true);
     l += finite_or_zero(sum);
   } else {
-    l += photon_map_radiance(PHOTON_MAP, h.s.position, h.ng, false);
+    l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, &h, dir, false));
   }
 #else
   if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);

@@ -68,15 +68,20 @@ inline float2 specular_albedo_terms(float cos_o, float roughness) {
   return sum * (1.0f / (float)(side * side));
 }
 
-// The specular lobe's directional albedo toward wo (local frame), from the table.
-inline float3 specular_albedo(__global const float2* table, BrdfInputs in, float3 wo) {
+// The table's (T0, T1) toward wo (local frame) at the lobe's roughness, read bilinearly.
+inline float2 specular_albedo_split(__global const float2* table, BrdfInputs in, float3 wo) {
   const int n = SPECULAR_ALBEDO_TABLE_SIZE;
   float x = clamp(wo.z, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
   int x0 = min((int)x, n - 2), y0 = min((int)y, n - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
   float2 bottom = mix(table[y0 * n + x0], table[y0 * n + x0 + 1], fx);
   float2 top = mix(table[(y0 + 1) * n + x0], table[(y0 + 1) * n + x0 + 1], fx);
-  float2 t = mix(bottom, top, fy);
+  return mix(bottom, top, fy);
+}
+
+// The specular lobe's directional albedo toward wo (local frame), from the table.
+inline float3 specular_albedo(__global const float2* table, BrdfInputs in, float3 wo) {
+  float2 t = specular_albedo_split(table, in, wo);
   float3 c0, c1;
   specular_fresnel_terms(in, &c0, &c1);
   return c0 * t.x + c1 * t.y;

@@ -12,16 +12,6 @@
 #include "brdf_frame.h"
 #endif
 
-#if HAS_SPECULAR_BRDF
-// The rough lobes' albedo table (brdf_frame.h), one entry per work item.
-__kernel void specular_albedo_table(__global float2* table) {
-  uint i = get_global_id(0);
-  const uint n = SPECULAR_ALBEDO_TABLE_SIZE;
-  if (i >= n * n) return;
-  table[i] = specular_albedo_terms((float)(i % n) / (float)(n - 1), (float)(i / n) / (float)(n - 1));
-}
-#endif
-
 __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global const float4* direct,
                       __global const float4* glossy, __global const float4* cached_lobes,
                       __global const float2* specular_albedo_terms, uint glossy_holds_guide_share,

@@ -1,14 +1,48 @@
 // The light guide's photons (host/passes/light_guide_pass.h): each work-item sends one photon from a light (punctual,
 // emissive triangle, the environment's peak, a sun: kernels/environment.h, or for the bounce probe alone the sky's
-// smooth part: PhotonParams::sky_source), chosen in proportion to its power, to
-// the first surface it lands on, and records the flux that surface reflects (power times albedo). The host clusters
-// the hits into the few bright places records should aim rays at. With more landings the photons go on bouncing and
-// their later landings make the photon map of --bounce-method photons (host/passes/photon_map_pass.h).
+// smooth part: PhotonParams::sky_source), chosen in proportion to its power, to the first surface it lands on, and
+// records the flux arriving there and the flux that surface reflects (power times albedo). The host clusters the hits
+// into the few bright places records should aim rays at. With more landings the photons go on, reflected by each
+// surface's BRDF, and their later landings make the photon map of --bounce-method photons
+// (host/passes/photon_map_pass.h).
 #include "environment.h"
 #include "light_guide.h"
 #include "scene_args.h"
 #include "surface.h"
 #include "traverse.h"
+#if HAS_SPECULAR_BRDF
+#include "reflected_light.h"
+#endif
+
+// Landing k's reflection draws its direction from dimensions 6 + 2k, 7 + 2k of the photon's stream and, on a surface
+// with a specular lobe, its lobe from PHOTON_LOBE_DIMENSION + k.
+#define PHOTON_LOBE_DIMENSION 64u
+
+// The direction a photon that arrived along dir leaves the surface *h in, drawn from the BRDF; *power becomes what
+// leaves. A Lambertian surface: a cosine-weighted direction, and *power is `reflected` (power times albedo). With a
+// specular lobe the photon is the light the surface reflects toward its new direction, f(new, arrived) cos(new) / pdf
+// (the BRDF's view is the new direction: its diffuse base's Fresnel depends on it, so the weight is not the one
+// brdf_sample returns for a path).
+inline float3 scatter_photon(SCENE_ARGS, HitSurface* h, float3 dir, float3 reflected, uint key, uint k,
+                             float3* power) {
+  float u1 = random01(key, 0u, 6u + 2u * k), u2 = random01(key, 0u, 7u + 2u * k);
+#if HAS_SPECULAR_BRDF
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  if (lobe.lobe != LOBE_NONE) {
+    ShadingFrame frame = shading_frame(h->ns);
+    BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+    float3 arrived = view_local(frame, -dir), next;
+    float pdf;
+    brdf_sample(in, arrived, random01(key, 0u, PHOTON_LOBE_DIMENSION + k), u1, u2, &next, &pdf);
+    *power = pdf > 0.0f ? *power * brdf_eval(in, next, arrived) * (next.z / pdf) : (float3)(0.0f);
+    return to_world(frame, next);
+  }
+#endif
+  float3 t, b;
+  tangent_frame(h->ns, &t, &b);
+  *power = reflected;
+  return cosine_direction(t, b, h->ns, u1, u2);
+}
 
 // A point of the unit disc facing axis, from uniform (u, v): photons of lights at infinity cross it.
 inline float3 unit_disc_point(float3 axis, float u, float v) {
@@ -88,35 +122,39 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     power = vload3(0, e.radiance) * (RC_PI * e.area * sides);
   }
   // Landing 0 is the first surface (the light guide reads only it); with params.landings > 1 the photon goes on,
-  // reflected diffusely with its power times the albedo, and lands params.landings times at most (the photon map,
-  // kernels/photon_map.h, keeps landings 1 ..). Landing k > 0 draws its direction from dimensions 6 + 2 (k - 1) ...
+  // reflected by the surface's BRDF (scatter_photon), and lands params.landings times at most (the photon map,
+  // kernels/photon_map.h, keeps landings 1 ..).
   bool alive = select > 0.0f;
   for (uint k = 0; k < params.landings; ++k) {
     PhotonHit out;
     out.hit = 0;
     out.landing = (int)k;
-    out.pad1 = 0.0f;
+    out.pad1 = out.pad2 = 0.0f;
     vstore3((float3)(0.0f), 0, out.position);
     vstore3((float3)(0.0f), 0, out.normal);
     vstore3((float3)(0.0f), 0, out.flux);
+    vstore3((float3)(0.0f), 0, out.incident);
     RayPrecomp r = ray_precompute(origin, dir);
     TraceHit hit;
     if (alive && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
-      SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-      float3 ng = dot(s.geometric_normal, dir) > 0.0f ? -s.geometric_normal : s.geometric_normal;
-      float3 ns = dot(s.shading_normal, ng) > 0.0f ? s.shading_normal : ng;
-      power *= surface_albedo(materials, textures, texels, &s);  // what leaves the surface
-      float3 flux = finite_or_zero(power / (select * (float)params.photon_count));
+      HitSurface h;
+      h.s = surface_at(triangles, hit.prim, hit.u, hit.v);
+      h.ng = dot(h.s.geometric_normal, dir) > 0.0f ? -h.s.geometric_normal : h.s.geometric_normal;
+      h.ns = dot(h.s.shading_normal, h.ng) > 0.0f ? h.s.shading_normal : h.ng;
+      h.albedo_read = h.lobe_read = 0;
+      const float per_photon = select * (float)params.photon_count;
+      float3 reflected = power * hit_albedo(materials, textures, texels, &h);
+      float3 flux = finite_or_zero(reflected / per_photon);
       out.hit = 1;
-      vstore3(s.position, 0, out.position);
-      vstore3(ng, 0, out.normal);
+      vstore3(h.s.position, 0, out.position);
+      vstore3(h.ng, 0, out.normal);
       vstore3(flux, 0, out.flux);
+      vstore3(finite_or_zero(power / per_photon), 0, out.incident);
       if (k + 1u < params.landings) {
-        float3 t, b;
-        tangent_frame(ns, &t, &b);
-        dir = cosine_direction(t, b, ns, random01(key, 0u, 6u + 2u * k), random01(key, 0u, 7u + 2u * k));
-        alive = dot(dir, ng) > 0.0f && (flux.x > 0.0f || flux.y > 0.0f || flux.z > 0.0f);
-        origin = offset_ray_origin(s.position, ng);
+        dir = scatter_photon(SCENE, &h, dir, reflected, key, k, &power);
+        float3 leaving = finite_or_zero(power / per_photon);
+        alive = dot(dir, h.ng) > 0.0f && (leaving.x > 0.0f || leaving.y > 0.0f || leaving.z > 0.0f);
+        origin = offset_ray_origin(h.s.position, h.ng);
       }
     } else {
       alive = false;

@@ -15,6 +15,17 @@
 // 1.6% with it; 0.3 brought it to 1.003 but cut off curved surfaces (columns) and raised the block error (RESULTS.md).
 #define PHOTON_DISC_HALF_THICKNESS 0.5f
 
+// An estimate divides by the area of facing surface in its disc, which the scene's surface patches measure
+// (host/cache/photon_map.h surface_patches, at this many per full disc: coarser patches make the area noisier, and
+// 1 / area brighter: 16 read Sponza's second bounce 2.6% brighter than 64, 256 0.5% darker). At least this share of
+// the full disc counts, so that a few photons on a lone sliver cannot make a spike.
+#define PHOTON_PATCHES_PER_DISC 64
+#define PHOTON_MIN_AREA_SHARE 0.0625f
+
+// The linear fit of an estimate over its disc (kernels/photon_map.cl density_at_centre) adds this share of a full
+// disc's second moment of area to the surface's, so that a narrow strip does not extrapolate its gradient from noise.
+#define PHOTON_GRADIENT_RIDGE 0.1f
+
 // The grid cell along one axis holding coordinate x; clamped (a NaN to a bound) so that the conversion is defined
 // even for a radius far below the scene's size.
 inline int photon_cell(float x, float origin, float cell_size) {

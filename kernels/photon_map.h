@@ -1,48 +1,50 @@
 // Final gathering from a photon map (--bounce-method photons, ALGORITHM.md section 8): a record's ray that lands on a
 // surface takes the light of the bounces after the first from the photons that landed near it, instead of continuing
-// its path. Each map photon carries a radiance estimate made once per frame (kernels/photon_map.cl), and a shallow one
-// without the map's last landing for a path continued one bounce past a short ray (kernels/bounce.h); a lookup returns
-// the nearest one's (Christensen 1999, "Faster photon map global illumination").
+// its path. Each lookup photon carries two estimates made once per frame (kernels/photon_map.cl): the light its
+// neighbours' surfaces reflect (their albedo averaged in) and the irradiance, both over pi; a lookup reflects them by
+// its own surface's lobe toward its ray (kernels/bounce.h photon_gather). A shallow pair leaves out the map's last
+// landing, for a path continued one bounce past a short ray. A lookup takes the nearest photon's (Christensen 1999,
+// "Faster photon map global illumination").
 #ifndef RCSPLAT_PHOTON_MAP_H
 #define RCSPLAT_PHOTON_MAP_H
 #include "photon_grid.h"
 #include "shared_types.h"
 
-// The map as the kernels that read it take it: photons sorted by bucket, their radiance estimates, the buckets' first
-// photons (bucket_count + 1 entries) and the grid.
+// The map as the kernels that read it take it: photons sorted by bucket, their estimates (two float4 per photon: the
+// reflected light, the irradiance), the buckets' first photons
+// (bucket_count + 1 entries), the grid, and the rough lobes' albedo table (kernels/specular_albedo.cl) by which a
+// lookup's surface reflects the estimate (kernels/bounce.h photon_gather; unread without HAS_SPECULAR_BRDF).
 #define PHOTON_MAP_ARGS                                                                                      \
   __global const PhotonHit *map_photons, __global const float4 *map_radiance, __global const float4 *map_shallow, \
-      __global const uint *map_buckets, PhotonMapParams map
-#define PHOTON_MAP map_photons, map_radiance, map_shallow, map_buckets, map
+      __global const uint *map_buckets, PhotonMapParams map, __global const float2 *map_specular_albedo
+#define PHOTON_MAP map_photons, map_radiance, map_shallow, map_buckets, map, map_specular_albedo
 
 // The nearest photon within map.radius of x on a surface facing ng's way (cosine above PHOTON_MIN_NORMAL_COSINE) among
-// those in `bucket`: updates *nearest (squared distance) and *l (its estimate, or its shallow one).
-inline void nearest_in_bucket(PHOTON_MAP_ARGS, uint bucket, float3 x, float3 ng, bool shallow, float* nearest,
-                              float3* l) {
+// those in `bucket`: updates *nearest (squared distance) and *index.
+inline void nearest_in_bucket(PHOTON_MAP_ARGS, uint bucket, float3 x, float3 ng, float* nearest, int* index) {
   for (uint i = map_buckets[bucket]; i < map_buckets[bucket + 1u]; ++i) {
     float3 d = vload3(0, map_photons[i].position) - x;
     float d2 = dot(d, d);
     if (d2 < *nearest && dot(vload3(0, map_photons[i].normal), ng) > PHOTON_MIN_NORMAL_COSINE) {
       *nearest = d2;
-      *l = shallow ? map_shallow[i].xyz : map_radiance[i].xyz;
+      *index = (int)i;
     }
   }
 }
 
-// The estimate of a photon near x on a surface facing ng's way: the nearest such photon within the radius in x's own
-// bucket (its grid cell, one radius wide), or where that holds none, the nearest within half a cell (the 2 x 2 x 2
-// cells around x hold every such photon); none: no light. One bucket is what most lookups read: a record's rays
-// make millions of them, and each bucket is a cache miss. Reflected radiance, the same in every direction (the map
-// treats every surface as Lambertian). shallow: the estimate of the landings before the map's last (map_shallow).
-inline float3 photon_map_radiance(PHOTON_MAP_ARGS, float3 x, float3 ng, bool shallow) {
-  if (map.photon_count == 0u) return (float3)(0.0f);
+// The lookup photon whose estimates stand for x on a surface facing ng's way: the nearest such photon within the
+// radius in x's own bucket (its grid cell, one radius wide), or where that holds none, the nearest within half a cell
+// (the 2 x 2 x 2 cells around x hold every such photon); -1: none, no light. One bucket is what most lookups read: a
+// record's rays make millions of them, and each bucket is a cache miss.
+inline int photon_map_nearest(PHOTON_MAP_ARGS, float3 x, float3 ng) {
+  if (map.photon_count == 0u) return -1;
   float3 o = vload3(0, map.grid_origin);
   float nearest = map.radius * map.radius;
-  float3 l = (float3)(0.0f);
+  int index = -1;
   uint own = photon_bucket(photon_cell(x.x, o.x, map.cell_size), photon_cell(x.y, o.y, map.cell_size),
                            photon_cell(x.z, o.z, map.cell_size), map.bucket_count);
-  nearest_in_bucket(PHOTON_MAP, own, x, ng, shallow, &nearest, &l);
-  if (nearest < map.radius * map.radius) return l;
+  nearest_in_bucket(PHOTON_MAP, own, x, ng, &nearest, &index);
+  if (index >= 0) return index;
   int3 first = convert_int3_sat(floor((x - o) / map.cell_size - 0.5f));
   uint visited[9];
   uint visited_count = 1;
@@ -53,9 +55,9 @@ inline float3 photon_map_radiance(PHOTON_MAP_ARGS, float3 x, float3 ng, bool sha
     for (uint v = 0; v < visited_count; ++v) seen = seen || visited[v] == bucket;
     if (seen) continue;
     visited[visited_count++] = bucket;
-    nearest_in_bucket(PHOTON_MAP, bucket, x, ng, shallow, &nearest, &l);
+    nearest_in_bucket(PHOTON_MAP, bucket, x, ng, &nearest, &index);
   }
-  return l;
+  return index;
 }
 
 #endif

@@ -247,15 +247,30 @@ typedef struct {
   float pad1;
 } GuideCluster;
 
-// One photon from a light to the first surface it lands on.
+// One landing of a photon from a light.
 typedef struct {
   float position[3];
   rc_int hit;      // 0: the photon left the scene
   float normal[3]; // geometric normal on the side the photon came from
   rc_int landing;  // 0: the first surface from the light; k: after k reflections
-  float flux[3];   // reflected flux: the photon's power times the surface's albedo
+  // Reflected flux: the arriving flux times the surface's albedo (base colour), the measure of a bright place that the
+  // light guide clusters and the bounce probe sums.
+  float flux[3];
   float pad1;
+  // The flux arriving: the photon map's estimates are of irradiance, which a lookup turns into radiance by the
+  // reflectance of the surface it looks from, toward its ray (kernels/photon_map.h).
+  float incident[3];
+  float pad2;
 } PhotonHit;
+
+// A small piece of the scene's surface on one side, for the photon map's estimates to measure the area of facing
+// surface in a disc (host/cache/photon_map.h surface_patches).
+typedef struct {
+  float position[3];  // the piece's centroid
+  float area;
+  float normal[3];  // the side's normal
+  float pad;
+} SurfacePatch;
 
 typedef struct {
   rc_uint photon_count;
@@ -451,7 +466,8 @@ static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 36);
 static_assert(sizeof(GuideCluster) == 48);
-static_assert(sizeof(PhotonHit) == 48);
+static_assert(sizeof(PhotonHit) == 64);
+static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);

@@ -19,6 +19,7 @@
 #include "kernels/hsh.h"
 #include "cache/hsh_rotation.h"
 #include "passes/brdf_table_pass.h"
+#include "passes/specular_albedo_table.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -95,9 +96,7 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
     cases.insert(cases.end(), c.begin(), c.end());
   }
   GpuContext& gpu = test::gpu();
-  cl::Buffer table(gpu.context(), CL_MEM_READ_WRITE, SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE * 8);
-  NamedKernel fill = gpu.kernel("compose.cl", "specular_albedo_table", {{"HAS_SPECULAR_BRDF", "1"}, {"RADIANCE_CACHED", "0"}});
-  fill.set_buffer<cl_float2>("table", table).launch(SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE, 64);
+  cl::Buffer table = specular_albedo_table(gpu, true);
   cl::Buffer in = gpu.upload(cases);
   cl::Buffer out(gpu.context(), CL_MEM_WRITE_ONLY, materials.size() * 4 * sizeof(float));
   NamedKernel kernel(gpu, gpu.program_from_text("brdf_test.cl", kBrdfKernels), "tabulated_specular_albedo");

@@ -40,8 +40,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   PhotonHit photon{};
   photon.hit = 1;
   photon.normal[1] = 1.0f;
-  photon.flux[0] = 1.0f;
-  PhotonMapPass map(gpu, build_photon_map({photon}, 1.0, 1, 1));
+  photon.flux[0] = photon.incident[0] = 1.0f;
+  PhotonMapPass map(gpu, build_photon_map({photon}, 1.0, 1, 1), false);
   EXPECT_GT(map.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "kernels/shared_types.h"
 
 namespace rcsplat {
@@ -17,27 +19,42 @@ struct PhotonGrid {
   std::vector<uint32_t> bucket_starts;  // params.bucket_count + 1: bucket h holds [starts[h], starts[h + 1])
 };
 
+struct PatchGrid {
+  PhotonMapParams params{};
+  std::vector<SurfacePatch> patches;    // sorted by bucket
+  std::vector<uint32_t> bucket_starts;  // as PhotonGrid's
+};
+
 struct PhotonMapGrids {
   PhotonGrid all;     // every photon kept: the density estimates sum over it
   PhotonGrid lookup;  // every lookup_stride-th of them: where the estimates are made and what lookups search
   // The shallow estimates (map_shallow) count the photons of landings below this: with N bounces, N - 1 leaves out
   // the last landing, so that a path continued one bounce past a short ray reads bounces 3 .. N there (0: none).
   int shallow_landings = 0;
+  // The scene's surface in patches, sorted into a grid of the same radius: an estimate divides by the area of facing
+  // surface in its disc (kernels/photon_map.cl). Empty: every disc is taken as full, pi r^2.
+  PatchGrid patches;
 };
 
 // The density estimate's radius: the disc that holds `neighbours` photons on average when `photons` photons spread over
 // `surface_area` (device units).
 float photon_gather_radius(double surface_area, size_t photons, unsigned neighbours);
 
-// photons sorted into a grid of cells one radius wide (and a hair more, so rounding never hides a photon within the
-// radius); the order within a cell is the order given.
+// photons (patches) sorted into a grid of cells one radius wide (and a hair more, so rounding never hides one within
+// the radius); the order within a cell is the order given.
 PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius);
+PatchGrid sort_into_grid(const std::vector<SurfacePatch>& patches, float radius);
 
-// The landings that hit a surface with some flux.
+// Every triangle (positions, three per triangle) cut into n x n equal sub-triangles of area at most patch_area (n at
+// most 256), each a patch at its centroid, once per side (the normal and its opposite).
+std::vector<SurfacePatch> surface_patches(const std::vector<glm::vec3>& positions, float patch_area);
+
+// The landings that hit a surface with some flux arriving.
 std::vector<PhotonHit> lit_landings(const std::vector<PhotonHit>& photons);
 
-// Both grids over the kept landings, radius as photon_gather_radius gives it for their count.
+// Both grids over the kept landings, radius as photon_gather_radius gives it for their count, and with the scene's
+// triangles (device positions, three per triangle; none: no patches) their patches, PHOTON_PATCHES_PER_DISC per disc.
 PhotonMapGrids build_photon_map(const std::vector<PhotonHit>& kept, double surface_area, unsigned neighbours,
-                                unsigned lookup_stride);
+                                unsigned lookup_stride, const std::vector<glm::vec3>& triangles = {});
 
 }  // namespace rcsplat

@@ -1,24 +1,13 @@
 #include "passes/compose_pass.h"
 
+#include "passes/specular_albedo_table.h"
+
 namespace rcsplat {
 
-namespace {
-
-constexpr size_t kTableEntries = SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
-
-}  // namespace
-
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
-    : gpu_(gpu), kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))) {
-  specular_albedo_table_ =
-      gpu_.buffer(CL_MEM_READ_WRITE, kTableEntries * sizeof(cl_float2), "compose specular albedo table");
-  if (scene.has_specular_brdf()) {
-    NamedKernel table =
-        gpu.kernel("compose.cl", "specular_albedo_table", scene.defines_with("RADIANCE_CACHED", radiance_cached));
-    table.set_buffer<cl_float2>("table", specular_albedo_table_);
-    table.launch(kTableEntries, gpu_.groups().per_item);
-  }
-}
+    : gpu_(gpu),
+      kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))),
+      specular_albedo_table_(specular_albedo_table(gpu, scene.has_specular_brdf())) {}
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
                       const cl::Buffer* glossy, const cl::Buffer* cached_lobes, bool glossy_holds_guide_share) {

@@ -1,6 +1,7 @@
 #include "passes/photon_map_pass.h"
 
 #include "passes/light_guide_pass.h"
+#include "passes/specular_albedo_table.h"
 
 namespace rcsplat {
 
@@ -9,20 +10,30 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
   return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
-PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {
+PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf)
+    : gpu_(gpu), params_(grids.lookup.params), specular_albedo_(specular_albedo_table(gpu, specular_brdf)) {
   photons_ = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
   buckets_ = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
-  radiance_ = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(grids.lookup.photons.size(), 1) * sizeof(cl_float4),
-                         "photon map radiance");
-  shallow_ = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(grids.lookup.photons.size(), 1) * sizeof(cl_float4),
-                        "photon map shallow radiance");
+  // Two float4 per lookup photon: the reflected light and the irradiance (kernels/photon_map.h).
+  const size_t estimate_bytes = std::max<size_t>(grids.lookup.photons.size(), 1) * 2 * sizeof(cl_float4);
+  radiance_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map estimates");
+  shallow_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map shallow estimates");
   if (grids.lookup.photons.empty()) return;
   cl::Buffer all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
   cl::Buffer all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
+  // The kernel reads no patch when there are none, but a buffer must be bound.
+  cl::Buffer patches = gpu.upload(grids.patches.patches.empty() ? std::vector<SurfacePatch>(1) : grids.patches.patches,
+                                  CL_MEM_READ_ONLY, "photon map surface patches");
+  cl::Buffer patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
+                                                                           : grids.patches.bucket_starts,
+                                        CL_MEM_READ_ONLY, "photon map surface patches");
   NamedKernel estimate = gpu.kernel("photon_map.cl", "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", all_photons)
       .set_buffer<cl_uint>("all_buckets", all_buckets)
       .set("all_grid", grids.all.params)
+      .set_buffer<SurfacePatch>("patches", patches)
+      .set_buffer<cl_uint>("patch_buckets", patch_buckets)
+      .set("patch_grid", grids.patches.params)
       .set_buffer<PhotonHit>("map_photons", photons_)
       .set("map", params_)
       .set("shallow_landings", cl_int(grids.shallow_landings))
@@ -37,13 +48,16 @@ void PhotonMapPass::bind(NamedKernel& kernel) const {
       .set_buffer<cl_float4>("map_radiance", radiance_)
       .set_buffer<cl_float4>("map_shallow", shallow_)
       .set_buffer<cl_uint>("map_buckets", buckets_)
-      .set("map", params_);
+      .set("map", params_)
+      .set_buffer<cl_float2>("map_specular_albedo", specular_albedo_);
 }
 
-std::vector<cl_float4> PhotonMapPass::estimates() { return gpu_.download<cl_float4>(radiance_, params_.photon_count); }
+std::vector<cl_float4> PhotonMapPass::estimates() {
+  return gpu_.download<cl_float4>(radiance_, 2 * size_t(params_.photon_count));
+}
 
 std::vector<cl_float4> PhotonMapPass::shallow_estimates() {
-  return gpu_.download<cl_float4>(shallow_, params_.photon_count);
+  return gpu_.download<cl_float4>(shallow_, 2 * size_t(params_.photon_count));
 }
 
 std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,

@@ -1,5 +1,5 @@
 // The photon map of --bounce-method photons (kernels/photon_map.cl, ALGORITHM.md section 8) on the device: the grids
-// the host built (cache/photon_map.h) and the lookup photons' radiance estimates, which the record pass reads at its
+// the host built (cache/photon_map.h) and the lookup photons' irradiance estimates, which the record pass reads at its
 // rays' hits (kernels/photon_map.h) in place of continuing their paths.
 #pragma once
 #include <vector>
@@ -17,23 +17,25 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
 
 class PhotonMapPass {
  public:
-  // Uploads the grids and estimates the radiance at every lookup photon; blocks until done.
-  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids);
+  // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done. specular_brdf: the
+  // scene has a specular lobe, whose albedo table the lookups then read (kernels/bounce.h photon_gather).
+  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf);
 
   // Sets a kernel's PHOTON_MAP_ARGS (the lookup grid and its estimates).
   void bind(NamedKernel& kernel) const;
   const PhotonMapParams& params() const { return params_; }
-  // The lookup photons' estimates (float4: RGB, 0), in the lookup grid's order, for tests.
+  // The lookup photons' estimates, in the lookup grid's order, for tests: two float4 (RGB, 0) per photon, the reflected
+  // light and the irradiance, both over pi (kernels/photon_map.cl).
   std::vector<cl_float4> estimates();
   // The same without the landings from PhotonMapGrids::shallow_landings on (map_shallow), for tests.
   std::vector<cl_float4> shallow_estimates();
-  // What a record's ray finds at these points (xyz) on surfaces facing these normals, for tests.
+  // The reflected-light estimate a lookup finds at these points (xyz) on surfaces facing these normals, for tests.
   std::vector<cl_float4> radiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
 
  private:
   GpuContext& gpu_;
   PhotonMapParams params_;
-  cl::Buffer photons_, radiance_, shallow_, buckets_;
+  cl::Buffer photons_, radiance_, shallow_, buckets_, specular_albedo_;
 };
 
 }  // namespace rcsplat

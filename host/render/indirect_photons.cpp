@@ -53,12 +53,15 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
   const float share = float(per_round) / float(paths);
   for (PhotonHit& p : kept)
-    for (float& c : p.flux) c *= share;
+    for (int c = 0; c < 3; ++c) {
+      p.flux[c] *= share;
+      p.incident[c] *= share;
+    }
   PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
-                                          kPhotonLookupStride);
+                                          kPhotonLookupStride, frame.device_positions(f.scene));
   grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
   grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
-  f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
+  f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
   double program_s = f.gpu.program_seconds() - program_before;
   st.program_s += program_s;
   st.photon_map_paths = paths;
