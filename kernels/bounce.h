@@ -133,12 +133,14 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
   if (lobe.lobe != LOBE_NONE) {
     float3 irradiance = estimates[2 * nearest + 1].xyz;
     BrdfInputs in = brdf_inputs((float3)(1.0f), lobe.metallic, lobe.roughness, lobe.specular);
-    float3 wo = view_local(shading_frame(h->ns), -dir);
-    float2 terms = specular_albedo_split(map_specular_albedo, in, wo);
+    // Only the view's angle matters (the lobe's albedo is isotropic): no shading frame; as view_local, a normal tilted
+    // past the viewer is taken just above the horizon.
+    float cos_o = fmax(dot(h->ns, -dir), 1e-4f);
+    float2 terms = specular_albedo_split(map_specular_albedo, in, cos_o);
     float dielectric = (1.0f - in.metallic) * in.specular;
     float3 c0 = dielectric * DIELECTRIC_F0 * irradiance + in.metallic * reflected;
     float3 c1 = dielectric * (1.0f - DIELECTRIC_F0) * irradiance + in.metallic * (irradiance - reflected);
-    return (1.0f - in.metallic) * brdf_diffuse_weight(in, wo.z) * reflected + terms.x * c0 + terms.y * c1;
+    return (1.0f - in.metallic) * brdf_diffuse_weight(in, cos_o) * reflected + terms.x * c0 + terms.y * c1;
   }
 #endif
   return reflected;

@@ -68,10 +68,10 @@ inline float2 specular_albedo_terms(float cos_o, float roughness) {
   return sum * (1.0f / (float)(side * side));
 }
 
-// The table's (T0, T1) toward wo (local frame) at the lobe's roughness, read bilinearly.
-inline float2 specular_albedo_split(__global const float2* table, BrdfInputs in, float3 wo) {
+// The table's (T0, T1) for a view at cos_o to the normal and the lobe's roughness, read bilinearly.
+inline float2 specular_albedo_split(__global const float2* table, BrdfInputs in, float cos_o) {
   const int n = SPECULAR_ALBEDO_TABLE_SIZE;
-  float x = clamp(wo.z, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
+  float x = clamp(cos_o, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
   int x0 = min((int)x, n - 2), y0 = min((int)y, n - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
   float2 bottom = mix(table[y0 * n + x0], table[y0 * n + x0 + 1], fx);
@@ -81,7 +81,7 @@ inline float2 specular_albedo_split(__global const float2* table, BrdfInputs in,
 
 // The specular lobe's directional albedo toward wo (local frame), from the table.
 inline float3 specular_albedo(__global const float2* table, BrdfInputs in, float3 wo) {
-  float2 t = specular_albedo_split(table, in, wo);
+  float2 t = specular_albedo_split(table, in, wo.z);
   float3 c0, c1;
   specular_fresnel_terms(in, &c0, &c1);
   return c0 * t.x + c1 * t.y;
