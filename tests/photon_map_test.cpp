@@ -102,9 +102,10 @@ glm::dvec3 position_of(const PhotonHit& p) { return {p.position[0], p.position[1
 glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.normal[2]}; }
 
 // Each lookup photon's estimate against the sum, in double, of the flux of every photon within the radius and within
-// half of it of the tangent plane (PHOTON_DISC_HALF_THICKNESS) on a surface facing the same way, over pi^2 r^2. Beside
-// the floor and the wall, two shelves above the floor facing up, at 0.3 r (within the disc: counted by the floor's
-// estimates) and 0.75 r (beyond it: left out). Photons within 1e-5 r of the disc's rim or faces could fall either way
+// PHOTON_DISC_HALF_THICKNESS r of the tangent plane on a surface facing the same way, over pi^2 r^2 (no surface
+// patches: every disc is taken as full). Beside the floor and the wall, two shelves above the floor facing up, at 0.4 of
+// the disc's half-thickness (within it: counted by the floor's estimates) and 1.7 times it (beyond: left out; no two
+// surfaces lie exactly one half-thickness apart). Photons within 1e-5 r of the disc's rim or faces could fall either way
 // in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms). The
 // photons carry landings 1 .. 3; the shallow estimates (a path continued one bounce past a short ray reads them) count
 // only landings 1 and 2.
@@ -115,7 +116,7 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < 20000; ++i) {
-    float height = (i % 2 ? 0.3f : 0.75f) * expected_r;
+    float height = (i % 2 ? 0.4f : 1.7f) * PHOTON_DISC_HALF_THICKNESS * expected_r;
     glm::vec3 flux(u(rng), u(rng), u(rng));
     given.photons.push_back(photon_at(u(rng), height, u(rng), {0, 1, 0}, flux, u(rng)));
   }
@@ -141,8 +142,9 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
       double d2 = glm::dot(d, d);
       if (glm::dot(normal_of(p), n) <= 0.5) continue;
       double height = std::abs(glm::dot(d, n));
-      rim = rim || std::abs(d2 - r2) < 1e-5 * r2 || std::abs(height - 0.5 * r) < 1e-5 * r;
-      if (d2 < r2 && height < 0.5 * r) {
+      const double half = PHOTON_DISC_HALF_THICKNESS * r;
+      rim = rim || std::abs(d2 - r2) < 1e-5 * r2 || std::abs(height - half) < 1e-5 * r;
+      if (d2 < r2 && height < half) {
         const glm::dvec3 reflected(p.flux[0], p.flux[1], p.flux[2]), arrived(p.incident[0], p.incident[1], p.incident[2]);
         flux += reflected;
         incident += arrived;
@@ -178,7 +180,8 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
 // with its ridge, and the clamp to [0, 2 mean]. incident: the arriving flux, else the reflected. *rim: a photon or
 // patch lies within 1e-5 r^2 of the disc's rim (float may place it either way).
 glm::dvec3 fitted_estimate(const PhotonMapGrids& grids, glm::dvec3 x, glm::dvec3 n, bool incident, bool* rim) {
-  const double r2 = double(grids.all.params.radius) * grids.all.params.radius, half = 0.5 * std::sqrt(r2);
+  const double r2 = double(grids.all.params.radius) * grids.all.params.radius;
+  const double half = PHOTON_DISC_HALF_THICKNESS * std::sqrt(r2);
   const glm::dvec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, {1, 0, 0}) : glm::cross(n, {0, 1, 0}));
   const glm::dvec3 b = glm::cross(n, t);
   auto inside = [&](glm::dvec3 d, glm::dvec3 m) {
