@@ -104,7 +104,9 @@ PhotonMapGrids build_photon_map(const std::vector<PhotonHit>& kept, double surfa
   float radius = photon_gather_radius(surface_area, kept.size(), neighbours);
   std::vector<PhotonHit> sparse;
   for (size_t i = 0; i < kept.size(); i += std::max(lookup_stride, 1u)) sparse.push_back(kept[i]);
-  PhotonMapGrids grids{sort_into_grid(kept, radius), sort_into_grid(sparse, radius)};
+  PhotonMapGrids grids;
+  grids.all = sort_into_grid(kept, radius);
+  grids.lookup = sort_into_grid(sparse, radius);
   if (!kept.empty()) {
     const float patch_area = float(std::numbers::pi) * radius * radius / float(PHOTON_PATCHES_PER_DISC);
     grids.patches = sort_into_grid(surface_patches(triangles, patch_area), radius);
