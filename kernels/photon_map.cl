@@ -38,15 +38,6 @@ inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2) {
   return clamp(mean - (gx * cx + gy * cy), 0.0f, 2.0f * mean);
 }
 
-// Whether `bucket` is not among the first *count of visited (cells of a hashed grid can share a bucket), and if so
-// adds it: each bucket is searched once.
-inline bool first_visit(uint bucket, uint* visited, uint* count) {
-  for (uint v = 0; v < *count; ++v)
-    if (visited[v] == bucket) return false;
-  visited[(*count)++] = bucket;
-  return true;
-}
-
 // Whether a point at offset d from a disc's centre (normal n) on a surface facing m lies in the disc: within the
 // radius, within PHOTON_DISC_HALF_THICKNESS r of the tangent plane, and facing within PHOTON_MIN_NORMAL_COSINE.
 inline bool in_disc(float3 d, float3 m, float3 n, float r2, float half_thickness) {

@@ -19,6 +19,15 @@
       __global const uint *map_buckets, PhotonMapParams map, __global const float2 *map_specular_albedo
 #define PHOTON_MAP map_photons, map_radiance, map_shallow, map_buckets, map, map_specular_albedo
 
+// Whether `bucket` is not among the first *count of visited (cells of a hashed grid can share a bucket), and if so
+// adds it: each bucket is searched once.
+inline bool first_visit(uint bucket, uint* visited, uint* count) {
+  for (uint v = 0; v < *count; ++v)
+    if (visited[v] == bucket) return false;
+  visited[(*count)++] = bucket;
+  return true;
+}
+
 // The nearest photon within map.radius of x on a surface facing ng's way (cosine above PHOTON_MIN_NORMAL_COSINE) among
 // those in `bucket`: updates *nearest (squared distance) and *index.
 inline void nearest_in_bucket(PHOTON_MAP_ARGS, uint bucket, float3 x, float3 ng, float* nearest, int* index) {
@@ -51,10 +60,7 @@ inline int photon_map_nearest(PHOTON_MAP_ARGS, float3 x, float3 ng) {
   visited[0] = own;
   for (int c = 0; c < 8; ++c) {
     uint bucket = photon_bucket(first.x + (c & 1), first.y + ((c >> 1) & 1), first.z + (c >> 2), map.bucket_count);
-    bool seen = false;
-    for (uint v = 0; v < visited_count; ++v) seen = seen || visited[v] == bucket;
-    if (seen) continue;
-    visited[visited_count++] = bucket;
+    if (!first_visit(bucket, visited, &visited_count)) continue;
     nearest_in_bucket(PHOTON_MAP, bucket, x, ng, &nearest, &index);
   }
   return index;

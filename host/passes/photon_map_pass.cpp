@@ -26,7 +26,7 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool 
                                   CL_MEM_READ_ONLY, "photon map surface patches");
   cl::Buffer patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
                                                                            : grids.patches.bucket_starts,
-                                        CL_MEM_READ_ONLY, "photon map surface patches");
+                                        CL_MEM_READ_ONLY, "photon map surface patch buckets");
   NamedKernel estimate = gpu.kernel("photon_map.cl", "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", all_photons)
       .set_buffer<cl_uint>("all_buckets", all_buckets)
