@@ -7,6 +7,8 @@
 #   - benchmarks/equal_error.py on the GPU against GPU-rendered references (Cornell box and Sponza).
 # Writes $OUT/results.tar (summaries as JSON, the log).
 # Usage: RUNS=3 PARTS="bench renders equal_error" CPU_DEVICE=cpu bash benchmarks/gpu/device_run.sh
+# Other parts: frames (`bench` at 1920x1080 on every device), issue13 (Sponza 1920x1080 defaults on the GPU from a cold
+# start and warm, the record trace's shapes, and PoCL as the anchor).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -34,6 +36,34 @@ S=$G/scenes/sponza_dabrovic/sponza.gltf
 B=$G/scenes/sibenik/sibenik_textured.gltf
 [[ $parts == *bench* ]] && for dev in NVIDIA $cpu; do $rc -q bench --traversal $S --device $dev --repeats 5 --json $R/bench_sponza_$dev.json; done
 [[ $parts == *frames* ]] && $rc -q bench $S --devices all --width 1920 --height 1080 --repeats 3 --json $R/bench_frames_sponza_1080p.json
+
+# Issue 13, part 2: Sponza 1920x1080 with render defaults on the GPU; the record trace's shape (samples a work-item
+# takes: 1 is the GPU's default, 100000 a whole record, as the one-kernel pass had) with the same bits expected; then
+# PoCL on the host's cores as the anchor.
+if [[ $parts == *issue13* ]]; then
+  hd="--width 1920 --height 1080"
+  RCSPLAT_CACHE_DIR=$work/cold-cache timeout 60 $rc render $S --device NVIDIA $hd -o $work/cold.exr --json $R/i13_cold_render.json \
+    || echo "FAILED: cold render"
+  for spi in 1 100000 8; do
+    for i in 1 2; do
+      RCSPLAT_RECORD_SAMPLES_PER_ITEM=$spi timeout 60 $rc -q render $S --device NVIDIA $hd -o $work/spi$spi.$i.exr \
+        --json $R/i13_spi${spi}_run$i.json >/dev/null || echo "FAILED: spi $spi run $i"
+    done
+    cmp -s $work/spi$spi.1.exr $work/spi$spi.2.exr && echo "spi $spi: runs identical" || echo "spi $spi: runs DIFFER"
+    cmp -s $work/spi1.1.exr $work/spi$spi.1.exr && echo "spi $spi: same bits as spi 1" || echo "spi $spi: DIFFERS from spi 1"
+    rm -f $work/spi$spi.2.exr
+  done
+  timeout 90 $rc -q bench $S --device NVIDIA $hd --repeats 5 --json $R/i13_bench_gpu_1080p.json
+  for spi in 1 100000; do  # the settings of the first GPU run's table, records time against its 0.287 s
+    RCSPLAT_RECORD_SAMPLES_PER_ITEM=$spi timeout 60 $rc -q render $S --device NVIDIA --width 1024 --height 768 --bounces 1 \
+      --pixel-samples 1 --accuracy 0.5 -o $work/old_settings.exr --json $R/i13_old_settings_spi$spi.json >/dev/null
+  done
+  timeout 40 $rc -q bench --traversal $S --device NVIDIA --repeats 5 --json $R/i13_traversal_gpu.json
+  timeout 240 $rc -q render $S --device $cpu $hd -o $work/pocl.exr --json $R/i13_pocl_render.json >/dev/null \
+    && $rc compare $work/spi1.1.exr $work/pocl.exr --json $R/i13_gpu_vs_pocl.json
+  timeout 200 $rc -q bench $S --device $cpu $hd --repeats 1 --json $R/i13_bench_pocl_1080p.json
+  rm -f $work/*.exr
+fi
 
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
   local dev=$1 tag=$2; shift 2

@@ -183,6 +183,16 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
     groups_.per_record = 32;
     groups_.record_samples_per_item = 1;
   }
+  // For measuring the record trace's shape on a device (benchmarks/gpu/device_run.sh): every shape gives the same
+  // records (RecordKernel.SameRecordsWhateverTheTraceShape), only the time differs.
+  if (const char* env = std::getenv("RCSPLAT_RECORD_SAMPLES_PER_ITEM")) {
+    char* end = nullptr;
+    unsigned long value = std::strtoul(env, &end, 10);
+    if (end == env || *end != '\0' || value == 0)
+      throw Error(std::string("RCSPLAT_RECORD_SAMPLES_PER_ITEM: expected a positive whole number, got \"") + env +
+                  "\"");
+    groups_.record_samples_per_item = value;
+  }
 }
 
 // Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.
