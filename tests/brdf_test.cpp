@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -123,6 +124,20 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
     }
   }
   std::printf("worst relative error of the tabulated specular albedo: %.2e\n", worst);
+}
+
+// Composition and the photon map both ask for the table, every frame: one context makes it once (its 4 M lobe
+// samples cost PoCL a quarter of a second), and what it keeps is what a new context would make.
+TEST(Brdf, SpecularAlbedoTableIsMadeOncePerContext) {
+  GpuContext& gpu = test::gpu();
+  cl::Buffer first = specular_albedo_table(gpu, true), again = specular_albedo_table(gpu, true);
+  EXPECT_EQ(first(), again());
+  EXPECT_NE(specular_albedo_table(gpu, false)(), first());  // unfilled: a buffer of its own, never the shared one
+  constexpr size_t kFloats = 2 * SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
+  GpuContext fresh(gpu.device_info());
+  std::vector<float> kept = gpu.download<float>(first, kFloats),
+                     made = fresh.download<float>(specular_albedo_table(fresh, true), kFloats);
+  EXPECT_EQ(0, std::memcmp(kept.data(), made.data(), kFloats * sizeof(float)));
 }
 
 TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {

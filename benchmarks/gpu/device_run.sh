@@ -8,7 +8,8 @@
 # Writes $OUT/results.tar (summaries as JSON, the log).
 # Usage: RUNS=3 PARTS="bench renders equal_error" CPU_DEVICE=cpu bash benchmarks/gpu/device_run.sh
 # Other parts: frames (`bench` at 1920x1080 on every device), issue13 (Sponza 1920x1080 defaults on the GPU from a cold
-# start and warm, the record trace's shapes, and PoCL as the anchor).
+# start and warm, the record trace's shapes, and PoCL as the anchor), host (the host's work between passes, against an
+# older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -62,6 +63,46 @@ if [[ $parts == *issue13* ]]; then
   timeout 240 $rc -q render $S --device $cpu $hd -o $work/pocl.exr --json $R/i13_pocl_render.json >/dev/null \
     && $rc compare $work/spi1.1.exr $work/pocl.exr --json $R/i13_gpu_vs_pocl.json
   timeout 200 $rc -q bench $S --device $cpu $hd --repeats 1 --json $R/i13_bench_pocl_1080p.json
+  rm -f $work/*.exr
+fi
+
+# Host work between passes (probe, layers, other): this binary against $G/rcsplat_old (a build before it, copied in by
+# hand), alternating, Sponza and Sibenik at 1920x1080 on the GPU and Sponza on PoCL; then NVIDIA's compiler report
+# (registers, spills) for every kernel a default frame builds.
+if [[ $parts == *host* ]]; then
+  hd="--width 1920 --height 1080"
+  for i in 1 2; do
+    for b in rcsplat_old rcsplat; do
+      timeout 90 $G/$b -q bench $S --device NVIDIA $hd --repeats 3 --json $R/host_${b}_gpu_run$i.json | grep -v "^cold_s"
+    done
+  done
+  timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 --json $R/host_sibenik_gpu.json | grep -v "^cold_s"
+  RCSPLAT_CACHE_DIR=$work/verbose-cache RCSPLAT_BUILD_OPTIONS=-cl-nv-verbose timeout 60 $rc render $S --device NVIDIA \
+    --width 64 --height 48 -o $work/v.exr > $R/nv_verbose.txt 2>&1
+  grep -E "build log of|ptxas info|Used|spill" $R/nv_verbose.txt | head -80
+  for b in rcsplat_old rcsplat; do
+    timeout 150 $G/$b -q bench $S --device $cpu $hd --repeats 1 --json $R/host_${b}_pocl.json | grep -v "^cold_s"
+  done
+fi
+
+# Register budgets for NVIDIA's compiler (trace_record_rays uses 255 registers and spills at its default): the GPU frame
+# of Sponza 1920x1080 (and Sibenik at the first budget that helps) under -cl-nv-maxrregcount=N, with a bit comparison
+# of a render against the default's.
+if [[ $parts == *regs* ]]; then
+  hd="--width 1920 --height 1080"
+  for n in default ${REGS:-64 96 128 168}; do
+    opt=$([ $n = default ] || echo "-cl-nv-maxrregcount=$n")
+    RCSPLAT_BUILD_OPTIONS="$opt" timeout 90 $rc -q bench $S --device NVIDIA $hd --repeats 3 --json $R/regs_sponza_$n.json \
+      | grep -v "^cold_s"
+    RCSPLAT_BUILD_OPTIONS="$opt" RCSPLAT_CACHE_DIR=$work/cache_$n timeout 60 $rc -q render $S --device NVIDIA \
+      --width 1024 --height 768 -o $work/regs_$n.exr > /dev/null 2>&1
+    cmp -s $work/regs_default.exr $work/regs_$n.exr && echo "regs $n: same bits as default" || echo "regs $n: bits DIFFER"
+  done
+  for n in default ${REGS_SIBENIK:-128}; do
+    opt=$([ $n = default ] || echo "-cl-nv-maxrregcount=$n")
+    RCSPLAT_BUILD_OPTIONS="$opt" timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 --json $R/regs_sibenik_$n.json \
+      | grep -v "^cold_s"
+  done
   rm -f $work/*.exr
 fi
 

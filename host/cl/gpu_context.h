@@ -2,6 +2,7 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -79,6 +80,10 @@ class GpuContext {
   void restart_memory_peak();
   struct MemoryLedger;
 
+  // A table that depends on the device alone (the rough lobes' albedo): made by `make` the first time `name` is asked
+  // for, then the same buffer for every frame this context renders.
+  cl::Buffer device_table(const std::string& name, const std::function<cl::Buffer()>& make);
+
   template <typename T>
   cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const char* what = "other") {
     // Zero-sized buffers are invalid in OpenCL: keep one element so a kernel argument is always valid.
@@ -105,6 +110,7 @@ class GpuContext {
   GroupSizes groups_;
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
   std::map<std::string, bool> launched_;
+  std::map<std::string, cl::Buffer> device_tables_;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context

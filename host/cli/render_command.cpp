@@ -130,7 +130,8 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 mrays_per_second(s.path_rays, s.path_s));
   }
   print_memory(s.device_memory);
-  std::printf("total        %.3f s\n", s.total_s);
+  std::printf("total        %.3f s (on the host between passes: bounce probe %.3f s, image layers %.3f s)\n",
+              s.total_s, s.probe_s, s.layers_s);
   for (const std::string& out : outputs) std::printf("wrote        %s\n", out.c_str());
 }
 
@@ -159,7 +160,9 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"seconds", {{"bvh_build", s.bvh_build_s}, {"upload", s.upload_s}, {"kernel_build", s.program_s},
                    {"gbuffer", s.gbuffer_s}, {"direct", s.direct_s}, {"records", s.records_s},
                    {"placement", s.placement_s}, {"splat", s.splat_s}, {"resolve", s.resolve_s},
-                   {"path", s.path_s}, {"total", s.total_s}}},
+                   {"path", s.path_s}, {"photon_map", s.photon_map_s}, {"light_guide", s.guide_s},
+                   {"glossy", s.glossy_s}, {"bounce_probe", s.probe_s}, {"layers", s.layers_s},
+                   {"total", s.total_s}}},
       {"memory", memory_json(s.device_memory)},
       {"outputs", outputs}, {"not_simulated", scene.unsupported}, {"nonfinite_values", nonfinite_values(image)},
       {"materials", {{"lambertian", s.lambertian_materials}, {"rough", s.rough_materials},

@@ -5,6 +5,7 @@
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
 #include "render/indirect.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -39,15 +40,18 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
               radiance_cached ? &radiance_cached->lobe_radiance() : nullptr, guide_share);
   st.resolve_s += seconds_since(t);
 
+  t = Clock::now();
   std::vector<float> indirect = compose.indirect_rgba(), color = compose.color_rgba();
   size_t pixels = gbuffer.pixel_count();
   img.indirect.resize(pixels * 3);
-  for (size_t i = 0; i < pixels; ++i) {
-    for (size_t c = 0; c < 3; ++c) {
-      img.indirect[3 * i + c] = indirect[4 * i + c];
-      img.color[3 * i + c] = color[4 * i + c];
-    }
-  }
+  parallel_ranges(pixels, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      for (size_t c = 0; c < 3; ++c) {
+        img.indirect[3 * i + c] = indirect[4 * i + c];
+        img.color[3 * i + c] = color[4 * i + c];
+      }
+  });
+  st.layers_s += seconds_since(t);
 }
 
 }  // namespace rcsplat

@@ -1,11 +1,14 @@
 // Radiance cache splatting (Gautron et al. 2005) as the paper's algorithm box: place records coarse to fine where no
 // record reaches, compute each level's records as one batch, clamp radii against neighbours, splat, and finally
 // normalise and compose.
+#include <atomic>
+
 #include "passes/record_pass.h"
 #include "passes/splat_pass.h"
 #include "render/device_record_index.h"
 #include "render/indirect.h"
 #include "render/placement.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -36,6 +39,7 @@ void splat_indirect(IndirectFrame& f) {
   st.resolve_s = seconds_since(t);
   std::unique_ptr<RadianceSplatPass> radiance = radiance_cached_lobes(f);
   compose_cached_indirect(f, splat.irradiance(), radiance.get());
+  t = Clock::now();
   img.records = records.download(0, total);  // once per frame, for the summary and the tests
   count_clamped_radii(img.records, cs, st);
 
@@ -48,15 +52,20 @@ void splat_indirect(IndirectFrame& f) {
   img.coverage.resize(pixels);
   img.records_per_pixel.resize(pixels);
   img.record_positions.resize(pixels);
-  for (size_t i = 0; i < pixels; ++i) {
-    for (size_t c = 0; c < 3; ++c) {
-      img.irradiance[3 * i + c] = irr[4 * i + c];
+  std::atomic<uint64_t> uncovered{0};
+  parallel_ranges(pixels, [&](size_t begin, size_t end) {
+    uint64_t range_uncovered = 0;
+    for (size_t i = begin; i < end; ++i) {
+      for (size_t c = 0; c < 3; ++c) img.irradiance[3 * i + c] = irr[4 * i + c];
+      img.coverage[i] = irr[4 * i + 3];
+      img.records_per_pixel[i] = float(counts[i]);
+      img.record_positions[i] = at_pixel[i] >= 0 ? 1.0f : 0.0f;
+      if (img.triangle[i] >= 0 && irr[4 * i + 3] == 0.0f) ++range_uncovered;
     }
-    img.coverage[i] = irr[4 * i + 3];
-    img.records_per_pixel[i] = float(counts[i]);
-    img.record_positions[i] = at_pixel[i] >= 0 ? 1.0f : 0.0f;
-    if (img.triangle[i] >= 0 && irr[4 * i + 3] == 0.0f) ++st.uncovered_pixels;
-  }
+    uncovered += range_uncovered;
+  });
+  st.uncovered_pixels += uncovered;
+  st.layers_s += seconds_since(t);
 }
 
 }  // namespace rcsplat

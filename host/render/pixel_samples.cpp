@@ -6,7 +6,9 @@
 
 #include "render/camera.h"
 #include "render/renderer.h"
+#include "render/timing.h"
 #include "util/error.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -40,7 +42,13 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   if (std::max(width, height) * int(side) > 16384)
     throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
                 std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
-  return average_sub_pixels(render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side)), side);
+  RenderedImage sub = render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side));
+  auto t = Clock::now();
+  RenderedImage out = average_sub_pixels(sub, side);
+  const double averaging_s = seconds_since(t);
+  out.stats.layers_s += averaging_s;
+  out.stats.total_s += averaging_s;  // part of the frame a user waits for
+  return out;
 }
 
 RenderSettings samples_per_sub_pixel(const RenderSettings& s, unsigned n) {
@@ -91,7 +99,7 @@ std::vector<float> average(const std::vector<float>& sub, int width, int height,
   std::vector<float> out(size_t(width) * height * channels);
   const int sub_width = width * int(side);
   const double inv = scale / double(side * side);
-  for (int y = 0; y < height; ++y)
+  parallel_for(size_t(height), [&](size_t y) {
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < channels; ++c) {
         double sum = 0.0;
@@ -100,6 +108,7 @@ std::vector<float> average(const std::vector<float>& sub, int width, int height,
             sum += sub[(size_t(y * side + j) * sub_width + x * side + i) * channels + c];
         out[(size_t(y) * width + x) * channels + c] = float(sum * inv);
       }
+  }, 8);
   return out;
 }
 

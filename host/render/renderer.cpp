@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -76,6 +78,7 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   direct.run(gbuffer.view(), strata, settings.seed);
   st.direct_s = seconds_since(t);
 
+  t = Clock::now();
   std::vector<GBufferSample> g = gbuffer.download();
   std::vector<float> d = direct.download_rgba();
   size_t pixels = g.size();
@@ -88,27 +91,41 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   img.depth.resize(pixels);
   img.triangle.resize(pixels);
   st.primary_rays = pixels;
-  for (size_t i = 0; i < pixels; ++i) {
-    const GBufferSample& s = g[i];
-    img.triangle[i] = s.triangle;
-    if (s.triangle >= 0) {
-      st.rough_pixels += s.lobe == LOBE_ROUGH;
-      st.glossy_pixels += s.lobe == LOBE_GLOSSY;
-      st.hsh_pixels += s.lobe == LOBE_HSH;
+  std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
+  parallel_ranges(pixels, [&](size_t begin, size_t end) {
+    uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
+    for (size_t i = begin; i < end; ++i) {
+      const GBufferSample& s = g[i];
+      img.triangle[i] = s.triangle;
+      if (s.triangle >= 0) {
+        range_rough += s.lobe == LOBE_ROUGH;
+        range_glossy += s.lobe == LOBE_GLOSSY;
+        range_hsh += s.lobe == LOBE_HSH;
+      }
+      img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
+      const glm::vec3 world = s.triangle >= 0
+                                  ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
+                                  : glm::vec3(0.0f);
+      range_shadow_rays += uint64_t(d[4 * i + 3]);
+      for (int c = 0; c < 3; ++c) {
+        img.direct[3 * i + c] = d[4 * i + c];
+        img.emission[3 * i + c] = s.emission[c];
+        img.albedo[3 * i + c] = s.albedo[c];
+        img.normal[3 * i + c] = s.normal[c];
+        img.position[3 * i + c] = world[c];
+        img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
+      }
     }
-    img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
-    const glm::vec3 world = s.triangle >= 0 ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
-                                            : glm::vec3(0.0f);
-    st.shadow_rays += uint64_t(d[4 * i + 3]);
-    for (int c = 0; c < 3; ++c) {
-      img.direct[3 * i + c] = d[4 * i + c];
-      img.emission[3 * i + c] = s.emission[c];
-      img.albedo[3 * i + c] = s.albedo[c];
-      img.normal[3 * i + c] = s.normal[c];
-      img.position[3 * i + c] = world[c];
-      img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
-    }
-  }
+    rough += range_rough;
+    glossy += range_glossy;
+    hsh += range_hsh;
+    shadow_rays += range_shadow_rays;
+  });
+  st.rough_pixels += rough;
+  st.glossy_pixels += glossy;
+  st.hsh_pixels += hsh;
+  st.shadow_rays += shadow_rays;
+  st.layers_s += seconds_since(t);
 
   IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img};
   frame.progress = progress;
@@ -252,7 +269,9 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   st.hsh_materials = device_scene.lobe_counts()[LOBE_HSH];
   st.specular_brdf = device_scene.has_specular_brdf();
   st.upload_s = seconds_since(t);
+  t = Clock::now();
   const BounceChoice bounce_choice = choose_bounces(gpu, scene, device_scene, settings);
+  st.probe_s = seconds_since(t);
   settings.bounces = bounce_choice.bounces;
   settings.bounce_method = bounce_choice.method;
   st.bounces = bounce_choice.bounces;

@@ -22,4 +22,11 @@ void parallel_for(size_t count, F&& body, size_t chunk = 64) {
   for (std::thread& t : pool) t.join();
 }
 
+// body(begin, end) over consecutive ranges of at most `block` indices, one thread per core: for loops over an image's
+// pixels, where a range per call keeps the per-index cost of the call away.
+template <typename F>
+void parallel_ranges(size_t count, F&& body, size_t block = 16384) {
+  parallel_for((count + block - 1) / block, [&](size_t b) { body(b * block, std::min(count, (b + 1) * block)); }, 1);
+}
+
 }  // namespace rcsplat
