@@ -193,6 +193,9 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
                   "\"");
     groups_.record_samples_per_item = value;
   }
+  // For looking inside a device's compiler (NVIDIA's -cl-nv-verbose prints registers and spills): extra options, and
+  // each build's log printed.
+  if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS")) extra_build_options_ = extra;
 }
 
 cl::Buffer GpuContext::device_table(const std::string& name, const std::function<cl::Buffer()>& make) {
@@ -207,9 +210,7 @@ constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
 cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
   std::string options = kBaseBuildOptions;
   for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
-  // For looking inside a device's compiler (NVIDIA's -cl-nv-verbose prints registers and spills): extra options, and
-  // each build's log printed.
-  if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS"); extra && *extra) options += std::string(" ") + extra;
+  if (!extra_build_options_.empty()) options += " " + extra_build_options_;
   if (!cold_build_nonce_.empty()) options += " -D RCSPLAT_COLD_BUILD=" + cold_build_nonce_;
   std::string key = file + "|" + options;
   auto found = programs_.find(key);
@@ -271,7 +272,7 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
       throw Error("building kernels/" + file + " (" + options + ") for " + info_.name + " failed:\n" +
                   build_log(*program, info_.device));
     }
-    if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS"); extra && *extra)
+    if (!extra_build_options_.empty())
       log_info("build log of kernels/" + file + " (" + options + "):\n" + build_log(*program, info_.device));
     if (!cache_file.empty()) {
       try {

@@ -113,6 +113,7 @@ class GpuContext {
   std::map<std::string, cl::Buffer> device_tables_;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;
+  std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
 };
 
