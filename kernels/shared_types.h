@@ -176,6 +176,24 @@ typedef struct {
   float pad[2];
 } GBufferSample;
 
+// One output pixel's surface layers (kernels/layers.cl) from its s x s sub-pixels (1 x 1 without anti-aliasing):
+// emission, direct light, albedo and normal are means; position, depth and triangle the centre sub-pixel's (a single
+// surface, device coordinates); the counts sums, so the host reads output-resolution layers only.
+typedef struct {
+  float emission[3];
+  float shadow_rays;  // the sub-pixels' shadow rays together
+  float direct[3];
+  rc_int triangle;  // the centre sub-pixel's, -1 where its ray missed
+  float albedo[3];
+  float depth;
+  float normal[3];
+  rc_uint pad;
+  float position[3];
+  // Sub-pixels with geometry by how the cache shades their lobe: 8 bits each (s^2 <= 64), LOBE_ROUGH in the lowest,
+  // then LOBE_GLOSSY, then LOBE_HSH (layers.cl lobe_count_shift).
+  rc_uint lobe_counts;
+} PixelSurface;
+
 // A ray for the generic ray-casting kernel (tests, benchmarks) and its result.
 typedef struct {
   float origin[3];
@@ -461,6 +479,7 @@ static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);
 static_assert(sizeof(CameraParams) == 96);
 static_assert(sizeof(GBufferSample) == 96);
+static_assert(sizeof(PixelSurface) == 80);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
 static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);

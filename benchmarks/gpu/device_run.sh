@@ -9,7 +9,8 @@
 # Usage: RUNS=3 PARTS="bench renders equal_error" CPU_DEVICE=cpu bash benchmarks/gpu/device_run.sh
 # Other parts: frames (`bench` at 1920x1080 on every device), issue13 (Sponza 1920x1080 defaults on the GPU from a cold
 # start and warm, the record trace's shapes, and PoCL as the anchor), host (the host's work between passes, against an
-# older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler).
+# older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
+# (the image layers gathered on the device, against .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -83,6 +84,30 @@ if [[ $parts == *host* ]]; then
   for b in rcsplat_old rcsplat; do
     timeout 150 $G/$b -q bench $S --device $cpu $hd --repeats 1 --json $R/host_${b}_pocl.json | grep -v "^cold_s"
   done
+fi
+
+# Image layers gathered on the device (passes/layer_pass.h) against $G/rcsplat_old (the build before, which filled and
+# averaged sub-pixel layers on the host): Sponza and Sibenik at 1920x1080 defaults on the GPU, alternating, then the
+# two binaries' images compared, the new one's determinism, and PoCL's frame at 1024x768 as the anchor.
+if [[ $parts == *layers* ]]; then
+  hd="--width 1920 --height 1080"
+  for i in 1 2; do
+    for b in rcsplat_old rcsplat; do
+      timeout 90 $G/$b -q bench $S --device NVIDIA $hd --repeats 3 --json $R/layers_${b}_sponza_run$i.json | grep -v "^cold_s"
+    done
+  done
+  for b in rcsplat_old rcsplat; do
+    timeout 90 $G/$b -q bench $B --device NVIDIA $hd --repeats 3 --json $R/layers_${b}_sibenik.json | grep -v "^cold_s"
+    timeout 60 $G/$b -q render $S --device NVIDIA $hd -o $work/$b.exr --json $R/layers_${b}_render.json > /dev/null
+  done
+  timeout 60 $rc -q render $S --device NVIDIA $hd -o $work/again.exr > /dev/null
+  cmp -s $work/rcsplat.exr $work/again.exr && echo "layers: new runs identical" || echo "layers: new runs DIFFER"
+  $rc compare $work/rcsplat.exr $work/rcsplat_old.exr --json $R/layers_new_vs_old.json | sed "s/^/new vs old: /"
+  for b in rcsplat_old rcsplat; do
+    timeout 120 $G/$b -q bench $S --device $cpu --width 1024 --height 768 --repeats 1 --json $R/layers_${b}_pocl.json \
+      | grep -v "^cold_s"
+  done
+  rm -f $work/*.exr
 fi
 
 # Register budgets for NVIDIA's compiler (trace_record_rays uses 255 registers and spills at its default): the GPU frame

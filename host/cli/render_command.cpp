@@ -190,7 +190,10 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                     {"photons_shot", s.photon_map_paths},
                     {"photons_kept", s.photon_map_photons}, {"radius", s.photon_map_radius},
                     {"short_ray_paths_below", s.photon_map_radius * settings.short_ray_paths},
-                    {"seconds", s.photon_map_s}}}};
+                    {"seconds", s.photon_map_s},
+                    {"seconds_by_part",
+                     {{"shoot", s.photon_map_shoot_s}, {"grids", s.photon_map_grids_s},
+                      {"estimates", s.photon_map_estimate_s}}}}}};
     j["specular"] = {{"rough_pixels", s.rough_pixels}, {"glossy_pixels", s.glossy_pixels},
                      {"glossy_samples", s.glossy_samples}, {"glossy_rays", s.glossy_rays}, {"seconds", s.glossy_s}};
     if (s.hsh_order)

@@ -32,7 +32,4 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
   gpu_.queue().finish();
 }
 
-std::vector<float> ComposePass::indirect_rgba() { return gpu_.download<float>(indirect_, pixels_ * 4); }
-std::vector<float> ComposePass::color_rgba() { return gpu_.download<float>(color_, pixels_ * 4); }
-
 }  // namespace rcsplat

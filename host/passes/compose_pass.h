@@ -20,8 +20,8 @@ class ComposePass {
   void run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct, const cl::Buffer* glossy,
            const cl::Buffer* cached_lobes, bool glossy_holds_guide_share = false);
 
-  std::vector<float> indirect_rgba();  // A = 1 where a record reached the pixel
-  std::vector<float> color_rgba();
+  const cl::Buffer& indirect() const { return indirect_; }  // float4: RGB, A = 1 where a record reached the pixel
+  const cl::Buffer& color() const { return color_; }        // float4: emission + direct + indirect, A = 1
 
  private:
   GpuContext& gpu_;

@@ -20,6 +20,4 @@ void DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_axis, unsig
   gpu_.queue().finish();
 }
 
-std::vector<float> DirectPass::download_rgba() { return gpu_.download<float>(radiance_, pixels_ * 4); }
-
 }  // namespace rcsplat

@@ -11,7 +11,7 @@ class DirectPass {
   DirectPass(GpuContext& gpu, const DeviceScene& scene);
   // strata_per_axis^2 stratified samples on the emissive triangles per pixel; seed varies the sample pattern.
   void run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed);
-  std::vector<float> download_rgba();  // reflected direct radiance RGB, A = shadow rays the pixel cast
+  // float4 per pixel: reflected direct radiance RGB, A = shadow rays the pixel cast.
   const cl::Buffer& radiance() const { return radiance_; }
 
  private:

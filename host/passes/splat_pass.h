@@ -27,6 +27,7 @@ class SplatPass {
   const cl::Buffer& irradiance() const { return irradiance_; }  // float4: E.rgb, sum w
   std::vector<float> irradiance_rgbw();
   std::vector<uint32_t> records_per_pixel();
+  const cl::Buffer& records_per_pixel_buffer() const { return counts_; }  // uint: records reaching each pixel
 
  private:
   GpuContext& gpu_;

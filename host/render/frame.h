@@ -65,6 +65,9 @@ struct RenderStats {
   uint64_t photon_map_paths = 0, photon_map_photons = 0;
   float photon_map_radius = 0;
   double photon_map_s = 0;
+  // Its parts: shooting (device) with the landings kept (host), the grids built (host), the lookup photons' estimates
+  // uploaded and made (device).
+  double photon_map_shoot_s = 0, photon_map_grids_s = 0, photon_map_estimate_s = 0;
   // Path tracing
   unsigned path_samples = 0;
   uint64_t path_rays = 0;

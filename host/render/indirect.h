@@ -8,6 +8,7 @@
 #include "cl/device_scene.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/layer_pass.h"
 #include "passes/photon_map_pass.h"
 #include "passes/radiance_splat_pass.h"
 #include "passes/record_pass.h"
@@ -24,7 +25,10 @@ struct IndirectFrame {
   GBufferPass& gbuffer;
   DirectPass& direct;
   const RenderSettings& settings;
-  RenderedImage& image;  // G-buffer layers, direct light and colour (emission + direct) already filled
+  // Output-resolution layers (G-buffer's, direct light, colour = emission + direct) already filled; the passes run on
+  // the G-buffer's frame, layers.side() times as wide and high with sub-pixels, and `layers` gathers their images.
+  RenderedImage& image;
+  LayerPass& layers;
   // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records and the
   // glossy pass share them.
   std::optional<std::vector<GuideCluster>> light_guide{};
@@ -59,5 +63,10 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& frame);
 // layers.
 void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance,
                              const RadianceSplatPass* radiance_cached = nullptr);
+// The cache methods' own layers at output resolution: irradiance, coverage, records reaching and sitting in each
+// pixel, and the uncovered sub-pixels counted. irradiance: float4 (E.rgb, weight, 0 where uncovered);
+// records_per_pixel: uint; record_at_pixel: int, -1 where no record sits.
+void fill_cache_layers(IndirectFrame& frame, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,
+                       const cl::Buffer& record_at_pixel);
 
 }  // namespace rcsplat

@@ -1,5 +1,6 @@
 // The cache methods' composition: glossy pixels' specular light, then each pixel's BRDF applied to the cached
 // irradiance (kernels/glossy.cl, kernels/compose.cl).
+#include <atomic>
 #include <optional>
 
 #include "passes/compose_pass.h"
@@ -32,8 +33,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
                 f.settings.bounces);
     st.glossy_s = seconds_since(t);
     st.glossy_samples = f.settings.glossy_samples;
-    std::vector<float> g = glossy->download_rgba();
-    for (size_t i = 3; i < g.size(); i += 4) st.glossy_rays += uint64_t(g[i]);
+    const std::vector<float> rays = f.layers.sum_rgba(glossy->radiance());
+    for (size_t i = 3; i < rays.size(); i += 4) st.glossy_rays += uint64_t(rays[i]);
   }
   auto t = Clock::now();
   compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
@@ -41,8 +42,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   st.resolve_s += seconds_since(t);
 
   t = Clock::now();
-  std::vector<float> indirect = compose.indirect_rgba(), color = compose.color_rgba();
-  size_t pixels = gbuffer.pixel_count();
+  const std::vector<float> indirect = f.layers.mean_rgba(compose.indirect()), color = f.layers.mean_rgba(compose.color());
+  const size_t pixels = f.layers.pixel_count();
   img.indirect.resize(pixels * 3);
   parallel_ranges(pixels, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
@@ -52,6 +53,33 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
       }
   });
   st.layers_s += seconds_since(t);
+}
+
+void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,
+                       const cl::Buffer& record_at_pixel) {
+  RenderedImage& img = f.image;
+  auto t = Clock::now();
+  const std::vector<float> irr = f.layers.mean_rgba(irradiance);
+  const std::vector<float> counts = f.layers.record_counts(f.gbuffer.view(), irradiance, records_per_pixel, record_at_pixel);
+  const size_t pixels = f.layers.pixel_count();
+  img.irradiance.resize(pixels * 3);
+  img.coverage.resize(pixels);
+  img.records_per_pixel.resize(pixels);
+  img.record_positions.resize(pixels);
+  std::atomic<uint64_t> uncovered{0};
+  parallel_ranges(pixels, [&](size_t begin, size_t end) {
+    uint64_t range_uncovered = 0;
+    for (size_t i = begin; i < end; ++i) {
+      for (size_t c = 0; c < 3; ++c) img.irradiance[3 * i + c] = irr[4 * i + c];
+      img.coverage[i] = irr[4 * i + 3];
+      img.records_per_pixel[i] = counts[4 * i];
+      img.record_positions[i] = counts[4 * i + 1];
+      range_uncovered += uint64_t(counts[4 * i + 2]);
+    }
+    uncovered += range_uncovered;
+  });
+  img.stats.uncovered_pixels += uncovered;
+  img.stats.layers_s += seconds_since(t);
 }
 
 }  // namespace rcsplat

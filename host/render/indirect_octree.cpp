@@ -94,7 +94,8 @@ void octree_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
-  const size_t pixels = size_t(img.width) * size_t(img.height);
+  const GBufferView& view = f.gbuffer.view();  // the sub-pixels' frame, where records are placed and interpolated
+  const size_t pixels = view.pixel_count();
   std::vector<GBufferSample> gb = f.gbuffer.download();
   std::vector<PixelGeometry> geo(pixels);
   for (size_t i = 0; i < pixels; ++i) geo[i] = pixel_geometry(gb[i]);
@@ -105,15 +106,14 @@ void octree_indirect(IndirectFrame& f) {
   records.set_bounces(f.settings.bounces);
   st.program_s += f.gpu.program_seconds() - program_before;
   attach_light_guide(f, records);
-  OctreeRecordIndex index(f.gpu, geo, img.width, img.height, f.scene, f.device_scene.frame(), cs);
-  place_records(index, records, f.gbuffer.view(), cs, f.settings.seed, st);
+  OctreeRecordIndex index(f.gpu, geo, view.width, view.height, f.scene, f.device_scene.frame(), cs);
+  place_records(index, records, view, cs, f.settings.seed, st);
 
   auto t = Clock::now();
-  img.irradiance.assign(pixels * 3, 0.0f);
-  img.coverage.assign(pixels, 0.0f);
-  img.records_per_pixel.assign(pixels, 0.0f);
-  img.record_positions.assign(pixels, 0.0f);
+  // The sub-pixels' interpolated irradiance (E, weight) and records reaching each, which the device composes and
+  // gathers into the image's layers as the splat's.
   std::vector<cl_float4> irradiance(pixels, cl_float4{{0, 0, 0, 0}});
+  std::vector<cl_uint> reaching(pixels, 0);
   // With sub-pixels, placement stops one output pixel apart: a sub-pixel no record reaches (a sliver along an edge)
   // takes the splat's choice of a record near it (record_for_uncovered_pixel), so records stay one sample's.
   const bool fill = cs.finest_spacing_pixels > 1;
@@ -122,11 +122,11 @@ void octree_indirect(IndirectFrame& f) {
   parallel_for(pixels, [&](size_t i) {
     if (!geo[i].valid) return;
     Interpolation in = interpolate(index.octree(), index.records(), geo[i], cs.accuracy);
-    img.records_per_pixel[i] = float(in.count);
+    reaching[i] = cl_uint(in.count);
     if (in.weight == 0.0 && fill) {
       float w = 0.0f;
-      int k = record_for_uncovered_pixel(index.records().data(), index.record_at_pixel().data(), img.width,
-                                         img.height, int(i % size_t(img.width)), int(i / size_t(img.width)), window,
+      int k = record_for_uncovered_pixel(index.records().data(), index.record_at_pixel().data(), view.width,
+                                         view.height, int(i % size_t(view.width)), int(i / size_t(view.width)), window,
                                          geo[i].p, geo[i].n, &w);
       if (k >= 0) {
         in.weight = std::fmax(w, FLT_MIN);
@@ -134,22 +134,17 @@ void octree_indirect(IndirectFrame& f) {
         ++filled;
       }
     }
-    img.coverage[i] = float(in.weight);
     if (in.weight == 0.0) return;
     dvec3 e = in.weighted / in.weight;
-    for (int c = 0; c < 3; ++c) {
-      img.irradiance[3 * i + size_t(c)] = float(e[c]);
-      irradiance[i].s[c] = float(e[c]);
-    }
+    for (int c = 0; c < 3; ++c) irradiance[i].s[c] = float(e[c]);
     irradiance[i].s[3] = float(in.weight);
   }, 256);
   st.resolve_s = seconds_since(t);
   st.filled_sub_pixels = filled;
-  for (size_t i = 0; i < pixels; ++i) {
-    if (index.record_at_pixel()[i] >= 0) img.record_positions[i] = 1.0f;
-    if (geo[i].valid && img.coverage[i] == 0.0f) ++st.uncovered_pixels;
-  }
-  compose_cached_indirect(f, f.gpu.upload(irradiance, CL_MEM_READ_ONLY, "octree irradiance"));
+  const cl::Buffer irradiance_buffer = f.gpu.upload(irradiance, CL_MEM_READ_ONLY, "octree irradiance");
+  compose_cached_indirect(f, irradiance_buffer);
+  fill_cache_layers(f, irradiance_buffer, f.gpu.upload(reaching, CL_MEM_READ_ONLY, "octree records per pixel"),
+                    f.gpu.upload(index.record_at_pixel(), CL_MEM_READ_ONLY, "octree record map"));
   img.records = std::move(index.records());
   count_clamped_radii(img.records, cs, st);
 }

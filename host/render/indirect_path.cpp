@@ -7,6 +7,21 @@
 #include "util/log.h"
 
 namespace rcsplat {
+namespace {
+
+// An RGB layer of the G-buffer's frame gathered into output pixels on the device, as every other layer (LayerPass):
+// the sub-pixels' mean, times scale.
+std::vector<float> gathered_rgb(IndirectFrame& f, const std::vector<float>& rgb, float scale) {
+  std::vector<cl_float4> rgba(rgb.size() / 3);
+  for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = cl_float4{{rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 0.0f}};
+  const std::vector<float> mean = f.layers.mean_rgba(f.gpu.upload(rgba, CL_MEM_READ_ONLY, "path layers"));
+  std::vector<float> out(f.layers.pixel_count() * 3);
+  for (size_t i = 0; i < f.layers.pixel_count(); ++i)
+    for (size_t c = 0; c < 3; ++c) out[3 * i + c] = mean[4 * i + c] * scale;
+  return out;
+}
+
+}  // namespace
 
 void path_traced_indirect(IndirectFrame& f) {
   const PathSettings& ps = f.settings.path;
@@ -23,6 +38,7 @@ void path_traced_indirect(IndirectFrame& f) {
   unsigned halves = ps.stratified && ps.samples >= 2 ? 2 : 1;
   std::vector<std::vector<float>> means;
   std::vector<unsigned> counts;
+  std::vector<float> variance;  // of each sub-pixel's mean
   Progress own_progress("path tracing", ps.samples);
   Progress& progress = f.progress ? *f.progress : own_progress;
   size_t done_before = f.progress ? f.progress_done_before : 0;
@@ -39,22 +55,27 @@ void path_traced_indirect(IndirectFrame& f) {
     st.path_rays += path.rays_cast();
     means.push_back(path.mean_rgb());
     counts.push_back(samples);
-    if (halves == 1) img.indirect_variance = path.mean_variance_rgb();
+    if (halves == 1) variance = path.mean_variance_rgb();
   }
   if (!f.progress) progress.finish();
   st.path_s = seconds_since(t);
   st.path_samples = ps.samples;
-  img.indirect = means[0];
+  // Per sub-pixel (the G-buffer's frame), then gathered into output pixels.
+  std::vector<float> indirect = means[0];
   if (halves == 2) {
-    img.indirect_variance.resize(img.indirect.size());
+    variance.resize(indirect.size());
     double w0 = double(counts[0]) / ps.samples, w1 = double(counts[1]) / ps.samples;
-    for (size_t i = 0; i < img.indirect.size(); ++i) {
+    for (size_t i = 0; i < indirect.size(); ++i) {
       double a = means[0][i], b = means[1][i];
-      img.indirect[i] = float(w0 * a + w1 * b);
+      indirect[i] = float(w0 * a + w1 * b);
       // E[(a - b)^2] = var(a) + var(b); the mean's variance is w0^2 var(a) + w1^2 var(b), about a quarter of it.
-      img.indirect_variance[i] = float((a - b) * (a - b) * (w0 * w0 + w1 * w1) / 2.0);
+      variance[i] = float((a - b) * (a - b) * (w0 * w0 + w1 * w1) / 2.0);
     }
   }
+  const float sub_pixels = float(f.layers.side() * f.layers.side());
+  img.indirect = gathered_rgb(f, indirect, 1.0f);
+  // The output pixel's mean of independent sub-pixel estimates: the mean of their variances over the count.
+  img.indirect_variance = gathered_rgb(f, variance, 1.0f / sub_pixels);
   for (size_t i = 0; i < img.color.size(); ++i) img.color[i] += img.indirect[i];
 }
 

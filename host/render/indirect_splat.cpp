@@ -1,14 +1,11 @@
 // Radiance cache splatting (Gautron et al. 2005) as the paper's algorithm box: place records coarse to fine where no
 // record reaches, compute each level's records as one batch, clamp radii against neighbours, splat, and finally
 // normalise and compose.
-#include <atomic>
-
 #include "passes/record_pass.h"
 #include "passes/splat_pass.h"
 #include "render/device_record_index.h"
 #include "render/indirect.h"
 #include "render/placement.h"
-#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -42,30 +39,8 @@ void splat_indirect(IndirectFrame& f) {
   t = Clock::now();
   img.records = records.download(0, total);  // once per frame, for the summary and the tests
   count_clamped_radii(img.records, cs, st);
-
-  // Download the layers the EXR carries.
-  size_t pixels = size_t(img.width) * size_t(img.height);
-  std::vector<float> irr = splat.irradiance_rgbw();
-  std::vector<uint32_t> counts = splat.records_per_pixel();
-  std::vector<int32_t> at_pixel = index.record_at_pixel();
-  img.irradiance.resize(pixels * 3);
-  img.coverage.resize(pixels);
-  img.records_per_pixel.resize(pixels);
-  img.record_positions.resize(pixels);
-  std::atomic<uint64_t> uncovered{0};
-  parallel_ranges(pixels, [&](size_t begin, size_t end) {
-    uint64_t range_uncovered = 0;
-    for (size_t i = begin; i < end; ++i) {
-      for (size_t c = 0; c < 3; ++c) img.irradiance[3 * i + c] = irr[4 * i + c];
-      img.coverage[i] = irr[4 * i + 3];
-      img.records_per_pixel[i] = float(counts[i]);
-      img.record_positions[i] = at_pixel[i] >= 0 ? 1.0f : 0.0f;
-      if (img.triangle[i] >= 0 && irr[4 * i + 3] == 0.0f) ++range_uncovered;
-    }
-    uncovered += range_uncovered;
-  });
-  st.uncovered_pixels += uncovered;
   st.layers_s += seconds_since(t);
+  fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }
 
 }  // namespace rcsplat

@@ -6,9 +6,7 @@
 
 #include "render/camera.h"
 #include "render/renderer.h"
-#include "render/timing.h"
 #include "util/error.h"
-#include "util/parallel.h"
 
 namespace rcsplat {
 
@@ -42,12 +40,12 @@ RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& 
   if (std::max(width, height) * int(side) > 16384)
     throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
                 std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
-  RenderedImage sub = render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side));
-  auto t = Clock::now();
-  RenderedImage out = average_sub_pixels(sub, side);
-  const double averaging_s = seconds_since(t);
-  out.stats.layers_s += averaging_s;
-  out.stats.total_s += averaging_s;  // part of the frame a user waits for
+  // The sub-pixel frame, its layers gathered into output pixels on the device (passes/layer_pass.h).
+  RenderedImage out = render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side));
+  const unsigned n = side * side;
+  out.stats.pixel_samples = n;
+  out.stats.light_samples *= n;
+  out.stats.path_samples *= n;
   return out;
 }
 
@@ -88,70 +86,6 @@ RenderSettings sub_pixel_settings(const RenderSettings& s, int width, int height
   // sub-pixels that none reaches (slivers along edges) take the best-weighted record near them.
   sub.cache.finest_spacing_pixels *= int(side);
   return sub;
-}
-
-namespace {
-
-// Averages a layer of `channels` floats a pixel (an empty layer stays empty).
-std::vector<float> average(const std::vector<float>& sub, int width, int height, unsigned side, int channels,
-                           double scale = 1.0) {
-  if (sub.empty()) return {};
-  std::vector<float> out(size_t(width) * height * channels);
-  const int sub_width = width * int(side);
-  const double inv = scale / double(side * side);
-  parallel_for(size_t(height), [&](size_t y) {
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c) {
-        double sum = 0.0;
-        for (unsigned j = 0; j < side; ++j)
-          for (unsigned i = 0; i < side; ++i)
-            sum += sub[(size_t(y * side + j) * sub_width + x * side + i) * channels + c];
-        out[(size_t(y) * width + x) * channels + c] = float(sum * inv);
-      }
-  }, 8);
-  return out;
-}
-
-template <typename T>
-std::vector<T> centre(const std::vector<T>& sub, int width, int height, unsigned side, int channels) {
-  std::vector<T> out(size_t(width) * height * channels);
-  const int sub_width = width * int(side);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c)
-        out[(size_t(y) * width + x) * channels + c] =
-            sub[(size_t(y * side + side / 2) * sub_width + x * side + side / 2) * channels + c];
-  return out;
-}
-
-}  // namespace
-
-RenderedImage average_sub_pixels(const RenderedImage& sub, unsigned side) {
-  RenderedImage out;
-  out.width = sub.width / int(side);
-  out.height = sub.height / int(side);
-  const int w = out.width, h = out.height;
-  const double n = double(side * side);
-  out.color = average(sub.color, w, h, side, 3);
-  out.direct = average(sub.direct, w, h, side, 3);
-  out.emission = average(sub.emission, w, h, side, 3);
-  out.albedo = average(sub.albedo, w, h, side, 3);
-  out.normal = average(sub.normal, w, h, side, 3);
-  out.indirect = average(sub.indirect, w, h, side, 3);
-  out.irradiance = average(sub.irradiance, w, h, side, 3);
-  out.coverage = average(sub.coverage, w, h, side, 1);
-  out.records_per_pixel = average(sub.records_per_pixel, w, h, side, 1);
-  out.record_positions = average(sub.record_positions, w, h, side, 1, n);  // a sum: records in the pixel
-  out.indirect_variance = average(sub.indirect_variance, w, h, side, 3, 1.0 / n);
-  out.position = centre(sub.position, w, h, side, 3);
-  out.depth = centre(sub.depth, w, h, side, 1);
-  out.triangle = centre(sub.triangle, w, h, side, 1);
-  out.records = sub.records;
-  out.stats = sub.stats;
-  out.stats.pixel_samples = unsigned(n);
-  out.stats.light_samples *= unsigned(n);
-  out.stats.path_samples *= unsigned(n);
-  return out;
 }
 
 }  // namespace rcsplat

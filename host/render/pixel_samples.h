@@ -1,8 +1,10 @@
 // Anti-aliasing (--pixel-samples N): each pixel is an s x s grid of sub-pixels (N = s^2), each cell's point moved so
 // that the N points form a rotated grid (kernels/gbuffer.cl: N different columns and rows, so near-vertical and
 // near-horizontal edges are resolved in steps of 1/N of the pixel, not 1/s; the same for every method, so a reference
-// can integrate the very points a cache render shades). The frame is rendered s times larger and averaged back;
-// records stay in world space.
+// can integrate the very points a cache render shades). The frame is rendered s times larger and its layers are
+// gathered back on the device (passes/layer_pass.h: light, albedo, normal, irradiance, coverage, records reaching a
+// pixel averaged; records sitting in it summed; position, depth and triangle of sub-pixel (s / 2, s / 2), a single
+// surface); records stay in world space.
 #pragma once
 #include "render/frame.h"
 #include "render/settings.h"
@@ -35,10 +37,5 @@ const char* pixel_points_name(const RenderSettings& settings);
 // must divide evenly), record reach and placement spacing in sub-pixels so that records keep their world-space size,
 // and placement stopping one output pixel apart.
 RenderSettings sub_pixel_settings(const RenderSettings& settings, int width, int height, unsigned side);
-
-// Averages the sub-pixel frame into width x height pixels: light, albedo, normal, irradiance, coverage means;
-// record_positions sums (records per pixel); the indirect variance of the mean (mean variance / N); position, depth
-// and triangle of the sub-pixel at (s / 2, s / 2), a single surface.
-RenderedImage average_sub_pixels(const RenderedImage& sub, unsigned side);
 
 }  // namespace rcsplat

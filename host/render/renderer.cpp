@@ -13,6 +13,7 @@
 #include "kernels/hsh.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/layer_pass.h"
 #include "render/indirect.h"
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
@@ -46,13 +47,14 @@ const char* bounce_method_name(BounceMethod method) {
 namespace {
 
 // Refuses, before any work, a frame that cannot fit: the per-pixel buffers every method allocates on the device
-// (G-buffer, direct light, composition, placement flags, splat sums) and the layers the host keeps and writes. A
-// lower bound: records and scene data come on top. Without it a huge --width would end in a failed allocation deep in
-// a pass, or on the host in the kernel's out-of-memory killer.
-void check_frame_fits(int width, int height, const DeviceInfo& device) {
-  const double pixels = double(width) * double(height);
-  const double device_bytes = pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52);
-  const double host_bytes = pixels * (sizeof(GBufferSample) + 16 + 116 + 104);
+// (G-buffer, direct light, composition, placement flags, splat sums, the gathered layers) and the layers the host
+// keeps and writes (output pixels, side times fewer each way than the G-buffer's). A lower bound: records and scene
+// data come on top. Without it a huge --width would end in a failed allocation deep in a pass, or on the host in the
+// kernel's out-of-memory killer.
+void check_frame_fits(int width, int height, unsigned side, const DeviceInfo& device) {
+  const double pixels = double(width) * double(height), out_pixels = pixels / double(side * side);
+  const double device_bytes = pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52) + out_pixels * (sizeof(PixelSurface) + 16);
+  const double host_bytes = out_pixels * (sizeof(PixelSurface) + 16 + 116 + 104);
   const double host_memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
   auto gib = [](double bytes) { return byte_size(bytes, "GiB"); };
   const std::string frame = std::to_string(width) + "x" + std::to_string(height);
@@ -64,11 +66,12 @@ void check_frame_fits(int width, int height, const DeviceInfo& device) {
                 " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
 }
 
-// Primary visibility through `camera`, direct light (strata x strata samples a pixel) and the indirect light of one
-// frame, into img (whose statistics already hold the setup's); progress: the path tracer's, shared by rounds.
+// Primary visibility through `camera`, direct light (strata x strata samples a sub-pixel) and the indirect light of
+// one frame, into img (output resolution, layers.side() times smaller than the G-buffer; its statistics already hold
+// the setup's); progress: the path tracer's, shared by rounds.
 void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene, const SceneFrame& scene_frame,
-                 GBufferPass& gbuffer, DirectPass& direct, const CameraParams& camera, unsigned strata,
-                 const RenderSettings& settings, RenderedImage& img, Progress* progress = nullptr,
+                 GBufferPass& gbuffer, DirectPass& direct, LayerPass& layers, const CameraParams& camera,
+                 unsigned strata, const RenderSettings& settings, RenderedImage& img, Progress* progress = nullptr,
                  size_t progress_done_before = 0) {
   RenderStats& st = img.stats;
   auto t = Clock::now();
@@ -79,9 +82,8 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   st.direct_s = seconds_since(t);
 
   t = Clock::now();
-  std::vector<GBufferSample> g = gbuffer.download();
-  std::vector<float> d = direct.download_rgba();
-  size_t pixels = g.size();
+  const std::vector<PixelSurface> surface = layers.surface(gbuffer.view(), direct.radiance());
+  const size_t pixels = surface.size();
   img.color.resize(pixels * 3);
   img.direct.resize(pixels * 3);
   img.emission.resize(pixels * 3);
@@ -90,30 +92,28 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   img.position.resize(pixels * 3);
   img.depth.resize(pixels);
   img.triangle.resize(pixels);
-  st.primary_rays = pixels;
+  st.primary_rays = gbuffer.view().pixel_count();
   std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
   parallel_ranges(pixels, [&](size_t begin, size_t end) {
     uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
     for (size_t i = begin; i < end; ++i) {
-      const GBufferSample& s = g[i];
+      const PixelSurface& s = surface[i];
       img.triangle[i] = s.triangle;
-      if (s.triangle >= 0) {
-        range_rough += s.lobe == LOBE_ROUGH;
-        range_glossy += s.lobe == LOBE_GLOSSY;
-        range_hsh += s.lobe == LOBE_HSH;
-      }
+      range_rough += s.lobe_counts & 0xffu;  // kernels/layers.cl lobe_count_shift
+      range_glossy += (s.lobe_counts >> 8) & 0xffu;
+      range_hsh += (s.lobe_counts >> 16) & 0xffu;
       img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
       const glm::vec3 world = s.triangle >= 0
                                   ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
                                   : glm::vec3(0.0f);
-      range_shadow_rays += uint64_t(d[4 * i + 3]);
+      range_shadow_rays += uint64_t(s.shadow_rays);
       for (int c = 0; c < 3; ++c) {
-        img.direct[3 * i + c] = d[4 * i + c];
+        img.direct[3 * i + c] = s.direct[c];
         img.emission[3 * i + c] = s.emission[c];
         img.albedo[3 * i + c] = s.albedo[c];
         img.normal[3 * i + c] = s.normal[c];
         img.position[3 * i + c] = world[c];
-        img.color[3 * i + c] = s.emission[c] + d[4 * i + c];
+        img.color[3 * i + c] = s.emission[c] + s.direct[c];
       }
     }
     rough += range_rough;
@@ -127,7 +127,7 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   st.shadow_rays += shadow_rays;
   st.layers_s += seconds_since(t);
 
-  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img};
+  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img, layers};
   frame.progress = progress;
   frame.progress_done_before = progress_done_before;
   switch (settings.gi) {
@@ -174,7 +174,8 @@ void add_round(RenderedImage& sum, const RenderedImage& round) {
 // round whose cell holds the pixel's centre. The BVH, the kernels and the buffers serve every round.
 void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
                            const SceneFrame& scene_frame, GBufferPass& gbuffer, DirectPass& direct,
-                           const CameraParams& camera, const RenderSettings& settings, RenderedImage& img) {
+                           LayerPass& layers, const CameraParams& camera, const RenderSettings& settings,
+                           RenderedImage& img) {
   const unsigned side = pixel_sample_side(std::max(1u, settings.pixel_samples)), rounds = side * side;
   RenderSettings round_settings = samples_per_sub_pixel(settings, rounds);
   const unsigned strata = light_sample_strata(round_settings.light_samples);
@@ -195,8 +196,8 @@ void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScen
     round.width = img.width;
     round.height = img.height;
     round.stats = img.stats;
-    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, round_camera, strata, round_settings, round,
-                &progress, size_t(r) * round_settings.path.samples);
+    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, round_camera, strata, round_settings,
+                round, &progress, size_t(r) * round_settings.path.samples);
     if (r == centre_round) {
       sum.position = std::move(round.position);
       sum.depth = std::move(round.depth);
@@ -241,15 +242,18 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   st.gi = settings.gi;
 
   SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
-  img.width = settings.width;
-  img.height = settings.height;
-  resolve_resolution(cam, img.width, img.height);
-  check_frame_fits(img.width, img.height, gpu.device_info());
+  // The G-buffer's frame: the image's, or side times as wide and high with sub-pixels (render/pixel_samples.h).
+  int frame_width = settings.width, frame_height = settings.height;
+  resolve_resolution(cam, frame_width, frame_height);
+  const unsigned side = std::max(1u, settings.sub_pixel_side);
+  img.width = frame_width / int(side);
+  img.height = frame_height / int(side);
+  check_frame_fits(frame_width, frame_height, side, gpu.device_info());
   scene.check_extent();
   // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
   // position and depth layers and the records go back to world units below.
   const SceneFrame scene_frame = SceneFrame::fitted(scene);
-  CameraParams params = camera_params(scene_frame.device_camera(cam), img.width, img.height);
+  CameraParams params = camera_params(scene_frame.device_camera(cam), frame_width, frame_height);
   params.sub_pixel_side = int(settings.sub_pixel_side);
   const unsigned strata = light_sample_strata(settings.light_samples);
   st.light_samples = strata * strata;
@@ -282,12 +286,13 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   log_info("compiling kernels for " + st.device);
   GBufferPass gbuffer(gpu, device_scene);
   DirectPass direct(gpu, device_scene);
+  LayerPass layers(gpu, side, img.width, img.height);
   st.program_s = gpu.program_seconds() - program_before;
 
   if (settings.gi == GiMethod::path && settings.path.pixel_area)
-    path_trace_pixel_area(gpu, scene, device_scene, scene_frame, gbuffer, direct, params, settings, img);
+    path_trace_pixel_area(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, params, settings, img);
   else
-    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, params, strata, settings, img);
+    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, params, strata, settings, img);
   for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
   st.total_s = seconds_since(start);
   st.device_memory = gpu.memory_use();

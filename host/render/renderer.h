@@ -9,7 +9,8 @@
 namespace rcsplat {
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
-// One primary sample per pixel (render() calls it once, on the sub-pixel frame when settings.pixel_samples > 1).
+// One primary sample per pixel of the G-buffer's frame (render() calls it once, on the sub-pixel frame when
+// settings.pixel_samples > 1, settings.sub_pixel_side times the image's size); returns the image's layers, gathered.
 RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
 
 }  // namespace rcsplat

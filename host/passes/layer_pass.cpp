@@ -1,0 +1,75 @@
+#include "passes/layer_pass.h"
+
+#include <algorithm>
+#include <string>
+
+#include "util/error.h"
+
+namespace rcsplat {
+
+LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height)
+    : gpu_(gpu),
+      side_(std::max(1u, side)),
+      width_(out_width),
+      height_(out_height),
+      surface_(gpu.kernel("layers.cl", "resolve_surface")),
+      rgba_(gpu.kernel("layers.cl", "resolve_rgba")),
+      counts_(gpu.kernel("layers.cl", "resolve_record_counts")) {
+  const size_t pixels = std::max<size_t>(pixel_count(), 1);
+  surface_out_ = gpu_.buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(PixelSurface), "image layers");
+  rgba_out_ = gpu_.buffer(CL_MEM_WRITE_ONLY, pixels * 4 * sizeof(float), "image layers");
+}
+
+void LayerPass::check_frame(const GBufferView& gbuffer) const {
+  // A mismatch is a bug in the caller, never the user's input: say so rather than read past a buffer.
+  if (gbuffer.width != width_ * int(side_) || gbuffer.height != height_ * int(side_))
+    throw Error("internal: a " + std::to_string(gbuffer.width) + "x" + std::to_string(gbuffer.height) +
+                " G-buffer is not " + std::to_string(side_) + " times the " + std::to_string(width_) + "x" +
+                std::to_string(height_) + " image");
+}
+
+std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {
+  check_frame(gbuffer);
+  surface_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
+      .set_buffer<cl_float4>("direct", direct)
+      .set("side", cl_uint(side_))
+      .set("out_width", cl_int(width_))
+      .set("out_height", cl_int(height_))
+      .set_buffer<PixelSurface>("out", surface_out_);
+  surface_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  return gpu_.download<PixelSurface>(surface_out_, pixel_count());
+}
+
+std::vector<float> LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
+  rgba_.set_buffer<cl_float4>("source", source)
+      .set("side", cl_uint(side_))
+      .set("out_width", cl_int(width_))
+      .set("out_height", cl_int(height_))
+      .set("scale", cl_float(scale))
+      .set_buffer<cl_float4>("out", rgba_out_);
+  rgba_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  return gpu_.download<float>(rgba_out_, pixel_count() * 4);
+}
+
+std::vector<float> LayerPass::mean_rgba(const cl::Buffer& source) {
+  return resolve_rgba(source, 1.0f / float(side_ * side_));
+}
+
+std::vector<float> LayerPass::sum_rgba(const cl::Buffer& source) { return resolve_rgba(source, 1.0f); }
+
+std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
+                                            const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel) {
+  check_frame(gbuffer);
+  counts_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
+      .set_buffer<cl_float4>("irradiance", irradiance)
+      .set_buffer<cl_uint>("records_per_pixel", records_per_pixel)
+      .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
+      .set("side", cl_uint(side_))
+      .set("out_width", cl_int(width_))
+      .set("out_height", cl_int(height_))
+      .set_buffer<cl_float4>("out", rgba_out_);
+  counts_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  return gpu_.download<float>(rgba_out_, pixel_count() * 4);
+}
+
+}  // namespace rcsplat

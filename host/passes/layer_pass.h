@@ -1,0 +1,43 @@
+// The image layers at output resolution (kernels/layers.cl): each output pixel gathers its side x side sub-pixels
+// (--pixel-samples side^2; side 1 copies) on the device, so the host downloads and fills output-sized layers only.
+// Owns the output-sized buffers the kernels write.
+#pragma once
+#include <vector>
+
+#include "cl/gpu_context.h"
+#include "kernels/shared_types.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+class LayerPass {
+ public:
+  // A frame of out_width x out_height pixels whose G-buffer is side times as wide and high.
+  LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height);
+
+  unsigned side() const { return side_; }
+  size_t pixel_count() const { return size_t(width_) * size_t(height_); }
+
+  // Emission, direct light (DirectPass's RGBA: A the shadow rays), albedo and normal averaged; position, depth and
+  // triangle of the centre sub-pixel; shadow rays and the lobes' sub-pixels summed (PixelSurface).
+  std::vector<PixelSurface> surface(const GBufferView& gbuffer, const cl::Buffer& direct);
+  // A float4 image's sub-pixel mean (RGBA, four floats a pixel) or sum.
+  std::vector<float> mean_rgba(const cl::Buffer& source);
+  std::vector<float> sum_rgba(const cl::Buffer& source);
+  // The cache's counts, four floats a pixel: the mean records reaching a sub-pixel (records_per_pixel), the records
+  // sitting in the pixel (record_at_pixel >= 0), the sub-pixels with geometry whose irradiance weight (A) is 0, 0.
+  std::vector<float> record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
+                                   const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel);
+
+ private:
+  std::vector<float> resolve_rgba(const cl::Buffer& source, float scale);
+  void check_frame(const GBufferView& gbuffer) const;
+
+  GpuContext& gpu_;
+  unsigned side_;
+  int width_, height_;
+  NamedKernel surface_, rgba_, counts_;
+  cl::Buffer surface_out_, rgba_out_;
+};
+
+}  // namespace rcsplat

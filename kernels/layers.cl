@@ -1,0 +1,82 @@
+// The image layers at output resolution (host/passes/layer_pass.h): each output pixel gathers its side x side
+// sub-pixels (--pixel-samples side^2; side 1 copies), so the host downloads and fills output-sized layers only. At
+// 1920x1080 with four sub-pixels the sub-pixel layers were 2.3 GB a frame, half a GPU frame spent by the host
+// (benchmarks/RESULTS.md, issue 13 on the H200). Sums run in a fixed order: same input, same bits.
+#include "shared_types.h"
+
+// Where lobe_counts keeps a lobe's count (8 bits each: side^2 <= 64); 32 for a lobe it does not count.
+inline uint lobe_count_shift(int lobe) {
+  return lobe == LOBE_ROUGH ? 0u : lobe == LOBE_GLOSSY ? 8u : lobe == LOBE_HSH ? 16u : 32u;
+}
+
+// The first sub-pixel of output pixel (x, y), in a sub-pixel frame side times as wide.
+inline size_t first_sub_pixel(int x, int y, uint side, int out_width) {
+  return ((size_t)y * side) * ((size_t)out_width * side) + (size_t)x * side;
+}
+
+__kernel void resolve_surface(__global const GBufferSample* gbuffer, __global const float4* direct, uint side,
+                              int out_width, int out_height, __global PixelSurface* out) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= out_width || y >= out_height) return;
+  const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
+  float3 emission = 0.0f, light = 0.0f, albedo = 0.0f, normal = 0.0f;
+  float shadow_rays = 0.0f;
+  uint lobe_counts = 0;
+  for (uint j = 0; j < side; ++j)
+    for (uint i = 0; i < side; ++i) {
+      const size_t k = first + j * row + i;
+      const GBufferSample g = gbuffer[k];
+      emission += vload3(0, g.emission);
+      albedo += vload3(0, g.albedo);
+      normal += vload3(0, g.normal);
+      light += direct[k].xyz;
+      shadow_rays += direct[k].w;
+      const uint shift = lobe_count_shift(g.lobe);
+      if (g.triangle >= 0 && shift < 32u) lobe_counts += 1u << shift;
+    }
+  const float inv = 1.0f / (float)(side * side);
+  const GBufferSample centre = gbuffer[first + (side / 2) * row + side / 2];
+  PixelSurface s;
+  vstore3(emission * inv, 0, s.emission);
+  vstore3(light * inv, 0, s.direct);
+  vstore3(albedo * inv, 0, s.albedo);
+  vstore3(normal * inv, 0, s.normal);
+  vstore3(vload3(0, centre.position), 0, s.position);
+  s.shadow_rays = shadow_rays;
+  s.triangle = centre.triangle;
+  s.depth = centre.depth;
+  s.pad = 0;
+  s.lobe_counts = lobe_counts;
+  out[(size_t)y * out_width + x] = s;
+}
+
+// scale 1 / side^2: the sub-pixels' mean; 1: their sum.
+__kernel void resolve_rgba(__global const float4* source, uint side, int out_width, int out_height, float scale,
+                           __global float4* out) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= out_width || y >= out_height) return;
+  const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
+  float4 sum = 0.0f;
+  for (uint j = 0; j < side; ++j)
+    for (uint i = 0; i < side; ++i) sum += source[first + j * row + i];
+  out[(size_t)y * out_width + x] = sum * scale;
+}
+
+// The cache's own layers: (mean records reaching a sub-pixel, records sitting in the pixel, sub-pixels with geometry
+// that no record reached (irradiance weight 0), 0).
+__kernel void resolve_record_counts(__global const GBufferSample* gbuffer, __global const float4* irradiance,
+                                    __global const uint* records_per_pixel, __global const int* record_at_pixel,
+                                    uint side, int out_width, int out_height, __global float4* out) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= out_width || y >= out_height) return;
+  const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
+  float reaching = 0.0f, sitting = 0.0f, uncovered = 0.0f;
+  for (uint j = 0; j < side; ++j)
+    for (uint i = 0; i < side; ++i) {
+      const size_t k = first + j * row + i;
+      reaching += (float)records_per_pixel[k];
+      sitting += record_at_pixel[k] >= 0 ? 1.0f : 0.0f;
+      uncovered += gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f ? 1.0f : 0.0f;
+    }
+  out[(size_t)y * out_width + x] = (float4)(reaching / (float)(side * side), sitting, uncovered, 0.0f);
+}

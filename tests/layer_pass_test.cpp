@@ -1,0 +1,185 @@
+// The layers gathered at output resolution (kernels/layers.cl, passes/layer_pass.h): on random sub-pixel images, each
+// output pixel's means, sums, centre sub-pixel and counts against a double-precision reference written here, for
+// sub-pixel grids of 1 x 1 (a copy), 2 x 2 and 3 x 3 (odd: the centre is the middle one).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "passes/layer_pass.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rcsplat {
+namespace {
+
+// A float sum of at most 9 values in [0, 1] is off from the exact one by at most 9 * 9 * 2^-24 (each addition's
+// rounding, bounded by the sum so far): under 5e-6 for a sum, 1e-6 for a mean. Counts are small whole numbers, exact.
+constexpr double kMeanTolerance = 1e-6, kSumTolerance = 5e-6;
+
+struct SubPixelFrame {
+  unsigned side;
+  int out_width, out_height;
+  int width() const { return out_width * int(side); }
+  int height() const { return out_height * int(side); }
+  size_t sub_pixel(int x, int y, unsigned i, unsigned j) const {
+    return (size_t(y) * side + j) * size_t(width()) + size_t(x) * side + i;
+  }
+};
+
+std::vector<GBufferSample> random_gbuffer(size_t count, std::mt19937& rng) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_int_distribution<int> triangle(-1, 5), lobe(LOBE_NONE, LOBE_HSH);
+  std::vector<GBufferSample> g(count);
+  for (GBufferSample& s : g) {
+    for (int c = 0; c < 3; ++c) {
+      s.position[c] = unit(rng);
+      s.normal[c] = unit(rng);
+      s.albedo[c] = unit(rng);
+      s.emission[c] = unit(rng);
+    }
+    s.depth = unit(rng);
+    s.triangle = triangle(rng);
+    s.lobe = lobe(rng);
+  }
+  return g;
+}
+
+std::vector<cl_float4> random_rgba(size_t count, std::mt19937& rng, bool whole_alpha) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<cl_float4> v(count);
+  for (cl_float4& p : v) {
+    for (int c = 0; c < 4; ++c) p.s[c] = unit(rng);
+    if (whole_alpha) p.s[3] = std::floor(p.s[3] * 40.0f);  // a ray count
+  }
+  return v;
+}
+
+GBufferView view_of(GpuContext& gpu, const std::vector<GBufferSample>& g, const SubPixelFrame& f) {
+  GBufferView view;
+  view.samples = gpu.upload(g);
+  view.width = f.width();
+  view.height = f.height();
+  return view;
+}
+
+class LayerPassTest : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(LayerPassTest, SurfaceIsTheSubPixelsMeansCentreAndCounts) {
+  GpuContext& gpu = test::gpu();
+  const SubPixelFrame f{GetParam(), 13, 7};
+  std::mt19937 rng(17 + f.side);
+  const std::vector<GBufferSample> g = random_gbuffer(size_t(f.width()) * f.height(), rng);
+  const std::vector<cl_float4> direct = random_rgba(g.size(), rng, true);
+  LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  const std::vector<PixelSurface> out = layers.surface(view_of(gpu, g, f), gpu.upload(direct));
+  ASSERT_EQ(out.size(), size_t(f.out_width) * f.out_height);
+  const double n = double(f.side * f.side);
+  for (int y = 0; y < f.out_height; ++y)
+    for (int x = 0; x < f.out_width; ++x) {
+      const PixelSurface& s = out[size_t(y) * f.out_width + x];
+      double emission[3] = {}, light[3] = {}, albedo[3] = {}, normal[3] = {}, shadow_rays = 0;
+      unsigned by_lobe[4] = {};
+      for (unsigned j = 0; j < f.side; ++j)
+        for (unsigned i = 0; i < f.side; ++i) {
+          const size_t k = f.sub_pixel(x, y, i, j);
+          for (int c = 0; c < 3; ++c) {
+            emission[c] += g[k].emission[c];
+            light[c] += direct[k].s[c];
+            albedo[c] += g[k].albedo[c];
+            normal[c] += g[k].normal[c];
+          }
+          shadow_rays += direct[k].s[3];
+          if (g[k].triangle >= 0) ++by_lobe[g[k].lobe];
+        }
+      const GBufferSample& centre = g[f.sub_pixel(x, y, f.side / 2, f.side / 2)];
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(s.emission[c], emission[c] / n, kMeanTolerance) << x << "," << y;
+        EXPECT_NEAR(s.direct[c], light[c] / n, kMeanTolerance) << x << "," << y;
+        EXPECT_NEAR(s.albedo[c], albedo[c] / n, kMeanTolerance) << x << "," << y;
+        EXPECT_NEAR(s.normal[c], normal[c] / n, kMeanTolerance) << x << "," << y;
+        EXPECT_EQ(s.position[c], centre.position[c]) << x << "," << y;
+      }
+      EXPECT_EQ(s.depth, centre.depth);
+      EXPECT_EQ(s.triangle, centre.triangle);
+      EXPECT_EQ(double(s.shadow_rays), shadow_rays);
+      EXPECT_EQ(s.lobe_counts & 0xffu, by_lobe[LOBE_ROUGH]) << x << "," << y;
+      EXPECT_EQ((s.lobe_counts >> 8) & 0xffu, by_lobe[LOBE_GLOSSY]) << x << "," << y;
+      EXPECT_EQ((s.lobe_counts >> 16) & 0xffu, by_lobe[LOBE_HSH]) << x << "," << y;
+      EXPECT_EQ(s.lobe_counts >> 24, 0u);
+    }
+}
+
+TEST_P(LayerPassTest, ImagesAreTheSubPixelsMeanOrSum) {
+  GpuContext& gpu = test::gpu();
+  const SubPixelFrame f{GetParam(), 11, 9};
+  std::mt19937 rng(29 + f.side);
+  const std::vector<cl_float4> image = random_rgba(size_t(f.width()) * f.height(), rng, false);
+  LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  const cl::Buffer buffer = gpu.upload(image);
+  const std::vector<float> mean = layers.mean_rgba(buffer), sum = layers.sum_rgba(buffer);
+  const double n = double(f.side * f.side);
+  for (int y = 0; y < f.out_height; ++y)
+    for (int x = 0; x < f.out_width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        double expected = 0;
+        for (unsigned j = 0; j < f.side; ++j)
+          for (unsigned i = 0; i < f.side; ++i) expected += image[f.sub_pixel(x, y, i, j)].s[c];
+        const size_t o = (size_t(y) * f.out_width + x) * 4 + c;
+        EXPECT_NEAR(mean[o], expected / n, kMeanTolerance) << x << "," << y << " channel " << c;
+        EXPECT_NEAR(sum[o], expected, kSumTolerance) << x << "," << y << " channel " << c;
+      }
+}
+
+TEST_P(LayerPassTest, RecordCountsAreReachingMeanSittingAndUncovered) {
+  GpuContext& gpu = test::gpu();
+  const SubPixelFrame f{GetParam(), 10, 6};
+  std::mt19937 rng(41 + f.side);
+  const size_t count = size_t(f.width()) * f.height();
+  const std::vector<GBufferSample> g = random_gbuffer(count, rng);
+  std::vector<cl_float4> irradiance = random_rgba(count, rng, false);
+  std::vector<cl_uint> reaching(count);
+  std::vector<cl_int> sitting(count);
+  std::uniform_int_distribution<int> few(0, 20), coin(0, 2);
+  for (size_t k = 0; k < count; ++k) {
+    if (coin(rng) == 0) irradiance[k].s[3] = 0.0f;  // no record reached it
+    reaching[k] = cl_uint(few(rng));
+    sitting[k] = coin(rng) == 0 ? few(rng) : -1;
+  }
+  LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  const std::vector<float> out = layers.record_counts(view_of(gpu, g, f), gpu.upload(irradiance), gpu.upload(reaching),
+                                                      gpu.upload(sitting));
+  const double n = double(f.side * f.side);
+  for (int y = 0; y < f.out_height; ++y)
+    for (int x = 0; x < f.out_width; ++x) {
+      double reach = 0, sit = 0, uncovered = 0;
+      for (unsigned j = 0; j < f.side; ++j)
+        for (unsigned i = 0; i < f.side; ++i) {
+          const size_t k = f.sub_pixel(x, y, i, j);
+          reach += reaching[k];
+          sit += sitting[k] >= 0;
+          uncovered += g[k].triangle >= 0 && irradiance[k].s[3] == 0.0f;
+        }
+      const float* o = &out[(size_t(y) * f.out_width + x) * 4];
+      EXPECT_NEAR(o[0], reach / n, 1e-6 * reach / n) << x << "," << y;
+      EXPECT_EQ(double(o[1]), sit) << x << "," << y;
+      EXPECT_EQ(double(o[2]), uncovered) << x << "," << y;
+      EXPECT_EQ(o[3], 0.0f);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(SubPixelSides, LayerPassTest, ::testing::Values(1u, 2u, 3u));
+
+TEST(LayerPass, AGBufferOfAnotherSizeIsRefused) {
+  GpuContext& gpu = test::gpu();
+  LayerPass layers(gpu, 2, 8, 8);
+  GBufferView view;
+  view.samples = gpu.buffer(CL_MEM_READ_ONLY, 15 * 16 * sizeof(GBufferSample), "test");
+  view.width = 15;
+  view.height = 16;
+  EXPECT_THROW(layers.surface(view, gpu.buffer(CL_MEM_READ_ONLY, 15 * 16 * 16, "test")), Error);
+}
+
+}  // namespace
+}  // namespace rcsplat
