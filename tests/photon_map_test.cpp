@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -378,6 +379,39 @@ TEST(PhotonMap, LookupReturnsTheNearestFacingPhotonsEstimate) {
 }
 
 // No photon (a scene without lights, or no surface): the map is empty and every lookup is dark.
+// The grids are sorted on all cores by a two-digit radix sort; it must give what a one-pass stable counting sort
+// (written here: a stable sort of the items by bucket) gives, bucket starts included, whether the bucket numbers fit
+// the first digit (small maps) or need both (here up to 2^15 buckets), and whatever the hardware's thread count.
+TEST(PhotonMap, GridIsAStableCountingSortByBucket) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  for (size_t count : {size_t(0), size_t(1), size_t(37), size_t(700), size_t(16000)}) {
+    std::vector<PhotonHit> photons(count);
+    for (size_t i = 0; i < count; ++i) {
+      for (int a = 0; a < 3; ++a) photons[i].position[a] = coordinate(rng);
+      photons[i].landing = int(i);  // which photon it was, to see the order within a bucket
+    }
+    const float radius = 0.2f;
+    const PhotonGrid grid = sort_into_grid(photons, radius);
+    ASSERT_EQ(grid.params.photon_count, count);
+    ASSERT_EQ(grid.photons.size(), count);
+    const uint32_t buckets = grid.params.bucket_count;
+    auto bucket_of = [&](const PhotonHit& p) {
+      int c[3];
+      for (int a = 0; a < 3; ++a) c[a] = photon_cell(p.position[a], grid.params.grid_origin[a], grid.params.cell_size);
+      return photon_bucket(c[0], c[1], c[2], buckets);
+    };
+    std::vector<PhotonHit> expected = photons;
+    std::stable_sort(expected.begin(), expected.end(),
+                     [&](const PhotonHit& a, const PhotonHit& b) { return bucket_of(a) < bucket_of(b); });
+    std::vector<uint32_t> starts(size_t(buckets) + 1, 0);
+    for (const PhotonHit& p : photons) ++starts[bucket_of(p) + 1];
+    for (uint32_t b = 0; b < buckets; ++b) starts[b + 1] += starts[b];
+    for (size_t i = 0; i < count; ++i) ASSERT_EQ(grid.photons[i].landing, expected[i].landing) << count << " photons, " << i;
+    ASSERT_EQ(grid.bucket_starts, starts) << count << " photons";
+  }
+}
+
 TEST(PhotonMap, AnEmptyMapIsDark) {
   PhotonMapGrids grids = build_photon_map({}, 1.0, 32, 4);
   PhotonMapPass pass(test::gpu(), grids, false);
