@@ -14,8 +14,9 @@ inline size_t first_sub_pixel(int x, int y, uint side, int out_width) {
   return ((size_t)y * side) * ((size_t)out_width * side) + (size_t)x * side;
 }
 
-__kernel void resolve_surface(__global const GBufferSample* gbuffer, __global const float4* direct, uint side,
-                              int out_width, int out_height, __global PixelSurface* out) {
+// Each kernel takes the sub-pixel grid's side and the output frame last (LayerPass::launch sets them).
+__kernel void resolve_surface(__global const GBufferSample* gbuffer, __global const float4* direct,
+                              __global PixelSurface* out, uint side, int out_width, int out_height) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= out_width || y >= out_height) return;
   const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
@@ -51,8 +52,8 @@ __kernel void resolve_surface(__global const GBufferSample* gbuffer, __global co
 }
 
 // scale 1 / side^2: the sub-pixels' mean; 1: their sum.
-__kernel void resolve_rgba(__global const float4* source, uint side, int out_width, int out_height, float scale,
-                           __global float4* out) {
+__kernel void resolve_rgba(__global const float4* source, float scale, __global float4* out, uint side,
+                           int out_width, int out_height) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= out_width || y >= out_height) return;
   const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
@@ -66,7 +67,7 @@ __kernel void resolve_rgba(__global const float4* source, uint side, int out_wid
 // that no record reached (irradiance weight 0), 0).
 __kernel void resolve_record_counts(__global const GBufferSample* gbuffer, __global const float4* irradiance,
                                     __global const uint* records_per_pixel, __global const int* record_at_pixel,
-                                    uint side, int out_width, int out_height, __global float4* out) {
+                                    __global float4* out, uint side, int out_width, int out_height) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= out_width || y >= out_height) return;
   const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;

@@ -407,7 +407,8 @@ TEST(PhotonMap, GridIsAStableCountingSortByBucket) {
     std::vector<uint32_t> starts(size_t(buckets) + 1, 0);
     for (const PhotonHit& p : photons) ++starts[bucket_of(p) + 1];
     for (uint32_t b = 0; b < buckets; ++b) starts[b + 1] += starts[b];
-    for (size_t i = 0; i < count; ++i) ASSERT_EQ(grid.photons[i].landing, expected[i].landing) << count << " photons, " << i;
+    for (size_t i = 0; i < count; ++i)
+      ASSERT_EQ(grid.photons[i].landing, expected[i].landing) << count << " photons, " << i;
     ASSERT_EQ(grid.bucket_starts, starts) << count << " photons";
   }
 }

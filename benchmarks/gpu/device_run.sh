@@ -67,16 +67,23 @@ if [[ $parts == *issue13* ]]; then
   rm -f $work/*.exr
 fi
 
+# Sponza 1920x1080 defaults on the GPU, $G/rcsplat_old (a build before this one, copied in by hand) and this build
+# alternating, twice, medians of 3 frames: $R/<tag>_<binary>_sponza_run<i>.json.
+alternate_sponza_1080p() {
+  for i in 1 2; do
+    for b in rcsplat_old rcsplat; do
+      timeout 90 $G/$b -q bench $S --device NVIDIA --width 1920 --height 1080 --repeats 3 \
+        --json $R/$1_${b}_sponza_run$i.json | grep -v "^cold_s"
+    done
+  done
+}
+
 # Host work between passes (probe, layers, other): this binary against $G/rcsplat_old (a build before it, copied in by
 # hand), alternating, Sponza and Sibenik at 1920x1080 on the GPU and Sponza on PoCL; then NVIDIA's compiler report
 # (registers, spills) for every kernel a default frame builds.
 if [[ $parts == *host* ]]; then
   hd="--width 1920 --height 1080"
-  for i in 1 2; do
-    for b in rcsplat_old rcsplat; do
-      timeout 90 $G/$b -q bench $S --device NVIDIA $hd --repeats 3 --json $R/host_${b}_gpu_run$i.json | grep -v "^cold_s"
-    done
-  done
+  alternate_sponza_1080p host
   timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 --json $R/host_sibenik_gpu.json | grep -v "^cold_s"
   RCSPLAT_CACHE_DIR=$work/verbose-cache RCSPLAT_BUILD_OPTIONS=-cl-nv-verbose timeout 60 $rc render $S --device NVIDIA \
     --width 64 --height 48 -o $work/v.exr > $R/nv_verbose.txt 2>&1
@@ -91,11 +98,7 @@ fi
 # two binaries' images compared, the new one's determinism, and PoCL's frame at 1024x768 as the anchor.
 if [[ $parts == *layers* ]]; then
   hd="--width 1920 --height 1080"
-  for i in 1 2; do
-    for b in rcsplat_old rcsplat; do
-      timeout 90 $G/$b -q bench $S --device NVIDIA $hd --repeats 3 --json $R/layers_${b}_sponza_run$i.json | grep -v "^cold_s"
-    done
-  done
+  alternate_sponza_1080p layers
   for b in rcsplat_old rcsplat; do
     timeout 90 $G/$b -q bench $B --device NVIDIA $hd --repeats 3 --json $R/layers_${b}_sibenik.json | grep -v "^cold_s"
     timeout 60 $G/$b -q render $S --device NVIDIA $hd -o $work/$b.exr --json $R/layers_${b}_render.json > /dev/null

@@ -67,7 +67,8 @@ void sort_into_buckets(const std::vector<Item>& given, float radius, PhotonMapPa
   // and buckets (not the items) move.
   std::vector<uint32_t> offsets(bins * kSortRanges, 0);
   parallel_for(kSortRanges, [&](size_t r) {
-    for (size_t i = r * range; i < std::min(count, (r + 1) * range); ++i) ++offsets[(bucket[i] >> low_bits) * kSortRanges + r];
+    for (size_t i = r * range; i < std::min(count, (r + 1) * range); ++i)
+      ++offsets[(bucket[i] >> low_bits) * kSortRanges + r];
   }, 1);
   std::vector<uint32_t> bin_starts(bins + 1, 0);
   uint32_t running = 0;
@@ -176,7 +177,8 @@ std::vector<SurfacePatch> surface_patches(const std::vector<glm::vec3>& position
   for (size_t t = 0; t < triangles; ++t) first[t + 1] += first[t];
   std::vector<SurfacePatch> patches(first[triangles]);
   parallel_ranges(triangles, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) PatchedTriangle(&positions[3 * t], patch_area).write_patches(&patches[first[t]]);
+    for (size_t t = begin; t < end; ++t)
+      PatchedTriangle(&positions[3 * t], patch_area).write_patches(&patches[first[t]]);
   }, 1024);
   return patches;
 }

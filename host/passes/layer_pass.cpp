@@ -28,26 +28,26 @@ void LayerPass::check_frame(const GBufferView& gbuffer) const {
                 std::to_string(height_) + " image");
 }
 
+void LayerPass::launch(NamedKernel& kernel) {
+  // Every kernel of layers.cl takes the sub-pixel grid's side and the output frame, and runs over its pixels.
+  kernel.set("side", cl_uint(side_)).set("out_width", cl_int(width_)).set("out_height", cl_int(height_));
+  kernel.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+}
+
 std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {
   check_frame(gbuffer);
   surface_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
       .set_buffer<cl_float4>("direct", direct)
-      .set("side", cl_uint(side_))
-      .set("out_width", cl_int(width_))
-      .set("out_height", cl_int(height_))
       .set_buffer<PixelSurface>("out", surface_out_);
-  surface_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  launch(surface_);
   return gpu_.download<PixelSurface>(surface_out_, pixel_count());
 }
 
 std::vector<float> LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
   rgba_.set_buffer<cl_float4>("source", source)
-      .set("side", cl_uint(side_))
-      .set("out_width", cl_int(width_))
-      .set("out_height", cl_int(height_))
       .set("scale", cl_float(scale))
       .set_buffer<cl_float4>("out", rgba_out_);
-  rgba_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  launch(rgba_);
   return gpu_.download<float>(rgba_out_, pixel_count() * 4);
 }
 
@@ -64,11 +64,8 @@ std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl
       .set_buffer<cl_float4>("irradiance", irradiance)
       .set_buffer<cl_uint>("records_per_pixel", records_per_pixel)
       .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
-      .set("side", cl_uint(side_))
-      .set("out_width", cl_int(width_))
-      .set("out_height", cl_int(height_))
       .set_buffer<cl_float4>("out", rgba_out_);
-  counts_.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  launch(counts_);
   return gpu_.download<float>(rgba_out_, pixel_count() * 4);
 }
 

@@ -31,6 +31,7 @@ class LayerPass {
 
  private:
   std::vector<float> resolve_rgba(const cl::Buffer& source, float scale);
+  void launch(NamedKernel& kernel);
   void check_frame(const GBufferView& gbuffer) const;
 
   GpuContext& gpu_;

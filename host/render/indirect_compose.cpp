@@ -42,7 +42,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   st.resolve_s += seconds_since(t);
 
   t = Clock::now();
-  const std::vector<float> indirect = f.layers.mean_rgba(compose.indirect()), color = f.layers.mean_rgba(compose.color());
+  const std::vector<float> indirect = f.layers.mean_rgba(compose.indirect());
+  const std::vector<float> color = f.layers.mean_rgba(compose.color());
   const size_t pixels = f.layers.pixel_count();
   img.indirect.resize(pixels * 3);
   parallel_ranges(pixels, [&](size_t begin, size_t end) {
@@ -60,7 +61,8 @@ void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl:
   RenderedImage& img = f.image;
   auto t = Clock::now();
   const std::vector<float> irr = f.layers.mean_rgba(irradiance);
-  const std::vector<float> counts = f.layers.record_counts(f.gbuffer.view(), irradiance, records_per_pixel, record_at_pixel);
+  const std::vector<float> counts =
+      f.layers.record_counts(f.gbuffer.view(), irradiance, records_per_pixel, record_at_pixel);
   const size_t pixels = f.layers.pixel_count();
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);
