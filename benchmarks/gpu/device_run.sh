@@ -10,7 +10,7 @@
 # Other parts: frames (`bench` at 1920x1080 on every device), issue13 (Sponza 1920x1080 defaults on the GPU from a cold
 # start and warm, the record trace's shapes, and PoCL as the anchor), host (the host's work between passes, against an
 # older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
-# (the image layers gathered on the device, against .gpu/rcsplat_old).
+# (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -77,6 +77,16 @@ alternate_sponza_1080p() {
     done
   done
 }
+
+# Sponza 1920x1080 defaults on the GPU from scratch (empty kernel caches, rcsplat's and, on a fresh machine, NVIDIA's),
+# then warm: the frame a first-time user waits for, pass by pass, in the render summaries.
+if [[ $parts == *cold* ]]; then
+  for run in cold warm; do
+    RCSPLAT_CACHE_DIR=$work/scratch-cache timeout 90 $rc render $S --device NVIDIA --width 1920 --height 1080 \
+      -o $work/scratch.exr --json $R/scratch_${run}_render.json | grep -E "^(time|total|photon map|records) "
+  done
+  rm -f $work/*.exr
+fi
 
 # Host work between passes (probe, layers, other): this binary against $G/rcsplat_old (a build before it, copied in by
 # hand), alternating, Sponza and Sibenik at 1920x1080 on the GPU and Sponza on PoCL; then NVIDIA's compiler report
