@@ -14,10 +14,13 @@ LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_heig
       height_(out_height),
       surface_(gpu.kernel("layers.cl", "resolve_surface")),
       rgba_(gpu.kernel("layers.cl", "resolve_rgba")),
-      counts_(gpu.kernel("layers.cl", "resolve_record_counts")) {
-  const size_t pixels = std::max<size_t>(pixel_count(), 1);
-  surface_out_ = gpu_.buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(PixelSurface), "image layers");
-  rgba_out_ = gpu_.buffer(CL_MEM_WRITE_ONLY, pixels * 4 * sizeof(float), "image layers");
+      counts_(gpu.kernel("layers.cl", "resolve_record_counts")) {}
+
+cl::Buffer& LayerPass::rgba_out() {
+  // Made on first use, at the frame's end: the passes' own buffers peak before it.
+  if (!rgba_out_()) rgba_out_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(pixel_count(), 1) * 4 * sizeof(float),
+                                            "image layers");
+  return rgba_out_;
 }
 
 void LayerPass::check_frame(const GBufferView& gbuffer) const {
@@ -36,17 +39,20 @@ void LayerPass::launch(NamedKernel& kernel) {
 
 std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {
   check_frame(gbuffer);
+  // Freed on return: it would otherwise sit through the frame's peak (records, photon map).
+  const cl::Buffer out =
+      gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(pixel_count(), 1) * sizeof(PixelSurface), "image layers");
   surface_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
       .set_buffer<cl_float4>("direct", direct)
-      .set_buffer<PixelSurface>("out", surface_out_);
+      .set_buffer<PixelSurface>("out", out);
   launch(surface_);
-  return gpu_.download<PixelSurface>(surface_out_, pixel_count());
+  return gpu_.download<PixelSurface>(out, pixel_count());
 }
 
 std::vector<float> LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
   rgba_.set_buffer<cl_float4>("source", source)
       .set("scale", cl_float(scale))
-      .set_buffer<cl_float4>("out", rgba_out_);
+      .set_buffer<cl_float4>("out", rgba_out());
   launch(rgba_);
   return gpu_.download<float>(rgba_out_, pixel_count() * 4);
 }
@@ -64,7 +70,7 @@ std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl
       .set_buffer<cl_float4>("irradiance", irradiance)
       .set_buffer<cl_uint>("records_per_pixel", records_per_pixel)
       .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
-      .set_buffer<cl_float4>("out", rgba_out_);
+      .set_buffer<cl_float4>("out", rgba_out());
   launch(counts_);
   return gpu_.download<float>(rgba_out_, pixel_count() * 4);
 }

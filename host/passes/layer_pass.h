@@ -1,6 +1,6 @@
 // The image layers at output resolution (kernels/layers.cl): each output pixel gathers its side x side sub-pixels
 // (--pixel-samples side^2; side 1 copies) on the device, so the host downloads and fills output-sized layers only.
-// Owns the output-sized buffers the kernels write.
+// Owns the output-sized buffer the float4 images are gathered into.
 #pragma once
 #include <vector>
 
@@ -32,13 +32,14 @@ class LayerPass {
  private:
   std::vector<float> resolve_rgba(const cl::Buffer& source, float scale);
   void launch(NamedKernel& kernel);
+  cl::Buffer& rgba_out();
   void check_frame(const GBufferView& gbuffer) const;
 
   GpuContext& gpu_;
   unsigned side_;
   int width_, height_;
   NamedKernel surface_, rgba_, counts_;
-  cl::Buffer surface_out_, rgba_out_;
+  cl::Buffer rgba_out_;  // the float4 images' gathered pixels
 };
 
 }  // namespace rcsplat

@@ -54,7 +54,7 @@ namespace {
 void check_frame_fits(int width, int height, unsigned side, const DeviceInfo& device) {
   const double pixels = double(width) * double(height), out_pixels = pixels / double(side * side);
   const double device_bytes =
-      pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52) + out_pixels * (sizeof(PixelSurface) + 16);
+      pixels * (sizeof(GBufferSample) + 16 + 32 + 5 + 52) + out_pixels * 16;
   const double host_bytes = out_pixels * (sizeof(PixelSurface) + 16 + 116 + 104);
   const double host_memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
   auto gib = [](double bytes) { return byte_size(bytes, "GiB"); };
