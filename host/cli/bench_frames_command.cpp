@@ -120,7 +120,7 @@ int run_bench_frames(const BenchOptions& o) {
   }
   std::printf("cold_s, cached_s: kernel builds (clBuildProgram); cold_fr: the whole cold frame, which holds what a "
               "driver compiles at first launch (PoCL does); passes and frame_s: medians without kernel builds; probe: the bounce "
-              "count's photons; layers: image layers downloaded, filled and averaged on the host; other: the frame less "
+              "count's photons; layers: image layers gathered on the device, downloaded and filled on the host; other: the frame less "
               "its named parts; rec_Mr/s: the "
               "record pass's rays per second; peak_MiB: device buffers at the frame's peak\n");
   report["host_peak_bytes"] = peak_host_bytes();

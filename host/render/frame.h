@@ -27,8 +27,8 @@ struct RenderStats {
   // A frame's time without its kernel builds (once per device and switch set, then cached on disk): what `bench` and
   // `sweep` compare.
   double seconds_without_builds() const { return total_s - program_s; }
-  // Host work between the passes: the bounce probe's photons, and the image layers downloaded, filled and (with
-  // sub-pixels) averaged; on a GPU these are a large share of a frame (benchmarks/RESULTS.md, issue 13 on the H200).
+  // Work between the passes: the bounce probe's photons, and the image layers gathered on the device (LayerPass),
+  // downloaded and filled on the host; on a GPU these were half a frame (benchmarks/RESULTS.md, issue 13 on the H200).
   double probe_s = 0, layers_s = 0;
   DeviceMemoryUse device_memory;  // this frame's buffers (the scene's included)
   uint64_t primary_rays = 0, shadow_rays = 0;

@@ -44,14 +44,13 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   uint64_t paths = 0;
   // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double them.
   for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9; ++round) {
-    auto shoot_start = Clock::now();
-    const double shoot_builds_before = f.gpu.program_seconds();
+    const TimeWithoutBuilds shoot(f.gpu);
     // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
     std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
                                                           f.settings.seed ^ 0x70686f74u ^ hash_u32(round));
     kept.insert(kept.end(), more.begin(), more.end());
     paths += per_round;
-    st.photon_map_shoot_s += seconds_since(shoot_start) - (f.gpu.program_seconds() - shoot_builds_before);
+    st.photon_map_shoot_s += shoot.seconds();
   }
   // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
   const float share = float(per_round) / float(paths);
@@ -66,11 +65,10 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
   grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
   st.photon_map_grids_s = seconds_since(grids_start);
-  auto estimate_start = Clock::now();
-  const double estimate_builds_before = f.gpu.program_seconds();
+  const TimeWithoutBuilds estimate(f.gpu);
   f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
   double program_s = f.gpu.program_seconds() - program_before;
-  st.photon_map_estimate_s = seconds_since(estimate_start) - (f.gpu.program_seconds() - estimate_builds_before);
+  st.photon_map_estimate_s = estimate.seconds();
   st.program_s += program_s;
   st.photon_map_paths = paths;
   st.photon_map_photons = grids.all.photons.size();

@@ -276,10 +276,9 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   st.upload_s = seconds_since(t);
   // Kernel builds count in program_s, the probe's photon kernel's included (it was once left inside probe_s: 2 s of
   // a cold 1080p frame on an H200 that no build column showed).
-  const double program_before = gpu.program_seconds();
-  t = Clock::now();
+  const TimeWithoutBuilds probe(gpu);
   const BounceChoice bounce_choice = choose_bounces(gpu, scene, device_scene, settings);
-  st.probe_s = seconds_since(t) - (gpu.program_seconds() - program_before);
+  st.probe_s = probe.seconds();
   settings.bounces = bounce_choice.bounces;
   settings.bounce_method = bounce_choice.method;
   st.bounces = bounce_choice.bounces;
@@ -290,7 +289,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   GBufferPass gbuffer(gpu, device_scene);
   DirectPass direct(gpu, device_scene);
   LayerPass layers(gpu, side, img.width, img.height);
-  st.program_s = gpu.program_seconds() - program_before;
+  st.program_s = probe.builds();  // the probe's and these three passes'; later passes add their own
 
   if (settings.gi == GiMethod::path && settings.path.pixel_area)
     path_trace_pixel_area(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, params, settings, img);
