@@ -99,19 +99,13 @@ inline void store_guide_cones(const GuideCone* cones, uint count, __global Recor
   stored->count = count;
 }
 
-inline uint load_guide_cones(__global const RecordGuideCones* stored, GuideCone* cones) {
-  uint count = min(stored->count, (uint)GUIDE_MAX_CONES);
-  for (uint c = 0; c < count; ++c) {
-    cones[c].axis = vload3(0, stored->cones[c].axis);
-    cones[c].cos_max = stored->cones[c].cos_max;
-    cones[c].inv_solid_angle = stored->cones[c].inv_solid_angle;
-    cones[c].promise = stored->cones[c].promise;
-    cones[c].cdf = stored->cones[c].cdf;
-  }
-  return count;
-}
-
 inline float guide_selection(const GuideCone* cones, uint c) { return cones[c].cdf - (c > 0 ? cones[c - 1].cdf : 0.0f); }
+
+// One cone's share of the guide's density at dir: its selection probability over its solid angle, where dir lies in it
+// or the guide drew dir from it (drew).
+inline float cone_density(float3 axis, float cos_max, float selection, float inv_solid_angle, float3 dir, bool drew) {
+  return drew || dot(dir, axis) >= cos_max ? selection * inv_solid_angle : 0.0f;
+}
 
 // The guide's density (per solid angle) of direction dir: the cones that contain it. For a direction the guide drew
 // from cone `drawn_from` (else GUIDE_MAX_CONES), that cone counts whatever the rounded test says: a direction on the
@@ -119,13 +113,9 @@ inline float guide_selection(const GuideCone* cones, uint c) { return cones[c].c
 inline float guide_pdf_drawn(const GuideCone* cones, uint count, float3 dir, uint drawn_from) {
   float pdf = 0.0f;
   for (uint c = 0; c < count; ++c)
-    if (c == drawn_from || dot(dir, cones[c].axis) >= cones[c].cos_max)
-      pdf += guide_selection(cones, c) * cones[c].inv_solid_angle;
+    pdf += cone_density(cones[c].axis, cones[c].cos_max, guide_selection(cones, c), cones[c].inv_solid_angle, dir,
+                        c == drawn_from);
   return pdf;
-}
-
-inline float guide_pdf(const GuideCone* cones, uint count, float3 dir) {
-  return guide_pdf_drawn(cones, count, dir, GUIDE_MAX_CONES);
 }
 
 // The direction at 1 - cos(theta) = one_minus_cos from axis and at azimuth 2 pi w about it: with one_minus_cos
@@ -145,6 +135,33 @@ inline float3 sample_guide(const GuideCone* cones, uint count, float u, float v,
   while (c + 1 < count && u >= cones[c].cdf) ++c;
   *drawn_from = c;
   return cone_direction(cones[c].axis, v * (1.0f - cones[c].cos_max), w);
+}
+
+// A record's stored cones, read where they lie by each of its rays (kernels/records.cl) rather than copied: the
+// record's work-items read the same bytes, and a private copy of GUIDE_MAX_CONES cones took 256 bytes of each
+// work-item's stack on a GPU. The same numbers as guide_pdf_drawn and sample_guide on the cones loaded.
+inline uint stored_cone_count(__global const RecordGuideCones* stored) {
+  return min(stored->count, (uint)GUIDE_MAX_CONES);
+}
+
+inline float stored_guide_pdf_drawn(__global const RecordGuideCones* stored, float3 dir, uint drawn_from) {
+  float pdf = 0.0f, previous_cdf = 0.0f;
+  for (uint c = 0; c < stored_cone_count(stored); ++c) {
+    __global const StoredGuideCone* cone = stored->cones + c;
+    pdf += cone_density(vload3(0, cone->axis), cone->cos_max, cone->cdf - previous_cdf, cone->inv_solid_angle, dir,
+                        c == drawn_from);
+    previous_cdf = cone->cdf;
+  }
+  return pdf;
+}
+
+inline float3 sample_stored_guide(__global const RecordGuideCones* stored, float u, float v, float w,
+                                  uint* drawn_from) {
+  const uint count = stored_cone_count(stored);
+  uint c = 0;
+  while (c + 1 < count && u >= stored->cones[c].cdf) ++c;
+  *drawn_from = c;
+  return cone_direction(vload3(0, stored->cones[c].axis), v * (1.0f - stored->cones[c].cos_max), w);
 }
 
 #endif

@@ -84,7 +84,7 @@ inline float3 stratum_direction(RecordSite site, HemisphereParams hp, uint s) {
 // Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
 // leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
 inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                             const GuideCone* cones, uint cone_count, uint* rays) {
+                             __global const RecordGuideCones* cones, uint* rays) {
   float3 dir = stratum_direction(site, hp, s);
   float cos_t = sqrt(1.0f - stratum_sin2_theta(hp, site.key, s));
   float r = INFINITY;
@@ -92,9 +92,9 @@ inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemisp
   if (dot(dir, site.ng) > 0.0f)  // a direction below the geometric surface sees nothing
     l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
                         random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
-  if (cone_count) {
+  if (stored_cone_count(cones)) {
     float c = strata_cosine_density(hp) * cos_t;
-    l *= c / (c + (float)hp.guide_rays * guide_pdf(cones, cone_count, dir));
+    l *= c / (c + (float)hp.guide_rays * stored_guide_pdf_drawn(cones, dir, GUIDE_MAX_CONES));
   }
   return (float4)(l, r);
 }
@@ -102,18 +102,18 @@ inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemisp
 // Guided ray s (s >= M N: its random numbers follow the strata's) into the record's cones, weighted
 // f / (n_c p_c + n_g p_g) with f = L cos(theta): its share of E. Zero where the record has no cones.
 inline float4 guided_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                            const GuideCone* cones, uint cone_count, uint* rays) {
-  if (!cone_count) return (float4)(0.0f);
+                            __global const RecordGuideCones* cones, uint* rays) {
+  if (!stored_cone_count(cones)) return (float4)(0.0f);
   uint drawn_from;
-  float3 dir = sample_guide(cones, cone_count, random01(site.key, s, 5u), random01(site.key, s, 0u),
-                            random01(site.key, s, 1u), &drawn_from);
+  float3 dir = sample_stored_guide(cones, random01(site.key, s, 5u), random01(site.key, s, 0u),
+                                   random01(site.key, s, 1u), &drawn_from);
   float cos_n = dot(dir, site.n);
   if (cos_n <= 0.0f || dot(dir, site.ng) <= 0.0f) return (float4)(0.0f);
   float r;
   float3 l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
                              random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
   float weight = cos_n / (strata_cosine_density(hp) * cos_n +
-                          (float)hp.guide_rays * guide_pdf_drawn(cones, cone_count, dir, drawn_from));
+                          (float)hp.guide_rays * stored_guide_pdf_drawn(cones, dir, drawn_from));
   return (float4)(l * weight, 0.0f);
 }
 
@@ -146,15 +146,13 @@ __kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __glob
   uint first = (id - q * items_per_record) * per_item, end = min(first + per_item, per_record);
   uint i = batch.first_candidate + q;
   RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
-  GuideCone cones[GUIDE_MAX_CONES];
-  uint cone_count = load_guide_cones(record_guides + q, cones);
   __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
   __global uint* own_rays = sample_rays + (size_t)q * per_record;
   for (uint s = first; s < end; ++s) {
     uint rays = 0;
     own[s] = s < hp.theta_strata * hp.phi_strata
-                 ? stratum_sample(SCENE GATHER_MAP, site, hp, s, cones, cone_count, &rays)
-                 : guided_sample(SCENE GATHER_MAP, site, hp, s, cones, cone_count, &rays);
+                 ? stratum_sample(SCENE GATHER_MAP, site, hp, s, record_guides + q, &rays)
+                 : guided_sample(SCENE GATHER_MAP, site, hp, s, record_guides + q, &rays);
     own_rays[s] = rays;
   }
 }
