@@ -23,6 +23,18 @@
 #define GATHER_MAP
 #endif
 
+// The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
+inline HitSurface hit_surface(__global const TriangleShading* triangles, int prim, float u, float v, float3 dir) {
+  HitSurface h;
+  h.s = surface_at(triangles, prim, u, v);
+  bool back = dot(h.s.geometric_normal, dir) > 0.0f;
+  h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
+  h.ns = back ? -h.s.shading_normal : h.s.shading_normal;
+  if (dot(h.ns, h.ng) <= 0.0f) h.ns = h.ng;
+  h.albedo_read = h.lobe_read = 0;
+  return h;
+}
+
 inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
@@ -32,12 +44,7 @@ inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, 
     return false;
   }
   *distance = hit.t;
-  h->s = surface_at(triangles, hit.prim, hit.u, hit.v);
-  bool back = dot(h->s.geometric_normal, dir) > 0.0f;
-  h->ng = back ? -h->s.geometric_normal : h->s.geometric_normal;
-  h->ns = back ? -h->s.shading_normal : h->s.shading_normal;
-  if (dot(h->ns, h->ng) <= 0.0f) h->ns = h->ng;
-  h->albedo_read = h->lobe_read = 0;
+  *h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
   return true;
 }
 
@@ -154,36 +161,46 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
   return finite_or_zero(sum);
 }
 
-// Radiance arriving at origin from direction dir after one reflection, and after more.bounces more (or what the photon
-// map holds there); (u, v) pick the light sample at the first hit, and u_lobe the lobe of its BRDF sample where the hit
-// is glossy. *distance is the hit distance, INFINITY on a miss, where the environment's smooth part is what the ray
-// brings (kernels/environment.h).
-inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
-                              PathContinuation more, float* distance, uint* rays) {
-  HitSurface h;
-  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) {
+// What a ray along dir that hits nothing brings: the environment's smooth part (kernels/environment.h; the peak is
+// the pixel's direct light), or nothing.
+inline float3 miss_radiance(SCENE_ARGS, float3 dir) {
 #if HAS_ENVIRONMENT
-    return environment_smooth(environment, scene_counts, dir);  // the peak is the pixel's direct light
+  return environment_smooth(environment, scene_counts, dir);
 #else
-    return (float3)(0.0f);
+  return (float3)(0.0f);
 #endif
-  }
-  float3 l = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays);
+}
+
+// Radiance a ray along dir brings back from *h, the surface it hit at distance `distance`: the light h reflects after
+// one reflection, and after more.bounces more (or what the photon map holds there); (u, v) pick the light sample at
+// h, and u_lobe the lobe of its BRDF sample where h is glossy.
+inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
+                                float v, float u_lobe, PathContinuation more, uint* rays) {
+  float3 l = hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
 #if PHOTON_GATHER
-  if (*distance < map.short_path_distance && more.bounces) {
+  if (distance < map.short_path_distance && more.bounces) {
     // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and
     // reads there the map without its last landing (bounces 3 .. N).
     float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-    if (path_step(SCENE, &h, &dir, &throughput, more, 0u, &sum, rays))
-      sum += throughput * photon_gather(SCENE, PHOTON_MAP, &h, dir, true);
+    if (path_step(SCENE, h, &dir, &throughput, more, 0u, &sum, rays))
+      sum += throughput * photon_gather(SCENE, PHOTON_MAP, h, dir, true);
     l += finite_or_zero(sum);
   } else {
-    l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, &h, dir, false));
+    l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, h, dir, false));
   }
 #else
-  if (more.bounces) l += continued_path(SCENE, h, dir, more, rays);
+  if (more.bounces) l += continued_path(SCENE, *h, dir, more, rays);
 #endif
   return l;
+}
+
+// Radiance arriving at origin from direction dir (radiance_from_hit, or miss_radiance); *distance is the hit
+// distance, INFINITY on a miss.
+inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
+                              PathContinuation more, float* distance, uint* rays) {
+  HitSurface h;
+  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) return miss_radiance(SCENE, dir);
+  return radiance_from_hit(SCENE GATHER_MAP, &h, dir, *distance, u, v, u_lobe, more, rays);
 }
 
 #endif

@@ -6,7 +6,9 @@
 // The work is spread over rays, not only over records (a coarse placement level has a few hundred records but a
 // hundred thousand rays, and a GPU needs that many work-items in flight), in three kernels per launch of candidates:
 //   aim_record_guides   per record: the light guide's cones its rays share (none without a guide);
-//   trace_record_rays   per ray: one stratum's radiance and hit distance, or one guided ray's weighted share of E;
+//   trace_record_rays   per ray: one stratum's radiance and hit distance, or one guided ray's weighted share of E
+//                       (or the same in two kernels, trace_record_hits and shade_record_hits, where the device does
+//                       better so: GroupSizes::split_record_trace);
 //   reduce_records      per record: E, the radius, the gradients and the horizon from its samples, summed in one fixed
 //                       order, so a record does not depend on how its rays were scheduled (the radius' Hessian
 //                       walks its own mesh of the samples: relative_irradiance_hessian).
@@ -81,40 +83,58 @@ inline float3 stratum_direction(RecordSite site, HemisphereParams hp, uint s) {
   return (cos_phi * sin_t) * site.t + (sin_phi * sin_t) * site.b + cos_t * site.n;
 }
 
-// Stratum s = j N + k: a cosine-weighted ray in row j, column k. Its radiance is the share of the light the guide
-// leaves to the strata (the balance heuristic beside the guided rays, kernels/light_guide.h); w is the hit distance.
-inline float4 stratum_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                             __global const RecordGuideCones* cones, uint* rays) {
-  float3 dir = stratum_direction(site, hp, s);
-  float cos_t = sqrt(1.0f - stratum_sin2_theta(hp, site.key, s));
-  float r = INFINITY;
-  float3 l = (float3)(0.0f);
-  if (dot(dir, site.ng) > 0.0f)  // a direction below the geometric surface sees nothing
-    l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
-                        random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
+// Sample s of a record: the direction of its ray and the balance heuristic's factor of the radiance the ray brings.
+typedef struct {
+  float3 dir;
+  float weight;
+  bool cast;     // false: no ray is cast, the sample is zero
+  bool stratum;  // a stratum keeps its hit distance (INFINITY where nothing is hit or no ray is cast); a guided ray 0
+} RecordRay;
+
+// Stratum s = j N + k: a cosine-weighted ray in row j, column k. It brings the share of the light the guide leaves to
+// the strata (the balance heuristic beside the guided rays, kernels/light_guide.h). A direction below the geometric
+// surface casts no ray: it sees nothing.
+inline RecordRay stratum_ray(RecordSite site, HemisphereParams hp, uint s, __global const RecordGuideCones* cones) {
+  RecordRay ray;
+  ray.stratum = true;
+  ray.dir = stratum_direction(site, hp, s);
+  ray.cast = dot(ray.dir, site.ng) > 0.0f;
+  ray.weight = 1.0f;
   if (stored_cone_count(cones)) {
-    float c = strata_cosine_density(hp) * cos_t;
-    l *= c / (c + (float)hp.guide_rays * stored_guide_pdf_drawn(cones, dir, GUIDE_MAX_CONES));
+    float c = strata_cosine_density(hp) * sqrt(1.0f - stratum_sin2_theta(hp, site.key, s));
+    ray.weight = c / (c + (float)hp.guide_rays * stored_guide_pdf_drawn(cones, ray.dir, GUIDE_MAX_CONES));
   }
-  return (float4)(l, r);
+  return ray;
 }
 
 // Guided ray s (s >= M N: its random numbers follow the strata's) into the record's cones, weighted
-// f / (n_c p_c + n_g p_g) with f = L cos(theta): its share of E. Zero where the record has no cones.
-inline float4 guided_sample(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                            __global const RecordGuideCones* cones, uint* rays) {
-  if (!stored_cone_count(cones)) return (float4)(0.0f);
+// f / (n_c p_c + n_g p_g) with f = L cos(theta): its share of E. None where the record has no cones.
+inline RecordRay guided_ray(RecordSite site, HemisphereParams hp, uint s, __global const RecordGuideCones* cones) {
+  RecordRay ray;
+  ray.stratum = ray.cast = false;
+  ray.dir = site.n;
+  ray.weight = 0.0f;
+  if (!stored_cone_count(cones)) return ray;
   uint drawn_from;
-  float3 dir = sample_stored_guide(cones, random01(site.key, s, 5u), random01(site.key, s, 0u),
-                                   random01(site.key, s, 1u), &drawn_from);
-  float cos_n = dot(dir, site.n);
-  if (cos_n <= 0.0f || dot(dir, site.ng) <= 0.0f) return (float4)(0.0f);
-  float r;
-  float3 l = bounce_radiance(SCENE GATHER_MAP, site.origin, dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
-                             random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, rays);
-  float weight = cos_n / (strata_cosine_density(hp) * cos_n +
-                          (float)hp.guide_rays * stored_guide_pdf_drawn(cones, dir, drawn_from));
-  return (float4)(l * weight, 0.0f);
+  ray.dir = sample_stored_guide(cones, random01(site.key, s, 5u), random01(site.key, s, 0u),
+                                random01(site.key, s, 1u), &drawn_from);
+  float cos_n = dot(ray.dir, site.n);
+  if (cos_n <= 0.0f || dot(ray.dir, site.ng) <= 0.0f) return ray;
+  ray.cast = true;
+  ray.weight = cos_n / (strata_cosine_density(hp) * cos_n +
+                        (float)hp.guide_rays * stored_guide_pdf_drawn(cones, ray.dir, drawn_from));
+  return ray;
+}
+
+inline RecordRay record_ray(RecordSite site, HemisphereParams hp, uint s, __global const RecordGuideCones* cones) {
+  return s < hp.theta_strata * hp.phi_strata ? stratum_ray(site, hp, s, cones) : guided_ray(site, hp, s, cones);
+}
+
+// Sample s as the reduction reads it, (weighted radiance, hit distance), from the radiance l its ray brought from
+// `distance` away.
+inline float4 record_sample(RecordRay ray, float3 l, float distance) {
+  if (!ray.cast) return (float4)(0.0f, 0.0f, 0.0f, ray.stratum ? INFINITY : 0.0f);
+  return (float4)(l * ray.weight, ray.stratum ? distance : 0.0f);
 }
 
 // The light guide's cones for each record of the launch (none without a guide): its rays and its strata are weighted
@@ -133,26 +153,99 @@ __kernel void aim_record_guides(GBUFFER_ARGS, __global const uint* candidates, R
   store_guide_cones(cones, count, record_guides + q);
 }
 
-// One work-item per batch.samples_per_item consecutive samples of one of the launch's records (candidate
-// first_candidate + q): a GPU takes one sample a work-item, a CPU device several, sharing the record's site and cones.
+// A work-item of the record trace takes batch.samples_per_item consecutive samples of one of the launch's records
+// (candidate first_candidate + q): a GPU one sample a work-item, a CPU device several, sharing the record's site.
+typedef struct {
+  uint q, first, end;  // the launch's record q, its samples first .. end - 1
+} RecordItem;
+
+inline bool record_item(RecordBatchParams batch, uint per_record, RecordItem* item) {
+  const uint per_item = batch.samples_per_item, items_per_record = (per_record + per_item - 1) / per_item;
+  uint id = get_global_id(0);
+  item->q = id / items_per_record;
+  item->first = (id - item->q * items_per_record) * per_item;
+  item->end = min(item->first + per_item, per_record);
+  return item->q < batch.launch_count;
+}
+
+// Each sample's ray traced and its radiance gathered in one kernel (PoCL's CPU device: a work-item's samples share
+// their record's site).
 __kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
                                 RecordBatchParams batch, __global const RecordGuideCones* record_guides,
                                 __global float4* samples, __global uint* sample_rays) {
   const HemisphereParams hp = batch.hemisphere;
-  const uint per_record = record_sample_count(hp), per_item = batch.samples_per_item;
-  const uint items_per_record = (per_record + per_item - 1) / per_item;
-  uint id = get_global_id(0), q = id / items_per_record;
-  if (q >= batch.launch_count) return;
-  uint first = (id - q * items_per_record) * per_item, end = min(first + per_item, per_record);
-  uint i = batch.first_candidate + q;
+  const uint per_record = record_sample_count(hp);
+  RecordItem item;
+  if (!record_item(batch, per_record, &item)) return;
+  uint i = batch.first_candidate + item.q;
   RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
   __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
-  __global uint* own_rays = sample_rays + (size_t)q * per_record;
-  for (uint s = first; s < end; ++s) {
+  __global uint* own_rays = sample_rays + (size_t)item.q * per_record;
+  for (uint s = item.first; s < item.end; ++s) {
+    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
     uint rays = 0;
-    own[s] = s < hp.theta_strata * hp.phi_strata
-                 ? stratum_sample(SCENE GATHER_MAP, site, hp, s, record_guides + q, &rays)
-                 : guided_sample(SCENE GATHER_MAP, site, hp, s, record_guides + q, &rays);
+    float r = INFINITY;
+    float3 l = (float3)(0.0f);
+    if (ray.cast)
+      l = bounce_radiance(SCENE GATHER_MAP, site.origin, ray.dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
+                          random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, &rays);
+    own[s] = record_sample(ray, l, r);
+    own_rays[s] = rays;
+  }
+}
+
+// The same in two kernels, each with less to hold in registers (a GPU: trace_record_rays, a hemisphere ray with its
+// hit's shading, shadow ray and photon lookup in one work-item, took NVIDIA's 255 registers and spilled).
+// trace_record_hits traces each sample's ray to its closest hit (prim -1: a miss, -2: no ray cast)...
+__kernel void trace_record_hits(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
+                                __global const RecordGuideCones* record_guides, __global HitDesc* hits) {
+  const HemisphereParams hp = batch.hemisphere;
+  const uint per_record = record_sample_count(hp);
+  RecordItem item;
+  if (!record_item(batch, per_record, &item)) return;
+  RecordSite site = record_site(gbuffer, candidates[batch.first_candidate + item.q], hp.seed);
+  __global HitDesc* own = hits + (size_t)item.q * per_record;
+  for (uint s = item.first; s < item.end; ++s) {
+    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
+    TraceHit hit = {INFINITY, 0.0f, 0.0f, -2};
+    if (ray.cast) {
+      RayPrecomp r = ray_precompute(site.origin, ray.dir);
+      if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) hit.prim = -1;
+    }
+    HitDesc out = {hit.t, hit.u, hit.v, hit.prim};
+    own[s] = out;
+  }
+}
+
+// ... and shade_record_hits gathers the radiance each ray brings from its hit, as trace_record_rays does: the same
+// samples, bit for bit.
+__kernel void shade_record_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
+                                RecordBatchParams batch, __global const RecordGuideCones* record_guides,
+                                __global const HitDesc* hits, __global float4* samples, __global uint* sample_rays) {
+  const HemisphereParams hp = batch.hemisphere;
+  const uint per_record = record_sample_count(hp);
+  RecordItem item;
+  if (!record_item(batch, per_record, &item)) return;
+  uint i = batch.first_candidate + item.q;
+  RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
+  __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
+  __global uint* own_rays = sample_rays + (size_t)item.q * per_record;
+  __global const HitDesc* own_hits = hits + (size_t)item.q * per_record;
+  for (uint s = item.first; s < item.end; ++s) {
+    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
+    HitDesc hit = own_hits[s];
+    uint rays = ray.cast ? 1u : 0u;
+    float r = INFINITY;
+    float3 l = (float3)(0.0f);
+    if (hit.prim >= 0) {
+      r = hit.t;
+      HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
+      l = radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, r, random01(site.key, s, 2u), random01(site.key, s, 3u),
+                            random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &rays);
+    } else if (ray.cast) {
+      l = miss_radiance(SCENE, ray.dir);
+    }
+    own[s] = record_sample(ray, l, r);
     own_rays[s] = rays;
   }
 }

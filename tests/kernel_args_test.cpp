@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "cl/device_scene.h"
+#include "corridor_scene.h"
 #include "passes/ray_cast_pass.h"
 #include "passes/splat_pass.h"
 #include "passes/photon_map_pass.h"
@@ -37,6 +38,13 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   settings.photon_paths = 1024;
   settings.pixel_samples = 4;
   render(gpu, scene, settings);
+  // The record trace split into hits and shading (GroupSizes::split_record_trace), with the photon map too.
+  const GroupSizes device_choice = gpu.groups();
+  GroupSizes split = device_choice;
+  split.split_record_trace = !device_choice.split_record_trace;
+  gpu.set_groups(split);
+  render(gpu, scene, settings);
+  gpu.set_groups(device_choice);
   PhotonHit photon{};
   photon.hit = 1;
   photon.normal[1] = 1.0f;
@@ -54,7 +62,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   EXPECT_GE(caster.closest_hits()[0].prim, 0);
 
   std::set<std::string> built = gpu.built_kernel_names();
-  for (const char* expected : {"gbuffer", "direct_light", "aim_record_guides", "trace_record_rays", "reduce_records", "mark_covered", "find_uncovered",
+  for (const char* expected : {"gbuffer", "direct_light", "aim_record_guides", "trace_record_rays",
+                               "trace_record_hits", "shade_record_hits", "reduce_records", "mark_covered", "find_uncovered",
                                "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
                                "max_record_irradiance", "splat_records", "resolve_indirect", "path_indirect",
                                "cast_closest", "cast_occlusion", "fill_uncovered", "shoot_photons",
@@ -67,6 +76,54 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   }
   NamedKernel sample = gpu.kernel("splat.cl", "splat_records");
   EXPECT_TRUE(sample.bound_by_name()) << "the test device reports no argument names";
+}
+
+// A frame starts building every program it will need at once (GpuContext::prefetch; render/renderer.cpp
+// frame_programs says which). Each configuration renders on a fresh context, all of whose builds must have been
+// prefetched: a pass that comes to build something the list leaves out shows here.
+TEST(KernelArgs, AFrameBuildsOnlyProgramsItPrefetched) {
+  RenderSettings small;
+  small.width = small.height = 32;
+  small.light_samples = 4;
+  small.cache.theta_strata = 4;
+  small.cache.phi_strata = 8;
+  small.path.samples = 2;
+  auto with = [&](GiMethod gi, unsigned bounces, BounceMethod method) {
+    RenderSettings settings = small;
+    settings.gi = gi;
+    settings.bounces = bounces;
+    settings.bounce_method = method;
+    return settings;
+  };
+  const Scene cornell = make_cornell_box();
+  const Scene radiance_cached = test::bright_patch_corridor(0.6f), glossy = test::bright_patch_corridor(0.2f);
+  struct Case {
+    const char* what;
+    const Scene& scene;
+    RenderSettings settings;
+  };
+  const BounceMethod automatic = BounceMethod::automatic;
+  const std::vector<Case> cases = {
+      {"splat, bounces chosen", cornell, with(GiMethod::splat, 0, automatic)},
+      {"splat, one bounce", cornell, with(GiMethod::splat, 1, automatic)},
+      {"splat, paths continued", cornell, with(GiMethod::splat, 3, BounceMethod::path)},
+      {"octree, photons", cornell, with(GiMethod::octree, 2, BounceMethod::photons)},
+      {"path, bounces chosen", cornell, with(GiMethod::path, 0, automatic)},
+      {"none", cornell, with(GiMethod::none, 1, automatic)},
+      {"splat, radiance-cached walls", radiance_cached, with(GiMethod::splat, 2, automatic)},
+      {"octree, radiance-cacheable walls", radiance_cached, with(GiMethod::octree, 1, automatic)},
+      {"splat, glossy walls", glossy, with(GiMethod::splat, 1, automatic)},
+  };
+  for (const Case& c : cases) {
+    GpuContext fresh(test::gpu().device_info());
+    GroupSizes prefetching = fresh.groups();
+    prefetching.prefetch_programs = true;  // a GPU's choice
+    fresh.set_groups(prefetching);
+    render(fresh, c.scene, c.settings);
+    std::string unlisted;
+    for (const std::string& key : fresh.builds_not_prefetched()) unlisted += "\n  " + key;
+    EXPECT_TRUE(unlisted.empty()) << c.what << ": built without a prefetch:" << unlisted;
+  }
 }
 
 TEST(KernelArgs, ASwapOrAMissingArgumentIsAnErrorNamingTheKernel) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <sstream>
 
 #include "cache/host_records.h"
 #include "cache/hsh_rotation.h"
@@ -220,8 +221,8 @@ TEST(RecordKernel, GuidedRaysMatchHostDoublePrecisionRecords) {
 }
 
 // The record trace's shape is the device's choice (a ray per work-item on a GPU, 32 samples on PoCL, launches of at
-// most record_samples_per_launch samples); the reduction sums each record's samples in one fixed order, so every
-// shape must give the same records, bit for bit, guided rays included.
+// most record_samples_per_launch samples, one kernel or the trace split into hits and shading); the reduction sums each
+// record's samples in one fixed order, so every shape must give the same records, bit for bit, guided rays included.
 TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
   const Scene corridor = test::bright_patch_corridor();
   test::TwinScene twin(SceneFrame::fitted(corridor).device_scene(corridor));
@@ -234,28 +235,40 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
   hp.guide_rays = 16;
   hp.guide_clusters = uint32_t(guide.size());
   const GroupSizes device_choice = gpu.groups();
-  auto records_with = [&](size_t samples_per_item, size_t samples_per_launch) {
+  auto records_with = [&](size_t samples_per_item, size_t samples_per_launch, bool split, unsigned bounces) {
     GroupSizes shape = device_choice;
     shape.record_samples_per_item = samples_per_item;
     shape.record_samples_per_launch = samples_per_launch;
+    shape.split_record_trace = split;
     gpu.set_groups(shape);
     RecordPass pass(gpu, twin.device, hp.theta_strata);
     pass.set_light_guide(guide, hp.guide_rays);
+    pass.set_bounces(bounces);
     pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
     gpu.set_groups(device_choice);
     return std::make_pair(pass.download(0, pixels.size()), pass.rays_cast());
   };
-  const auto [expected, expected_rays] = records_with(1, size_t(1) << 21);  // a GPU's shape, one launch
   size_t per_record = size_t(hp.theta_strata) * hp.phi_strata + hp.guide_rays;
-  for (auto [per_item, per_launch] : {std::pair<size_t, size_t>{32, size_t(1) << 21}, {7, 3 * per_record},
-                                      {per_record, per_record / 2}}) {
-    const auto [records, rays] = records_with(per_item, per_launch);
-    EXPECT_EQ(rays, expected_rays) << per_item << " samples per work-item, " << per_launch << " per launch";
-    ASSERT_EQ(records.size(), expected.size());
-    for (size_t i = 0; i < records.size(); ++i)
-      ASSERT_EQ(std::memcmp(&records[i], &expected[i], sizeof(CacheRecord)), 0)
-          << "record " << i << " differs with " << per_item << " samples per work-item, " << per_launch
-          << " per launch";
+  struct Shape {
+    size_t per_item, per_launch;
+    bool split;
+  };
+  // The continued path (3 bounces) takes the shading's every step after the hit.
+  for (unsigned bounces : {1u, 3u}) {
+    const auto [expected, expected_rays] = records_with(1, size_t(1) << 21, false, bounces);  // a GPU's shape
+    for (Shape shape : {Shape{32, size_t(1) << 21, false}, Shape{7, 3 * per_record, false},
+                        Shape{per_record, per_record / 2, false}, Shape{1, size_t(1) << 21, true},
+                        Shape{7, 3 * per_record, true}}) {
+      std::ostringstream label;
+      label << bounces << " bounces, " << shape.per_item << " samples per work-item, " << shape.per_launch
+            << " per launch, " << (shape.split ? "split into hits and shading" : "one kernel");
+      const auto [records, rays] = records_with(shape.per_item, shape.per_launch, shape.split, bounces);
+      EXPECT_EQ(rays, expected_rays) << label.str();
+      ASSERT_EQ(records.size(), expected.size());
+      for (size_t i = 0; i < records.size(); ++i)
+        ASSERT_EQ(std::memcmp(&records[i], &expected[i], sizeof(CacheRecord)), 0)
+            << "record " << i << " differs with " << label.str();
+    }
   }
 }
 

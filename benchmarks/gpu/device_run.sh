@@ -10,7 +10,8 @@
 # Other parts: frames (`bench` at 1920x1080 on every device), issue13 (Sponza 1920x1080 defaults on the GPU from a cold
 # start and warm, the record trace's shapes, and PoCL as the anchor), host (the host's work between passes, against an
 # older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
-# (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm).
+# (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm),
+# wavefront (the record trace split in two kernels, the programs prefetched, against .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -140,6 +141,40 @@ if [[ $parts == *regs* ]]; then
     opt=$([ $n = default ] || echo "-cl-nv-maxrregcount=$n")
     RCSPLAT_BUILD_OPTIONS="$opt" timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 --json $R/regs_sibenik_$n.json \
       | grep -v "^cold_s"
+  done
+  rm -f $work/*.exr
+fi
+
+# The record trace split into a tracing and a shading kernel (RCSPLAT_RECORD_TRACE_SPLIT) and a frame's programs built
+# in parallel at its start (RCSPLAT_PREFETCH_PROGRAMS), against $G/rcsplat_old: NVIDIA's register report of the record
+# kernels; Sponza 1920x1080 defaults alternating old, new one-kernel and new split, twice (bench: warm medians of 3 and
+# the cold frame, builds from scratch); the images' bits; PoCL at 1024x768 as the anchor, prefetch off and on.
+if [[ $parts == *wavefront* ]]; then
+  hd="--width 1920 --height 1080"
+  RCSPLAT_CACHE_DIR=$work/verbose-cache RCSPLAT_BUILD_OPTIONS=-cl-nv-verbose timeout 60 $rc render $S --device NVIDIA \
+    --width 64 --height 48 -o $work/v.exr > $R/nv_verbose.txt 2>&1
+  grep -E "ptxas info|stack frame" $R/nv_verbose.txt |
+    grep -A3 -E "entry function '(trace_record_rays|trace_record_hits|shade_record_hits|reduce_records)'" | head -40
+  for i in 1 2; do
+    timeout 90 $G/rcsplat_old -q bench $S --device NVIDIA $hd --repeats 3 --json $R/wave_old_run$i.json
+    for split in 0 1; do
+      RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 90 $rc -q bench $S --device NVIDIA $hd --repeats 3 \
+        --json $R/wave_split${split}_run$i.json
+    done
+  done
+  timeout 60 $G/rcsplat_old -q render $S --device NVIDIA $hd -o $work/old.exr > /dev/null
+  for split in 0 1; do
+    RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 60 $rc -q render $S --device NVIDIA $hd -o $work/split$split.exr \
+      --json $R/wave_render_split$split.json > /dev/null
+  done
+  cmp -s $work/split0.exr $work/split1.exr && echo "split: same bits as one kernel" || echo "split: bits DIFFER"
+  cmp -s $work/split0.exr $work/old.exr && echo "new: same bits as old" || echo "new: bits DIFFER from old"
+  $rc compare $work/split1.exr $work/old.exr --json $R/wave_split_vs_old.json | sed "s/^/split vs old: /"
+  timeout 100 $G/rcsplat_old -q bench $S --device $cpu --width 1024 --height 768 --repeats 1 --json $R/wave_old_pocl.json
+  for conf in "0 0" "1 0" "0 1"; do
+    set -- $conf
+    RCSPLAT_RECORD_TRACE_SPLIT=$1 RCSPLAT_PREFETCH_PROGRAMS=$2 timeout 100 $rc -q bench $S --device $cpu --width 1024 \
+      --height 768 --repeats 1 --json $R/wave_pocl_split$1_prefetch$2.json
   done
   rm -f $work/*.exr
 fi

@@ -6,8 +6,10 @@ void GBufferView::bind(NamedKernel& kernel) const {
   kernel.set_buffer<GBufferSample>("gbuffer", samples).set_buffer<CameraParams>("camera", camera);
 }
 
+ProgramRequest GBufferPass::program(const DeviceScene& scene) { return {"gbuffer.cl", scene.defines()}; }
+
 GBufferPass::GBufferPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("gbuffer.cl", "gbuffer", scene.defines())) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene), "gbuffer")) {}
 
 void GBufferPass::run(const CameraParams& camera) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);

@@ -7,17 +7,18 @@
 namespace rcsplat {
 namespace {
 
+}  // namespace
+
 // The reduction keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather) {
+ProgramRequest RecordPass::program(const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                                   bool photon_gather) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
   KernelDefines defines = scene.defines_with("STORE_STRATA", store_strata);
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
   defines["PHOTON_GATHER"] = photon_gather ? "1" : "0";
-  return defines;
+  return {"records.cl", defines};
 }
-
-}  // namespace
 
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
                        const PhotonMapPass* photon_map)
@@ -26,10 +27,12 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
       photon_map_(photon_map) {
-  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_map != nullptr);
-  aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
-  trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
-  reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
+  const ProgramRequest built = program(scene, theta_strata, store_strata, photon_map != nullptr);
+  aim_ = gpu.kernel(built, "aim_record_guides");
+  trace_ = gpu.kernel(built, "trace_record_rays");
+  trace_hits_ = gpu.kernel(built, "trace_record_hits");
+  shade_hits_ = gpu.kernel(built, "shade_record_hits");
+  reduce_ = gpu.kernel(built, "reduce_records");
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
   guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
   reserve(1024);
@@ -69,6 +72,9 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
        store_strata_ ? batch * samples_per_record : launch_samples, store_strata_ ? "record strata" : "record samples");
   grow(sample_rays_, sample_rays_capacity_, records * samples_per_record, sizeof(cl_uint), launch_samples,
        "record samples");
+  if (gpu_.groups().split_record_trace)
+    grow(sample_hits_, sample_hits_capacity_, records * samples_per_record, sizeof(HitDesc), launch_samples,
+         "record samples");
 }
 
 void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates,
@@ -80,16 +86,30 @@ void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& ca
       .set_buffer<RecordGuideCones>("record_guides", record_guides_);
   aim_.launch(batch.launch_count, gpu_.groups().per_item);
 
-  scene_.bind(trace_);
-  if (photon_map_) photon_map_->bind(trace_);
-  gbuffer.bind(trace_);
-  trace_.set_buffer<cl_uint>("candidates", candidates)
-      .set("batch", batch)
-      .set_buffer<RecordGuideCones>("record_guides", record_guides_)
-      .set_buffer<cl_float4>("samples", samples_)
-      .set_buffer<cl_uint>("sample_rays", sample_rays_);
-  const size_t items_per_record = (samples_per_record + batch.samples_per_item - 1) / batch.samples_per_item;
-  trace_.launch(size_t(batch.launch_count) * items_per_record, gpu_.groups().traversal);
+  const size_t items = size_t(batch.launch_count) *
+                       ((samples_per_record + batch.samples_per_item - 1) / batch.samples_per_item);
+  // Parameters are set in the kernels' order: scene, photon map (shading only), G-buffer, the launch's inputs.
+  auto bind_inputs = [&](NamedKernel& kernel, bool shades) -> NamedKernel& {
+    scene_.bind(kernel);
+    if (shades && photon_map_) photon_map_->bind(kernel);
+    gbuffer.bind(kernel);
+    return kernel.set_buffer<cl_uint>("candidates", candidates)
+        .set("batch", batch)
+        .set_buffer<RecordGuideCones>("record_guides", record_guides_);
+  };
+  if (gpu_.groups().split_record_trace) {
+    bind_inputs(trace_hits_, false).set_buffer<HitDesc>("hits", sample_hits_).launch(items, gpu_.groups().traversal);
+    bind_inputs(shade_hits_, true)
+        .set_buffer<HitDesc>("hits", sample_hits_)
+        .set_buffer<cl_float4>("samples", samples_)
+        .set_buffer<cl_uint>("sample_rays", sample_rays_)
+        .launch(items, gpu_.groups().traversal);
+  } else {
+    bind_inputs(trace_, true)
+        .set_buffer<cl_float4>("samples", samples_)
+        .set_buffer<cl_uint>("sample_rays", sample_rays_)
+        .launch(items, gpu_.groups().traversal);
+  }
 
   gbuffer.bind(reduce_);
   reduce_.set_buffer<cl_uint>("candidates", candidates)

@@ -19,6 +19,9 @@ float adaptive_error_score(const CacheRecord& record, const HemisphereParams& he
 
 class RecordPass {
  public:
+  // What the constructor builds (GpuContext::prefetch); photon_gather: constructed with a photon map.
+  static ProgramRequest program(const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                                bool photon_gather);
   // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
   // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them). With a photon
   // map (--bounce-method photons) the records' rays take the bounces after the first from it (kernels/photon_map.h);
@@ -62,13 +65,15 @@ class RecordPass {
   unsigned theta_capacity_;
   bool store_strata_;
   const PhotonMapPass* photon_map_;
-  NamedKernel aim_, trace_, reduce_;
+  NamedKernel aim_, trace_, trace_hits_, shade_hits_, reduce_;
   cl::Buffer records_, ray_total_, guide_;
-  // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast. With store_strata,
-  // samples_ is the whole batch's strata (strata()).
-  cl::Buffer record_guides_, samples_, sample_rays_;
+  // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast, and with a split trace
+  // (GroupSizes::split_record_trace) each sample's hit. With store_strata, samples_ is the whole batch's strata
+  // (strata()).
+  cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
-  size_t capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0;
+  size_t capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
+         sample_hits_capacity_ = 0;
 };
 
 }  // namespace rcsplat
