@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include "cl/device_scene.h"
-#include "corridor_scene.h"
 #include "passes/ray_cast_pass.h"
 #include "passes/splat_pass.h"
 #include "passes/photon_map_pass.h"
@@ -38,7 +37,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   settings.photon_paths = 1024;
   settings.pixel_samples = 4;
   render(gpu, scene, settings);
-  // The record trace split into hits and shading (GroupSizes::split_record_trace), with the photon map too.
+  // The record trace the device's other way (GroupSizes::split_record_trace: split into hits and shading on a CPU
+  // device, one kernel on a GPU), with the photon map too.
   const GroupSizes device_choice = gpu.groups();
   GroupSizes split = device_choice;
   split.split_record_trace = !device_choice.split_record_trace;
@@ -76,54 +76,6 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   }
   NamedKernel sample = gpu.kernel("splat.cl", "splat_records");
   EXPECT_TRUE(sample.bound_by_name()) << "the test device reports no argument names";
-}
-
-// A frame starts building every program it will need at once (GpuContext::prefetch; render/renderer.cpp
-// frame_programs says which). Each configuration renders on a fresh context, all of whose builds must have been
-// prefetched: a pass that comes to build something the list leaves out shows here.
-TEST(KernelArgs, AFrameBuildsOnlyProgramsItPrefetched) {
-  RenderSettings small;
-  small.width = small.height = 32;
-  small.light_samples = 4;
-  small.cache.theta_strata = 4;
-  small.cache.phi_strata = 8;
-  small.path.samples = 2;
-  auto with = [&](GiMethod gi, unsigned bounces, BounceMethod method) {
-    RenderSettings settings = small;
-    settings.gi = gi;
-    settings.bounces = bounces;
-    settings.bounce_method = method;
-    return settings;
-  };
-  const Scene cornell = make_cornell_box();
-  const Scene radiance_cached = test::bright_patch_corridor(0.6f), glossy = test::bright_patch_corridor(0.2f);
-  struct Case {
-    const char* what;
-    const Scene& scene;
-    RenderSettings settings;
-  };
-  const BounceMethod automatic = BounceMethod::automatic;
-  const std::vector<Case> cases = {
-      {"splat, bounces chosen", cornell, with(GiMethod::splat, 0, automatic)},
-      {"splat, one bounce", cornell, with(GiMethod::splat, 1, automatic)},
-      {"splat, paths continued", cornell, with(GiMethod::splat, 3, BounceMethod::path)},
-      {"octree, photons", cornell, with(GiMethod::octree, 2, BounceMethod::photons)},
-      {"path, bounces chosen", cornell, with(GiMethod::path, 0, automatic)},
-      {"none", cornell, with(GiMethod::none, 1, automatic)},
-      {"splat, radiance-cached walls", radiance_cached, with(GiMethod::splat, 2, automatic)},
-      {"octree, radiance-cacheable walls", radiance_cached, with(GiMethod::octree, 1, automatic)},
-      {"splat, glossy walls", glossy, with(GiMethod::splat, 1, automatic)},
-  };
-  for (const Case& c : cases) {
-    GpuContext fresh(test::gpu().device_info());
-    GroupSizes prefetching = fresh.groups();
-    prefetching.prefetch_programs = true;  // a GPU's choice
-    fresh.set_groups(prefetching);
-    render(fresh, c.scene, c.settings);
-    std::string unlisted;
-    for (const std::string& key : fresh.builds_not_prefetched()) unlisted += "\n  " + key;
-    EXPECT_TRUE(unlisted.empty()) << c.what << ": built without a prefetch:" << unlisted;
-  }
 }
 
 TEST(KernelArgs, ASwapOrAMissingArgumentIsAnErrorNamingTheKernel) {

@@ -182,7 +182,7 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
   if (info_.device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) {
     groups_.per_record = 32;
     groups_.record_samples_per_item = 1;
-    groups_.prefetch_programs = true;
+    groups_.split_record_trace = true;
   }
   // For measuring the record trace's shape on a device (benchmarks/gpu/device_run.sh): every shape gives the same
   // records (RecordKernel.SameRecordsWhateverTheTraceShape), only the time differs.
@@ -194,16 +194,11 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
                   "\"");
     groups_.record_samples_per_item = value;
   }
-  // The same for the record trace's split and the programs' prefetch (0 or 1).
-  auto switch_from_environment = [](const char* name, bool& value) {
-    const char* env = std::getenv(name);
-    if (!env) return;
+  if (const char* env = std::getenv("RCSPLAT_RECORD_TRACE_SPLIT")) {  // the same for the trace's split: 0 or 1
     if (std::string(env) != "0" && std::string(env) != "1")
-      throw Error(std::string(name) + ": expected 0 or 1, got \"" + env + "\"");
-    value = std::string(env) == "1";
-  };
-  switch_from_environment("RCSPLAT_RECORD_TRACE_SPLIT", groups_.split_record_trace);
-  switch_from_environment("RCSPLAT_PREFETCH_PROGRAMS", groups_.prefetch_programs);
+      throw Error(std::string("RCSPLAT_RECORD_TRACE_SPLIT: expected 0 or 1, got \"") + env + "\"");
+    groups_.split_record_trace = std::string(env) == "1";
+  }
   // For looking inside a device's compiler (NVIDIA's -cl-nv-verbose prints registers and spills): extra options, and
   // each build's log printed.
   if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS")) extra_build_options_ = extra;
@@ -218,57 +213,22 @@ cl::Buffer GpuContext::device_table(const std::string& name, const std::function
 // Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.
 constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
 
-std::pair<std::string, std::string> GpuContext::program_key(const std::string& file,
-                                                           const KernelDefines& defines) const {
+cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
   std::string options = kBaseBuildOptions;
   for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
   if (!extra_build_options_.empty()) options += " " + extra_build_options_;
   if (!cold_build_nonce_.empty()) options += " -D RCSPLAT_COLD_BUILD=" + cold_build_nonce_;
-  return {file + "|" + options, options};
-}
-
-cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
-  const auto [key, options] = program_key(file, defines);
+  std::string key = file + "|" + options;
   auto found = programs_.find(key);
   if (found != programs_.end()) return *found->second;
-  auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<cl::Program> built;
-  auto building = prefetching_.find(key);
-  if (building != prefetching_.end()) {
-    std::future<std::unique_ptr<cl::Program>> pending = std::move(building->second);
-    prefetching_.erase(building);
-    built = pending.get();  // the wait counts as build time: the frame waited for it
-  } else {
-    not_prefetched_.push_back(key);
-    built = compile(file, resolve_kernel_source(file), options);
-  }
-  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return keep(key, std::move(built));
-}
-
-void GpuContext::prefetch(const std::vector<ProgramRequest>& requests) {
-  if (!groups_.prefetch_programs) return;
-  auto start = std::chrono::steady_clock::now();
-  for (const ProgramRequest& request : requests) {
-    auto [key, options] = program_key(request.file, request.defines);
-    if (programs_.count(key) || prefetching_.count(key)) continue;
-    std::string source = resolve_kernel_source(request.file);
-    prefetching_.emplace(key, std::async(std::launch::async, [this, file = request.file, source = std::move(source),
-                                                              options = std::move(options)] {
-                           return compile(file, source, options);
-                         }));
-  }
-  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return build(key, file, resolve_kernel_source(file), options);
 }
 
 cl::Program& GpuContext::program_from_text(const std::string& label, const std::string& text) {
   std::string key = label + "|" + text;
   auto found = programs_.find(key);
   if (found != programs_.end()) return *found->second;
-  auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<cl::Program> built = compile(label, resolve_kernel_text(label, text), kBaseBuildOptions);
-  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return keep(key, std::move(built));
+  return build(key, label, resolve_kernel_text(label, text), kBaseBuildOptions);
 }
 
 NamedKernel GpuContext::kernel(const std::string& file, const std::string& name, const KernelDefines& defines) {
@@ -287,12 +247,9 @@ std::set<std::string> GpuContext::built_kernel_names() const {
   return names;
 }
 
-cl::Program& GpuContext::keep(const std::string& key, std::unique_ptr<cl::Program> program) {
-  return *programs_.emplace(key, std::move(program)).first->second;
-}
-
-std::unique_ptr<cl::Program> GpuContext::compile(const std::string& file, const std::string& source,
-                                                 const std::string& options) const {
+cl::Program& GpuContext::build(const std::string& key, const std::string& file, const std::string& source,
+                               const std::string& options) {
+  auto start = std::chrono::steady_clock::now();
   // The on-disk cache is keyed by everything that changes the binary: device, driver, source and options.
   std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
   fs::path cache_dir = binary_cache_dir();
@@ -339,7 +296,8 @@ std::unique_ptr<cl::Program> GpuContext::compile(const std::string& file, const 
       }
     }
   }
-  return program;
+  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return *programs_.emplace(key, std::move(program)).first->second;
 }
 
 bool is_out_of_memory(cl_int code) {

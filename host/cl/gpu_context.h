@@ -3,7 +3,6 @@
 #include <CL/opencl.hpp>
 
 #include <functional>
-#include <future>
 #include <map>
 #include <memory>
 #include <set>
@@ -19,12 +18,6 @@ namespace rcsplat {
 // Compile-time switches for a program: "-D NAME=VALUE" pairs, chosen from the scene by the caller.
 using KernelDefines = std::map<std::string, std::string>;
 
-// A program as a pass builds it: kernels/<file> with its switches (each pass says which, in one place).
-struct ProgramRequest {
-  std::string file;
-  KernelDefines defines;
-};
-
 // Work-group sizes by kind of kernel, chosen for the device at run time.
 struct GroupSizes {
   size_t traversal = 64;  // a ray (or pixel) per work-item, tracing: PoCL runs 15% slower when it picks the size
@@ -32,13 +25,10 @@ struct GroupSizes {
   // Samples of one record a work-item of the record trace takes: a GPU wants a work-item per ray; PoCL's CPU device
   // ran Sponza's record pass 14% slower that way than with 32 (the record's site and cones loaded once for all).
   size_t record_samples_per_item = 32;
-  // The record trace in two kernels, one tracing each ray to its hit and one shading the hits (kernels/records.cl),
-  // rather than one that does both: the same samples, with fewer registers per kernel.
+  // The record trace in two kernels, one tracing each ray to its closest hit and one shading the hits
+  // (kernels/records.cl), rather than one doing both: the same samples. On an H100 (NVIDIA's compiler report) the one
+  // kernel used 225 registers, the two 128 and 229, and the record pass took 0.58x the time; PoCL is not faster so.
   bool split_record_trace = false;
-  // A frame's programs built on threads of their own at its start (GpuContext::prefetch): a GPU computes while the
-  // host's cores build, but on a CPU device the builds take the cores its kernels run on (PoCL, 2-core VM: a cold
-  // Cornell box frame 5-10% slower, its builds no shorter).
-  bool prefetch_programs = false;
   // Samples a launch of the record trace takes at most (20 bytes each kept until reduced): 2^21 fills any GPU many
   // times over and keeps 40 MiB.
   size_t record_samples_per_launch = size_t(1) << 21;
@@ -63,18 +53,6 @@ class GpuContext {
 
   // Kernel `name` of kernels/<file>, its arguments set by name.
   NamedKernel kernel(const std::string& file, const std::string& name, const KernelDefines& defines = {});
-  NamedKernel kernel(const ProgramRequest& request, const std::string& name) {
-    return kernel(request.file, name, request.defines);
-  }
-  // Starts building these programs on threads of their own, so that the passes that ask for them later find them
-  // built or building (a frame's programs are independent of each other, and a cold start built them one after
-  // another). One already built or building is skipped; asking for one still building waits for it, and its build
-  // error, if any, is thrown then. A program never asked for only cost a thread its build. Only where the device's
-  // GroupSizes::prefetch_programs says so; elsewhere nothing.
-  void prefetch(const std::vector<ProgramRequest>& requests);
-  // Programs built since this context was made that no prefetch had started (tests: a frame's list must not drift
-  // from what its passes build).
-  const std::vector<std::string>& builds_not_prefetched() const { return not_prefetched_; }
   // A program from source text (its includes resolved from kernels/), for tests of shared kernel code.
   cl::Program& program_from_text(const std::string& label, const std::string& text);
 
@@ -127,12 +105,8 @@ class GpuContext {
   }
 
  private:
-  // The program-cache key and build options of kernels/<file> with these switches.
-  std::pair<std::string, std::string> program_key(const std::string& file, const KernelDefines& defines) const;
-  // Builds (or loads from the on-disk cache) a program; thread-safe, so that prefetch can run it on other threads.
-  std::unique_ptr<cl::Program> compile(const std::string& label, const std::string& source,
-                                       const std::string& options) const;
-  cl::Program& keep(const std::string& key, std::unique_ptr<cl::Program> program);
+  cl::Program& build(const std::string& key, const std::string& label, const std::string& source,
+                     const std::string& options);
 
   DeviceInfo info_;
   cl::Context context_;
@@ -145,10 +119,6 @@ class GpuContext {
   std::string cold_build_nonce_;
   std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
-  std::vector<std::string> not_prefetched_;
-  // Builds under way on other threads, by program-cache key; declared last so that they finish before the context
-  // and device they build for are released.
-  std::map<std::string, std::future<std::unique_ptr<cl::Program>>> prefetching_;
 };
 
 // Where kernel sources come from: the embedded copies, or a folder when RCSPLAT_KERNEL_DIR is set (developer mode:

@@ -30,9 +30,7 @@ double BrdfTable::worst_captured_energy(size_t material, int order_used) const {
   return worst;
 }
 
-ProgramRequest BrdfTablePass::program() { return {"brdf_table.cl", {}}; }
-
-BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel(program(), "project_brdf")) {}
+BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel("brdf_table.cl", "project_brdf")) {}
 
 BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int order, int angle_count,
                                  unsigned samples, unsigned seed) {

@@ -29,7 +29,6 @@ struct BrdfTable {
 
 class BrdfTablePass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   explicit BrdfTablePass(GpuContext& gpu);
   // About `samples` reflections per (material, angle), in stratified chunks of 32 x 32; deterministic for a seed.
   BrdfTable compute(const std::vector<BrdfMaterial>& materials, int order, int angle_count, unsigned samples,

@@ -4,13 +4,9 @@
 
 namespace rcsplat {
 
-ProgramRequest ComposePass::program(const DeviceScene& scene, bool radiance_cached) {
-  return {"compose.cl", scene.defines_with("RADIANCE_CACHED", radiance_cached)};
-}
-
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
     : gpu_(gpu),
-      kernel_(gpu.kernel(program(scene, radiance_cached), "compose")),
+      kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))),
       specular_albedo_table_(specular_albedo_table(gpu, scene.has_specular_brdf())) {}
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,

@@ -11,7 +11,6 @@ namespace rcsplat {
 
 class ComposePass {
  public:
-  static ProgramRequest program(const DeviceScene& scene, bool radiance_cached);  // (GpuContext::prefetch)
   // radiance_cached: the LOBE_HSH pixels' lobes come from the radiance cache, not from GlossyPass.
   ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached);
   // irradiance: float4 per pixel (E.rgb, weight; 0 where uncovered); direct: DirectPass's RGBA; glossy: GlossyPass's

@@ -2,10 +2,8 @@
 
 namespace rcsplat {
 
-ProgramRequest DirectPass::program(const DeviceScene& scene) { return {"direct.cl", scene.defines()}; }
-
 DirectPass::DirectPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene), "direct_light")) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("direct.cl", "direct_light", scene.defines())) {}
 
 void DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {

@@ -8,7 +8,6 @@ namespace rcsplat {
 
 class DirectPass {
  public:
-  static ProgramRequest program(const DeviceScene& scene);  // what the constructor builds (GpuContext::prefetch)
   DirectPass(GpuContext& gpu, const DeviceScene& scene);
   // strata_per_axis^2 stratified samples on the emissive triangles per pixel; seed varies the sample pattern.
   void run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed);

@@ -6,10 +6,8 @@ void GBufferView::bind(NamedKernel& kernel) const {
   kernel.set_buffer<GBufferSample>("gbuffer", samples).set_buffer<CameraParams>("camera", camera);
 }
 
-ProgramRequest GBufferPass::program(const DeviceScene& scene) { return {"gbuffer.cl", scene.defines()}; }
-
 GBufferPass::GBufferPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene), "gbuffer")) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("gbuffer.cl", "gbuffer", scene.defines())) {}
 
 void GBufferPass::run(const CameraParams& camera) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);

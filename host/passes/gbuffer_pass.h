@@ -20,7 +20,6 @@ struct GBufferView {
 
 class GBufferPass {
  public:
-  static ProgramRequest program(const DeviceScene& scene);  // what the constructor builds (GpuContext::prefetch)
   GBufferPass(GpuContext& gpu, const DeviceScene& scene);
   void run(const CameraParams& camera);  // blocks until done
   const GBufferView& view() const { return view_; }

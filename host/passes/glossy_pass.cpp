@@ -8,12 +8,10 @@
 
 namespace rcsplat {
 
-ProgramRequest GlossyPass::program(const DeviceScene& scene, bool sample_radiance_cacheable) {
-  return {"glossy.cl", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)};
-}
-
 GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene, sample_radiance_cacheable), "glossy_indirect")) {}
+    : gpu_(gpu),
+      scene_(scene),
+      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable))) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
                      unsigned record_strata, unsigned record_guide_rays, unsigned bounces) {

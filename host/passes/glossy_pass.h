@@ -13,7 +13,6 @@ namespace rcsplat {
 
 class GlossyPass {
  public:
-  static ProgramRequest program(const DeviceScene& scene, bool sample_radiance_cacheable);  // (GpuContext::prefetch)
   // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
   GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
   // samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; with a light guide's clusters, half

@@ -57,13 +57,11 @@ std::vector<float> hsh_column_table(int order, unsigned columns) {
   return table;
 }
 
-ProgramRequest HshRecordPass::program() { return {"hsh_records.cl", {}}; }
-
 HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
     : gpu_(gpu),
       order_(order),
-      project_(gpu.kernel(program(), "project_radiance_records")),
-      tilt_(gpu.kernel(program(), "tilt_radiance_records")) {
+      project_(gpu.kernel("hsh_records.cl", "project_radiance_records")),
+      tilt_(gpu.kernel("hsh_records.cl", "tilt_radiance_records")) {
   if (order < 1 || order > HSH_MAX_ORDER)
     throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER));
   const HshRotationDerivatives& d = hsh_rotation_derivatives(order);

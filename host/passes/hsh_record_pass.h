@@ -19,7 +19,6 @@ std::vector<float> hsh_column_table(int order, unsigned columns);
 
 class HshRecordPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   HshRecordPass(GpuContext& gpu, int order);
 
   // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each), their

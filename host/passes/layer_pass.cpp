@@ -12,11 +12,9 @@ LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_heig
       side_(std::max(1u, side)),
       width_(out_width),
       height_(out_height),
-      surface_(gpu.kernel(program(), "resolve_surface")),
-      rgba_(gpu.kernel(program(), "resolve_rgba")),
-      counts_(gpu.kernel(program(), "resolve_record_counts")) {}
-
-ProgramRequest LayerPass::program() { return {"layers.cl", {}}; }
+      surface_(gpu.kernel("layers.cl", "resolve_surface")),
+      rgba_(gpu.kernel("layers.cl", "resolve_rgba")),
+      counts_(gpu.kernel("layers.cl", "resolve_record_counts")) {}
 
 cl::Buffer& LayerPass::rgba_out() {
   // Made on first use, at the frame's end: the passes' own buffers peak before it.

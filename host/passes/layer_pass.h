@@ -12,7 +12,6 @@ namespace rcsplat {
 
 class LayerPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   // A frame of out_width x out_height pixels whose G-buffer is side times as wide and high.
   LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height);
 

@@ -27,10 +27,8 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
   return power;
 }
 
-ProgramRequest LightGuidePass::program(const DeviceScene& scene) { return {"light_guide.cl", scene.defines()}; }
-
 LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene), "shoot_photons")) {
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("light_guide.cl", "shoot_photons", scene.defines())) {
   std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
   // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
   if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);

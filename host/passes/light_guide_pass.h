@@ -12,7 +12,6 @@ namespace rcsplat {
 
 class LightGuidePass {
  public:
-  static ProgramRequest program(const DeviceScene& scene);  // what the constructor builds (GpuContext::prefetch)
   // sky_power > 0: the environment's smooth part is a source too, of that power (the bounce probe's; see PhotonParams).
   LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power = 0.0);
 

@@ -4,10 +4,8 @@
 
 namespace rcsplat {
 
-ProgramRequest PathPass::program(const DeviceScene& scene) { return {"path.cl", scene.defines()}; }
-
 PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(program(scene), "path_indirect")) {
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("path.cl", "path_indirect", scene.defines())) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
 }
 

@@ -11,7 +11,6 @@ namespace rcsplat {
 
 class PathPass {
  public:
-  static ProgramRequest program(const DeviceScene& scene);  // what the constructor builds (GpuContext::prefetch)
   PathPass(GpuContext& gpu, const DeviceScene& scene);
 
   // Starts over for a frame of total_samples per pixel; stratified draws them from a grid over the hemisphere.

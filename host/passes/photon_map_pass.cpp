@@ -10,8 +10,6 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
   return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
-ProgramRequest PhotonMapPass::program() { return {"photon_map.cl", {}}; }
-
 PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf)
     : gpu_(gpu), params_(grids.lookup.params), specular_albedo_(specular_albedo_table(gpu, specular_brdf)) {
   photons_ = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
@@ -29,7 +27,7 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool 
   cl::Buffer patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
                                                                            : grids.patches.bucket_starts,
                                         CL_MEM_READ_ONLY, "photon map surface patch buckets");
-  NamedKernel estimate = gpu.kernel(program(), "estimate_photon_radiance");
+  NamedKernel estimate = gpu.kernel("photon_map.cl", "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", all_photons)
       .set_buffer<cl_uint>("all_buckets", all_buckets)
       .set("all_grid", grids.all.params)
@@ -66,7 +64,7 @@ std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& 
                                                   const std::vector<cl_float4>& normals) {
   cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "photon lookups"), n = gpu_.upload(normals, CL_MEM_READ_ONLY, "photon lookups");
   cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
-  NamedKernel look_up = gpu_.kernel(program(), "look_up_photon_radiance");
+  NamedKernel look_up = gpu_.kernel("photon_map.cl", "look_up_photon_radiance", {});
   bind(look_up);
   look_up.set_buffer<cl_float4>("points", p)
       .set_buffer<cl_float4>("normals", n)

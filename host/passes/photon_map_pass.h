@@ -17,7 +17,6 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
 
 class PhotonMapPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done. specular_brdf: the
   // scene has a specular lobe, whose albedo table the lookups then read (kernels/bounce.h photon_gather).
   PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf);

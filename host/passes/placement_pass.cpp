@@ -6,16 +6,14 @@
 
 namespace rcsplat {
 
-ProgramRequest PlacementPass::program() { return {"placement.cl", {}}; }
-
 PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
     : gpu_(gpu),
       gbuffer_(gbuffer),
-      covered_kernel_(gpu.kernel(program(), "mark_covered")),
-      find_(gpu.kernel(program(), "find_uncovered")),
-      mark_(gpu.kernel(program(), "mark_records")),
-      clamp_(gpu.kernel(program(), "clamp_neighbours")),
-      apply_(gpu.kernel(program(), "apply_radii")) {
+      covered_kernel_(gpu.kernel("placement.cl", "mark_covered")),
+      find_(gpu.kernel("placement.cl", "find_uncovered")),
+      mark_(gpu.kernel("placement.cl", "mark_records")),
+      clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
+      apply_(gpu.kernel("placement.cl", "apply_radii")) {
   size_t pixels = gbuffer.pixel_count();
   candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint), "placement candidates");
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "placement");

@@ -11,7 +11,6 @@ namespace rcsplat {
 
 class PlacementPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   PlacementPass(GpuContext& gpu, const GBufferView& gbuffer);
 
   // Compacts the pixels with geometry on the grid of this spacing that hold no record and that no record among

@@ -4,16 +4,14 @@
 
 namespace rcsplat {
 
-ProgramRequest RadianceSplatPass::program() { return {"radiance_splat.cl", {}}; }
-
 RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
                                      const std::vector<int>& table_row_of_material)
     : gpu_(gpu),
-      keep_(gpu.kernel(program(), "keep_radiance_cached_pixels")),
-      clear_(gpu.kernel(program(), "clear_radiance_sums")),
-      splat_(gpu.kernel(program(), "splat_radiance")),
-      resolve_(gpu.kernel(program(), "resolve_radiance")),
-      fill_(gpu.kernel(program(), "fill_uncovered_radiance")) {
+      keep_(gpu.kernel("radiance_splat.cl", "keep_radiance_cached_pixels")),
+      clear_(gpu.kernel("radiance_splat.cl", "clear_radiance_sums")),
+      splat_(gpu.kernel("radiance_splat.cl", "splat_radiance")),
+      resolve_(gpu.kernel("radiance_splat.cl", "resolve_radiance")),
+      fill_(gpu.kernel("radiance_splat.cl", "fill_uncovered_radiance")) {
   std::vector<float> lobe = table.lobe;
   if (lobe.empty()) lobe.push_back(0.0f);
   std::vector<int> rows = table_row_of_material;

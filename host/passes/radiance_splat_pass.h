@@ -14,7 +14,6 @@ namespace rcsplat {
 
 class RadianceSplatPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   // table: the lobe table of the frame's order; table_row_of_material: its row for each scene material, -1 for
   // materials it does not hold.
   RadianceSplatPass(GpuContext& gpu, const BrdfTable& table, const std::vector<int>& table_row_of_material);

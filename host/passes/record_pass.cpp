@@ -7,18 +7,17 @@
 namespace rcsplat {
 namespace {
 
-}  // namespace
-
 // The reduction keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-ProgramRequest RecordPass::program(const DeviceScene& scene, unsigned theta_strata, bool store_strata,
-                                   bool photon_gather) {
+KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
   KernelDefines defines = scene.defines_with("STORE_STRATA", store_strata);
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
   defines["PHOTON_GATHER"] = photon_gather ? "1" : "0";
-  return {"records.cl", defines};
+  return defines;
 }
+
+}  // namespace
 
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
                        const PhotonMapPass* photon_map)
@@ -27,12 +26,12 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
       photon_map_(photon_map) {
-  const ProgramRequest built = program(scene, theta_strata, store_strata, photon_map != nullptr);
-  aim_ = gpu.kernel(built, "aim_record_guides");
-  trace_ = gpu.kernel(built, "trace_record_rays");
-  trace_hits_ = gpu.kernel(built, "trace_record_hits");
-  shade_hits_ = gpu.kernel(built, "shade_record_hits");
-  reduce_ = gpu.kernel(built, "reduce_records");
+  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_map != nullptr);
+  aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
+  trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
+  trace_hits_ = gpu.kernel("records.cl", "trace_record_hits", defines);
+  shade_hits_ = gpu.kernel("records.cl", "shade_record_hits", defines);
+  reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
   guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
   reserve(1024);

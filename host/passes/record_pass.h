@@ -19,9 +19,6 @@ float adaptive_error_score(const CacheRecord& record, const HemisphereParams& he
 
 class RecordPass {
  public:
-  // What the constructor builds (GpuContext::prefetch); photon_gather: constructed with a photon map.
-  static ProgramRequest program(const DeviceScene& scene, unsigned theta_strata, bool store_strata,
-                                bool photon_gather);
   // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
   // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them). With a photon
   // map (--bounce-method photons) the records' rays take the bounces after the first from it (kernels/photon_map.h);

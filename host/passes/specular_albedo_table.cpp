@@ -2,8 +2,6 @@
 
 namespace rcsplat {
 
-ProgramRequest specular_albedo_program() { return {"specular_albedo.cl", {}}; }
-
 cl::Buffer specular_albedo_table(GpuContext& gpu, bool fill) {
   constexpr size_t kEntries = SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
   auto unfilled = [&] { return gpu.buffer(CL_MEM_READ_WRITE, kEntries * sizeof(cl_float2), "specular albedo table"); };
@@ -12,7 +10,7 @@ cl::Buffer specular_albedo_table(GpuContext& gpu, bool fill) {
   // photon map and every later frame.
   return gpu.device_table("specular albedo", [&] {
     cl::Buffer table = unfilled();
-    NamedKernel kernel = gpu.kernel(specular_albedo_program(), "specular_albedo_table");
+    NamedKernel kernel = gpu.kernel("specular_albedo.cl", "specular_albedo_table", {});
     kernel.set_buffer<cl_float2>("table", table);
     kernel.launch(kEntries, gpu.groups().per_item);
     gpu.queue().finish();

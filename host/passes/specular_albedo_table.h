@@ -9,7 +9,5 @@ namespace rcsplat {
 // lobe), once per GpuContext (GpuContext::device_table); otherwise a new buffer left unfilled: kernels compiled
 // without HAS_SPECULAR_BRDF never read it. Blocks until done.
 cl::Buffer specular_albedo_table(GpuContext& gpu, bool fill);
-// What filling it builds (GpuContext::prefetch).
-ProgramRequest specular_albedo_program();
 
 }  // namespace rcsplat

@@ -6,15 +6,13 @@
 
 namespace rcsplat {
 
-ProgramRequest SplatPass::program() { return {"splat.cl", {}}; }
-
 SplatPass::SplatPass(GpuContext& gpu)
     : gpu_(gpu),
-      clear_(gpu.kernel(program(), "clear_accumulators")),
-      max_irradiance_(gpu.kernel(program(), "max_record_irradiance")),
-      splat_(gpu.kernel(program(), "splat_records")),
-      resolve_(gpu.kernel(program(), "resolve_indirect")),
-      fill_(gpu.kernel(program(), "fill_uncovered")) {
+      clear_(gpu.kernel("splat.cl", "clear_accumulators")),
+      max_irradiance_(gpu.kernel("splat.cl", "max_record_irradiance")),
+      splat_(gpu.kernel("splat.cl", "splat_records")),
+      resolve_(gpu.kernel("splat.cl", "resolve_indirect")),
+      fill_(gpu.kernel("splat.cl", "fill_uncovered")) {
   max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
 }
 

@@ -12,7 +12,6 @@ namespace rcsplat {
 
 class SplatPass {
  public:
-  static ProgramRequest program();  // what the constructor builds (GpuContext::prefetch)
   explicit SplatPass(GpuContext& gpu);
 
   // Clears the sums and splats records 0 .. count - 1 at accuracy a, at the frame's fixed-point scale; blocks until

@@ -11,21 +11,9 @@
 #include "cl/device_scene.h"
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
-#include "passes/brdf_table_pass.h"
-#include "passes/compose_pass.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
-#include "passes/glossy_pass.h"
-#include "passes/hsh_record_pass.h"
 #include "passes/layer_pass.h"
-#include "passes/light_guide_pass.h"
-#include "passes/path_pass.h"
-#include "passes/photon_map_pass.h"
-#include "passes/placement_pass.h"
-#include "passes/radiance_splat_pass.h"
-#include "passes/record_pass.h"
-#include "passes/specular_albedo_table.h"
-#include "passes/splat_pass.h"
 #include "render/indirect.h"
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
@@ -77,46 +65,6 @@ void check_frame_fits(int width, int height, unsigned side, const DeviceInfo& de
   if (host_memory > 0.0 && host_bytes > host_memory)
     throw Error("out of host memory: a " + frame + " frame needs at least " + gib(host_bytes) +
                 " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
-}
-
-// The programs a frame of this scene with these settings builds, for GpuContext::prefetch to start at once. Where the
-// frame decides later, the likelier is assumed: the bounce probe (--bounces 0) chooses more than one bounce, and the
-// scene's glossy materials are in view. A wrong guess costs a build on another thread, never a result.
-// tests/kernel_args_test.cpp renders frames of every method and checks that they build nothing outside this list.
-std::vector<ProgramRequest> frame_programs(const Scene& scene, const DeviceScene& device_scene,
-                                           const RenderSettings& settings) {
-  std::vector<ProgramRequest> programs = {GBufferPass::program(device_scene), DirectPass::program(device_scene),
-                                          LayerPass::program()};
-  const CacheSettings& cs = settings.cache;
-  const bool cache = settings.gi == GiMethod::splat || settings.gi == GiMethod::octree;
-  const bool guide = cache && cs.guide_rays > 0 && cs.guide_photons > 0;
-  BounceMethod method = settings.bounce_method;
-  if (method == BounceMethod::automatic)
-    method = cache && !scene.environment.present() ? BounceMethod::photons : BounceMethod::path;
-  const bool photons = cache && method == BounceMethod::photons && settings.bounces != 1;
-  if (settings.bounces == 0 || guide || photons) programs.push_back(LightGuidePass::program(device_scene));
-  if (settings.gi == GiMethod::path) programs.push_back(PathPass::program(device_scene));
-  if (!cache) return programs;
-  if (photons) programs.push_back(PhotonMapPass::program());
-  if (device_scene.has_specular_brdf()) programs.push_back(specular_albedo_program());
-  programs.push_back(RecordPass::program(device_scene, largest_theta_strata(cs), false, photons));
-  const bool radiance_cached = settings.gi == GiMethod::splat && device_scene.has_radiance_cache();
-  if (settings.gi == GiMethod::splat) {
-    programs.push_back(PlacementPass::program());
-    programs.push_back(SplatPass::program());
-  }
-  if (radiance_cached) {
-    programs.push_back(BrdfTablePass::program());
-    programs.push_back(RadianceSplatPass::program());
-    programs.push_back(HshRecordPass::program());
-    programs.push_back(RecordPass::program(device_scene, largest_theta_strata(cs), true, photons));
-  }
-  programs.push_back(ComposePass::program(device_scene, radiance_cached));
-  const std::array<unsigned, LOBE_KINDS>& lobes = device_scene.lobe_counts();
-  const bool sample_hsh = !radiance_cached && lobes[LOBE_HSH] > 0;
-  if (lobes[LOBE_GLOSSY] > 0 || sample_hsh || (radiance_cached && guide))
-    programs.push_back(GlossyPass::program(device_scene, sample_hsh));
-  return programs;
 }
 
 // Primary visibility through `camera`, direct light (strata x strata samples a sub-pixel) and the indirect light of
@@ -328,7 +276,6 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   st.upload_s = seconds_since(t);
   // Kernel builds count in program_s, the probe's photon kernel's included (it was once left inside probe_s: 2 s of
   // a cold 1080p frame on an H200 that no build column showed).
-  gpu.prefetch(frame_programs(scene, device_scene, settings));
   const TimeWithoutBuilds probe(gpu);
   const BounceChoice bounce_choice = choose_bounces(gpu, scene, device_scene, settings);
   st.probe_s = probe.seconds();
