@@ -12,7 +12,7 @@
 # older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
 # (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm),
 # wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
-# in one kernel and split).
+# in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -191,6 +191,16 @@ if [[ $parts == *split_sibenik* ]]; then
   done
   cmp -s $work/sibenik0.exr $work/sibenik1.exr && echo "sibenik split: same bits" || echo "sibenik split: bits DIFFER"
   rm -f $work/*.exr
+fi
+
+# This build with its defaults (on a GPU the record trace split) against $G/rcsplat_old: Sponza 1920x1080 alternating
+# twice, then Sibenik 1920x1080 once each.
+if [[ $parts == *defaults* ]]; then
+  alternate_sponza_1080p defaults
+  for b in rcsplat_old rcsplat; do
+    timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
+      --json $R/defaults_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
+  done
 fi
 
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
