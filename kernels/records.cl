@@ -157,96 +157,99 @@ __kernel void aim_record_guides(GBUFFER_ARGS, __global const uint* candidates, R
 // (candidate first_candidate + q): a GPU one sample a work-item, a CPU device several, sharing the record's site.
 typedef struct {
   uint q, first, end;  // the launch's record q, its samples first .. end - 1
+  uint per_record;     // samples a record takes
+  RecordSite site;
 } RecordItem;
 
-inline bool record_item(RecordBatchParams batch, uint per_record, RecordItem* item) {
-  const uint per_item = batch.samples_per_item, items_per_record = (per_record + per_item - 1) / per_item;
+inline bool record_item(__global const GBufferSample* gbuffer, __global const uint* candidates,
+                        RecordBatchParams batch, RecordItem* item) {
+  const uint per_record = record_sample_count(batch.hemisphere), per_item = batch.samples_per_item;
+  const uint items_per_record = (per_record + per_item - 1) / per_item;
   uint id = get_global_id(0);
   item->q = id / items_per_record;
   item->first = (id - item->q * items_per_record) * per_item;
   item->end = min(item->first + per_item, per_record);
-  return item->q < batch.launch_count;
+  item->per_record = per_record;
+  if (item->q >= batch.launch_count) return false;
+  item->site = record_site(gbuffer, candidates[batch.first_candidate + item->q], batch.hemisphere.seed);
+  return true;
 }
 
-// Each sample's ray traced and its radiance gathered in one kernel (PoCL's CPU device: a work-item's samples share
-// their record's site).
+// Where the item's record starts in the samples buffer (stored strata keep the whole batch's) and in the launch's
+// per-sample buffers (rays cast, hits).
+inline size_t record_samples_at(RecordBatchParams batch, RecordItem item) {
+  return (size_t)(batch.first_candidate + item.q - batch.samples_first_candidate) * item.per_record;
+}
+inline size_t record_launch_at(RecordItem item) { return (size_t)item.q * item.per_record; }
+
+// Sample s's ray traced to its closest hit (prim -1: a miss, -2: no ray cast).
+inline HitDesc trace_record_hit(SCENE_ARGS, RecordSite site, RecordRay ray) {
+  TraceHit hit = {INFINITY, 0.0f, 0.0f, -2};
+  if (ray.cast) {
+    RayPrecomp r = ray_precompute(site.origin, ray.dir);
+    if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) hit.prim = -1;
+  }
+  HitDesc out = {hit.t, hit.u, hit.v, hit.prim};
+  return out;
+}
+
+// Sample s from the light its ray brings from `hit` (kernels/bounce.h); *rays counts the rays cast, its own included.
+inline float4 shade_record_hit(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
+                               RecordRay ray, HitDesc hit, uint* rays) {
+  *rays = ray.cast ? 1u : 0u;
+  float3 l = (float3)(0.0f);
+  if (hit.prim >= 0) {
+    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
+    l = radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, random01(site.key, s, 2u), random01(site.key, s, 3u),
+                          random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), rays);
+  } else if (ray.cast) {
+    l = miss_radiance(SCENE, ray.dir);
+  }
+  return record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
+}
+
+// Each sample's ray traced and shaded in one work-item (a CPU device: a work-item's samples share their record's
+// site)...
 __kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
                                 RecordBatchParams batch, __global const RecordGuideCones* record_guides,
                                 __global float4* samples, __global uint* sample_rays) {
-  const HemisphereParams hp = batch.hemisphere;
-  const uint per_record = record_sample_count(hp);
   RecordItem item;
-  if (!record_item(batch, per_record, &item)) return;
-  uint i = batch.first_candidate + item.q;
-  RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
-  __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
-  __global uint* own_rays = sample_rays + (size_t)item.q * per_record;
+  if (!record_item(gbuffer, candidates, batch, &item)) return;
   for (uint s = item.first; s < item.end; ++s) {
-    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
-    uint rays = 0;
-    float r = INFINITY;
-    float3 l = (float3)(0.0f);
-    if (ray.cast)
-      l = bounce_radiance(SCENE GATHER_MAP, site.origin, ray.dir, random01(site.key, s, 2u), random01(site.key, s, 3u),
-                          random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &r, &rays);
-    own[s] = record_sample(ray, l, r);
-    own_rays[s] = rays;
+    RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
+    HitDesc hit = trace_record_hit(SCENE, item.site, ray);
+    uint rays;
+    samples[record_samples_at(batch, item) + s] =
+        shade_record_hit(SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hit, &rays);
+    sample_rays[record_launch_at(item) + s] = rays;
   }
 }
 
-// The same in two kernels, each with less to hold in registers (a GPU: trace_record_rays, a hemisphere ray with its
-// hit's shading, shadow ray and photon lookup in one work-item, took NVIDIA's 255 registers and spilled).
-// trace_record_hits traces each sample's ray to its closest hit (prim -1: a miss, -2: no ray cast)...
+// ... or in two kernels, each with less to hold in registers (a GPU: in one, a hemisphere ray with its hit's shading,
+// shadow ray and photon lookup took NVIDIA's 255 registers and spilled). The samples are the same, bit for bit:
+// trace_record_hits keeps each sample's hit...
 __kernel void trace_record_hits(SCENE_ARGS, GBUFFER_ARGS, __global const uint* candidates, RecordBatchParams batch,
                                 __global const RecordGuideCones* record_guides, __global HitDesc* hits) {
-  const HemisphereParams hp = batch.hemisphere;
-  const uint per_record = record_sample_count(hp);
   RecordItem item;
-  if (!record_item(batch, per_record, &item)) return;
-  RecordSite site = record_site(gbuffer, candidates[batch.first_candidate + item.q], hp.seed);
-  __global HitDesc* own = hits + (size_t)item.q * per_record;
+  if (!record_item(gbuffer, candidates, batch, &item)) return;
   for (uint s = item.first; s < item.end; ++s) {
-    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
-    TraceHit hit = {INFINITY, 0.0f, 0.0f, -2};
-    if (ray.cast) {
-      RayPrecomp r = ray_precompute(site.origin, ray.dir);
-      if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) hit.prim = -1;
-    }
-    HitDesc out = {hit.t, hit.u, hit.v, hit.prim};
-    own[s] = out;
+    RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
+    hits[record_launch_at(item) + s] = trace_record_hit(SCENE, item.site, ray);
   }
 }
 
-// ... and shade_record_hits gathers the radiance each ray brings from its hit, as trace_record_rays does: the same
-// samples, bit for bit.
+// ... and shade_record_hits shades them (the sample's direction and weight found again: cheaper than storing them).
 __kernel void shade_record_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
                                 RecordBatchParams batch, __global const RecordGuideCones* record_guides,
                                 __global const HitDesc* hits, __global float4* samples, __global uint* sample_rays) {
-  const HemisphereParams hp = batch.hemisphere;
-  const uint per_record = record_sample_count(hp);
   RecordItem item;
-  if (!record_item(batch, per_record, &item)) return;
-  uint i = batch.first_candidate + item.q;
-  RecordSite site = record_site(gbuffer, candidates[i], hp.seed);
-  __global float4* own = samples + (size_t)(i - batch.samples_first_candidate) * per_record;
-  __global uint* own_rays = sample_rays + (size_t)item.q * per_record;
-  __global const HitDesc* own_hits = hits + (size_t)item.q * per_record;
+  if (!record_item(gbuffer, candidates, batch, &item)) return;
   for (uint s = item.first; s < item.end; ++s) {
-    RecordRay ray = record_ray(site, hp, s, record_guides + item.q);
-    HitDesc hit = own_hits[s];
-    uint rays = ray.cast ? 1u : 0u;
-    float r = INFINITY;
-    float3 l = (float3)(0.0f);
-    if (hit.prim >= 0) {
-      r = hit.t;
-      HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
-      l = radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, r, random01(site.key, s, 2u), random01(site.key, s, 3u),
-                            random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), &rays);
-    } else if (ray.cast) {
-      l = miss_radiance(SCENE, ray.dir);
-    }
-    own[s] = record_sample(ray, l, r);
-    own_rays[s] = rays;
+    RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
+    uint rays;
+    samples[record_samples_at(batch, item) + s] = shade_record_hit(
+        SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hits[record_launch_at(item) + s], &rays);
+    sample_rays[record_launch_at(item) + s] = rays;
   }
 }
 
