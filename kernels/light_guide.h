@@ -139,7 +139,7 @@ inline float3 sample_guide(const GuideCone* cones, uint count, float u, float v,
 
 // A record's stored cones, read where they lie by each of its rays (kernels/records.cl) rather than copied: the
 // record's work-items read the same bytes, and a private copy of GUIDE_MAX_CONES cones took 256 bytes of each
-// work-item's stack on a GPU. The same numbers as guide_pdf_drawn and sample_guide on the cones loaded.
+// work-item's stack on a GPU. The same numbers as guide_pdf_drawn and sample_guide on such a copy.
 inline uint stored_cone_count(__global const RecordGuideCones* stored) {
   return min(stored->count, (uint)GUIDE_MAX_CONES);
 }

@@ -63,8 +63,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
 
   std::set<std::string> built = gpu.built_kernel_names();
   for (const char* expected : {"gbuffer", "direct_light", "aim_record_guides", "trace_record_rays",
-                               "trace_record_hits", "shade_record_hits", "reduce_records", "mark_covered", "find_uncovered",
-                               "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
+                               "trace_record_hits", "shade_record_hits", "reduce_records", "mark_covered",
+                               "find_uncovered", "mark_records", "clamp_neighbours", "apply_radii", "clear_accumulators",
                                "max_record_irradiance", "splat_records", "resolve_indirect", "path_indirect",
                                "cast_closest", "cast_occlusion", "fill_uncovered", "shoot_photons",
                                "estimate_photon_radiance", "look_up_photon_radiance"})

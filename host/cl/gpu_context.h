@@ -29,8 +29,8 @@ struct GroupSizes {
   // (kernels/records.cl), rather than one doing both: the same samples. On an H100 (NVIDIA's compiler report) the one
   // kernel used 225 registers, the two 128 and 229, and the record pass took 0.58x the time; PoCL is not faster so.
   bool split_record_trace = false;
-  // Samples a launch of the record trace takes at most (20 bytes each kept until reduced): 2^21 fills any GPU many
-  // times over and keeps 40 MiB.
+  // Samples a launch of the record trace takes at most (20 bytes each kept until reduced, 36 with a split trace's
+  // hits): 2^21 fills any GPU many times over and keeps 40 MiB (72 MiB).
   size_t record_samples_per_launch = size_t(1) << 21;
   size_t per_item = 64;   // light per-pixel or per-record work
   size_t tile_side = 8;   // 2-D launches over the image, tile_side x tile_side pixels a group

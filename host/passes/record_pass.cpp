@@ -73,7 +73,7 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
        "record samples");
   if (gpu_.groups().split_record_trace)
     grow(sample_hits_, sample_hits_capacity_, records * samples_per_record, sizeof(HitDesc), launch_samples,
-         "record samples");
+         "record hits");
 }
 
 void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates,
