@@ -23,18 +23,6 @@
 #define GATHER_MAP
 #endif
 
-// The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
-inline HitSurface hit_surface(__global const TriangleShading* triangles, int prim, float u, float v, float3 dir) {
-  HitSurface h;
-  h.s = surface_at(triangles, prim, u, v);
-  bool back = dot(h.s.geometric_normal, dir) > 0.0f;
-  h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
-  h.ns = back ? -h.s.shading_normal : h.s.shading_normal;
-  if (dot(h.ns, h.ng) <= 0.0f) h.ns = h.ng;
-  h.albedo_read = h.lobe_read = 0;
-  return h;
-}
-
 inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, uint* rays) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;

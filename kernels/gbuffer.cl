@@ -67,11 +67,10 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.material = -1;
     g.depth = INFINITY;
   } else {
-    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
+    SurfacePoint s = h.s;
+    const float3 ng = h.ng, ns = h.ns;
     bool back = dot(s.geometric_normal, dir) > 0.0f;
-    float3 ng = back ? -s.geometric_normal : s.geometric_normal;
-    float3 ns = back ? -s.shading_normal : s.shading_normal;
-    if (dot(ns, ng) <= 0.0f) ns = ng;  // inconsistent vertex normals: trust the geometry
     __global const Material* m = materials + s.material;
     float3 emission = (!back || m->double_sided) ? vload3(0, m->emission) : (float3)(0.0f);
     vstore3(s.position, 0, g.position);

@@ -154,6 +154,18 @@ typedef struct {
   int albedo_read, lobe_read;
 } HitSurface;
 
+// The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
+inline HitSurface hit_surface(__global const TriangleShading* triangles, int prim, float u, float v, float3 dir) {
+  HitSurface h;
+  h.s = surface_at(triangles, prim, u, v);
+  bool back = dot(h.s.geometric_normal, dir) > 0.0f;
+  h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
+  h.ns = back ? -h.s.shading_normal : h.s.shading_normal;
+  if (dot(h.ns, h.ng) <= 0.0f) h.ns = h.ng;  // inconsistent vertex normals: trust the geometry
+  h.albedo_read = h.lobe_read = 0;
+  return h;
+}
+
 inline float3 hit_albedo(__global const Material* materials, __global const TextureInfo* textures,
                          __global const uint* texels, HitSurface* h) {
   if (!h->albedo_read) {
