@@ -6,10 +6,12 @@
 #include <cstdio>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "bvh/bvh8.h"
 #include "cache/photon_map.h"
@@ -411,6 +413,50 @@ TEST(PhotonMap, GridIsAStableCountingSortByBucket) {
       ASSERT_EQ(grid.photons[i].landing, expected[i].landing) << count << " photons, " << i;
     ASSERT_EQ(grid.bucket_starts, starts) << count << " photons";
   }
+}
+
+// The estimates' order (cell_order) visits every photon once, a cell's photons together, and walks between nearby cells:
+// the mean step between consecutive cells (in cells, the largest of the three axes) is at most a quarter of the bucket
+// order's, which jumps about the whole grid. Photons on three planes of a cube 30 cells wide, as a scene's surfaces.
+TEST(PhotonMap, CellOrderVisitsEachPhotonOnceAndWalksBetweenNearbyCells) {
+  EXPECT_TRUE(cell_order(sort_into_grid(std::vector<PhotonHit>{}, 0.2f)).empty());
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> coordinate(0.0f, 6.0f);
+  std::vector<PhotonHit> photons(20000);
+  for (size_t i = 0; i < photons.size(); ++i) {
+    for (int a = 0; a < 3; ++a) photons[i].position[a] = coordinate(rng);
+    photons[i].position[i % 3] = 0.0f;
+  }
+  const PhotonGrid grid = sort_into_grid(photons, 0.2f);
+  const std::vector<uint32_t> order = cell_order(grid);
+  ASSERT_EQ(order.size(), photons.size());
+  std::vector<int> seen(photons.size(), 0);
+  for (uint32_t i : order) ASSERT_EQ(++seen.at(i), 1) << "photon " << i;
+  auto cell_of = [&](uint32_t i) {
+    std::array<int, 3> c;
+    for (int a = 0; a < 3; ++a)
+      c[a] = photon_cell(grid.photons[i].position[a], grid.params.grid_origin[a], grid.params.cell_size);
+    return c;
+  };
+  auto mean_step = [&](const std::vector<uint32_t>& walk, size_t* runs) {
+    double steps = 0.0;
+    *runs = 1;
+    for (size_t k = 1; k < walk.size(); ++k) {
+      std::array<int, 3> a = cell_of(walk[k - 1]), b = cell_of(walk[k]);
+      if (a == b) continue;
+      ++*runs;
+      steps += std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+    }
+    return steps / double(*runs - 1);
+  };
+  std::set<std::array<int, 3>> cells;
+  for (uint32_t i = 0; i < photons.size(); ++i) cells.insert(cell_of(i));
+  std::vector<uint32_t> bucket_order(photons.size());
+  for (uint32_t i = 0; i < photons.size(); ++i) bucket_order[i] = i;
+  size_t runs = 0, bucket_runs = 0;
+  const double step = mean_step(order, &runs), bucket_step = mean_step(bucket_order, &bucket_runs);
+  EXPECT_EQ(runs, cells.size());  // each cell's photons in one run
+  EXPECT_LT(step, 0.25 * bucket_step) << "cell order " << step << ", bucket order " << bucket_step;
 }
 
 TEST(PhotonMap, AnEmptyMapIsDark) {

@@ -1,6 +1,8 @@
 #include "cache/photon_map.h"
 
 #include <algorithm>
+#include <array>
+#include <climits>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -113,6 +115,34 @@ PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius) {
   PhotonGrid grid;
   sort_into_buckets(photons, radius, grid.params, grid.photons, grid.bucket_starts);
   return grid;
+}
+
+std::vector<uint32_t> cell_order(const PhotonGrid& grid) {
+  const size_t count = grid.photons.size();
+  // 21 bits per axis, counted from the lowest cell: a scene more than two million cells wide only loses some order.
+  auto spread = [](uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  std::vector<std::array<int, 3>> cells(count);
+  std::array<int, 3> lowest{INT32_MAX, INT32_MAX, INT32_MAX};
+  for (size_t i = 0; i < count; ++i)
+    for (int a = 0; a < 3; ++a) {
+      cells[i][a] = photon_cell(grid.photons[i].position[a], grid.params.grid_origin[a], grid.params.cell_size);
+      lowest[a] = std::min(lowest[a], cells[i][a]);
+    }
+  std::vector<uint64_t> code(count, 0);
+  for (size_t i = 0; i < count; ++i)
+    for (int a = 0; a < 3; ++a) code[i] |= spread(uint64_t(int64_t(cells[i][a]) - lowest[a])) << a;
+  std::vector<uint32_t> order(count);
+  for (size_t i = 0; i < count; ++i) order[i] = uint32_t(i);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return code[a] < code[b]; });
+  return order;
 }
 
 PatchGrid sort_into_grid(const std::vector<SurfacePatch>& patches, float radius) {

@@ -45,6 +45,11 @@ float photon_gather_radius(double surface_area, size_t photons, unsigned neighbo
 PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius);
 PatchGrid sort_into_grid(const std::vector<SurfacePatch>& patches, float radius);
 
+// The grid's photons (indices into grid.photons) in the Morton order of their cells: a kernel that visits each
+// photon's neighbourhood in this order has consecutive work-items read the same cells, where the bucket order
+// (hashed) scatters them over the whole map.
+std::vector<uint32_t> cell_order(const PhotonGrid& grid);
+
 // Every triangle (positions, three per triangle) cut into n x n equal sub-triangles of area at most patch_area (n at
 // most 256), each a patch at its centroid, once per side (the normal and its opposite).
 std::vector<SurfacePatch> surface_patches(const std::vector<glm::vec3>& positions, float patch_area);

@@ -27,6 +27,7 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool 
   cl::Buffer patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
                                                                            : grids.patches.bucket_starts,
                                         CL_MEM_READ_ONLY, "photon map surface patch buckets");
+  cl::Buffer order = gpu.upload(cell_order(grids.lookup), CL_MEM_READ_ONLY, "photon map estimate order");
   NamedKernel estimate = gpu.kernel("photon_map.cl", "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", all_photons)
       .set_buffer<cl_uint>("all_buckets", all_buckets)
@@ -38,7 +39,8 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool 
       .set("map", params_)
       .set("shallow_landings", cl_int(grids.shallow_landings))
       .set_buffer<cl_float4>("map_radiance", radiance_)
-      .set_buffer<cl_float4>("map_shallow", shallow_);
+      .set_buffer<cl_float4>("map_shallow", shallow_)
+      .set_buffer<cl_uint>("estimate_order", order);
   estimate.launch(params_.photon_count, gpu.groups().traversal);
   gpu.queue().finish();
 }
