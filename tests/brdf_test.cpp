@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <string>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -138,6 +140,39 @@ TEST(Brdf, SpecularAlbedoTableIsMadeOncePerContext) {
   std::vector<float> kept = gpu.download<float>(first, kFloats),
                      made = fresh.download<float>(specular_albedo_table(fresh, true), kFloats);
   EXPECT_EQ(0, std::memcmp(kept.data(), made.data(), kFloats * sizeof(float)));
+}
+
+// The table is kept on disk beside the compiled programs: a new context (a later process) reads the bits an earlier
+// one computed instead of computing them, and a file of the wrong size is computed again and replaced.
+TEST(Brdf, SpecularAlbedoTableIsKeptOnDiskPerDevice) {
+  const char* old_dir = std::getenv("RCSPLAT_CACHE_DIR");
+  const std::string saved = old_dir ? old_dir : "", dir = test::scratch_dir() + "/table_cache";
+  setenv("RCSPLAT_CACHE_DIR", dir.c_str(), 1);
+  constexpr size_t kFloats = 2 * SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
+  auto table_of = [&](GpuContext& context) {
+    return context.download<float>(specular_albedo_table(context, true), kFloats);
+  };
+  GpuContext first(test::gpu().device_info());
+  const std::vector<float> computed = table_of(first);
+  EXPECT_EQ(first.tables_computed(), 1u);
+  std::vector<std::filesystem::path> stored;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().extension() == ".table") stored.push_back(entry.path());
+  ASSERT_EQ(stored.size(), 1u);
+  EXPECT_EQ(std::filesystem::file_size(stored[0]), kFloats * sizeof(float));
+
+  GpuContext second(test::gpu().device_info());
+  EXPECT_EQ(table_of(second), computed);
+  EXPECT_EQ(second.tables_computed(), 0u);  // read from disk
+
+  std::filesystem::resize_file(stored[0], 100);
+  GpuContext third(test::gpu().device_info());
+  EXPECT_EQ(table_of(third), computed);
+  EXPECT_EQ(third.tables_computed(), 1u);  // the short file ignored, computed again
+  EXPECT_EQ(std::filesystem::file_size(stored[0]), kFloats * sizeof(float));
+
+  if (old_dir) setenv("RCSPLAT_CACHE_DIR", saved.c_str(), 1);
+  else unsetenv("RCSPLAT_CACHE_DIR");
 }
 
 TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {

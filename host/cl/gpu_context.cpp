@@ -204,20 +204,64 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
   if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS")) extra_build_options_ = extra;
 }
 
-cl::Buffer GpuContext::device_table(const std::string& name, const std::function<cl::Buffer()>& make) {
+cl::Buffer GpuContext::device_table(const std::string& name, const std::string& file, size_t bytes,
+                                    const std::function<void(const cl::Buffer&)>& fill) {
   auto found = device_tables_.find(name);
   if (found != device_tables_.end()) return found->second;
-  return device_tables_[name] = make();
+  cl::Buffer table = buffer(CL_MEM_READ_WRITE, bytes, name);
+  const std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" +
+                               build_options({}) + "|" + resolve_kernel_source(file) + "|table " + name;
+  const fs::path stored = cache_file(identity, ".table");
+  std::vector<char> data;
+  if (!stored.empty() && fs::exists(stored) && fs::file_size(stored) == bytes) {
+    std::ifstream in(stored, std::ios::binary);
+    data.resize(bytes);
+    if (!in.read(data.data(), std::streamsize(bytes))) data.clear();
+  }
+  if (data.size() == bytes) {
+    queue_.enqueueWriteBuffer(table, CL_TRUE, 0, bytes, data.data());
+  } else {
+    fill(table);
+    queue_.finish();
+    ++tables_computed_;
+    if (!stored.empty()) {
+      try {
+        data.resize(bytes);
+        queue_.enqueueReadBuffer(table, CL_TRUE, 0, bytes, data.data());
+        fs::create_directories(stored.parent_path());
+        fs::path temp = stored;
+        temp += ".tmp" + std::to_string(::getpid());
+        std::ofstream(temp, std::ios::binary).write(data.data(), std::streamsize(bytes));
+        fs::rename(temp, stored);
+      } catch (const std::exception& e) {
+        log_warning("could not store the " + name + " in the cache: " + e.what());
+      }
+    }
+  }
+  return device_tables_[name] = table;
 }
 
 // Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.
 constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
 
-cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
+std::string GpuContext::build_options(const KernelDefines& defines) const {
   std::string options = kBaseBuildOptions;
   for (const auto& [name, value] : defines) options += " -D " + name + "=" + value;
   if (!extra_build_options_.empty()) options += " " + extra_build_options_;
   if (!cold_build_nonce_.empty()) options += " -D RCSPLAT_COLD_BUILD=" + cold_build_nonce_;
+  return options;
+}
+
+fs::path GpuContext::cache_file(const std::string& identity, const char* extension) const {
+  fs::path dir = binary_cache_dir();
+  if (dir.empty() || !cold_build_nonce_.empty()) return {};
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(stable_hash(identity)));
+  return dir / (std::string(hex) + extension);
+}
+
+cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
+  std::string options = build_options(defines);
   std::string key = file + "|" + options;
   auto found = programs_.find(key);
   if (found != programs_.end()) return *found->second;
@@ -252,11 +296,7 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
   auto start = std::chrono::steady_clock::now();
   // The on-disk cache is keyed by everything that changes the binary: device, driver, source and options.
   std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
-  fs::path cache_dir = binary_cache_dir();
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(stable_hash(identity)));
-  fs::path cache_file =
-      cache_dir.empty() || !cold_build_nonce_.empty() ? fs::path() : cache_dir / (std::string(hex) + ".bin");
+  const fs::path cache_file = this->cache_file(identity, ".bin");
 
   std::unique_ptr<cl::Program> program;
   if (!cache_file.empty() && fs::exists(cache_file)) {
@@ -284,7 +324,7 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
       try {
         auto binaries = program->getInfo<CL_PROGRAM_BINARIES>();
         if (!binaries.empty() && !binaries[0].empty()) {
-          fs::create_directories(cache_dir);
+          fs::create_directories(cache_file.parent_path());
           fs::path temp = cache_file;
           temp += ".tmp" + std::to_string(::getpid());
           std::ofstream(temp, std::ios::binary)

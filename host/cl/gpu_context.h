@@ -2,6 +2,7 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -84,9 +85,14 @@ class GpuContext {
   void restart_memory_peak();
   struct MemoryLedger;
 
-  // A table that depends on the device alone (the rough lobes' albedo): made by `make` the first time `name` is asked
-  // for, then the same buffer for every frame this context renders.
-  cl::Buffer device_table(const std::string& name, const std::function<cl::Buffer()>& make);
+  // A table that depends on the device alone (the rough lobes' albedo), `bytes` long, which `fill` computes with the
+  // kernels of kernels/<file>: made the first time `name` is asked for, then the same buffer for every frame this
+  // context renders. It is kept on disk beside the compiled programs, keyed as the program that fills it is (device,
+  // driver, source, options), so later processes read its bits instead of computing them again.
+  cl::Buffer device_table(const std::string& name, const std::string& file, size_t bytes,
+                          const std::function<void(const cl::Buffer&)>& fill);
+  // How many tables this context computed rather than read from disk (tests).
+  size_t tables_computed() const { return tables_computed_; }
 
   template <typename T>
   cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const char* what = "other") {
@@ -107,6 +113,10 @@ class GpuContext {
  private:
   cl::Program& build(const std::string& key, const std::string& label, const std::string& source,
                      const std::string& options);
+  // The build options for a set of switches, and where the on-disk cache keeps what `identity` (everything that
+  // changes it) names, with this extension; empty when there is no cache folder or builds are cold.
+  std::string build_options(const KernelDefines& defines) const;
+  std::filesystem::path cache_file(const std::string& identity, const char* extension) const;
 
   DeviceInfo info_;
   cl::Context context_;
@@ -115,6 +125,7 @@ class GpuContext {
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
   std::map<std::string, bool> launched_;
   std::map<std::string, cl::Buffer> device_tables_;
+  size_t tables_computed_ = 0;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;
   std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)
