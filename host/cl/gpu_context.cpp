@@ -213,7 +213,8 @@ cl::Buffer GpuContext::device_table(const std::string& name, const std::string& 
                                build_options({}) + "|" + resolve_kernel_source(file) + "|table " + name;
   const fs::path stored = cache_file(identity, ".table");
   std::vector<char> data;
-  if (!stored.empty() && fs::exists(stored) && fs::file_size(stored) == bytes) {
+  std::error_code size_error;  // a file that cannot be read is computed again, as a missing one
+  if (!stored.empty() && fs::file_size(stored, size_error) == bytes && !size_error) {
     std::ifstream in(stored, std::ios::binary);
     data.resize(bytes);
     if (!in.read(data.data(), std::streamsize(bytes))) data.clear();
