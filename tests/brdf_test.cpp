@@ -145,9 +145,17 @@ TEST(Brdf, SpecularAlbedoTableIsMadeOncePerContext) {
 // The table is kept on disk beside the compiled programs: a new context (a later process) reads the bits an earlier
 // one computed instead of computing them, and a file of the wrong size is computed again and replaced.
 TEST(Brdf, SpecularAlbedoTableIsKeptOnDiskPerDevice) {
-  const char* old_dir = std::getenv("RCSPLAT_CACHE_DIR");
-  const std::string saved = old_dir ? old_dir : "", dir = test::scratch_dir() + "/table_cache";
-  setenv("RCSPLAT_CACHE_DIR", dir.c_str(), 1);
+  struct CacheDirFor {  // this test's own cache folder, the process's restored however the test ends
+    std::string saved;
+    bool had = false;
+    explicit CacheDirFor(const std::string& dir) {
+      if (const char* old = std::getenv("RCSPLAT_CACHE_DIR")) saved = old, had = true;
+      setenv("RCSPLAT_CACHE_DIR", dir.c_str(), 1);
+    }
+    ~CacheDirFor() { had ? setenv("RCSPLAT_CACHE_DIR", saved.c_str(), 1) : unsetenv("RCSPLAT_CACHE_DIR"); }
+  };
+  const std::string dir = test::scratch_dir() + "/table_cache";
+  CacheDirFor cache_dir(dir);
   constexpr size_t kFloats = 2 * SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
   auto table_of = [&](GpuContext& context) {
     return context.download<float>(specular_albedo_table(context, true), kFloats);
@@ -170,9 +178,6 @@ TEST(Brdf, SpecularAlbedoTableIsKeptOnDiskPerDevice) {
   EXPECT_EQ(table_of(third), computed);
   EXPECT_EQ(third.tables_computed(), 1u);  // the short file ignored, computed again
   EXPECT_EQ(std::filesystem::file_size(stored[0]), kFloats * sizeof(float));
-
-  if (old_dir) setenv("RCSPLAT_CACHE_DIR", saved.c_str(), 1);
-  else unsetenv("RCSPLAT_CACHE_DIR");
 }
 
 TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <climits>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "kernels/photon_grid.h"
@@ -130,7 +130,8 @@ std::vector<uint32_t> cell_order(const PhotonGrid& grid) {
     return v;
   };
   std::vector<std::array<int, 3>> cells(count);
-  std::array<int, 3> lowest{INT32_MAX, INT32_MAX, INT32_MAX};
+  std::array<int, 3> lowest;
+  lowest.fill(std::numeric_limits<int>::max());
   for (size_t i = 0; i < count; ++i)
     for (int a = 0; a < 3; ++a) {
       cells[i][a] = photon_cell(grid.photons[i].position[a], grid.params.grid_origin[a], grid.params.cell_size);
