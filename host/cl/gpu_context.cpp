@@ -209,9 +209,8 @@ cl::Buffer GpuContext::device_table(const std::string& name, const std::string& 
   auto found = device_tables_.find(name);
   if (found != device_tables_.end()) return found->second;
   cl::Buffer table = buffer(CL_MEM_READ_WRITE, bytes, name);
-  const std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" +
-                               build_options({}) + "|" + resolve_kernel_source(file) + "|table " + name;
-  const fs::path stored = cache_file(identity, ".table");
+  const fs::path stored =
+      cache_file(program_identity(resolve_kernel_source(file), build_options({})) + "|table " + name, ".table");
   std::vector<char> data;
   std::error_code size_error;  // a file that cannot be read is computed again, as a missing one
   if (!stored.empty() && fs::file_size(stored, size_error) == bytes && !size_error) {
@@ -251,6 +250,10 @@ std::string GpuContext::build_options(const KernelDefines& defines) const {
   if (!extra_build_options_.empty()) options += " " + extra_build_options_;
   if (!cold_build_nonce_.empty()) options += " -D RCSPLAT_COLD_BUILD=" + cold_build_nonce_;
   return options;
+}
+
+std::string GpuContext::program_identity(const std::string& source, const std::string& options) const {
+  return info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
 }
 
 fs::path GpuContext::cache_file(const std::string& identity, const char* extension) const {
@@ -295,9 +298,7 @@ std::set<std::string> GpuContext::built_kernel_names() const {
 cl::Program& GpuContext::build(const std::string& key, const std::string& file, const std::string& source,
                                const std::string& options) {
   auto start = std::chrono::steady_clock::now();
-  // The on-disk cache is keyed by everything that changes the binary: device, driver, source and options.
-  std::string identity = info_.platform_name + "|" + info_.name + "|" + info_.driver_version + "|" + options + "|" + source;
-  const fs::path cache_file = this->cache_file(identity, ".bin");
+  const fs::path cache_file = this->cache_file(program_identity(source, options), ".bin");
 
   std::unique_ptr<cl::Program> program;
   if (!cache_file.empty() && fs::exists(cache_file)) {

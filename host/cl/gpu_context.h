@@ -116,6 +116,8 @@ class GpuContext {
   // The build options for a set of switches, and where the on-disk cache keeps what `identity` (everything that
   // changes it) names, with this extension; empty when there is no cache folder or builds are cold.
   std::string build_options(const KernelDefines& defines) const;
+  // Everything that changes a program's binary (device, driver, options, resolved source): the on-disk cache's key.
+  std::string program_identity(const std::string& source, const std::string& options) const;
   std::filesystem::path cache_file(const std::string& identity, const char* extension) const;
 
   DeviceInfo info_;
