@@ -61,8 +61,9 @@ inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, Glossy
   float3 sum = (float3)(0.0f);
   for (uint s = 0; s < (cone_count ? params.guide_share_samples : 0u); ++s) {
     uint drawn_from;
-    float3 dir = sample_guide(cones, cone_count, random01(key, s, 5u), random01(key, s, 0u), random01(key, s, 1u),
-                              &drawn_from);
+    float u, v, w;
+    scrambled_sobol3(s, key, &u, &v, &w);  // a net, as a record's guided rays (kernels/records.cl guided_ray)
+    float3 dir = sample_guide(cones, cone_count, u, v, w, &drawn_from);
     float3 wi = to_local(frame, dir);
     if (wi.z <= 0.0f || dot(dir, ng) <= 0.0f) continue;
     float3 f = brdf_eval_specular(in, wo, wi);
@@ -122,7 +123,9 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
       float3 h = ggx_sample_visible_normal(wo, in.alpha, u1, u2);
       wi = 2.0f * dot(wo, h) * h - wo;
     } else {
-      wi = to_local(frame, sample_guide(cones, cone_count, random01(key, s, 5u), u1, u2, &drawn_from));
+      float u;
+      scrambled_sobol3(s - lobe_samples, key, &u, &u1, &u2);
+      wi = to_local(frame, sample_guide(cones, cone_count, u, u1, u2, &drawn_from));
     }
     if (wi.z <= 0.0f) continue;
     float3 dir = to_world(frame, wi);

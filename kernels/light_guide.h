@@ -6,6 +6,7 @@
 // guide is wrong: a cone that is occluded or dark only costs rays.
 #ifndef RCSPLAT_LIGHT_GUIDE_H
 #define RCSPLAT_LIGHT_GUIDE_H
+#include "low_discrepancy.h"
 #include "sampling.h"
 #include "shared_types.h"
 

@@ -16,6 +16,7 @@
 #include "corridor_scene.h"
 #include "hsh_reference.h"
 #include "kernels/hsh.h"
+#include "kernels/low_discrepancy.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/glossy_pass.h"
 #include "passes/hsh_record_pass.h"
@@ -528,7 +529,9 @@ TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {
     const uint32_t key = hash_u32(pixel ^ hash_u32(seed ^ 0x2c1b3c6du));
     double want = 0.0;
     for (unsigned k = 0; k < (cones.empty() ? 0u : share_samples); ++k) {
-      dvec3 dir = host_guide_direction(cones, random01(key, k, 5), random01(key, k, 0), random01(key, k, 1));
+      float u, v, w;
+      scrambled_sobol3(k, key, &u, &v, &w);
+      dvec3 dir = host_guide_direction(cones, u, v, w);
       const brdf_reference::Vec wi{glm::dot(dir, x), glm::dot(dir, y), glm::dot(dir, n)};
       if (wi.z <= 0.0 || glm::dot(dir, ng) <= 0.0) continue;
       double f = brdf_reference::reference_brdf(brdf, wo, wi, false, true)[0];

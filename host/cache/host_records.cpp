@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels/counter_random.h"
+#include "kernels/low_discrepancy.h"
 #include "util/luminance.h"
 #include "util/ray_offset.h"
 
@@ -227,7 +228,9 @@ HostRecord compute_host_record(const HostShading& shading, const glm::vec3& pf, 
   dvec3 e_guided(0.0);
   for (uint32_t g = 0; g < (cones.empty() ? 0u : hp.guide_rays); ++g) {
     uint32_t s = uint32_t(M * N) + g;
-    dvec3 dir = host_guide_direction(cones, random01(key, s, 5), random01(key, s, 0), random01(key, s, 1));
+    float u, v, w;
+    scrambled_sobol3(g, key, &u, &v, &w);
+    dvec3 dir = host_guide_direction(cones, u, v, w);
     double cos_n = glm::dot(dir, n);
     if (cos_n <= 0.0 || glm::dot(dir, ng) <= 0.0) continue;
     double dist;
