@@ -5,7 +5,8 @@
 // layer. Writes the indirect layers as PNG at exposures -4, 0 and +2 into the output directory. With
 // METAL_WALL_ROUGHNESS the walls and ceiling are metal of that roughness (radiance-cached at 0.45 .. 0.9), and the
 // files are named corridor_metalROUGHNESS_*.
-//   build/benchmarks/hard_case_corridor OUT_DIR [GUIDE_RAYS [METAL_WALL_ROUGHNESS]]
+// SEED (default 7) renders another frame of the same scene.
+//   build/benchmarks/hard_case_corridor OUT_DIR [GUIDE_RAYS [METAL_WALL_ROUGHNESS [SEED]]]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
   settings.width = 256;
   settings.height = 192;
   settings.light_samples = 1;
-  settings.seed = 7;
+  settings.seed = argc > 4 ? unsigned(std::stoul(argv[4])) : 7u;
   if (argc > 2) settings.cache.guide_rays = unsigned(std::stoul(argv[2]));
   render(gpu, corridor, settings);  // compiles and caches the kernels
   Run guided = timed(gpu, corridor, settings);
