@@ -1,5 +1,6 @@
 // Owen-scrambled Sobol points, compiled by both the kernels and the host (as counter_random.h, so that host
-// references draw the very points a kernel drew). A record's guided rays take them (kernels/records.cl guided_ray):
+// references draw the very points a kernel drew). A record's guided rays take them (kernels/records.cl guided_ray), and
+// so does a radiance-cached pixel's guide share (kernels/glossy.cl guide_share):
 // independent random numbers leave a few dozen rays a plain Monte Carlo estimate, whose variance falls as 1 / n, while
 // a scrambled net spreads them over the cones it picks and over each cone's directions, and each point stays uniform
 // on its own, so the estimate stays unbiased (Owen 1997, "Scrambled net variance for integrals of smooth functions").
