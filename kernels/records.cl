@@ -111,7 +111,7 @@ inline RecordRay stratum_ray(RecordSite site, HemisphereParams hp, uint s, __glo
 // of E. None where the record has no cones. The guided rays are point s - M N of a net scrambled per record
 // (kernels/low_discrepancy.h): its first coordinate picks the cone, the other two the direction in it. Independent
 // numbers gave the built-in Cornell box 1.04x / 1.02x the relMSE / block error at 16 x 32 and 1.29x / 1.27x at 8 x
-// 16, and the corridor twice the block error, at the same rays (RESULTS.md "Issue 13, twelfth step").
+// 16, and the corridor three times the block error, at the same rays (RESULTS.md "Issue 13, twelfth step").
 inline RecordRay guided_ray(RecordSite site, HemisphereParams hp, uint s, __global const RecordGuideCones* cones) {
   RecordRay ray;
   ray.stratum = ray.cast = false;
