@@ -34,8 +34,17 @@ std::vector<uint32_t> gray_code_sobol(unsigned d, unsigned count) {
   return points;
 }
 
-// Whether the first 2^m points of net `seed` (seed 0: unscrambled) put exactly 2^t points in every elementary box of
-// volume 2^(t - m) over the dimensions `dims`: a (t, m, s)-net.
+// Pearson's chi-square of counts against the same expected count in every bin.
+double chi_square(const std::vector<double>& counts) {
+  double total = 0.0, chi2 = 0.0;
+  for (double c : counts) total += c;
+  const double expected = total / double(counts.size());
+  for (double c : counts) chi2 += (c - expected) * (c - expected) / expected;
+  return chi2;
+}
+
+// Whether the first 2^m points of the net (scrambled by `seed`, or not scrambled) put exactly 2^t points in every
+// elementary box of volume 2^(t - m) over the dimensions `dims`: a (t, m, s)-net.
 bool is_net(const std::vector<unsigned>& dims, unsigned m, unsigned t, uint32_t seed, bool scrambled) {
   const unsigned count = 1u << m, s = unsigned(dims.size());
   std::vector<unsigned> splits(s, 0);
@@ -69,7 +78,8 @@ bool is_net(const std::vector<unsigned>& dims, unsigned m, unsigned t, uint32_t 
 TEST(LowDiscrepancy, SobolIsTheGrayCodeConstructionInNaturalOrder) {
   for (unsigned d = 0; d < 3; ++d) {
     const std::vector<uint32_t> gray = gray_code_sobol(d, 4096);
-    for (uint32_t n = 0; n < 4096; ++n) ASSERT_EQ(sobol_bits(n ^ (n >> 1), d), gray[n]) << "dimension " << d << " point " << n;
+    for (uint32_t n = 0; n < 4096; ++n)
+      ASSERT_EQ(sobol_bits(n ^ (n >> 1), d), gray[n]) << "dimension " << d << " point " << n;
   }
 }
 
@@ -102,10 +112,7 @@ TEST(LowDiscrepancy, EachScrambledPointIsUniform) {
         count[unsigned(x * float(bins))] += 1.0;
         sum += x;
       }
-      const double expected = double(seeds) / bins;
-      double chi2 = 0.0;
-      for (double c : count) chi2 += (c - expected) * (c - expected) / expected;
-      EXPECT_LT(chi2, 70.0) << "point " << point << " dimension " << d;
+      EXPECT_LT(chi_square(count), 70.0) << "point " << point << " dimension " << d;
       EXPECT_NEAR(sum / seeds, 0.5, 4.0 * std::sqrt(1.0 / 12.0 / seeds)) << "point " << point << " dimension " << d;
     }
   }
@@ -126,9 +133,6 @@ TEST(LowDiscrepancy, PointsInDifferentHalvesMoveIndependently) {
       b -= std::floor(b);
       joint[unsigned(a * bins) * bins + unsigned(b * bins)] += 1.0;
     }
-    const double expected = double(seeds) / (bins * bins);
-    double chi2 = 0.0;
-    for (double c : joint) chi2 += (c - expected) * (c - expected) / expected;
-    EXPECT_LT(chi2, 130.0) << "dimension " << d;
+    EXPECT_LT(chi_square(joint), 130.0) << "dimension " << d;
   }
 }
