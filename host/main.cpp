@@ -8,6 +8,7 @@
 #include "kernels/hsh.h"
 #include "render/pixel_samples.h"
 #include "util/error.h"
+#include "util/host_heap.h"
 #include "util/log.h"
 
 namespace {
@@ -95,6 +96,7 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_host_memory();
   CLI::App app{"rcsplat: global illumination by radiance cache splatting on OpenCL devices"};
   app.require_subcommand(1);
   app.fallthrough();  // -q may follow the subcommand

@@ -22,6 +22,7 @@
 #include "cache_test_scenes.h"
 #include "test_support.h"
 #include "util/error.h"
+#include "util/host_heap.h"
 
 namespace rcsplat {
 namespace {
@@ -183,6 +184,23 @@ TEST(Determinism, OutputFilesAreTheSameBytesAcrossRuns) {
   run("dated");
   unsetenv("SOURCE_DATE_EPOCH");
   EXPECT_EQ(read_exr_header(dir + "/dated.exr").text["DateTime"], "1970:01:02 00:00:00");
+}
+
+// The CLI keeps freed host memory for the next allocation (util/host_heap.h), so on a CPU device a frame's buffers are
+// often the memory of the frame before, not fresh zero pages: a kernel that read a buffer before writing it would show
+// that frame's values. A second frame in the same process must be the same bits as the first.
+TEST(Determinism, AFrameOnTheLastFramesMemoryIsTheSameBits) {
+  keep_freed_host_memory();
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 72;
+  const Scene scene = make_cornell_box();
+  const RenderedImage first = render(test::gpu(), scene, settings);
+  const RenderedImage second = render(test::gpu(), scene, settings);
+  ASSERT_FALSE(first.color.empty());
+  EXPECT_TRUE(first.color == second.color);
+  EXPECT_TRUE(first.irradiance == second.irradiance);
+  EXPECT_TRUE(first.records_per_pixel == second.records_per_pixel);
 }
 
 // A buffer larger than the device can hold is refused with the words "out of device memory", what it was for and the

@@ -12,7 +12,9 @@
 # older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
 # (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm),
 # wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
-# in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p).
+# in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
+# budget (Sponza's frame at the defaults and at cheaper settings), heap (freed host memory reused, against
+# .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -201,6 +203,62 @@ if [[ $parts == *defaults* ]]; then
     timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
       --json $R/defaults_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
   done
+fi
+
+# What accuracy costs in time on the GPU (issue 13 part 2's 33 ms goal): Sponza render summaries (warm kernel cache,
+# 3 runs of each setting, then the next setting) at 1920x1080 with the defaults and cheaper settings, and at 1024x768
+# with the defaults and part 1's --hemisphere 8x16; then the traversal kernel's rate, the ceiling of the record rays.
+# $R/budget_<i>_run<r>.json, the settings in $R/budget_settings.txt (the errors are PoCL's, same images: RESULTS.md).
+if [[ $parts == *budget* ]]; then
+  i=0
+  while read -r opts; do
+    i=$((i+1)); echo "$i $opts" | tee -a $R/budget_settings.txt
+    for run in 0 1 2 3; do  # run 0 builds the setting's programs, untimed
+      timeout 60 $rc -q render $S --device NVIDIA $opts -o $work/b.exr --json $R/budget_${i}_run$run.json >/dev/null \
+        || echo "FAILED: $opts"
+    done
+    rm -f $R/budget_${i}_run0.json $work/b.exr
+  done <<'SETTINGS'
+--width 1920 --height 1080
+--width 1920 --height 1080 --fine-hemisphere 8x16
+--width 1920 --height 1080 --hemisphere 8x16
+--width 1920 --height 1080 --pixel-samples 1
+--width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1
+--width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1 --accuracy 0.5
+--width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1 --accuracy 0.5 --bounces 1
+--width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 --pixel-samples 1 --accuracy 0.5 --bounces 1
+--width 1024 --height 768
+--width 1024 --height 768 --hemisphere 8x16
+SETTINGS
+  timeout 60 $rc -q bench --traversal $S --device NVIDIA --repeats 5 --json $R/budget_traversal_gpu.json
+fi
+
+# Freed host memory kept for reuse (host/util/host_heap.h) against $G/rcsplat_old (the build before it): Sponza
+# 1920x1080 defaults alternating (bench, twice), the images' bits, then the cheapest frame of the budget part (where
+# the host's work is most of it) alternating, three times.
+if [[ $parts == *heap* ]]; then
+  alternate_sponza_1080p heap
+  for b in rcsplat_old rcsplat; do
+    timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/$b.exr >/dev/null
+  done
+  cmp -s $work/rcsplat.exr $work/rcsplat_old.exr && echo "heap: same bits as old" || echo "heap: bits DIFFER from old"
+  for i in 1 2 3; do
+    for b in rcsplat_old rcsplat; do
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 \
+        --pixel-samples 1 --accuracy 0.5 --bounces 1 -o $work/floor.exr --json $R/heap_floor_${b}_run$i.json >/dev/null
+    done
+  done
+  for i in 1 2 3; do  # one frame a process, as `render` makes it: no earlier frame's memory to reuse
+    for b in rcsplat_old rcsplat; do
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/one.exr \
+        --json $R/heap_render_${b}_run$i.json >/dev/null
+    done
+  done
+  for b in rcsplat_old rcsplat; do
+    timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
+      --json $R/heap_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
+  done
+  rm -f $work/*.exr
 fi
 
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
