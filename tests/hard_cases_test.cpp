@@ -203,6 +203,28 @@ TEST(Determinism, AFrameOnTheLastFramesMemoryIsTheSameBits) {
   EXPECT_TRUE(first.records_per_pixel == second.records_per_pixel);
 }
 
+// The image layers come down from the device in pieces (passes/layer_pass.h): pieces of 13 pixels, the last one short,
+// must fill every layer with the same bits as one piece.
+TEST(Determinism, LayersInSmallPiecesAreTheSameBits) {
+  RenderSettings settings;
+  settings.width = 40;
+  settings.height = 30;
+  settings.pixel_samples = 4;
+  const Scene scene = make_cornell_box();
+  const RenderedImage whole = render(test::gpu(), scene, settings);
+  settings.layer_piece_pixels = 13;
+  const RenderedImage pieces = render(test::gpu(), scene, settings);
+  ASSERT_FALSE(whole.color.empty());
+  for (auto layer : {&RenderedImage::color, &RenderedImage::direct, &RenderedImage::emission, &RenderedImage::albedo,
+                     &RenderedImage::normal, &RenderedImage::position, &RenderedImage::depth, &RenderedImage::indirect,
+                     &RenderedImage::irradiance, &RenderedImage::coverage, &RenderedImage::records_per_pixel,
+                     &RenderedImage::record_positions})
+    EXPECT_TRUE(whole.*layer == pieces.*layer);
+  EXPECT_TRUE(whole.triangle == pieces.triangle);
+  EXPECT_EQ(whole.stats.shadow_rays, pieces.stats.shadow_rays);
+  EXPECT_EQ(whole.stats.uncovered_pixels, pieces.stats.uncovered_pixels);
+}
+
 // A buffer larger than the device can hold is refused with the words "out of device memory", what it was for and the
 // size asked for, before OpenCL is asked.
 TEST(DeviceMemory, RefusalNamesWhatAndTheSizeAskedFor) {

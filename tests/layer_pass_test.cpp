@@ -73,6 +73,7 @@ TEST_P(LayerPassTest, SurfaceIsTheSubPixelsMeansCentreAndCounts) {
   const std::vector<GBufferSample> g = random_gbuffer(size_t(f.width()) * f.height(), rng);
   const std::vector<cl_float4> direct = random_rgba(g.size(), rng, true);
   LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  layers.set_piece_pixels(7);  // pieces of 7 pixels, the last one short: the frame comes down in several
   const std::vector<PixelSurface> out = layers.surface(view_of(gpu, g, f), gpu.upload(direct));
   ASSERT_EQ(out.size(), size_t(f.out_width) * f.out_height);
   const double n = double(f.side * f.side);
@@ -117,6 +118,7 @@ TEST_P(LayerPassTest, ImagesAreTheSubPixelsMeanOrSum) {
   std::mt19937 rng(29 + f.side);
   const std::vector<cl_float4> image = random_rgba(size_t(f.width()) * f.height(), rng, false);
   LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  layers.set_piece_pixels(7);  // pieces of 7 pixels, the last one short: the frame comes down in several
   const cl::Buffer buffer = gpu.upload(image);
   const std::vector<float> mean = layers.mean_rgba(buffer), sum = layers.sum_rgba(buffer);
   const double n = double(f.side * f.side);
@@ -148,6 +150,7 @@ TEST_P(LayerPassTest, RecordCountsAreReachingMeanSittingAndUncovered) {
     sitting[k] = coin(rng) == 0 ? few(rng) : -1;
   }
   LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  layers.set_piece_pixels(7);  // pieces of 7 pixels, the last one short: the frame comes down in several
   const std::vector<float> out = layers.record_counts(view_of(gpu, g, f), gpu.upload(irradiance), gpu.upload(reaching),
                                                       gpu.upload(sitting));
   const double n = double(f.side * f.side);

@@ -14,7 +14,7 @@
 # wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
 # in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
 # budget (Sponza's frame at the defaults and at cheaper settings), heap (freed host memory reused, against
-# .gpu/rcsplat_old).
+# .gpu/rcsplat_old), pieces (image layers downloaded in pieces, against .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
 G=$PWD/.gpu
@@ -258,6 +258,21 @@ if [[ $parts == *heap* ]]; then
     timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
       --json $R/heap_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
   done
+  rm -f $work/*.exr
+fi
+
+# Image layers downloaded in pieces (passes/layer_pass.h) against $G/rcsplat_old (the build before): Sponza 1920x1080
+# one frame a process, defaults and the budget part's cheapest frame, alternating three times; the images' bits.
+if [[ $parts == *pieces* ]]; then
+  for i in 1 2 3; do
+    for b in rcsplat_old rcsplat; do
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/$b.exr \
+        --json $R/pieces_render_${b}_run$i.json >/dev/null
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 \
+        --pixel-samples 1 --accuracy 0.5 --bounces 1 -o $work/floor.exr --json $R/pieces_floor_${b}_run$i.json >/dev/null
+    done
+  done
+  cmp -s $work/rcsplat.exr $work/rcsplat_old.exr && echo "pieces: same bits as old" || echo "pieces: bits DIFFER from old"
   rm -f $work/*.exr
 fi
 

@@ -37,7 +37,30 @@ void LayerPass::launch(NamedKernel& kernel) {
   kernel.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
 }
 
-std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {
+template <typename T>
+void LayerPass::in_pieces(const cl::Buffer& buffer, size_t per_pixel, const PieceVisit<T>& visit) {
+  std::vector<T> piece(std::min(pixel_count(), piece_pixels_) * per_pixel);
+  for (size_t first = 0; first < pixel_count(); first += piece_pixels_) {
+    const size_t count = std::min(piece_pixels_, pixel_count() - first);
+    gpu_.queue().enqueueReadBuffer(buffer, CL_TRUE, first * per_pixel * sizeof(T), count * per_pixel * sizeof(T),
+                                   piece.data());
+    visit(first, piece.data(), count);
+  }
+}
+
+namespace {
+
+// A visit that copies each piece into `out`, per_pixel elements a pixel: the whole layer, for callers that want it.
+template <typename T>
+LayerPass::PieceVisit<T> into(std::vector<T>& out, size_t per_pixel) {
+  return [&out, per_pixel](size_t first, const T* piece, size_t count) {
+    std::copy(piece, piece + count * per_pixel, out.begin() + std::ptrdiff_t(first * per_pixel));
+  };
+}
+
+}  // namespace
+
+void LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<PixelSurface>& visit) {
   check_frame(gbuffer);
   // Freed on return: it would otherwise sit through the frame's peak (records, photon map).
   const cl::Buffer out =
@@ -46,25 +69,43 @@ std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const c
       .set_buffer<cl_float4>("direct", direct)
       .set_buffer<PixelSurface>("out", out);
   launch(surface_);
-  return gpu_.download<PixelSurface>(out, pixel_count());
+  in_pieces<PixelSurface>(out, 1, visit);
 }
 
-std::vector<float> LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
+std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {
+  std::vector<PixelSurface> out(pixel_count());
+  surface(gbuffer, direct, into(out, 1));
+  return out;
+}
+
+void LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
   rgba_.set_buffer<cl_float4>("source", source)
       .set("scale", cl_float(scale))
       .set_buffer<cl_float4>("out", rgba_out());
   launch(rgba_);
-  return gpu_.download<float>(rgba_out_, pixel_count() * 4);
+}
+
+void LayerPass::mean_rgba(const cl::Buffer& source, const PieceVisit<float>& visit) {
+  resolve_rgba(source, 1.0f / float(side_ * side_));
+  in_pieces<float>(rgba_out_, 4, visit);
 }
 
 std::vector<float> LayerPass::mean_rgba(const cl::Buffer& source) {
-  return resolve_rgba(source, 1.0f / float(side_ * side_));
+  std::vector<float> out(pixel_count() * 4);
+  mean_rgba(source, into(out, 4));
+  return out;
 }
 
-std::vector<float> LayerPass::sum_rgba(const cl::Buffer& source) { return resolve_rgba(source, 1.0f); }
+std::vector<float> LayerPass::sum_rgba(const cl::Buffer& source) {
+  resolve_rgba(source, 1.0f);
+  std::vector<float> out(pixel_count() * 4);
+  in_pieces(rgba_out_, 4, into(out, 4));
+  return out;
+}
 
-std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
-                                            const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel) {
+void LayerPass::record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
+                              const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel,
+                              const PieceVisit<float>& visit) {
   check_frame(gbuffer);
   counts_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
       .set_buffer<cl_float4>("irradiance", irradiance)
@@ -72,7 +113,14 @@ std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl
       .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
       .set_buffer<cl_float4>("out", rgba_out());
   launch(counts_);
-  return gpu_.download<float>(rgba_out_, pixel_count() * 4);
+  in_pieces<float>(rgba_out_, 4, visit);
+}
+
+std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
+                                            const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel) {
+  std::vector<float> out(pixel_count() * 4);
+  record_counts(gbuffer, irradiance, records_per_pixel, record_at_pixel, into(out, 4));
+  return out;
 }
 
 }  // namespace rcsplat

@@ -2,6 +2,7 @@
 // (--pixel-samples side^2; side 1 copies) on the device, so the host downloads and fills output-sized layers only.
 // Owns the output-sized buffer the float4 images are gathered into.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "cl/gpu_context.h"
@@ -18,28 +19,45 @@ class LayerPass {
   unsigned side() const { return side_; }
   size_t pixel_count() const { return size_t(width_) * size_t(height_); }
 
+  // A layer's pixels come down in pieces, each handed to `visit` (the first pixel's index, the piece, its pixels)
+  // before the next is read: the whole layer at once would be fresh host memory (a 1080p frame's surface: 166 MB)
+  // whose page faults cost more than the copy (benchmarks/RESULTS.md, "Issue 13, thirteenth step").
+  template <typename T>
+  using PieceVisit = std::function<void(size_t first, const T* piece, size_t count)>;
+
   // Emission, direct light (DirectPass's RGBA: A the shadow rays), albedo and normal averaged; position, depth and
   // triangle of the centre sub-pixel; shadow rays and the lobes' sub-pixels summed (PixelSurface).
+  void surface(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<PixelSurface>& visit);
   std::vector<PixelSurface> surface(const GBufferView& gbuffer, const cl::Buffer& direct);
   // A float4 image's sub-pixel mean (RGBA, four floats a pixel) or sum.
+  void mean_rgba(const cl::Buffer& source, const PieceVisit<float>& visit);
   std::vector<float> mean_rgba(const cl::Buffer& source);
   std::vector<float> sum_rgba(const cl::Buffer& source);
   // The cache's counts, four floats a pixel: the mean records reaching a sub-pixel (records_per_pixel), the records
   // sitting in the pixel (record_at_pixel >= 0), the sub-pixels with geometry whose irradiance weight (A) is 0, 0.
+  void record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,
+                     const cl::Buffer& record_at_pixel, const PieceVisit<float>& visit);
   std::vector<float> record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
                                    const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel);
 
+  // Pixels a piece holds (tests make it small, to cross pieces' edges).
+  void set_piece_pixels(size_t pixels) { piece_pixels_ = std::max<size_t>(pixels, 1); }
+
  private:
-  std::vector<float> resolve_rgba(const cl::Buffer& source, float scale);
+  void resolve_rgba(const cl::Buffer& source, float scale);
   void launch(NamedKernel& kernel);
   cl::Buffer& rgba_out();
   void check_frame(const GBufferView& gbuffer) const;
+  // `buffer`'s pixels (per_pixel elements of T each) in pieces.
+  template <typename T>
+  void in_pieces(const cl::Buffer& buffer, size_t per_pixel, const PieceVisit<T>& visit);
 
   GpuContext& gpu_;
   unsigned side_;
   int width_, height_;
   NamedKernel surface_, rgba_, counts_;
   cl::Buffer rgba_out_;  // the float4 images' gathered pixels
+  size_t piece_pixels_ = size_t(1) << 18;  // 20 MB of surface, 4 MB of RGBA: 16 blocks of parallel_ranges
 };
 
 }  // namespace rcsplat

@@ -42,17 +42,19 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   st.resolve_s += seconds_since(t);
 
   t = Clock::now();
-  const std::vector<float> indirect = f.layers.mean_rgba(compose.indirect());
-  const std::vector<float> color = f.layers.mean_rgba(compose.color());
   const size_t pixels = f.layers.pixel_count();
   img.indirect.resize(pixels * 3);
-  parallel_ranges(pixels, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      for (size_t c = 0; c < 3; ++c) {
-        img.indirect[3 * i + c] = indirect[4 * i + c];
-        img.color[3 * i + c] = color[4 * i + c];
-      }
-  });
+  // The RGB of a piece of RGBA pixels into a layer.
+  auto rgb_into = [](std::vector<float>& layer) {
+    return [&layer](size_t first, const float* piece, size_t count) {
+      parallel_ranges(count, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+          for (size_t c = 0; c < 3; ++c) layer[3 * (first + k) + c] = piece[4 * k + c];
+      });
+    };
+  };
+  f.layers.mean_rgba(compose.indirect(), rgb_into(img.indirect));
+  f.layers.mean_rgba(compose.color(), rgb_into(img.color));
   st.layers_s += seconds_since(t);
 }
 
@@ -60,26 +62,33 @@ void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl:
                        const cl::Buffer& record_at_pixel) {
   RenderedImage& img = f.image;
   auto t = Clock::now();
-  const std::vector<float> irr = f.layers.mean_rgba(irradiance);
-  const std::vector<float> counts =
-      f.layers.record_counts(f.gbuffer.view(), irradiance, records_per_pixel, record_at_pixel);
   const size_t pixels = f.layers.pixel_count();
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);
   img.records_per_pixel.resize(pixels);
   img.record_positions.resize(pixels);
-  std::atomic<uint64_t> uncovered{0};
-  parallel_ranges(pixels, [&](size_t begin, size_t end) {
-    uint64_t range_uncovered = 0;
-    for (size_t i = begin; i < end; ++i) {
-      for (size_t c = 0; c < 3; ++c) img.irradiance[3 * i + c] = irr[4 * i + c];
-      img.coverage[i] = irr[4 * i + 3];
-      img.records_per_pixel[i] = counts[4 * i];
-      img.record_positions[i] = counts[4 * i + 1];
-      range_uncovered += uint64_t(counts[4 * i + 2]);
-    }
-    uncovered += range_uncovered;
+  f.layers.mean_rgba(irradiance, [&](size_t first, const float* piece, size_t count) {
+    parallel_ranges(count, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) {
+        const size_t i = first + k;
+        for (size_t c = 0; c < 3; ++c) img.irradiance[3 * i + c] = piece[4 * k + c];
+        img.coverage[i] = piece[4 * k + 3];
+      }
+    });
   });
+  std::atomic<uint64_t> uncovered{0};
+  f.layers.record_counts(f.gbuffer.view(), irradiance, records_per_pixel, record_at_pixel,
+                         [&](size_t first, const float* piece, size_t count) {
+                           parallel_ranges(count, [&](size_t begin, size_t end) {
+                             uint64_t range_uncovered = 0;
+                             for (size_t k = begin; k < end; ++k) {
+                               img.records_per_pixel[first + k] = piece[4 * k];
+                               img.record_positions[first + k] = piece[4 * k + 1];
+                               range_uncovered += uint64_t(piece[4 * k + 2]);
+                             }
+                             uncovered += range_uncovered;
+                           });
+                         });
   img.stats.uncovered_pixels += uncovered;
   img.stats.layers_s += seconds_since(t);
 }

@@ -83,8 +83,7 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   st.direct_s = seconds_since(t);
 
   t = Clock::now();
-  const std::vector<PixelSurface> surface = layers.surface(gbuffer.view(), direct.radiance());
-  const size_t pixels = surface.size();
+  const size_t pixels = layers.pixel_count();
   img.color.resize(pixels * 3);
   img.direct.resize(pixels * 3);
   img.emission.resize(pixels * 3);
@@ -95,32 +94,35 @@ void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_
   img.triangle.resize(pixels);
   st.primary_rays = gbuffer.view().pixel_count();
   std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
-  parallel_ranges(pixels, [&](size_t begin, size_t end) {
-    uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
-    for (size_t i = begin; i < end; ++i) {
-      const PixelSurface& s = surface[i];
-      img.triangle[i] = s.triangle;
-      range_rough += s.lobe_counts & 0xffu;  // kernels/layers.cl lobe_count_shift
-      range_glossy += (s.lobe_counts >> 8) & 0xffu;
-      range_hsh += (s.lobe_counts >> 16) & 0xffu;
-      img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
-      const glm::vec3 world = s.triangle >= 0
-                                  ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
-                                  : glm::vec3(0.0f);
-      range_shadow_rays += uint64_t(s.shadow_rays);
-      for (int c = 0; c < 3; ++c) {
-        img.direct[3 * i + c] = s.direct[c];
-        img.emission[3 * i + c] = s.emission[c];
-        img.albedo[3 * i + c] = s.albedo[c];
-        img.normal[3 * i + c] = s.normal[c];
-        img.position[3 * i + c] = world[c];
-        img.color[3 * i + c] = s.emission[c] + s.direct[c];
+  layers.surface(gbuffer.view(), direct.radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
+    parallel_ranges(count, [&](size_t begin, size_t end) {
+      uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
+      for (size_t k = begin; k < end; ++k) {
+        const PixelSurface& s = piece[k];
+        const size_t i = first + k;
+        img.triangle[i] = s.triangle;
+        range_rough += s.lobe_counts & 0xffu;  // kernels/layers.cl lobe_count_shift
+        range_glossy += (s.lobe_counts >> 8) & 0xffu;
+        range_hsh += (s.lobe_counts >> 16) & 0xffu;
+        img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
+        const glm::vec3 world = s.triangle >= 0
+                                    ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
+                                    : glm::vec3(0.0f);
+        range_shadow_rays += uint64_t(s.shadow_rays);
+        for (int c = 0; c < 3; ++c) {
+          img.direct[3 * i + c] = s.direct[c];
+          img.emission[3 * i + c] = s.emission[c];
+          img.albedo[3 * i + c] = s.albedo[c];
+          img.normal[3 * i + c] = s.normal[c];
+          img.position[3 * i + c] = world[c];
+          img.color[3 * i + c] = s.emission[c] + s.direct[c];
+        }
       }
-    }
-    rough += range_rough;
-    glossy += range_glossy;
-    hsh += range_hsh;
-    shadow_rays += range_shadow_rays;
+      rough += range_rough;
+      glossy += range_glossy;
+      hsh += range_hsh;
+      shadow_rays += range_shadow_rays;
+    });
   });
   st.rough_pixels += rough;
   st.glossy_pixels += glossy;
@@ -289,6 +291,7 @@ RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const Re
   GBufferPass gbuffer(gpu, device_scene);
   DirectPass direct(gpu, device_scene);
   LayerPass layers(gpu, side, img.width, img.height);
+  if (settings.layer_piece_pixels) layers.set_piece_pixels(settings.layer_piece_pixels);
   st.program_s = probe.builds();  // the probe's and these three passes'; later passes add their own
 
   if (settings.gi == GiMethod::path && settings.path.pixel_area)

@@ -73,6 +73,8 @@ struct RenderSettings {
   unsigned sub_pixel_side = 1;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
+  // Pixels a piece of the image layers comes down in (passes/layer_pass.h); 0: LayerPass's own. Tests make it small.
+  size_t layer_piece_pixels = 0;
   CacheSettings cache;
   PathSettings path;
 };
