@@ -1,7 +1,6 @@
 // What fresh host memory costs (benchmarks/RESULTS.md, "Issue 13, thirteenth step"): 16 vectors of 33 MB made and
 // zeroed, three times in one process, with 4 KB pages or with transparent huge pages asked for (madvise), then written
-// again. Standalone, not part of the build:
-//   g++ -O2 -std=c++20 benchmarks/fresh_pages.cpp -o /tmp/fresh_pages && /tmp/fresh_pages && /tmp/fresh_pages huge
+// again. Plain C++, no rcsplat code:   build/benchmarks/fresh_pages && build/benchmarks/fresh_pages huge
 #include <sys/mman.h>
 
 #include <chrono>
