@@ -205,6 +205,9 @@ if [[ $parts == *defaults* ]]; then
   done
 fi
 
+# The cheapest frame of the budget part below, where the host's work is most of it.
+cheapest="--hemisphere 4x8 --guide-rays 0 --pixel-samples 1 --accuracy 0.5 --bounces 1"
+
 # What accuracy costs in time on the GPU (issue 13 part 2's 33 ms goal): Sponza render summaries (warm kernel cache,
 # 3 runs of each setting, then the next setting) at 1920x1080 with the defaults and cheaper settings, and at 1024x768
 # with the defaults and part 1's --hemisphere 8x16; then the traversal kernel's rate, the ceiling of the record rays.
@@ -218,7 +221,7 @@ if [[ $parts == *budget* ]]; then
         || echo "FAILED: $opts"
     done
     rm -f $R/budget_${i}_run0.json $work/b.exr
-  done <<'SETTINGS'
+  done <<SETTINGS
 --width 1920 --height 1080
 --width 1920 --height 1080 --fine-hemisphere 8x16
 --width 1920 --height 1080 --hemisphere 8x16
@@ -226,55 +229,42 @@ if [[ $parts == *budget* ]]; then
 --width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1
 --width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1 --accuracy 0.5
 --width 1920 --height 1080 --hemisphere 8x16 --pixel-samples 1 --accuracy 0.5 --bounces 1
---width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 --pixel-samples 1 --accuracy 0.5 --bounces 1
+--width 1920 --height 1080 $cheapest
 --width 1024 --height 768
 --width 1024 --height 768 --hemisphere 8x16
 SETTINGS
   timeout 60 $rc -q bench --traversal $S --device NVIDIA --repeats 5 --json $R/budget_traversal_gpu.json
 fi
 
-# Freed host memory kept for reuse (host/util/host_heap.h) against $G/rcsplat_old (the build before it): Sponza
-# 1920x1080 defaults alternating (bench, twice), the images' bits, then the cheapest frame of the budget part (where
-# the host's work is most of it) alternating, three times.
-if [[ $parts == *heap* ]]; then
-  alternate_sponza_1080p heap
-  for b in rcsplat_old rcsplat; do
-    timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/$b.exr >/dev/null
-  done
-  cmp -s $work/rcsplat.exr $work/rcsplat_old.exr && echo "heap: same bits as old" || echo "heap: bits DIFFER from old"
+# $G/rcsplat_old (the build before) and this build, alternating three times, one frame a process as `render` makes it
+# (no earlier frame's memory to reuse): Sponza 1920x1080 with the defaults and the cheapest frame,
+# $R/<tag>_{render,floor}_<binary>_run<i>.json; then whether the two binaries' images are the same bits.
+alternate_one_frame_renders() {
   for i in 1 2 3; do
     for b in rcsplat_old rcsplat; do
-      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 \
-        --pixel-samples 1 --accuracy 0.5 --bounces 1 -o $work/floor.exr --json $R/heap_floor_${b}_run$i.json >/dev/null
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/$b.exr \
+        --json $R/$1_render_${b}_run$i.json >/dev/null
+      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 $cheapest -o $work/floor.exr \
+        --json $R/$1_floor_${b}_run$i.json >/dev/null
     done
   done
-  for i in 1 2 3; do  # one frame a process, as `render` makes it: no earlier frame's memory to reuse
-    for b in rcsplat_old rcsplat; do
-      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/one.exr \
-        --json $R/heap_render_${b}_run$i.json >/dev/null
-    done
-  done
+  cmp -s $work/rcsplat.exr $work/rcsplat_old.exr && echo "$1: same bits as old" || echo "$1: bits DIFFER from old"
+  rm -f $work/*.exr
+}
+
+# Freed host memory kept for reuse (host/util/host_heap.h) against $G/rcsplat_old: Sponza 1920x1080 defaults in
+# `bench` (frames after the first in a process) alternating twice, one-frame renders, and Sibenik in `bench`.
+if [[ $parts == *heap* ]]; then
+  alternate_sponza_1080p heap
+  alternate_one_frame_renders heap
   for b in rcsplat_old rcsplat; do
     timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
       --json $R/heap_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
   done
-  rm -f $work/*.exr
 fi
 
-# Image layers downloaded in pieces (passes/layer_pass.h) against $G/rcsplat_old (the build before): Sponza 1920x1080
-# one frame a process, defaults and the budget part's cheapest frame, alternating three times; the images' bits.
-if [[ $parts == *pieces* ]]; then
-  for i in 1 2 3; do
-    for b in rcsplat_old rcsplat; do
-      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 -o $work/$b.exr \
-        --json $R/pieces_render_${b}_run$i.json >/dev/null
-      timeout 60 $G/$b -q render $S --device NVIDIA --width 1920 --height 1080 --hemisphere 4x8 --guide-rays 0 \
-        --pixel-samples 1 --accuracy 0.5 --bounces 1 -o $work/floor.exr --json $R/pieces_floor_${b}_run$i.json >/dev/null
-    done
-  done
-  cmp -s $work/rcsplat.exr $work/rcsplat_old.exr && echo "pieces: same bits as old" || echo "pieces: bits DIFFER from old"
-  rm -f $work/*.exr
-fi
+# Image layers downloaded in pieces (passes/layer_pass.h) against $G/rcsplat_old: one-frame renders.
+[[ $parts == *pieces* ]] && alternate_one_frame_renders pieces
 
 render() {  # device, tag, then rcsplat render arguments; RUNS runs, the first image kept
   local dev=$1 tag=$2; shift 2
