@@ -119,9 +119,9 @@ TEST(LowDiscrepancy, EachScrambledPointIsUniform) {
 }
 
 // Owen's scramble tosses an independent coin at every node: two points that part at the first bit then move
-// independently below it. Over many seeds, points 0 and 1 of dimension 1 (one in each half) have their positions within
-// their halves independent: a chi-square test of their 8 x 8 joint histogram (63 degrees of freedom; 130 is beyond its
-// 99.99th percentile).
+// independently below it. Over many seeds, points 0 and 1 of each dimension (one in each half) have their positions
+// within their halves independent: a chi-square test of their 8 x 8 joint histogram (63 degrees of freedom; 130 is
+// beyond its 99.99th percentile).
 TEST(LowDiscrepancy, PointsInDifferentHalvesMoveIndependently) {
   const unsigned seeds = 65536, bins = 8;
   for (unsigned d = 0; d < 3; ++d) {
