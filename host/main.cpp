@@ -54,6 +54,29 @@ struct EnvironmentFlags {
   void apply(EnvironmentSettings& e) const { e.sky = as_vec3(sky); }
 };
 
+// What a scene may make rcsplat read and hold (scene/scene_limits.h, docs/SECURITY.md): for every command that loads
+// one. --max-device-memory only where a frame is rendered.
+void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device) {
+  cmd->add_option("--asset-root", limits.asset_roots,
+                  "Also let the scene read files inside this folder (through '..' or symbolic links); for a scene you "
+                  "trust (default: only the scene's own folder and the folders under it)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--max-triangles", limits.max_triangles,
+                  "Refuse a scene that places more triangles, instances counted (default 16777216)")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 32));
+  cmd->add_option_function<double>(
+         "--max-host-memory", [&limits](double gib) { limits.host_memory_bytes = uint64_t(gib * double(1ull << 30)); },
+         "GiB of host memory the scene may take: files read, textures decoded, triangles (default: 3/4 of this "
+         "machine's memory)")
+      ->check(CLI::Range(0.001, 65536.0));
+  if (device)
+    cmd->add_option_function<double>(
+           "--max-device-memory",
+           [&limits](double gib) { limits.device_memory_bytes = uint64_t(gib * double(1ull << 30)); },
+           "GiB of device memory a frame may hold at once (default: all the device has)")
+        ->check(CLI::Range(0.001, 65536.0));
+}
+
 // The options every image-making command shares: scene, outputs, device, frame and camera, light samples.
 void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env) {
   cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
@@ -89,6 +112,7 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
                   "of the indirect light, as a few photons measure it (at most 8; 3 with --sky or --environment)")
       ->check(CLI::Range(0u, kMaxBounces));
   env.add(cmd, o.environment);
+  add_scene_limit_options(cmd, o.limits, true);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
   cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
 }
@@ -204,6 +228,7 @@ int main(int argc, char** argv) {
                        "says so and prints the rest");
   EnvironmentFlags info_environment;
   info_environment.add(info_cmd, info.environment);
+  add_scene_limit_options(info_cmd, info.limits, false);
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means, FLIP");
@@ -253,6 +278,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--camera", sweep.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
   sweep_cmd->add_option("--block", sweep.block, "Block size of block relMSE (default 8)")->check(CLI::Range(1, 4096));
   sweep_environment.add(sweep_cmd, sweep.environment);
+  add_scene_limit_options(sweep_cmd, sweep.limits, true);
 
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand(
@@ -276,6 +302,7 @@ int main(int argc, char** argv) {
                         "Timed frames per device (default 3), or --traversal's paired runs (default 5); medians")
       ->check(CLI::Range(1, 1000));
   bench_cmd->add_option("--json", bench.json_path, "Also write the results as JSON");
+  add_scene_limit_options(bench_cmd, bench.limits, false);
 
   CLI11_PARSE(app, argc, argv);
   set_quiet(quiet);
@@ -322,7 +349,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: OpenCL call %s failed with code %d\n", e.what(), e.err());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "error: out of host memory; render fewer pixels (--width, --height)\n");
+    std::fprintf(stderr, "error: out of host memory: this machine could not hold the frame beside the scene; render "
+                         "fewer pixels (--width, --height), or lower --max-host-memory so that a scene too large is "
+                         "refused as it is read\n");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
-  libembree-dev libopenimageio-dev libtinygltf-dev libglm-dev libcli11-dev nlohmann-json3-dev
+  libembree-dev libopenimageio-dev libtinygltf-dev libstb-dev libglm-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
 )

@@ -34,11 +34,11 @@ expect_refused("missing output directory" "missing/out.exr: the directory missin
 expect_refused("read-only output directory" "/proc/out.exr: cannot create files in /proc" render -o out.exr -o /proc/out.exr)
 expect_refused("summary in a missing directory" "missing/s.json: the directory" render -o out.exr --json missing/s.json)
 expect_refused("unknown output format" "out.tiff: unknown output format" render -o out.tiff)
-expect_refused("invalid JSON" "broken.gltf: cannot be loaded" render broken.gltf -o out.exr)
+expect_refused("invalid JSON" "broken.gltf: is not valid JSON" render broken.gltf -o out.exr)
 expect_refused("missing scene" "nothing.gltf" render nothing.gltf -o out.exr)
 expect_refused("accuracy out of range" "--accuracy" render -o out.exr --accuracy 0)
 expect_refused("negative adaptive rays" "--adaptive-rays: Value -1" render -o out.exr --adaptive-rays -1)
-expect_refused("info on invalid JSON" "broken.gltf: cannot be loaded" info broken.gltf --json out.json)
+expect_refused("info on invalid JSON" "broken.gltf: is not valid JSON" info broken.gltf --json out.json)
 expect_refused("bounces 17" "--bounces: Value 17" render -o out.exr --bounces 17)
 expect_refused("unknown bounce method" "--bounce-method: photon not in" render -o out.exr --bounce-method photon)
 expect_refused("photons under a sky" "--bounce-method photons: the photons come from the lights"

@@ -355,6 +355,9 @@ cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::strin
                  " in one buffer). Render fewer pixels (--width, --height) or choose another --device");
   };
   if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");
+  if (memory_budget_ && memory_use().live_bytes + bytes > memory_budget_)
+    throw refuse(byte_size(double(memory_use().live_bytes), "MiB") + " are held already, and the budget is " +
+                 byte_size(double(memory_budget_), "MiB") + " (--max-device-memory)");
   try {
     cl::Buffer made(context_, flags, bytes);
     {

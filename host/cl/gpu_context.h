@@ -77,6 +77,8 @@ class GpuContext {
   // A device buffer of `bytes`; running out of device memory (or asking for more than one buffer may hold) throws
   // rcsplat::Error naming `what`, the size asked for and what the device has.
   cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
+  // The most device memory this context's buffers may hold at once (--max-device-memory); 0: what the device has.
+  void set_memory_budget(uint64_t bytes) { memory_budget_ = bytes; }
 
   // Device memory in use now and at its peak (a copy; thread-safe). Buffers count until OpenCL frees them (a
   // destructor callback), so the peak is what the device had to hold at once. restart_memory_peak: a new frame's
@@ -130,6 +132,7 @@ class GpuContext {
   size_t tables_computed_ = 0;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;
+  uint64_t memory_budget_ = 0;
   std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
 };

@@ -92,7 +92,7 @@ int run_bench(const BenchOptions& options) {
     log_warning("../shared/scenes/sponza_dabrovic is absent: benchmarking a generated room of 5,000 boxes instead");
     scene = make_box_room(5000, 7);
   } else {
-    scene = load_scene(path);
+    scene = load_scene(path, 0, {}, {}, options.limits);
   }
   DeviceInfo device = select_device(options.device);
   log_info("scene " + scene.source + ", " + std::to_string(scene.triangle_count()) + " triangles; device " + device.name);

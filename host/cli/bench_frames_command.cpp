@@ -49,7 +49,7 @@ const PassTime kPasses[] = {{"bvh", &RenderStats::bvh_build_s},     {"upload", &
 }  // namespace
 
 int run_bench_frames(const BenchOptions& o) {
-  const Scene scene = load_scene(o.scene_path);  // empty: the built-in Cornell box, as for render
+  const Scene scene = load_scene(o.scene_path, 0, {}, {}, o.limits);  // empty: the built-in Cornell box, as for render
   const std::vector<DeviceInfo> devices = chosen_devices(o.devices.empty() ? o.device : o.devices);
   RenderSettings settings;
   settings.width = o.width;

@@ -9,6 +9,7 @@
 #include "cl/gpu_context.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
+#include "scene/scene_limits.h"
 #include "scene/scene_plan.h"
 
 namespace rcsplat {
@@ -24,6 +25,7 @@ struct RenderOptions {
   std::string device;
   RenderSettings settings;
   EnvironmentSettings environment;  // --sky, --environment (part of the scene once loaded)
+  SceneLimits limits;               // --asset-root, --max-triangles, --max-host-memory, --max-device-memory
   float exposure = 0.0f;
   std::string json_path;
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
@@ -41,6 +43,7 @@ struct InfoOptions {
   std::string json_path;
   std::string device;  // for the bounce probe; none available: info says so and goes on
   EnvironmentSettings environment;
+  SceneLimits limits;
 };
 int run_info(const InfoOptions& options);
 // The scene plan's lines (info and the render summary), its JSON, and the kernel switches with the BVH's stack size.
@@ -75,6 +78,7 @@ struct SweepOptions {
   unsigned light_samples = 16, pixel_samples = 0, bounces = 0;  // bounces 0: the reference's
   int camera = 0;
   EnvironmentSettings environment;
+  SceneLimits limits;
   int block = 8;
   float exposure = 0.0f;
 };
@@ -93,6 +97,7 @@ struct BenchOptions {
   size_t record_points = 4096;
   int repeats = 5;
   std::string json_path;
+  SceneLimits limits;
 };
 int run_bench(const BenchOptions& options);
 int run_bench_frames(const BenchOptions& options);
@@ -102,8 +107,9 @@ std::string default_bench_scene();
 // The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
 // placed for the camera the user chose (render/camera.h add_view_defaults).
 // With the environment the options ask for (--sky, --environment), which also stands in for the default light.
+// A glTF scene reads only what `limits` allows (scene/scene_limits.h, docs/SECURITY.md).
 Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
-                 const EnvironmentSettings& environment = {});
+                 const EnvironmentSettings& environment = {}, const SceneLimits& limits = {});
 
 // The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings);

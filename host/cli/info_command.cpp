@@ -114,7 +114,7 @@ nlohmann::json probe_bounces(const Scene& scene, const SceneFrame& frame, const 
 }  // namespace
 
 int run_info(const InfoOptions& options) {
-  const Scene scene = load_scene(options.scene_path, 0, {}, options.environment);
+  const Scene scene = load_scene(options.scene_path, 0, {}, options.environment, options.limits);
   const ScenePlan plan = plan_scene(scene);
   // The BVH a render builds: over the scene in its fitted device frame (scene/scene_frame.h), so the depth matches.
   const SceneFrame frame = SceneFrame::fitted(scene);

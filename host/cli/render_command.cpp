@@ -217,10 +217,12 @@ int run_render(const RenderOptions& options) {
   }
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
   Scene scene =
-      load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides, options.environment);
+      load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides, options.environment,
+                 options.limits);
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);
+  gpu.set_memory_budget(options.limits.device_memory_bytes);
   RenderedImage image;
   std::string earlier;  // --resume: the .exr output an earlier run wrote
   for (const std::string& out : options.outputs)

@@ -133,11 +133,12 @@ int run_sweep(const SweepOptions& o) {
 
   fs::create_directories(o.output_dir);
   const std::string csv_path = (fs::path(o.output_dir) / "sweep.csv").string();
-  Scene scene = load_scene(o.scene_path, o.camera, {}, o.environment);
+  Scene scene = load_scene(o.scene_path, o.camera, {}, o.environment, o.limits);
   DeviceInfo device = select_device(o.device);
   log_info("sweep: " + std::to_string(runs.size()) + " renders of " + scene.source + " at " +
            std::to_string(ref_width) + "x" + std::to_string(ref_height) + " on " + device.name);
   GpuContext gpu(device);
+  gpu.set_memory_budget(o.limits.device_memory_bytes);
 
   std::ostringstream csv;
   csv << "method,config,accuracy,hemisphere,hsh_order,path_spp,denoised,seconds,kernel_build_s,gbuffer_s,direct_s,"

@@ -17,7 +17,10 @@
 #include <optional>
 #include <set>
 
+#include <stb/stb_image.h>
+
 #include "kernels/shared_types.h"
+#include "scene/gltf_checks.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -30,8 +33,9 @@ const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model, Scene& scene)
-      : path_(path), model_(model), scene_(scene) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, Scene& scene, const SceneLimits& limits,
+             HostBudget& budget, const std::set<int>& zero_accessors)
+      : path_(path), model_(model), scene_(scene), limits_(limits), budget_(budget), zero_accessors_(zero_accessors) {}
 
   void read() {
     for (const std::string& ext : model_.extensionsUsed) {
@@ -52,16 +56,25 @@ class GltfReader {
       int s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size() ? model_.defaultScene : 0;
       roots = model_.scenes[size_t(s)].nodes;
     } else {
-      // No scene: every node that is nobody's child is a root.
+      // No scene: every node that is nobody's child is a root (check_gltf refused cycles and second parents).
       std::vector<bool> is_child(model_.nodes.size(), false);
       for (const auto& n : model_.nodes)
-        for (int c : n.children)
-          if (c >= 0 && size_t(c) < is_child.size()) is_child[size_t(c)] = true;
+        for (int c : n.children) is_child[size_t(c)] = true;
       for (size_t i = 0; i < model_.nodes.size(); ++i)
         if (!is_child[i]) roots.push_back(int(i));
     }
-    std::vector<bool> visiting(model_.nodes.size(), false);
-    for (int root : roots) visit_node(root, glm::mat4(1.0f), visiting);
+    check_instanced_triangles(roots);
+    // Depth first with a stack of its own: a chain of 100,000 nodes is as deep as the heap allows, not the call stack.
+    // The graph is a forest (check_gltf), so each node is visited once.
+    std::vector<std::pair<int, glm::mat4>> stack;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, glm::mat4(1.0f));
+    while (!stack.empty()) {
+      const auto [index, parent] = stack.back();
+      stack.pop_back();
+      const glm::mat4 world = visit_node(index, parent);
+      const std::vector<int>& children = model_.nodes[size_t(index)].children;
+      for (auto c = children.rbegin(); c != children.rend(); ++c) stack.emplace_back(*c, world);
+    }
     if (scene_.triangle_count() == 0) fail("the scene has no triangles to render");
   }
 
@@ -83,52 +96,66 @@ class GltfReader {
     warn("not simulated: " + line);
   }
 
-  // Reads an accessor's elements of `components` values each, as floats: float components as they are, integer
-  // components normalised to [0, 1] (or [-1, 1] when signed) unless `integers`, which keeps their values (JOINTS_0).
-  // A sparse accessor's substitutions are applied; every read is checked against its buffer first.
-  std::vector<float> read_floats(int accessor_index, int components, const std::string& what,
-                                 bool integers = false) const {
-    const tinygltf::Accessor& acc = accessor(accessor_index, what);
-    if (tinygltf::GetNumComponentsInType(uint32_t(acc.type)) != components) {
-      fail(what + ": accessor " + std::to_string(accessor_index) + " has the wrong type (expected " +
-           std::to_string(components) + " components)");
-    }
+  // "accessors[7] (meshes[0].primitives[1].POSITION)": an accessor and the use it is read for, for messages.
+  static std::string accessor_name(int index, const std::string& use) {
+    return "accessors[" + std::to_string(index) + "] (" + use + ")";
+  }
+
+  // Reads the first `needed` elements (all, when fewer) of an accessor, `components` values each, as floats: float
+  // components as they are, integer components normalised to [0, 1] (or [-1, 1] when signed) unless `integers`, which
+  // keeps their values (JOINTS_0). A sparse accessor's substitutions are applied. Every read is checked against its
+  // buffer first, and the floats made are charged to the host budget before they are allocated: an accessor without
+  // a buffer view (zeros, with sparse substitutions) is as large as its reader needs, not as its count says.
+  std::vector<float> read_floats(int accessor_index, int components, const std::string& use, bool integers = false,
+                                 size_t needed = SIZE_MAX) const {
+    const tinygltf::Accessor& acc = accessor(accessor_index, use);
+    const std::string name = accessor_name(accessor_index, use);
+    if (tinygltf::GetNumComponentsInType(uint32_t(acc.type)) != components)
+      fail(name + " has the wrong type (" + std::to_string(components) + " components expected)");
     const unsigned char* data = nullptr;
     size_t stride = 0;
-    element_data(acc, accessor_index, components, what, &data, &stride);  // validates before anything is allocated
-    std::vector<float> out(acc.count * size_t(components), 0.0f);
+    element_data(acc, accessor_index, components, use, &data, &stride);  // validates before anything is allocated
+    const size_t count = std::min(acc.count, needed);
+    charge_transient(uint64_t(count) * uint64_t(components) * sizeof(float), name);
+    std::vector<float> out(count * size_t(components), 0.0f);
     int size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     auto read_element = [&](const unsigned char* e, size_t slot) {
       for (int c = 0; c < components; ++c)
         out[slot * size_t(components) + size_t(c)] =
-            component(acc.componentType, e + size_t(c) * size_t(size), integers, what, accessor_index);
+            component(acc.componentType, e + size_t(c) * size_t(size), integers, name);
     };
     if (data)  // no buffer view: all zeros, as the specification says (then sparse substitutions, if any)
-      for (size_t i = 0; i < acc.count; ++i) read_element(data + i * stride, i);
+      for (size_t i = 0; i < count; ++i) read_element(data + i * stride, i);
     if (acc.sparse.isSparse) {
-      std::string name = what + ": sparse accessor " + std::to_string(accessor_index);
-      size_t count = size_t(std::max(acc.sparse.count, 0));
+      const std::string sparse = name + " sparse";
+      size_t substitutions = size_t(std::max(acc.sparse.count, 0));
       int index_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.sparse.indices.componentType));
       if (index_size <= 0 || acc.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
           acc.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT)
-        fail(name + ": indices must be unsigned byte, short or int");
+        fail(sparse + ": indices must be unsigned byte, short or int");
       const unsigned char* indices = view_range(acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset),
-                                                count * size_t(index_size), name + " indices");
+                                                substitutions * size_t(index_size), sparse + " indices");
       const unsigned char* values = view_range(acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset),
-                                               count * size_t(size) * size_t(components), name + " values");
-      for (size_t k = 0; k < count; ++k) {
+                                               substitutions * size_t(size) * size_t(components), sparse + " values");
+      for (size_t k = 0; k < substitutions; ++k) {
         uint32_t index = read_index(acc.sparse.indices.componentType, indices + k * size_t(index_size));
         if (index >= acc.count)
-          fail(name + ": substitution " + std::to_string(k) + " names element " + std::to_string(index) + " of " +
+          fail(sparse + ": substitution " + std::to_string(k) + " names element " + std::to_string(index) + " of " +
                std::to_string(acc.count));
-        read_element(values + k * size_t(size) * size_t(components), index);
+        if (index < count) read_element(values + k * size_t(size) * size_t(components), index);
       }
     }
     return out;
   }
 
+  // Arrays a primitive reads are freed when it is done; they only need to fit beside what the scene holds.
+  void charge_transient(uint64_t bytes, const std::string& name) const {
+    HostBudget probe = budget_;
+    probe.charge(bytes, name);
+  }
+
   // One component at p as a float (see read_floats).
-  float component(int type, const unsigned char* p, bool integers, const std::string& what, int accessor_index) const {
+  float component(int type, const unsigned char* p, bool integers, const std::string& name) const {
     auto scaled = [&](double v, double unit) { return float(integers ? v : std::max(v / unit, -1.0)); };
     switch (type) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: {
@@ -156,7 +183,7 @@ class GltfReader {
         }
         break;
     }
-    fail(what + ": accessor " + std::to_string(accessor_index) + " has an unsupported component type");
+    fail(name + " has a component type this use cannot read");
   }
 
   static uint32_t read_index(int type, const unsigned char* p) {
@@ -175,7 +202,7 @@ class GltfReader {
   const unsigned char* view_range(int view, size_t offset, size_t bytes, const std::string& name) const {
     const tinygltf::BufferView& v = buffer_view(view, name);
     if (offset > v.byteLength || bytes > v.byteLength - offset)
-      fail(name + ": reads past the end of buffer view " + std::to_string(view));
+      fail(name + ": reads past the end of bufferViews[" + std::to_string(view) + "]");
     return model_.buffers[size_t(v.buffer)].data.data() + v.byteOffset + offset;
   }
 
@@ -186,64 +213,64 @@ class GltfReader {
     if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
     const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
     if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
-      fail(name + ": buffer view " + std::to_string(index) + " runs past the end of buffer " +
-           std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) +
-           " bytes): the buffer is truncated or missing");
+      fail("bufferViews[" + std::to_string(index) + "] (read by " + name + ") runs past the end of buffers[" +
+           std::to_string(view.buffer) + "] (" + std::to_string(buffer.data.size()) + " bytes)");
     }
     return view;
   }
 
-  std::vector<uint32_t> read_indices(int accessor_index, const std::string& what) const {
-    const tinygltf::Accessor& acc = accessor(accessor_index, what);
-    if (acc.type != TINYGLTF_TYPE_SCALAR) fail(what + ": the index accessor is not SCALAR");
+  // The first `needed` indices (all, when fewer) of a primitive's index accessor.
+  std::vector<uint32_t> read_indices(int accessor_index, const std::string& use) const {
+    const tinygltf::Accessor& acc = accessor(accessor_index, use);
+    const std::string name = accessor_name(accessor_index, use);
+    if (acc.type != TINYGLTF_TYPE_SCALAR) fail(name + " is not SCALAR");
+    if (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(name + ": indices must be unsigned byte, short or int");
     if (acc.sparse.isSparse) {  // rare for indices: read as integers (exact below 2^24)
-      std::vector<float> values = read_floats(accessor_index, 1, what, true);
+      std::vector<float> values = read_floats(accessor_index, 1, use, true);
       std::vector<uint32_t> out(values.size());
       for (size_t i = 0; i < values.size(); ++i) {
-        if (!(values[i] < 16777216.0f)) fail(what + ": a sparse index accessor holds an index beyond 2^24");
+        if (!(values[i] < 16777216.0f)) fail(name + ": a sparse index accessor holds an index beyond 2^24");
         out[i] = uint32_t(values[i]);
       }
       return out;
     }
     const unsigned char* data = nullptr;
     size_t stride = 0;
-    element_data(acc, accessor_index, 1, what, &data, &stride);
+    element_data(acc, accessor_index, 1, use, &data, &stride);
+    charge_transient(uint64_t(acc.count) * sizeof(uint32_t), name);
     std::vector<uint32_t> out(acc.count, 0);
     if (!data) return out;
-    if (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(what + ": indices must be unsigned byte, short or int");
     for (size_t i = 0; i < acc.count; ++i) out[i] = read_index(acc.componentType, data + i * stride);
     return out;
   }
 
-  const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+  const tinygltf::Accessor& accessor(int index, const std::string& use) const {
     if (index < 0 || size_t(index) >= model_.accessors.size())
-      fail(what + ": accessor " + std::to_string(index) + " does not exist");
+      fail(use + ": accessors[" + std::to_string(index) + "] does not exist");
     return model_.accessors[size_t(index)];
   }
 
-  // Locates an accessor's first element and stride, checking that every element lies inside its buffer.
-  void element_data(const tinygltf::Accessor& acc, int index, int components, const std::string& what,
+  // Locates an accessor's first element and stride, checking that every element lies inside its buffer; no buffer
+  // view: data stays null (zeros).
+  void element_data(const tinygltf::Accessor& acc, int index, int components, const std::string& use,
                     const unsigned char** data, size_t* stride) const {
-    std::string name = what + ": accessor " + std::to_string(index);
+    const std::string name = accessor_name(index, use);
     int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     if (component_size <= 0) fail(name + " has an invalid component type");
-    if (acc.bufferView < 0) {
-      // No data: all zeros by the specification. Bound the count so that a hostile file cannot demand terabytes.
-      if (acc.count > (size_t(1) << 26)) fail(name + " has no buffer view and an implausible count");
-      return;
-    }
+    if (acc.bufferView < 0 || zero_accessors_.count(index)) return;
     const tinygltf::BufferView& view = buffer_view(acc.bufferView, name);
     const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
     size_t element = size_t(component_size) * size_t(components);
     *stride = view.byteStride ? view.byteStride : element;
-    if (*stride < element) fail(name + ": byteStride is smaller than one element");
+    if (*stride < element) fail(name + ": bufferViews[" + std::to_string(acc.bufferView) + "].byteStride is smaller than one element");
     if (acc.count > 0) {
-      size_t last_end = acc.byteOffset + (acc.count - 1) * *stride + element;
-      if (acc.byteOffset > view.byteLength || last_end > view.byteLength || (acc.count - 1) > SIZE_MAX / *stride) {
-        fail(name + " reads past the end of its buffer view (" + std::to_string(acc.count) + " elements)");
+      if (acc.byteOffset > view.byteLength || (acc.count - 1) > (SIZE_MAX - element - acc.byteOffset) / *stride ||
+          acc.byteOffset + (acc.count - 1) * *stride + element > view.byteLength) {
+        fail(name + ": its " + std::to_string(acc.count) + " elements run past the end of bufferViews[" +
+             std::to_string(acc.bufferView) + "] (" + std::to_string(view.byteLength) + " bytes)");
       }
     }
     *data = buffer.data.data() + view.byteOffset + acc.byteOffset;
@@ -266,25 +293,59 @@ class GltfReader {
     return m;
   }
 
-  void visit_node(int index, const glm::mat4& parent, std::vector<bool>& visiting) {
-    if (index < 0 || size_t(index) >= model_.nodes.size()) fail("node " + std::to_string(index) + " does not exist");
-    if (visiting[size_t(index)]) fail("node " + std::to_string(index) + " is its own ancestor (a cycle)");
-    visiting[size_t(index)] = true;
+  // Adds what node `index` holds under its parent's transform; returns its world transform.
+  glm::mat4 visit_node(int index, const glm::mat4& parent) {
     const tinygltf::Node& node = model_.nodes[size_t(index)];
     glm::mat4 world = parent * local_matrix(node);
     for (int i = 0; i < 16; ++i)
-      if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + " has a non-finite transform");
+      if (!std::isfinite(glm::value_ptr(world)[i])) fail("nodes[" + std::to_string(index) + "] has a non-finite transform");
     if (node.mesh >= 0) add_mesh(index, world);
     if (node.camera >= 0) add_camera(node.camera, world);
     auto ext = node.extensions.find("KHR_lights_punctual");
     if (ext != node.extensions.end() && ext->second.Has("light")) add_light(index_value(ext->second.Get("light")), world);
-    for (int child : node.children) visit_node(child, world, visiting);
-    visiting[size_t(index)] = false;
+    return world;
+  }
+
+  // The triangles a primitive makes (0 for a mode other than triangles), from its accessors' counts alone.
+  uint64_t primitive_triangles(const tinygltf::Primitive& prim) const {
+    if (prim.mode >= 0 && prim.mode != TINYGLTF_MODE_TRIANGLES) return 0;
+    if (prim.indices >= 0) return model_.accessors[size_t(prim.indices)].count / 3;
+    auto pos = prim.attributes.find("POSITION");
+    return pos == prim.attributes.end() ? 0 : model_.accessors[size_t(pos->second)].count / 3;
+  }
+
+  // Refuses, before any triangle is made, a scene that instances more than limits_.max_triangles or more than the
+  // host budget holds, naming the mesh that contributes most.
+  void check_instanced_triangles(const std::vector<int>& roots) {
+    std::vector<uint64_t> mesh_triangles(model_.meshes.size(), 0), mesh_instances(model_.meshes.size(), 0);
+    for (size_t m = 0; m < model_.meshes.size(); ++m)
+      for (const tinygltf::Primitive& prim : model_.meshes[m].primitives) mesh_triangles[m] += primitive_triangles(prim);
+    std::vector<int> stack(roots.begin(), roots.end());
+    while (!stack.empty()) {
+      const tinygltf::Node& node = model_.nodes[size_t(stack.back())];
+      stack.pop_back();
+      if (node.mesh >= 0) ++mesh_instances[size_t(node.mesh)];
+      stack.insert(stack.end(), node.children.begin(), node.children.end());
+    }
+    uint64_t total = 0, worst = 0;
+    size_t worst_mesh = 0;
+    for (size_t m = 0; m < model_.meshes.size(); ++m) {
+      const uint64_t t = mesh_triangles[m] * mesh_instances[m];
+      total += t;
+      if (t > worst) worst = t, worst_mesh = m;
+    }
+    if (total == 0) return;
+    const std::string largest = "meshes[" + std::to_string(worst_mesh) + "] ('" + model_.meshes[worst_mesh].name + "'): " +
+                                std::to_string(mesh_triangles[worst_mesh]) + " triangles placed by " +
+                                std::to_string(mesh_instances[worst_mesh]) + " node(s)";
+    if (total > limits_.max_triangles)
+      fail("the scene places " + std::to_string(total) + " triangles, more than the limit of " +
+           std::to_string(limits_.max_triangles) + " (--max-triangles); the most from " + largest);
+    budget_.charge(total * kHostBytesPerTriangle, std::to_string(total) + " triangles (the most from " + largest + ")");
   }
 
   // The world transform of every node (parents first), for skins: a joint may sit anywhere in the hierarchy.
   const glm::mat4& node_world(int index) {
-    if (index < 0 || size_t(index) >= model_.nodes.size()) fail("node " + std::to_string(index) + " does not exist");
     if (node_world_.empty()) {
       node_world_.resize(model_.nodes.size());
       parent_.assign(model_.nodes.size(), -1);
@@ -317,8 +378,9 @@ class GltfReader {
       for (auto [attribute, out] : {std::pair{"POSITION", &pos}, std::pair{"NORMAL", &nrm}}) {
         auto it = prim.targets[t].find(attribute);
         if (it == prim.targets[t].end() || out->empty()) continue;
-        std::vector<float> delta = read_floats(it->second, 3, what + " morph target " + std::to_string(t) + " " + attribute);
-        if (delta.size() != out->size()) fail(what + ": morph target " + std::to_string(t) + " has another vertex count");
+        const std::string use = what + ".targets[" + std::to_string(t) + "]." + attribute;
+        std::vector<float> delta = read_floats(it->second, 3, use, false, out->size() / 3);
+        if (delta.size() != out->size()) fail(accessor_name(it->second, use) + " has fewer elements than the primitive's vertices");
         for (size_t i = 0; i < delta.size(); ++i) (*out)[i] += w * delta[i];
       }
     }
@@ -328,21 +390,25 @@ class GltfReader {
   // animation): v' = sum_k weight_k * world(joint_k) * inverseBind_k * v. Returns the first vertex's matrix.
   glm::mat4 apply_skin(int skin_index, const tinygltf::Primitive& prim, const std::string& what, std::vector<float>& pos,
                        std::vector<float>& nrm) {
-    if (size_t(skin_index) >= model_.skins.size()) fail(what + ": skin " + std::to_string(skin_index) + " does not exist");
     const tinygltf::Skin& skin = model_.skins[size_t(skin_index)];
+    const std::string skin_name = "skins[" + std::to_string(skin_index) + "]";
     auto joints_it = prim.attributes.find("JOINTS_0"), weights_it = prim.attributes.find("WEIGHTS_0");
     if (joints_it == prim.attributes.end() || weights_it == prim.attributes.end())
       fail(what + ": a skinned mesh needs JOINTS_0 and WEIGHTS_0");
     if (prim.attributes.count("JOINTS_1"))
       note_unsupported("more than four joint influences (JOINTS_1)", "only JOINTS_0 and WEIGHTS_0 pose the mesh");
-    std::vector<float> joints = read_floats(joints_it->second, 4, what + " JOINTS_0", true);
-    std::vector<float> weights = read_floats(weights_it->second, 4, what + " WEIGHTS_0");
     size_t vertices = pos.size() / 3;
-    if (joints.size() / 4 != vertices || weights.size() / 4 != vertices) fail(what + ": skin attributes have another vertex count");
+    std::vector<float> joints = read_floats(joints_it->second, 4, what + ".JOINTS_0", true, vertices);
+    std::vector<float> weights = read_floats(weights_it->second, 4, what + ".WEIGHTS_0", false, vertices);
+    if (joints.size() / 4 != vertices || weights.size() / 4 != vertices)
+      fail(what + ": JOINTS_0 and WEIGHTS_0 have fewer elements than POSITION");
     std::vector<glm::mat4> joint_matrix(skin.joints.size(), glm::mat4(1.0f));
     std::vector<float> inverse_bind;
-    if (skin.inverseBindMatrices >= 0) inverse_bind = read_floats(skin.inverseBindMatrices, 16, what + " inverseBindMatrices");
-    if (!inverse_bind.empty() && inverse_bind.size() / 16 < skin.joints.size()) fail(what + ": too few inverseBindMatrices");
+    if (skin.inverseBindMatrices >= 0)  // one matrix a joint is all that is read, whatever the accessor's count
+      inverse_bind = read_floats(skin.inverseBindMatrices, 16, skin_name + ".inverseBindMatrices", false, skin.joints.size());
+    if (!inverse_bind.empty() && inverse_bind.size() / 16 < skin.joints.size())
+      fail(accessor_name(skin.inverseBindMatrices, skin_name + ".inverseBindMatrices") + " holds " +
+           std::to_string(inverse_bind.size() / 16) + " matrices for " + std::to_string(skin.joints.size()) + " joints");
     for (size_t j = 0; j < skin.joints.size(); ++j) {
       glm::mat4 bind(1.0f);
       if (!inverse_bind.empty()) std::memcpy(glm::value_ptr(bind), &inverse_bind[16 * j], 16 * sizeof(float));
@@ -355,7 +421,9 @@ class GltfReader {
         float w = weights[4 * v + size_t(k)];
         if (w == 0.0f) continue;
         size_t j = size_t(joints[4 * v + size_t(k)]);
-        if (j >= joint_matrix.size()) fail(what + ": vertex " + std::to_string(v) + " names joint " + std::to_string(j) + " of " + std::to_string(joint_matrix.size()));
+        if (j >= joint_matrix.size())
+          fail(what + ": vertex " + std::to_string(v) + " names joint " + std::to_string(j) + " of " + skin_name + "'s " +
+               std::to_string(joint_matrix.size()));
         m += w * joint_matrix[j];
       }
       if (v == 0) first = m;
@@ -372,27 +440,44 @@ class GltfReader {
   void add_mesh(int node_index, const glm::mat4& node_matrix) {
     const tinygltf::Node& node = model_.nodes[size_t(node_index)];
     int mesh_index = node.mesh;
-    if (size_t(mesh_index) >= model_.meshes.size()) fail("mesh " + std::to_string(mesh_index) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
     const std::vector<double>& morph_weights = node.weights.empty() ? mesh.weights : node.weights;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       // A skinned mesh is placed by its joints alone (the specification ignores the mesh node's own transform).
       glm::mat4 world = node.skin >= 0 ? glm::mat4(1.0f) : node_matrix;
       const tinygltf::Primitive& prim = mesh.primitives[p];
-      std::string what = "mesh " + std::to_string(mesh_index) + " ('" + mesh.name + "') primitive " + std::to_string(p);
+      const std::string what = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(p) + "]";
       int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
       if (mode != TINYGLTF_MODE_TRIANGLES) {
-        warn(what + ": primitive mode " + std::to_string(mode) + " is not triangles; rcsplat renders only triangle lists, "
-             "so this primitive is skipped");
+        warn(what + " ('" + mesh.name + "'): primitive mode " + std::to_string(mode) +
+             " is not triangles; rcsplat renders only triangle lists, so this primitive is skipped");
         continue;
       }
       auto pos_it = prim.attributes.find("POSITION");
       if (pos_it == prim.attributes.end()) fail(what + ": no POSITION attribute");
-      std::vector<float> pos = read_floats(pos_it->second, 3, what + " POSITION");
-      size_t vertex_count = pos.size() / 3;
+      const size_t position_count = accessor(pos_it->second, what + ".POSITION").count;
+      // Indices first: the vertices they reach are all that is read of every attribute.
+      std::vector<uint32_t> idx;
+      if (prim.indices >= 0) {
+        idx = read_indices(prim.indices, what + ".indices");
+      } else {
+        charge_transient(uint64_t(position_count) * sizeof(uint32_t), what + " (its vertex order)");
+        idx.resize(position_count);
+        for (size_t i = 0; i < position_count; ++i) idx[i] = uint32_t(i);
+      }
+      if (idx.size() % 3 != 0) fail(what + ": index count " + std::to_string(idx.size()) + " is not a multiple of 3");
+      size_t vertex_count = 0;
+      for (size_t i = 0; i < idx.size(); ++i) {
+        if (idx[i] >= position_count) {
+          fail(accessor_name(prim.indices, what + ".indices") + ": index " + std::to_string(idx[i]) + " at position " +
+               std::to_string(i) + " is out of range (POSITION has " + std::to_string(position_count) + " vertices)");
+        }
+        vertex_count = std::max(vertex_count, size_t(idx[i]) + 1);
+      }
+      std::vector<float> pos = read_floats(pos_it->second, 3, what + ".POSITION", false, vertex_count);
       std::vector<float> nrm, uv, color;
       auto n_it = prim.attributes.find("NORMAL");
-      if (n_it != prim.attributes.end()) nrm = read_floats(n_it->second, 3, what + " NORMAL");
+      if (n_it != prim.attributes.end()) nrm = read_floats(n_it->second, 3, what + ".NORMAL", false, vertex_count);
       if (nrm.empty() || nrm.size() == pos.size()) apply_morph_targets(prim, morph_weights, what, pos, nrm);
       glm::mat4 skin_matrix(1.0f);
       if (node.skin >= 0) skin_matrix = apply_skin(node.skin, prim, what, pos, nrm);
@@ -405,8 +490,8 @@ class GltfReader {
       bool mirrored = glm::determinant(glm::mat3(node.skin >= 0 ? skin_matrix : world)) < 0.0f;
       auto c_it = prim.attributes.find("COLOR_0");
       if (c_it != prim.attributes.end()) {
-        int components = accessor(c_it->second, what + " COLOR_0").type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-        std::vector<float> rgba = read_floats(c_it->second, components, what + " COLOR_0");
+        int components = accessor(c_it->second, what + ".COLOR_0").type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+        std::vector<float> rgba = read_floats(c_it->second, components, what + ".COLOR_0", false, vertex_count);
         color.resize(rgba.size() / size_t(components) * 3);
         for (size_t v = 0; v < color.size() / 3; ++v)
           for (int c = 0; c < 3; ++c) color[3 * v + size_t(c)] = std::clamp(rgba[v * size_t(components) + size_t(c)], 0.0f, 1.0f);
@@ -414,7 +499,8 @@ class GltfReader {
       uint32_t material = material_slot(prim.material, what);
       UvMapping mapping = base_color_uv_mapping(prim.material);
       auto uv_it = prim.attributes.find("TEXCOORD_" + std::to_string(mapping.tex_coord));
-      if (uv_it != prim.attributes.end()) uv = read_floats(uv_it->second, 2, what + " TEXCOORD");
+      if (uv_it != prim.attributes.end())
+        uv = read_floats(uv_it->second, 2, what + ".TEXCOORD_" + std::to_string(mapping.tex_coord), false, vertex_count);
       for (size_t v = 0; v < uv.size() / 2; ++v) {  // KHR_texture_transform, applied once here
         glm::vec3 t = mapping.transform * glm::vec3(uv[2 * v], uv[2 * v + 1], 1.0f);
         uv[2 * v] = t.x;
@@ -423,20 +509,6 @@ class GltfReader {
       if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() / 2 != vertex_count) ||
           (!color.empty() && color.size() != pos.size()))
         fail(what + ": attributes have different vertex counts");
-      std::vector<uint32_t> idx;
-      if (prim.indices >= 0) {
-        idx = read_indices(prim.indices, what + " indices");
-      } else {
-        idx.resize(vertex_count);
-        for (size_t i = 0; i < vertex_count; ++i) idx[i] = uint32_t(i);
-      }
-      if (idx.size() % 3 != 0) fail(what + ": index count " + std::to_string(idx.size()) + " is not a multiple of 3");
-      for (size_t i = 0; i < idx.size(); ++i) {
-        if (idx[i] >= vertex_count) {
-          fail(what + ": index " + std::to_string(idx[i]) + " at position " + std::to_string(i) +
-               " is out of range (the primitive has " + std::to_string(vertex_count) + " vertices)");
-        }
-      }
       size_t first = scene_.positions.size();
       for (size_t t = 0; t < idx.size(); t += 3)
         add_triangle(t, idx, {pos, nrm, uv, color}, world, normal_matrix, mirrored, material);
@@ -543,7 +615,7 @@ class GltfReader {
 
   int texture_slot(int tex, const std::string& material) const {
     if (tex < 0) return -1;
-    if (size_t(tex) >= texture_slots_.size()) fail("material '" + material + "': texture " + std::to_string(tex) + " does not exist");
+    if (size_t(tex) >= texture_slots_.size()) fail("material '" + material + "': textures[" + std::to_string(tex) + "] does not exist");
     return texture_slots_[size_t(tex)];
   }
 
@@ -607,7 +679,8 @@ class GltfReader {
     return WRAP_REPEAT;
   }
 
-  // glTF textures become scene textures (RGBA8); a texture whose image is missing or did not decode is an error.
+  // glTF textures become scene textures (RGBA8). A texture without an image (valid glTF: an extension may supply
+  // one) leaves its materials untextured, with a warning; an image that did not decode was refused by the loader.
   void read_textures() {
     for (size_t t = 0; t < model_.textures.size(); ++t) {
       const tinygltf::Texture& tex = model_.textures[t];
@@ -645,12 +718,12 @@ class GltfReader {
         }
       }
       if (slot < 0) {
-        std::string image = "(none)";
-        if (tex.source >= 0 && size_t(tex.source) < model_.images.size()) {
+        if (tex.source >= 0) {
           const tinygltf::Image& img = model_.images[size_t(tex.source)];
-          image = "image " + std::to_string(tex.source) + " '" + (img.uri.empty() ? img.name : img.uri) + "'";
+          fail("textures[" + std::to_string(t) + "]: images[" + std::to_string(tex.source) + "] '" +
+               (img.uri.empty() ? img.name : img.uri.substr(0, 80)) + "' holds no pixels rcsplat can use");
         }
-        fail("texture " + std::to_string(t) + ": " + image + " is missing or is not a readable PNG, JPEG or other image");
+        warn("textures[" + std::to_string(t) + "] has no image (\"source\"); materials that use it are untextured");
       }
       texture_slots_.push_back(slot);
     }
@@ -710,6 +783,9 @@ class GltfReader {
   std::string path_;
   const tinygltf::Model& model_;
   Scene& scene_;
+  const SceneLimits& limits_;
+  HostBudget& budget_;
+  const std::set<int>& zero_accessors_;  // no buffer view in the file: zeros (CheckedGltf::zero_accessors)
   std::vector<int> texture_slots_;
   int default_material_ = -1;
   std::vector<std::optional<glm::mat4>> node_world_;
@@ -720,45 +796,128 @@ class GltfReader {
 
 namespace {
 
-// tinygltf's file reader, refusing what is not a regular file: its own asks a directory or a device named by a
-// buffer's or image's URI for its size and gets 2^63 (found by fuzzing).
-bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    if (err) *err += "'" + path + "' is not a regular file\n";
+// What tinygltf's callbacks need: the files check_gltf allowed, and the first refusal, which replaces tinygltf's own
+// words in the message.
+struct LoadContext {
+  const CheckedGltf* checked;
+  const AssetAccess* access;
+  const SceneLimits* limits;
+  HostBudget* budget;
+  std::string refusal;
+};
+
+std::string no_expansion(const std::string& path, void*) { return path; }
+
+// tinygltf asks for a file by its base directory joined to a URI, then again relative to the working directory:
+// only the paths check_gltf resolved exist for it.
+bool allowed_file_exists(const std::string& path, void* user) {
+  const LoadContext& context = *static_cast<LoadContext*>(user);
+  return context.checked->files.count(path) > 0;
+}
+
+bool read_allowed_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  LoadContext& context = *static_cast<LoadContext*>(user);
+  auto it = context.checked->files.find(path);
+  if (it == context.checked->files.end()) {
+    if (err) *err += "refused\n";
     return false;
   }
-  std::ifstream in(path, std::ios::binary);
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) {
-    if (err) *err += "'" + path + "' cannot be read\n";
+  try {
+    *out = context.access->read(it->second.file, it->second.bytes, it->second.what);
+  } catch (const Error& e) {
+    if (context.refusal.empty()) context.refusal = e.what();
     return false;
   }
   return true;
 }
 
+bool write_nothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// tinygltf's image decoder, with the size read from the image's header and charged to the host budget before any
+// pixel is decoded. Every image becomes 8 bits a channel (rcsplat's textures are RGBA8).
+bool decode_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                  const unsigned char* bytes, int size, void* user) {
+  LoadContext& context = *static_cast<LoadContext*>(user);
+  const std::string name = context.access->scene_file() + ": images[" + std::to_string(index) + "]" +
+                           (!image->uri.empty() ? " '" + image->uri.substr(0, 80) + "'"
+                                                : !image->name.empty() ? " '" + image->name + "'" : "");
+  auto refuse = [&](const std::string& what) {
+    if (context.refusal.empty()) context.refusal = name + ": " + what;
+    if (err) *err += "refused\n";
+    return false;
+  };
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
+    // The decoder refuses a header whose pixels would pass 1 GiB before saying its size: read a PNG's here.
+    if (size >= 24 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0) {
+      auto big_endian = [&](int at) { return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3]; };
+      const uint32_t w = big_endian(16), h = big_endian(20);
+      if (w > uint32_t(context.limits->max_texture_side) || h > uint32_t(context.limits->max_texture_side))
+        return refuse("is " + std::to_string(w) + " x " + std::to_string(h) + " pixels; rcsplat reads textures of at most " +
+                      std::to_string(context.limits->max_texture_side) + " pixels a side");
+    }
+    return refuse("not an image rcsplat reads (PNG, JPEG, BMP, GIF, TGA, PSD, HDR, PNM), or its header is damaged");
+  }
+  const int side = context.limits->max_texture_side;
+  if (width <= 0 || height <= 0 || width > side || height > side)
+    return refuse("is " + std::to_string(width) + " x " + std::to_string(height) + " pixels; rcsplat reads textures of at most " +
+                  std::to_string(side) + " pixels a side");
+  const uint64_t pixels = uint64_t(width) * uint64_t(height);
+  try {
+    context.budget->charge(pixels * (uint64_t(channels) + 4), name.substr(name.find(": ") + 2) + " (decoded)");
+  } catch (const Error& e) {
+    if (context.refusal.empty()) context.refusal = e.what();
+    return false;
+  }
+  int w = 0, h = 0, n = 0;
+  unsigned char* decoded = stbi_load_from_memory(bytes, size, &w, &h, &n, 0);
+  if (!decoded || w != width || h != height || n != channels) {
+    if (decoded) stbi_image_free(decoded);
+    return refuse("its pixel data is damaged or truncated (" + std::to_string(width) + " x " + std::to_string(height) +
+                  " in its header)");
+  }
+  image->width = w;
+  image->height = h;
+  image->component = n;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(decoded, decoded + pixels * uint64_t(n));
+  stbi_image_free(decoded);
+  return true;
+}
+
 }  // namespace
 
-Scene load_gltf(const std::string& path) {
+Scene load_gltf(const std::string& path, const SceneLimits& limits) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such file");
+  const AssetAccess access(path, limits.asset_roots);
+  HostBudget budget(path, limits);
+  const CheckedGltf checked = check_gltf(access, limits, budget);
+  LoadContext context{&checked, &access, &limits, &budget, {}};
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile,
-                         nullptr});
+  loader.SetFsCallbacks({&allowed_file_exists, &no_expansion, &read_allowed_file, &write_nothing, &context});
+  loader.SetImageLoader(&decode_image, &context);
   std::string err, warn;
-  std::string ext = lower_extension(path);
   bool ok;
   try {
-    ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                       : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const std::string base = checked.base_dir;
+    ok = checked.binary
+             ? loader.LoadBinaryFromMemory(&model, &err, &warn, checked.bytes.data(), unsigned(checked.bytes.size()), base)
+             : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(checked.bytes.data()),
+                                          unsigned(checked.bytes.size()), base);
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot be parsed: " + e.what());
+    throw Error(path + ": cannot be parsed (" + (context.refusal.empty() ? "the glTF parser stopped" : context.refusal) + ")");
   }
+  if (!context.refusal.empty()) throw Error(context.refusal);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
-    throw Error(path + ": cannot be loaded: " + (err.empty() ? "unknown error" : err));
+    throw Error(path + ": cannot be loaded: " +
+                (err.empty() ? "the glTF parser refused it without naming the defect, after rcsplat's own checks "
+                               "passed; please report it with the file (docs/SECURITY.md)"
+                             : err));
   }
   if (!warn.empty()) {
     while (!warn.empty() && warn.back() == '\n') warn.pop_back();
@@ -768,7 +927,7 @@ Scene load_gltf(const std::string& path) {
   scene.source = path;
   // Every coordinate is finite, but their spread must be too: cameras, lights and the device frame are derived
   // from the bounding box (found by fuzzing: a misaligned view read floats near 1e38, or 1e-38).
-  GltfReader(path, model, scene).read();
+  GltfReader(path, model, scene, limits, budget, checked.zero_accessors).read();
   scene.check_extent();
   return scene;
 }

@@ -4,7 +4,9 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "scene/scene_limits.h"
 
 namespace rcsplat {
-Scene load_gltf(const std::string& path);
+// Reads only what `limits` allows: files inside the scene's folder, triangles and host memory within bounds.
+Scene load_gltf(const std::string& path, const SceneLimits& limits = {});
 }

@@ -1,0 +1,140 @@
+// Every class of hostile or unusual scene file (tests/untrusted_scenes.h), run through the real binary as a user
+// would: `rcsplat render SCENE -o out.exr -o out.png --json out.json` in a working folder of its own. A refusal must
+// exit non-zero, say the case's key words (the file, the object, the defect), reveal nothing it must not, and leave no
+// output; a valid file must render. Where an allocation bomb is the point, the process's peak resident memory is
+// checked too (not under AddressSanitizer, whose own memory is larger than the ceilings).
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "test_support.h"
+#include "untrusted_scenes.h"
+
+namespace rcsplat {
+namespace {
+
+namespace fs = std::filesystem;
+using test::UntrustedCase;
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
+struct ProcessRun {
+  int exit_code = -1;
+  std::string output;      // stdout and stderr together
+  long peak_memory_kib = 0;
+};
+
+// Runs the binary in `folder` with `args`, killed after `limit` (a hang is a failure, not a measurement).
+ProcessRun run_binary(const fs::path& folder, const std::vector<std::string>& args, std::chrono::seconds limit) {
+  const fs::path log = folder / "output.txt";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (chdir(folder.c_str()) != 0) _exit(127);
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> argv;
+    std::string binary = RCSPLAT_BINARY;
+    argv.push_back(binary.data());
+    std::vector<std::string> copy = args;
+    for (std::string& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  ProcessRun run;
+  int status = 0;
+  struct rusage usage {};
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const pid_t done = wait4(pid, &status, WNOHANG, &usage);
+    if (done == pid) break;
+    if (std::chrono::steady_clock::now() - start > limit) {
+      kill(pid, SIGKILL);
+      wait4(pid, &status, 0, &usage);
+      ADD_FAILURE() << "still running after " << limit.count() << " s: killed";
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  run.peak_memory_kib = usage.ru_maxrss;
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.output = text.str();
+  return run;
+}
+
+class UntrustedScene : public ::testing::TestWithParam<UntrustedCase> {};
+
+TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
+  const UntrustedCase& c = GetParam();
+  const fs::path folder = fs::path(test::scratch_dir()) / "case";
+  test::write_untrusted_case(c, folder);
+  const fs::path work = folder / "work";
+  fs::create_directories(work);
+  if (!c.working_folder_file.empty()) {
+    // The same quad's buffer, where only a retry relative to the working folder would find it.
+    fs::copy_file(folder / "scene/quad.bin", work / c.working_folder_file);
+  }
+  std::vector<std::string> args = {"render", (folder / c.scene).string(), "-o", "out.exr", "-o", "out.png",
+                                   "--json", "out.json", "--width", "24", "--height", "16", "--pixel-samples", "1"};
+  for (std::string a : c.args) {
+    const size_t at = a.find("{case}");
+    if (at != std::string::npos) a.replace(at, 6, folder.string());
+    args.push_back(a);
+  }
+  const ProcessRun run = run_binary(work, args, std::chrono::seconds(300));
+  const bool outputs = fs::exists(work / "out.exr") || fs::exists(work / "out.png") || fs::exists(work / "out.json");
+  if (c.renders) {
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(fs::exists(work / "out.exr") && fs::exists(work / "out.png") && fs::exists(work / "out.json"))
+        << run.output;
+  } else {
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_FALSE(outputs) << "a refused scene left output behind\n" << run.output;
+    // A refusal names the scene file it refuses.
+    EXPECT_NE(run.output.find(fs::path(c.scene).filename().string()), std::string::npos) << run.output;
+  }
+  for (const std::string& word : c.key_words) EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  for (const std::string& word : c.absent_words) EXPECT_EQ(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  // No library's internals in what a user reads.
+  for (const char* internal : {"vector::", "unknown error", "STB", "stbi", "tinygltf", "json.exception", "basic_string"})
+    EXPECT_EQ(run.output.find(internal), std::string::npos) << internal << "\n" << run.output;
+  if (c.memory_ceiling_mib && !kSanitized)
+    EXPECT_LT(run.peak_memory_kib, long(c.memory_ceiling_mib) * 1024) << "peak resident memory, KiB";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, UntrustedScene, ::testing::ValuesIn(test::untrusted_cases()),
+                         [](const ::testing::TestParamInfo<UntrustedCase>& info) { return info.param.name; });
+
+// The two symbolic-link refusals read the same whether the link's target exists or not: nothing tells which.
+TEST(UntrustedScenePolicy, ARefusalDoesNotTellWhetherAFileOutsideExists) {
+  std::map<std::string, std::string> messages;
+  for (const UntrustedCase& c : test::untrusted_cases()) {
+    if (c.name != "SymbolicLinkLeadingOut" && c.name != "SymbolicLinkLeadingOutToNothing") continue;
+    const fs::path folder = fs::path(test::scratch_dir()) / "same";  // one folder: the paths in the messages agree
+    fs::remove_all(folder);
+    test::write_untrusted_case(c, folder);
+    fs::create_directories(folder / "work");
+    messages[c.name] = run_binary(folder / "work", {"info", (folder / c.scene).string()}, std::chrono::seconds(120)).output;
+  }
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages["SymbolicLinkLeadingOut"], messages["SymbolicLinkLeadingOutToNothing"]);
+}
+
+}  // namespace
+}  // namespace rcsplat
