@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
       return run_bench(bench);
     }
   } catch (const Error& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return 1;
   } catch (const cl::Error& e) {
     // Devices may allocate lazily: running out then shows at a launch or a transfer, not at the allocation.
@@ -354,7 +354,7 @@ int main(int argc, char** argv) {
                          "refused as it is read\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return 1;
   }
   return 0;

@@ -213,6 +213,23 @@ TEST(GltfLoader, RejectsBadJson) {
   expect_load_error(path, "is not valid JSON");
 }
 
+// A data URI is JSON text: past the JSON limit the file is refused before it is parsed, naming the limit.
+TEST(GltfLoader, RefusesJsonBeyondItsLimitBeforeParsingIt) {
+  GltfBuilder b = quad_scene(5125);
+  std::string path = b.write(test::scratch_dir(), "bigjson");
+  b.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(4000, 'A');
+  test::write_file(path, b.doc.dump());
+  SceneLimits limits;
+  limits.max_json_bytes = 1000;
+  try {
+    load_gltf(path, limits);
+    ADD_FAILURE() << "a 4 KB JSON passed a 1000-byte limit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("; rcsplat reads at most 1000 bytes of glTF JSON"),
+              std::string::npos) << e.what();
+  }
+}
+
 TEST(GltfLoader, RejectsMissingFile) { expect_load_error(test::scratch_dir() + "/nothing.gltf", "no such file"); }
 
 TEST(GltfLoader, RejectsMissingBuffer) {

@@ -385,6 +385,15 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.key_words = {"scene.gltf: is not valid JSON", "unexpected end of input"};
     cases.push_back(c);
   }
+  {  // a name is a stranger's text: a terminal escape in it is printed as \x1b, never sent to the terminal
+    UntrustedCase c = quad_case("NameWithATerminalEscape", [](json& d) {
+      d["materials"] = json::array({{{"name", "clear\x1b[2Jscreen"}, {"pbrMetallicRoughness", {{"metallicFactor", 2.0}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    c.key_words = {"materials[0] 'clear\\x1b[2Jscreen': metallicFactor"};
+    c.absent_words = {"\x1b"};
+    cases.push_back(c);
+  }
   {
     UntrustedCase c = quad_case("MissingBufferFile", [](json& d) { d["buffers"][0]["uri"] = "gone.bin"; });
     c.key_words = {"buffers[0] 'gone.bin'", "no such file in the scene's folder"};

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -18,7 +20,10 @@ namespace {
 
 using nlohmann::json;
 
-std::string mib(uint64_t bytes) { return byte_size(double(bytes), bytes >= (uint64_t(1) << 30) ? "GiB" : "MiB"); }
+std::string mib(uint64_t bytes) {
+  if (bytes < (uint64_t(1) << 20)) return std::to_string(bytes) + " bytes";
+  return byte_size(double(bytes), bytes >= (uint64_t(1) << 30) ? "GiB" : "MiB");
+}
 
 // ---- The scene file itself -------------------------------------------------------------------------------------
 
@@ -131,6 +136,16 @@ std::vector<unsigned char> join_glb(const std::vector<unsigned char>& old, const
 
 // ---- The JSON's objects ------------------------------------------------------------------------------------------
 
+// A JSON number that is a whole number (1, 1.0 or 1e3), as a double; nothing for any other value. No conversion of a
+// double beyond int64's range (found by fuzzing: 6.8e69 as an index).
+std::optional<double> whole_number(const json& v) {
+  if (v.is_number_integer() || v.is_number_unsigned()) return v.get<double>();
+  if (!v.is_number_float()) return std::nullopt;
+  const double d = v.get<double>();
+  if (!(std::abs(d) < 9.0e15) || d != std::floor(d)) return std::nullopt;
+  return d;
+}
+
 // Checks the properties rcsplat and tinygltf rely on: required ones present with the right type, indices naming an
 // object that exists. Messages name the object as a JSON path would: "meshes[0].primitives[1]".
 class JsonChecks {
@@ -173,17 +188,13 @@ class JsonChecks {
       if (required) fail(where, std::string("\"") + key + "\" is required");
       return fallback;
     }
-    bool ok = it->is_number_integer() || it->is_number_unsigned();
-    if (!ok && it->is_number_float()) {
-      const double d = it->get<double>();
-      ok = d == double(int64_t(d));
-    }
-    if (!ok) fail(where, std::string("\"") + key + "\" must be an integer");
-    const double d = it->get<double>();
+    const std::optional<double> whole = whole_number(*it);
+    if (!whole) fail(where, std::string("\"") + key + "\" must be an integer");
+    const double d = *whole;
     if (d < double(lo) || d > double(hi))
       fail(where, std::string("\"") + key + "\" is " + it->dump() + "; it must lie in " + std::to_string(lo) + ".." +
                       std::to_string(hi));
-    return it->is_number_unsigned() ? int64_t(it->get<uint64_t>()) : it->get<int64_t>();
+    return int64_t(d);
   }
 
   // An index property naming an object of the top-level array `target`.
@@ -198,10 +209,9 @@ class JsonChecks {
 
   int64_t checked_index(const json& v, const std::string& where, const char* target) const {
     const size_t n = count(target);
-    bool integral = v.is_number_unsigned() || v.is_number_integer();
-    if (!integral && v.is_number_float()) integral = v.get<double>() == double(int64_t(v.get<double>()));
-    if (!integral) fail(where, "must be an index into " + std::string(target) + ", not " + v.dump());
-    const double d = v.get<double>();
+    const std::optional<double> whole = whole_number(v);
+    if (!whole) fail(where, "must be an index into " + std::string(target) + ", not " + v.dump().substr(0, 40));
+    const double d = *whole;
     if (d < 0 || d >= double(n))
       fail(where, "is " + v.dump() + ", but the file has " + std::to_string(n) + " " + target);
     return int64_t(d);
@@ -549,7 +559,7 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
   json doc;
   try {
     doc = json::parse(text, text + text_length);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range (found by fuzzing)
     std::string what = e.what();
     const size_t close = what.find("] ");
     if (close != std::string::npos) what = what.substr(close + 2);

@@ -619,6 +619,11 @@ class GltfReader {
     return texture_slots_[size_t(tex)];
   }
 
+  // "materials[3] 'marble'" for messages.
+  std::string material_label(const tinygltf::Material& src) const {
+    return "materials[" + std::to_string(&src - model_.materials.data()) + "] '" + src.name + "'";
+  }
+
   // metallicFactor, roughnessFactor (glTF defaults 1 and 1), their texture, and KHR_materials_specular's factor.
   void read_brdf(const tinygltf::Material& src, SceneMaterial& m) {
     const auto& pbr = src.pbrMetallicRoughness;
@@ -634,7 +639,7 @@ class GltfReader {
     }
     for (float f : {m.metallic, m.roughness, m.specular})
       if (!std::isfinite(f) || f < 0.0f || f > 1.0f)
-        fail("material '" + src.name + "': metallicFactor, roughnessFactor and specularFactor must lie in [0, 1]");
+        fail(material_label(src) + ": metallicFactor, roughnessFactor and specularFactor must lie in [0, 1]");
     m.metallic_roughness_texture = texture_slot(pbr.metallicRoughnessTexture.index, src.name);
     if (m.metallic_roughness_texture >= 0 && pbr.baseColorTexture.index >= 0 &&
         !same_mapping(uv_mapping_of(pbr.baseColorTexture), uv_mapping_of(pbr.metallicRoughnessTexture))) {
@@ -646,7 +651,7 @@ class GltfReader {
   void read_materials() {
     for (const tinygltf::Material& src : model_.materials) {
       SceneMaterial m;
-      m.name = src.name;
+      m.name = printable(src.name);  // a stranger's text, shown in summaries and JSON
       const auto& pbr = src.pbrMetallicRoughness;
       for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) m.base_color[i] = float(pbr.baseColorFactor[size_t(i)]);
       m.base_color_texture = texture_slot(pbr.baseColorTexture.index, src.name);
@@ -658,14 +663,14 @@ class GltfReader {
       for (int i = 0; i < 3 && size_t(i) < src.emissiveFactor.size(); ++i) m.emission[i] = float(src.emissiveFactor[size_t(i)]) * strength;
       m.double_sided = src.doubleSided;
       for (int i = 0; i < 4; ++i)
-        if (!std::isfinite(m.base_color[i]) || m.base_color[i] < 0.0f) fail("material '" + src.name + "': invalid baseColorFactor");
+        if (!std::isfinite(m.base_color[i]) || m.base_color[i] < 0.0f) fail(material_label(src) + ": invalid baseColorFactor");
       for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail("material '" + src.name + "': invalid emission");
+        if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail(material_label(src) + ": invalid emission");
       if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
       if (src.alphaMode == "MASK") {
         // A cutoff of 0 would make every hit solid: keep the smallest positive one instead.
         m.alpha_cutoff = std::max(float(src.alphaCutoff), 1e-6f);
-        if (!std::isfinite(m.alpha_cutoff)) fail("material '" + src.name + "': invalid alphaCutoff");
+        if (!std::isfinite(m.alpha_cutoff)) fail(material_label(src) + ": invalid alphaCutoff");
       } else if (src.alphaMode == "BLEND") {
         note_unsupported("alphaMode BLEND", "surfaces are opaque (no transparency)");
       }
@@ -690,7 +695,7 @@ class GltfReader {
         if (img.width > 0 && img.height > 0 && (img.bits == 8 || img.bits == 16) && img.component >= 1 &&
             img.component <= 4 && img.image.size() >= size_t(img.width) * size_t(img.height) * size_t(img.component) * size_t(img.bits / 8)) {
           SceneTexture out;
-          out.name = img.uri.empty() ? img.name : img.uri;
+          out.name = printable(img.uri.empty() ? img.name : img.uri);
           out.width = img.width;
           out.height = img.height;
           size_t texels = size_t(img.width) * size_t(img.height);
@@ -733,16 +738,16 @@ class GltfReader {
     if (size_t(index) >= model_.cameras.size()) fail("camera " + std::to_string(index) + " does not exist");
     const tinygltf::Camera& cam = model_.cameras[size_t(index)];
     SceneCamera c;
-    c.name = cam.name.empty() ? "camera " + std::to_string(index) : cam.name;
+    c.name = cam.name.empty() ? "camera " + std::to_string(index) : printable(cam.name);
     if (cam.type == "orthographic") {
       c.orthographic = true;
       c.xmag = float(std::abs(cam.orthographic.xmag));
       c.ymag = float(std::abs(cam.orthographic.ymag));
       if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
-        fail("camera " + std::to_string(index) + " ('" + c.name + "') has an invalid xmag or ymag");
+        fail("cameras[" + std::to_string(index) + "] ('" + c.name + "') has an invalid xmag or ymag");
       c.aspect = c.xmag / c.ymag;
     } else if (cam.type != "perspective") {
-      fail("camera " + std::to_string(index) + " ('" + c.name + "') has unknown type '" + cam.type + "'");
+      fail("cameras[" + std::to_string(index) + "] ('" + c.name + "') has unknown type '" + cam.type + "'");
     }
     c.eye = glm::vec3(world * glm::vec4(0, 0, 0, 1));
     glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
@@ -750,7 +755,7 @@ class GltfReader {
     c.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
     if (!c.orthographic) {
       c.yfov = float(cam.perspective.yfov);
-      if (!(c.yfov > 0.0f && c.yfov < 3.1f)) fail("camera " + std::to_string(index) + " has an invalid yfov");
+      if (!(c.yfov > 0.0f && c.yfov < 3.1f)) fail("cameras[" + std::to_string(index) + "] ('" + c.name + "') has an invalid yfov");
       if (cam.perspective.aspectRatio > 0.0) c.aspect = float(cam.perspective.aspectRatio);
     }
     scene_.cameras.push_back(c);
@@ -759,12 +764,13 @@ class GltfReader {
   void add_light(int index, const glm::mat4& world) {
     if (index < 0 || size_t(index) >= model_.lights.size()) fail("light " + std::to_string(index) + " does not exist");
     const tinygltf::Light& src = model_.lights[size_t(index)];
+    const std::string light_label = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "] '" + src.name + "'";
     SceneLight l;
-    l.name = src.name;
+    l.name = printable(src.name);
     if (src.type == "point") l.type = LightType::point;
     else if (src.type == "spot") l.type = LightType::spot;
     else if (src.type == "directional") l.type = LightType::directional;
-    else fail("light '" + src.name + "' has unknown type '" + src.type + "'");
+    else fail(light_label + " has unknown type '" + src.type + "'");
     glm::vec3 color(1.0f);
     for (int i = 0; i < 3 && size_t(i) < src.color.size(); ++i) color[i] = float(src.color[size_t(i)]);
     l.intensity = color * float(src.intensity);
@@ -776,7 +782,7 @@ class GltfReader {
     bool finite = std::isfinite(l.intensity.x) && std::isfinite(l.intensity.y) && std::isfinite(l.intensity.z) &&
                   std::isfinite(l.direction.x) && std::isfinite(l.range);
     if (!finite || l.intensity.x < 0 || l.intensity.y < 0 || l.intensity.z < 0)
-      fail("light '" + src.name + "' has an invalid colour, intensity or orientation");
+      fail(light_label + " has an invalid colour, intensity or orientation");
     scene_.lights.push_back(l);
   }
 

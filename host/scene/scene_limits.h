@@ -28,8 +28,9 @@ struct SceneLimits {
 };
 
 // Host bytes a triangle costs a frame: the loaded scene (positions, normals, uvs, colours: 136 B), the packed
-// triangles, emitters and BVH build input on the way to the device (about 260 B) and the flattened BVH (about 60 B);
-// measured on Sponza and Sibenik (docs/SECURITY.md).
-constexpr uint64_t kHostBytesPerTriangle = 456;
+// triangles (128 B), the BVH build and its flattened nodes, and on PoCL the device's copies, which live in host memory
+// too. Measured as the slope of `rcsplat render` peak resident memory between 320,000 and 1,280,000 triangles
+// (docs/SECURITY.md): 713 B with --gi none, 800 B with the defaults.
+constexpr uint64_t kHostBytesPerTriangle = 800;
 
 }  // namespace rcsplat

@@ -9,14 +9,52 @@ namespace {
 bool g_quiet = false;
 }
 
+std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  auto escape = [&](unsigned char byte) {
+    static const char* digits = "0123456789abcdef";
+    out += "\\x";
+    out += digits[byte >> 4];
+    out += digits[byte & 15];
+  };
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence of 2 to 4 bytes (no overlong forms, no surrogates, nothing past U+10FFFF) stays; C1 control
+    // characters (U+0080..U+009F) do not.
+    const size_t length = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+    bool valid = length > 0 && i + length <= text.size();
+    for (size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
+    if (valid) {
+      const unsigned char c1 = static_cast<unsigned char>(text[i + 1]);
+      if ((c == 0xe0 && c1 < 0xa0) || (c == 0xed && c1 >= 0xa0) || (c == 0xf0 && c1 < 0x90) || (c == 0xf4 && c1 >= 0x90) ||
+          (c == 0xc2 && c1 < 0xa0))
+        valid = false;
+    }
+    if (!valid) {
+      escape(c);
+      ++i;
+      continue;
+    }
+    out.append(text, i, length);
+    i += length;
+  }
+  return out;
+}
+
 void set_quiet(bool quiet) { g_quiet = quiet; }
 bool is_quiet() { return g_quiet; }
 
 void log_info(const std::string& message) {
-  if (!g_quiet) std::fprintf(stderr, "%s\n", message.c_str());
+  if (!g_quiet) std::fprintf(stderr, "%s\n", printable(message).c_str());
 }
 
-void log_warning(const std::string& message) { std::fprintf(stderr, "warning: %s\n", message.c_str()); }
+void log_warning(const std::string& message) { std::fprintf(stderr, "warning: %s\n", printable(message).c_str()); }
 
 Progress::Progress(std::string label, size_t total) : label_(std::move(label)), total_(total ? total : 1) {}
 

@@ -4,6 +4,11 @@
 
 namespace rcsplat {
 
+// Text safe for a terminal: valid UTF-8 and printable characters as they are, every other byte (control characters,
+// escape sequences, broken UTF-8) as \xNN. Names and URIs in a scene are a stranger's text: a message or summary that
+// quotes them goes through this (log_info, log_warning and the CLI's error line do).
+std::string printable(const std::string& text);
+
 void log_info(const std::string& message);
 void log_warning(const std::string& message);
 void set_quiet(bool quiet);

@@ -53,7 +53,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   }
   try {
-    rcsplat::Scene scene = rcsplat::load_gltf(path);
+    // Limits well inside libFuzzer's 2 GB: a file that reaches one must be refused, not run out of memory.
+    rcsplat::SceneLimits limits;
+    limits.host_memory_bytes = uint64_t(512) << 20;
+    limits.max_triangles = uint64_t(1) << 20;
+    rcsplat::Scene scene = rcsplat::load_gltf(path, limits);
     rcsplat::add_view_defaults(scene, 0, {});
     rcsplat::SceneCamera camera = rcsplat::choose_camera(scene, 0, {});
     int width = 64, height = 0;
