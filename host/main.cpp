@@ -68,13 +68,13 @@ void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device) {
          "--max-host-memory", [&limits](double gib) { limits.host_memory_bytes = uint64_t(gib * double(1ull << 30)); },
          "GiB of host memory the scene may take: files read, textures decoded, triangles (default: 3/4 of this "
          "machine's memory)")
-      ->check(CLI::Range(0.001, 65536.0));
+      ->check(CLI::Range(1.0 / 1024.0, 65536.0));
   if (device)
     cmd->add_option_function<double>(
            "--max-device-memory",
            [&limits](double gib) { limits.device_memory_bytes = uint64_t(gib * double(1ull << 30)); },
            "GiB of device memory a frame may hold at once (default: all the device has)")
-        ->check(CLI::Range(0.001, 65536.0));
+        ->check(CLI::Range(1.0 / 1024.0, 65536.0));
 }
 
 // The options every image-making command shares: scene, outputs, device, frame and camera, light samples.

@@ -55,3 +55,6 @@ expect_refused("info with a missing map" "nosky.hdr: cannot be read" info --envi
 expect_refused("pixel samples not square" "--pixel-samples 3: must be a square number" render -o out.exr --pixel-samples 3)
 expect_refused("spp not a multiple of the pixel samples" "--spp 6 must be a multiple of --pixel-samples 4"
                render -o out.exr --gi path --spp 6 --pixel-samples 4)
+expect_refused("device memory budget" "needs [0-9.]+ MiB; [0-9.]+ MiB are held already, and the budget is 1.0 MiB \\(--max-device-memory\\)"
+               render -o out.exr --max-device-memory 0.0009765625)
+expect_refused("asset root that is no folder" "--asset-root: Directory does not exist" render -o out.exr --asset-root nowhere)

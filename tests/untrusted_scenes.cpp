@@ -421,6 +421,17 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.renders = true;
     cases.push_back(c);
   }
+  {  // the same in a GLB, whose JSON chunk rcsplat writes again for tinygltf
+    UntrustedCase c;
+    c.name = "GlbWithAnUnusedBufferWithoutUri";
+    c.scene = "scene/quad.glb";
+    std::string bin;
+    json doc = quad("", &bin);
+    doc["buffers"].push_back({{"byteLength", 64}});
+    c.files[c.scene] = glb(doc, bin);
+    c.renders = true;
+    cases.push_back(c);
+  }
   {
     UntrustedCase c = quad_case("TexturedFromTheScenesFolder", [](json& d) { textured(d, {{"uri", "textures/two%20pixels.png"}}); });
     c.files["scene/textures/two pixels.png"] = "";  // filled below from the data URI's bytes

@@ -348,16 +348,17 @@ bool is_out_of_memory(cl_int code) {
 }
 
 cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::string& what) {
-  auto refuse = [&](const std::string& why) {
+  auto refuse = [&](const std::string& why, const char* advice = "choose another --device") {
     return Error("out of device memory: " + what + " needs " + byte_size(double(bytes), "MiB") + "; " + why +
                  " (device '" + info_.name + "': " + byte_size(double(info_.global_memory), "MiB") + " in all, " +
-                 byte_size(double(info_.max_allocation), "MiB") +
-                 " in one buffer). Render fewer pixels (--width, --height) or choose another --device");
+                 byte_size(double(info_.max_allocation), "MiB") + " in one buffer). Render fewer pixels (--width, " +
+                 "--height) or " + advice);
   };
   if (info_.max_allocation && bytes > info_.max_allocation) throw refuse("more than one buffer may hold");
   if (memory_budget_ && memory_use().live_bytes + bytes > memory_budget_)
     throw refuse(byte_size(double(memory_use().live_bytes), "MiB") + " are held already, and the budget is " +
-                 byte_size(double(memory_budget_), "MiB") + " (--max-device-memory)");
+                     byte_size(double(memory_budget_), "MiB") + " (--max-device-memory)",
+                 "raise --max-device-memory");
   try {
     cl::Buffer made(context_, flags, bytes);
     {

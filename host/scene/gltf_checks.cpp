@@ -496,22 +496,11 @@ uint64_t data_uri_bytes(const std::string& file, const std::string& what, const 
   return uint64_t(length) * 3 / 4;
 }
 
-std::string join_like_tinygltf(const std::string& base, const std::string& uri) {
-  // tinygltf 2.7 decodes %XX and also '+' as a space, then joins with '/'.
-  std::string decoded;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '+') {
-      decoded += ' ';
-    } else if (uri[i] == '%' && uri.size() > i + 2) {
-      auto hex = [](unsigned char c) -> int {
-        return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : 0;
-      };
-      decoded += char((hex(static_cast<unsigned char>(uri[i + 1])) << 4) | hex(static_cast<unsigned char>(uri[i + 2])));
-      i += 2;
-    } else {
-      decoded += uri[i];
-    }
-  }
+// The path tinygltf 2.7 asks its file callbacks for: its base directory joined with '/' to the URI, which it decodes
+// with '+' as a space. (A malformed escape decodes otherwise there; such a key is simply never found: refused.)
+std::string join_like_tinygltf(const std::string& base, std::string uri) {
+  std::replace(uri.begin(), uri.end(), '+', ' ');
+  const std::string decoded = AssetAccess::decode_uri(uri);
   if (base.empty()) return decoded;
   return base.back() == '/' ? base + decoded : base + "/" + decoded;
 }
@@ -556,6 +545,7 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
       throw Error(path + ": the JSON chunk is " + mib(text_length) + "; rcsplat reads at most " + mib(limits.max_json_bytes));
   }
   if (text_length == 0) throw Error(path + ": the file is empty; a glTF file is a JSON object");
+  budget.charge(text_length * 8, "the glTF JSON (parsed twice, about 4 times its size each)");
   json doc;
   try {
     doc = json::parse(text, text + text_length);
@@ -565,7 +555,6 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
     if (close != std::string::npos) what = what.substr(close + 2);
     throw Error(path + ": is not valid JSON: " + what);
   }
-  budget.charge(text_length * 8, "the glTF JSON (parsed twice, about 4 times its size each)");
   const JsonChecks checks(path, doc);
   checks.top_level();
   checks.objects();
