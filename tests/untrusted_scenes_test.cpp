@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -114,8 +115,11 @@ TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
   // No library's internals in what a user reads.
   for (const char* internal : {"vector::", "unknown error", "STB", "stbi", "tinygltf", "json.exception", "basic_string"})
     EXPECT_EQ(run.output.find(internal), std::string::npos) << internal << "\n" << run.output;
-  if (c.memory_ceiling_mib && !kSanitized)
+  if (c.memory_ceiling_mib && !kSanitized) {
     EXPECT_LT(run.peak_memory_kib, long(c.memory_ceiling_mib) * 1024) << "peak resident memory, KiB";
+    std::printf("peak resident memory %.0f MiB (ceiling %d MiB)\n", double(run.peak_memory_kib) / 1024.0,
+                c.memory_ceiling_mib);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, UntrustedScene, ::testing::ValuesIn(test::untrusted_cases()),
