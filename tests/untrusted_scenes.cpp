@@ -2,11 +2,11 @@
 
 #include <cstdint>
 #include <cstring>
-#include <functional>
-#include <tuple>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <tuple>
 
 namespace rcsplat::test {
 namespace {
@@ -28,17 +28,22 @@ json quad(const std::string& uri, std::string* bin) {
   for (uint16_t i : indices) append(*bin, i);
   json buffer = {{"byteLength", bin->size()}};
   if (!uri.empty()) buffer["uri"] = uri;
-  return {{"asset", {{"version", "2.0"}}},
-          {"buffers", json::array({buffer})},
-          {"bufferViews", json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}}})},
-          {"accessors", json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-                                      {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
-                                     {{"bufferView", 1}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}})},
-          {"meshes", json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}})}}})},
-          {"nodes", json::array({{{"mesh", 0}}})},
-          {"scenes", json::array({{{"nodes", {0}}}})},
-          {"scene", 0}};
+  return {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", json::array({buffer})},
+      {"bufferViews", json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                                   {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}}})},
+      {"accessors", json::array({{{"bufferView", 0},
+                                  {"componentType", 5126},
+                                  {"count", 4},
+                                  {"type", "VEC3"},
+                                  {"min", {0, 0, 0}},
+                                  {"max", {1, 1, 0}}},
+                                 {{"bufferView", 1}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}})},
+      {"meshes", json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}})}}})},
+      {"nodes", json::array({{{"mesh", 0}}})},
+      {"scenes", json::array({{{"nodes", {0}}}})},
+      {"scene", 0}};
 }
 
 // The quad with its buffer in scene/quad.bin.
@@ -96,7 +101,8 @@ std::string png_header_only(uint32_t width, uint32_t height) {
 }
 
 const char* const kTwoPixelPng =
-    "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAEElEQVR4nGNgYPj/n4GBAQAJ/AH/WNvyFwAAAABJRU5ErkJggg==";
+    "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAEElEQVR4nGNgYPj/n4GBAQAJ/AH/"
+    "WNvyFwAAAABJRU5ErkJggg==";
 
 void textured(json& doc, const json& image) {
   doc["images"] = json::array({image});
@@ -120,7 +126,8 @@ std::vector<UntrustedCase> untrusted_cases() {
     cases.push_back(c);
   }
   {
-    UntrustedCase c = quad_case("BufferWithPercentEncodedDotDot", [](json& d) { d["buffers"][0]["uri"] = "%2e%2e/secret.bin"; });
+    UntrustedCase c =
+        quad_case("BufferWithPercentEncodedDotDot", [](json& d) { d["buffers"][0]["uri"] = "%2e%2e/secret.bin"; });
     c.key_words = {"buffers[0] '%2e%2e/secret.bin'", leaves};
     c.absent_words = {secret_size};
     cases.push_back(c);
@@ -136,7 +143,8 @@ std::vector<UntrustedCase> untrusted_cases() {
     cases.push_back(c);
   }
   {
-    UntrustedCase c = quad_case("BufferOverTheNetwork", [](json& d) { d["buffers"][0]["uri"] = "https://example.com/q.bin"; });
+    UntrustedCase c =
+        quad_case("BufferOverTheNetwork", [](json& d) { d["buffers"][0]["uri"] = "https://example.com/q.bin"; });
     c.key_words = {"buffers[0]", "the URI scheme 'https:' is not read"};
     cases.push_back(c);
   }
@@ -154,26 +162,30 @@ std::vector<UntrustedCase> untrusted_cases() {
     cases.push_back(c);
   }
   {  // the same refusal whether the link's target exists or not: nothing tells which
-    UntrustedCase c = quad_case("SymbolicLinkLeadingOutToNothing", [](json& d) { d["buffers"][0]["uri"] = "inside.bin"; });
+    UntrustedCase c =
+        quad_case("SymbolicLinkLeadingOutToNothing", [](json& d) { d["buffers"][0]["uri"] = "inside.bin"; });
     c.symlinks["scene/inside.bin"] = "../no-such-file.bin";
     c.key_words = {"buffers[0] 'inside.bin'", "a symbolic link leads out of the scene's folder"};
     cases.push_back(c);
   }
   {  // tinygltf alone would find it relative to the working folder after missing it beside the scene
-    UntrustedCase c = quad_case("BufferOnlyInTheWorkingFolder", [](json& d) { d["buffers"][0]["uri"] = "elsewhere.bin"; });
+    UntrustedCase c =
+        quad_case("BufferOnlyInTheWorkingFolder", [](json& d) { d["buffers"][0]["uri"] = "elsewhere.bin"; });
     c.working_folder_file = "elsewhere.bin";
     c.key_words = {"buffers[0] 'elsewhere.bin'", "no such file in the scene's folder"};
     cases.push_back(c);
   }
   {  // a user who trusts the scene widens the rule
-    UntrustedCase c = quad_case("AssetRootWidensTheRule", [](json& d) { d["buffers"][0]["uri"] = "../shared/quad.bin"; });
+    UntrustedCase c =
+        quad_case("AssetRootWidensTheRule", [](json& d) { d["buffers"][0]["uri"] = "../shared/quad.bin"; });
     c.files["shared/quad.bin"] = c.files["scene/quad.bin"];
     c.args = {"--asset-root", "{case}/shared"};
     c.renders = true;
     cases.push_back(c);
   }
   {
-    UntrustedCase c = quad_case("AssetRootIsNoWiderThanItSays", [](json& d) { d["buffers"][0]["uri"] = "../secret.bin"; });
+    UntrustedCase c =
+        quad_case("AssetRootIsNoWiderThanItSays", [](json& d) { d["buffers"][0]["uri"] = "../secret.bin"; });
     c.files["shared/quad.bin"] = c.files["scene/quad.bin"];
     c.args = {"--asset-root", "{case}/shared"};
     c.key_words = {"buffers[0] '../secret.bin'", leaves, "inside --asset-root"};
@@ -261,9 +273,12 @@ std::vector<UntrustedCase> untrusted_cases() {
   }
   {  // 2^26 positions without data, of which the indices read four (set by sparse substitution): valid, and small
     UntrustedCase c = quad_case("PositionsWithoutDataReadOnlyAsFarAsIndexed", [](json& d) {
-      d["accessors"][0] = {{"componentType", 5126}, {"count", 1 << 26}, {"type", "VEC3"},
-                           {"sparse", {{"count", 4}, {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
-                                       {"values", {{"bufferView", 0}}}}}};
+      d["accessors"][0] = {
+          {"componentType", 5126},
+          {"count", 1 << 26},
+          {"type", "VEC3"},
+          {"sparse",
+           {{"count", 4}, {"indices", {{"bufferView", 2}, {"componentType", 5123}}}, {"values", {{"bufferView", 0}}}}}};
       d["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 8}});
       d["buffers"][0]["byteLength"] = 68;
     });
@@ -302,7 +317,8 @@ std::vector<UntrustedCase> untrusted_cases() {
     doc["buffers"][0]["byteLength"] = c.files["scene/quad.bin"].size();
     c.files["scene/scene.gltf"] = doc.dump();
     c.args = {"--max-host-memory", "0.01"};
-    c.key_words = {"buffers[0] 'quad.bin'", "of host memory, beyond the scene's budget of 10.2 MiB", "--max-host-memory"};
+    c.key_words = {"buffers[0] 'quad.bin'", "of host memory, beyond the scene's budget of 10.2 MiB",
+                   "--max-host-memory"};
     c.memory_ceiling_mib = 600;
     cases.push_back(c);
   }
@@ -344,7 +360,9 @@ std::vector<UntrustedCase> untrusted_cases() {
     // The header's length says what the file held before the cut: a truncated file, not an inconsistent one.
     c.files[c.scene] = cut_glb;
     c.key_words = {"cut.glb", words};
-    if (cut > 12) c.key_words.push_back("the header says the file holds " + std::to_string(whole_glb.size()) + " bytes: it is truncated");
+    if (cut > 12)
+      c.key_words.push_back("the header says the file holds " + std::to_string(whole_glb.size()) +
+                            " bytes: it is truncated");
     cases.push_back(c);
   }
   {
@@ -387,7 +405,8 @@ std::vector<UntrustedCase> untrusted_cases() {
   }
   {  // a name is a stranger's text: a terminal escape in it is printed as \x1b, never sent to the terminal
     UntrustedCase c = quad_case("NameWithATerminalEscape", [](json& d) {
-      d["materials"] = json::array({{{"name", "clear\x1b[2Jscreen"}, {"pbrMetallicRoughness", {{"metallicFactor", 2.0}}}}});
+      d["materials"] =
+          json::array({{{"name", "clear\x1b[2Jscreen"}, {"pbrMetallicRoughness", {{"metallicFactor", 2.0}}}}});
       d["meshes"][0]["primitives"][0]["material"] = 0;
     });
     c.key_words = {"materials[0] 'clear\\x1b[2Jscreen': metallicFactor"};
@@ -417,7 +436,9 @@ std::vector<UntrustedCase> untrusted_cases() {
     cases.push_back(c);
   }
   {
-    UntrustedCase c = quad_case("UnusedBufferWithoutUri", [](json& d) { d["buffers"].push_back({{"byteLength", 64}}); });
+    UntrustedCase c = quad_case("UnusedBufferWithoutUri", [](json& d) {
+      d["buffers"].push_back({{"byteLength", 64}});
+    });
     c.renders = true;
     cases.push_back(c);
   }
@@ -433,7 +454,9 @@ std::vector<UntrustedCase> untrusted_cases() {
     cases.push_back(c);
   }
   {
-    UntrustedCase c = quad_case("TexturedFromTheScenesFolder", [](json& d) { textured(d, {{"uri", "textures/two%20pixels.png"}}); });
+    UntrustedCase c = quad_case("TexturedFromTheScenesFolder", [](json& d) {
+      textured(d, {{"uri", "textures/two%20pixels.png"}});
+    });
     c.files["scene/textures/two pixels.png"] = "";  // filled below from the data URI's bytes
     static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     const std::string b64 = std::string(kTwoPixelPng).substr(std::strlen("data:image/png;base64,"));

@@ -20,11 +20,11 @@ struct UntrustedCase {
   std::string scene = "scene/scene.gltf";
   // Extra command-line arguments; "{case}" stands for the case's folder.
   std::vector<std::string> args;
-  bool renders = false;                  // valid input: exit 0 and every output written
-  std::vector<std::string> key_words;    // each in what the binary prints (the refusal, or a warning)
-  std::vector<std::string> absent_words; // none in what it prints (what a refusal must not reveal)
-  int memory_ceiling_mib = 0;            // the process's peak resident memory stays below; 0: not checked
-  std::string working_folder_file;       // a file of this name put in the working folder (the retry there)
+  bool renders = false;                   // valid input: exit 0 and every output written
+  std::vector<std::string> key_words;     // each in what the binary prints (the refusal, or a warning)
+  std::vector<std::string> absent_words;  // none in what it prints (what a refusal must not reveal)
+  int memory_ceiling_mib = 0;             // the process's peak resident memory stays below; 0: not checked
+  std::string working_folder_file;        // a file of this name put in the working folder (the retry there)
 };
 
 std::vector<UntrustedCase> untrusted_cases();

@@ -3,6 +3,9 @@
 // exit non-zero, say the case's key words (the file, the object, the defect), reveal nothing it must not, and leave no
 // output; a valid file must render. Where an allocation bomb is the point, the process's peak resident memory is
 // checked too (not under AddressSanitizer, whose own memory is larger than the ceilings).
+#include "untrusted_scenes.h"
+
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -10,14 +13,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "test_support.h"
-#include "untrusted_scenes.h"
 
 namespace rcsplat {
 namespace {
@@ -33,7 +34,7 @@ constexpr bool kSanitized = false;
 
 struct ProcessRun {
   int exit_code = -1;
-  std::string output;      // stdout and stderr together
+  std::string output;  // stdout and stderr together
   long peak_memory_kib = 0;
 };
 
@@ -91,8 +92,20 @@ TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
     // The same quad's buffer, where only a retry relative to the working folder would find it.
     fs::copy_file(folder / "scene/quad.bin", work / c.working_folder_file);
   }
-  std::vector<std::string> args = {"render", (folder / c.scene).string(), "-o", "out.exr", "-o", "out.png",
-                                   "--json", "out.json", "--width", "24", "--height", "16", "--pixel-samples", "1"};
+  std::vector<std::string> args = {"render",
+                                   (folder / c.scene).string(),
+                                   "-o",
+                                   "out.exr",
+                                   "-o",
+                                   "out.png",
+                                   "--json",
+                                   "out.json",
+                                   "--width",
+                                   "24",
+                                   "--height",
+                                   "16",
+                                   "--pixel-samples",
+                                   "1"};
   for (std::string a : c.args) {
     const size_t at = a.find("{case}");
     if (at != std::string::npos) a.replace(at, 6, folder.string());
@@ -110,10 +123,13 @@ TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
     // A refusal names the scene file it refuses.
     EXPECT_NE(run.output.find(fs::path(c.scene).filename().string()), std::string::npos) << run.output;
   }
-  for (const std::string& word : c.key_words) EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
-  for (const std::string& word : c.absent_words) EXPECT_EQ(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  for (const std::string& word : c.key_words)
+    EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  for (const std::string& word : c.absent_words)
+    EXPECT_EQ(run.output.find(word), std::string::npos) << word << "\n" << run.output;
   // No library's internals in what a user reads.
-  for (const char* internal : {"vector::", "unknown error", "STB", "stbi", "tinygltf", "json.exception", "basic_string"})
+  for (const char* internal :
+       {"vector::", "unknown error", "STB", "stbi", "tinygltf", "json.exception", "basic_string"})
     EXPECT_EQ(run.output.find(internal), std::string::npos) << internal << "\n" << run.output;
   if (c.memory_ceiling_mib && !kSanitized) {
     EXPECT_LT(run.peak_memory_kib, long(c.memory_ceiling_mib) * 1024) << "peak resident memory, KiB";
@@ -134,7 +150,8 @@ TEST(UntrustedScenePolicy, ARefusalDoesNotTellWhetherAFileOutsideExists) {
     fs::remove_all(folder);
     test::write_untrusted_case(c, folder);
     fs::create_directories(folder / "work");
-    messages[c.name] = run_binary(folder / "work", {"info", (folder / c.scene).string()}, std::chrono::seconds(120)).output;
+    messages[c.name] =
+        run_binary(folder / "work", {"info", (folder / c.scene).string()}, std::chrono::seconds(120)).output;
   }
   ASSERT_EQ(messages.size(), 2u);
   EXPECT_EQ(messages["SymbolicLinkLeadingOut"], messages["SymbolicLinkLeadingOutToNothing"]);

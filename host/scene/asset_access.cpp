@@ -73,8 +73,7 @@ std::string AssetAccess::decode_uri(const std::string& uri) {
   out.reserve(uri.size());
   for (size_t i = 0; i < uri.size(); ++i) {
     int hi = 0, lo = 0;
-    if (uri[i] == '%' && i + 2 < uri.size() &&
-        (hi = hex_digit(uri[i + 1])) >= 0 && (lo = hex_digit(uri[i + 2])) >= 0) {
+    if (uri[i] == '%' && i + 2 < uri.size() && (hi = hex_digit(uri[i + 1])) >= 0 && (lo = hex_digit(uri[i + 2])) >= 0) {
       out += char(hi * 16 + lo);
       i += 2;
     } else {
@@ -101,15 +100,14 @@ fs::path AssetAccess::resolve(const std::string& what, const std::string& uri) c
   // A scheme (RFC 3986: a letter, then letters, digits, '+', '-' or '.', then ':') before any '/'.
   const size_t colon = uri.find(':');
   if (colon != std::string::npos && colon > 0 && std::isalpha(static_cast<unsigned char>(uri[0])) &&
-      uri.find('/') > colon &&
-      std::all_of(uri.begin(), uri.begin() + long(colon), [](char c) {
+      uri.find('/') > colon && std::all_of(uri.begin(), uri.begin() + long(colon), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
       })) {
     std::string scheme = uri.substr(0, colon);
     std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](char c) { return char(std::tolower(c)); });
-    if (scheme == "file")
-      throw Error(name + ": file: URIs are not read (" + rule() + ", named by relative paths)");
-    throw Error(name + ": the URI scheme '" + scheme + ":' is not read; rcsplat reads data: URIs and relative paths "
+    if (scheme == "file") throw Error(name + ": file: URIs are not read (" + rule() + ", named by relative paths)");
+    throw Error(name + ": the URI scheme '" + scheme +
+                ":' is not read; rcsplat reads data: URIs and relative paths "
                 "to files inside the scene's folder, nothing over a network");
   }
   const std::string decoded = decode_uri(uri);

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "util/byte_size.h"
@@ -38,7 +38,8 @@ std::vector<unsigned char> read_scene_file(const std::string& path, uint64_t max
   const uint64_t size = uint64_t(st.st_size);
   if (size > max_bytes) {
     ::close(fd);
-    throw Error(path + ": the file is " + mib(size) + "; rcsplat reads at most " + mib(max_bytes) + " of " + limit_name);
+    throw Error(path + ": the file is " + mib(size) + "; rcsplat reads at most " + mib(max_bytes) + " of " +
+                limit_name);
   }
   budget.charge(size, "the scene file");
   std::vector<unsigned char> bytes(size);
@@ -73,7 +74,8 @@ GlbParts split_glb(const std::string& path, std::vector<unsigned char>& b) {
   const size_t size = b.size();
   if (size == 0) fail("the file is empty; a GLB starts with a 12-byte header (magic 'glTF', version, length)");
   if (size < 12)
-    fail("the file ends at byte " + std::to_string(size) + ", inside the 12-byte GLB header (magic 'glTF', version, length)");
+    fail("the file ends at byte " + std::to_string(size) +
+         ", inside the 12-byte GLB header (magic 'glTF', version, length)");
   if (u32_at(b, 0) != kGlbMagic) fail("does not start with the GLB magic 'glTF': not a binary glTF file");
   if (u32_at(b, 4) != 2)
     fail("is GLB version " + std::to_string(u32_at(b, 4)) + "; rcsplat reads glTF 2.0 (GLB version 2)");
@@ -89,17 +91,20 @@ GlbParts split_glb(const std::string& path, std::vector<unsigned char>& b) {
          ", inside the JSON chunk's 8-byte header expected at byte 12 (chunk length, type)" + truncated);
   GlbParts parts;
   parts.json_length = u32_at(b, 12);
-  if (u32_at(b, 16) != kJsonChunk) fail("the first chunk (byte 12) is not of type JSON; a GLB starts with its JSON chunk");
+  if (u32_at(b, 16) != kJsonChunk)
+    fail("the first chunk (byte 12) is not of type JSON; a GLB starts with its JSON chunk");
   parts.json_offset = 20;
   if (parts.json_length == 0) fail("the JSON chunk (byte 12) is empty");
   if (uint64_t(parts.json_offset) + parts.json_length > end)
-    fail("the JSON chunk says it holds " + std::to_string(parts.json_length) + " bytes from byte 20, but the file ends at byte " +
-         std::to_string(end) + truncated);
+    fail("the JSON chunk says it holds " + std::to_string(parts.json_length) +
+         " bytes from byte 20, but the file ends at byte " + std::to_string(end) + truncated);
   if (parts.json_length % 4)
-    fail("the JSON chunk's length, " + std::to_string(parts.json_length) + ", is not a multiple of 4 (GLB pads it with spaces)");
+    fail("the JSON chunk's length, " + std::to_string(parts.json_length) +
+         ", is not a multiple of 4 (GLB pads it with spaces)");
   const size_t next = parts.json_offset + parts.json_length;
   if (next == end) {
-    if (!truncated.empty()) fail("the file ends at byte " + std::to_string(end) + ", where a BIN chunk's header was expected" + truncated);
+    if (!truncated.empty())
+      fail("the file ends at byte " + std::to_string(end) + ", where a BIN chunk's header was expected" + truncated);
     return parts;
   }
   if (next + 8 > end)
@@ -107,7 +112,8 @@ GlbParts split_glb(const std::string& path, std::vector<unsigned char>& b) {
          std::to_string(next) + truncated);
   parts.bin_length = u32_at(b, next);
   if (u32_at(b, next + 4) != kBinChunk)
-    fail("the chunk at byte " + std::to_string(next) + " is not of type BIN (the only chunk rcsplat reads after the JSON)");
+    fail("the chunk at byte " + std::to_string(next) +
+         " is not of type BIN (the only chunk rcsplat reads after the JSON)");
   parts.bin_offset = next + 8;
   if (uint64_t(parts.bin_offset) + parts.bin_length > end)
     fail("the BIN chunk says it holds " + std::to_string(parts.bin_length) + " bytes from byte " +
@@ -122,7 +128,9 @@ GlbParts split_glb(const std::string& path, std::vector<unsigned char>& b) {
 std::vector<unsigned char> join_glb(const std::vector<unsigned char>& old, const GlbParts& parts, std::string text) {
   while (text.size() % 4) text += ' ';
   std::vector<unsigned char> out;
-  auto put = [&](uint32_t v) { out.insert(out.end(), reinterpret_cast<unsigned char*>(&v), reinterpret_cast<unsigned char*>(&v) + 4); };
+  auto put = [&](uint32_t v) {
+    out.insert(out.end(), reinterpret_cast<unsigned char*>(&v), reinterpret_cast<unsigned char*>(&v) + 4);
+  };
   const size_t bin = parts.has_bin ? 8 + parts.bin_length : 0;
   put(kGlbMagic);
   put(2);
@@ -130,7 +138,9 @@ std::vector<unsigned char> join_glb(const std::vector<unsigned char>& old, const
   put(uint32_t(text.size()));
   put(kJsonChunk);
   out.insert(out.end(), text.begin(), text.end());
-  if (parts.has_bin) out.insert(out.end(), old.begin() + long(parts.bin_offset - 8), old.begin() + long(parts.bin_offset + parts.bin_length));
+  if (parts.has_bin)
+    out.insert(out.end(), old.begin() + long(parts.bin_offset - 8),
+               old.begin() + long(parts.bin_offset + parts.bin_length));
   return out;
 }
 
@@ -226,7 +236,8 @@ class JsonChecks {
     }
     if (!it->is_array()) fail(where + "." + key, std::string("must be an array of indices into ") + target);
     if (non_empty && it->empty()) fail(where + "." + key, "must not be empty");
-    for (size_t i = 0; i < it->size(); ++i) checked_index((*it)[i], where + "." + key + "[" + std::to_string(i) + "]", target);
+    for (size_t i = 0; i < it->size(); ++i)
+      checked_index((*it)[i], where + "." + key + "[" + std::to_string(i) + "]", target);
   }
 
   const json* object(const json& o, const std::string& where, const char* key, bool required) const {
@@ -266,7 +277,8 @@ class JsonChecks {
         fail(w, "componentType " + a["componentType"].dump() + " is not one of glTF's (5120..5123, 5125, 5126)");
       integer(a, w, "count", true, 1, int_max);
       string(a, w, "type", true);
-      if (!types.count(a["type"].get<std::string>())) fail(w, "type '" + a["type"].get<std::string>() + "' is not a glTF accessor type");
+      if (!types.count(a["type"].get<std::string>()))
+        fail(w, "type '" + a["type"].get<std::string>() + "' is not a glTF accessor type");
       if (const json* sparse = object(a, w, "sparse", false)) {
         const std::string s = w + ".sparse";
         integer(*sparse, s, "count", true, 1, int_max);
@@ -355,9 +367,11 @@ class JsonChecks {
               light_count = (*klp)["lights"].size();
           }
           auto light = lights->find("light");
-          if (light == lights->end() || !light->is_number() || light->get<double>() < 0 || light->get<double>() >= double(light_count))
-            fail(w + ".extensions.KHR_lights_punctual", "\"light\" must name one of the file's " +
-                                                          std::to_string(light_count) + " KHR_lights_punctual lights");
+          if (light == lights->end() || !light->is_number() || light->get<double>() < 0 ||
+              light->get<double>() >= double(light_count))
+            fail(
+                w + ".extensions.KHR_lights_punctual",
+                "\"light\" must name one of the file's " + std::to_string(light_count) + " KHR_lights_punctual lights");
         }
     });
     each("scenes", [&](const json& s, const std::string& w) { index_array(s, w, "nodes", "nodes", false, false); });
@@ -369,11 +383,13 @@ class JsonChecks {
     each("cameras", [&](const json& c, const std::string& w) {
       string(c, w, "type", true);
       const std::string type = c["type"].get<std::string>();
-      if (type != "perspective" && type != "orthographic") fail(w, "type '" + type + "' is neither perspective nor orthographic");
+      if (type != "perspective" && type != "orthographic")
+        fail(w, "type '" + type + "' is neither perspective nor orthographic");
       const json* p = object(c, w, type.c_str(), true);
       for (const char* key : type == "perspective" ? std::vector<const char*>{"yfov", "znear"}
-                                                    : std::vector<const char*>{"xmag", "ymag", "zfar", "znear"})
-        if (!p->contains(key) || !(*p)[key].is_number()) fail(w + "." + type, std::string("\"") + key + "\" is required (a number)");
+                                                   : std::vector<const char*>{"xmag", "ymag", "zfar", "znear"})
+        if (!p->contains(key) || !(*p)[key].is_number())
+          fail(w + "." + type, std::string("\"") + key + "\" is required (a number)");
     });
     each("samplers", [&](const json& s, const std::string& w) {
       for (const char* key : {"magFilter", "minFilter", "wrapS", "wrapT"}) integer(s, w, key, false, 0, 65535);
@@ -401,7 +417,8 @@ class JsonChecks {
     if (auto ext = doc_.find("extensions"); ext != doc_.end() && ext->is_object())
       if (auto klp = ext->find("KHR_lights_punctual"); klp != ext->end()) {
         auto lights = klp->is_object() ? klp->find("lights") : klp->end();
-        if (lights == klp->end() || !lights->is_array()) fail("extensions.KHR_lights_punctual", "\"lights\" must be an array");
+        if (lights == klp->end() || !lights->is_array())
+          fail("extensions.KHR_lights_punctual", "\"lights\" must be an array");
         for (size_t l = 0; l < lights->size(); ++l) {
           const std::string lw = "extensions.KHR_lights_punctual.lights[" + std::to_string(l) + "]";
           if (!(*lights)[l].is_object()) fail(lw, "must be an object");
@@ -424,8 +441,9 @@ class JsonChecks {
         if (child == self) fail(w, "lists itself as its own child (a cycle)");
         if (parent[size_t(child)] == self) fail(w, "lists nodes[" + std::to_string(child) + "] twice as a child");
         if (parent[size_t(child)] >= 0)
-          fail("nodes[" + std::to_string(child) + "]", "has two parents, nodes[" + std::to_string(parent[size_t(child)]) +
-                                                           "] and nodes[" + std::to_string(self) + "]; glTF allows one");
+          fail("nodes[" + std::to_string(child) + "]", "has two parents, nodes[" +
+                                                           std::to_string(parent[size_t(child)]) + "] and nodes[" +
+                                                           std::to_string(self) + "]; glTF allows one");
         parent[size_t(child)] = self;
       }
     });
@@ -467,9 +485,13 @@ class JsonChecks {
 
 // ---- Buffers and images ------------------------------------------------------------------------------------------
 
-const char* const kDataUriPrefixes[] = {"data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,",
-                                        "data:image/jpeg;base64,", "data:image/png;base64,", "data:image/bmp;base64,",
-                                        "data:image/gif;base64,", "data:text/plain;base64,"};
+const char* const kDataUriPrefixes[] = {"data:application/octet-stream;base64,",
+                                        "data:application/gltf-buffer;base64,",
+                                        "data:image/jpeg;base64,",
+                                        "data:image/png;base64,",
+                                        "data:image/bmp;base64,",
+                                        "data:image/gif;base64,",
+                                        "data:text/plain;base64,"};
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
@@ -480,7 +502,8 @@ uint64_t data_uri_bytes(const std::string& file, const std::string& what, const 
     if (uri.rfind(p, 0) == 0) prefix = p;
   if (prefix.empty()) {
     const std::string head = uri.substr(0, std::min<size_t>(uri.find(','), 60));
-    throw Error(file + ": " + what + ": the data URI '" + head + ",...' is not read; rcsplat reads base64 data URIs "
+    throw Error(file + ": " + what + ": the data URI '" + head +
+                ",...' is not read; rcsplat reads base64 data URIs "
                 "of application/octet-stream, application/gltf-buffer and image/png, jpeg, bmp or gif");
   }
   const size_t begin = prefix.size();
@@ -530,8 +553,10 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
   out.base_dir = access.scene_folder().string();
   std::vector<unsigned char> bytes =
       out.binary ? read_scene_file(path, uint64_t(1) << 32, "GLB (its length field has 32 bits)", budget)
-                 : read_scene_file(path, limits.max_json_bytes, "glTF JSON (--max-host-memory does not change it; put "
-                                                                 "large data in .bin buffers)", budget);
+                 : read_scene_file(path, limits.max_json_bytes,
+                                   "glTF JSON (--max-host-memory does not change it; put "
+                                   "large data in .bin buffers)",
+                                   budget);
   if (!out.binary && bytes.size() >= 4 && u32_at(bytes, 0) == kGlbMagic)
     throw Error(path + ": holds a binary glTF (GLB) but is named .gltf; name it .glb");
   GlbParts parts;
@@ -542,7 +567,8 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
     text = bytes.data() + parts.json_offset;
     text_length = parts.json_length;
     if (text_length > limits.max_json_bytes)
-      throw Error(path + ": the JSON chunk is " + mib(text_length) + "; rcsplat reads at most " + mib(limits.max_json_bytes));
+      throw Error(path + ": the JSON chunk is " + mib(text_length) + "; rcsplat reads at most " +
+                  mib(limits.max_json_bytes));
   }
   if (text_length == 0) throw Error(path + ": the file is empty; a glTF file is a JSON object");
   budget.charge(text_length * 8, "the glTF JSON (parsed twice, about 4 times its size each)");
@@ -563,7 +589,8 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
   // Buffers: where each one's bytes come from, under the access policy; an unread buffer needs none.
   bool rewritten = false;
   std::vector<bool> buffer_read(checks.count("buffers"), false);
-  checks.each("bufferViews", [&](const json& v, const std::string&) { buffer_read[size_t(v["buffer"].get<double>())] = true; });
+  checks.each("bufferViews",
+              [&](const json& v, const std::string&) { buffer_read[size_t(v["buffer"].get<double>())] = true; });
   for (size_t i = 0; i < buffer_read.size(); ++i) {
     json& buffer = doc["buffers"][i];
     const uint64_t length = buffer["byteLength"].get<uint64_t>();
@@ -580,12 +607,13 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
           throw Error(path + ": " + what + " is the GLB's BIN chunk, but the file has none");
         }
         if (length > parts.bin_length)
-          throw Error(path + ": " + what + " says it holds " + std::to_string(length) + " bytes, but the BIN chunk holds " +
-                      std::to_string(parts.bin_length));
+          throw Error(path + ": " + what + " says it holds " + std::to_string(length) +
+                      " bytes, but the BIN chunk holds " + std::to_string(parts.bin_length));
         continue;
       }
       if (buffer_read[i])
-        throw Error(path + ": " + what + " has no \"uri\" but a buffer view reads it (only a GLB's first buffer may "
+        throw Error(path + ": " + what +
+                    " has no \"uri\" but a buffer view reads it (only a GLB's first buffer may "
                     "leave it out)");
       buffer["uri"] = "data:application/octet-stream;base64,AA==";  // valid glTF: a buffer nothing reads
       buffer["byteLength"] = 1;
@@ -625,6 +653,9 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
     std::error_code ec;
     const uint64_t size = std::filesystem::file_size(file, ec);
     if (ec || size == 0) throw Error(path + ": " + what + ": the file is empty");
+    // tinygltf hands a decoder the file's size as an int, and the decoder refuses 1 GiB of pixels anyway.
+    if (size >= (uint64_t(1) << 31))
+      throw Error(path + ": " + what + ": the file is " + mib(size) + "; rcsplat reads image files under 2 GiB");
     budget.charge(size, what);
     out.files[join_like_tinygltf(out.base_dir, uri)] = {file, size, what};
   });
@@ -642,7 +673,8 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
   }
   if (rewritten) {
     const std::string text_out = doc.dump();
-    out.bytes = out.binary ? join_glb(bytes, parts, text_out) : std::vector<unsigned char>(text_out.begin(), text_out.end());
+    out.bytes =
+        out.binary ? join_glb(bytes, parts, text_out) : std::vector<unsigned char>(text_out.begin(), text_out.end());
   } else {
     out.bytes = std::move(bytes);
   }
