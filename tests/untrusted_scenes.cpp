@@ -231,6 +231,13 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.renders = true;
     cases.push_back(c);
   }
+  {  // tinygltf copies "extras" recursively: 100,000 nested arrays overflowed its stack
+    UntrustedCase c = quad_case("ExtrasNestedOneHundredThousandDeep");
+    std::string& text = c.files["scene/scene.gltf"];
+    text.insert(text.size() - 1, ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']'));
+    c.key_words = {"the JSON nests arrays and objects more than 128 deep (at byte"};
+    cases.push_back(c);
+  }
   {
     UntrustedCase c = quad_case("InstancesBeyondTheTriangleLimit", [](json& d) {
       json nodes = json::array(), roots = json::array();

@@ -144,6 +144,33 @@ std::vector<unsigned char> join_glb(const std::vector<unsigned char>& old, const
   return out;
 }
 
+// ---- The JSON text ------------------------------------------------------------------------------------------------
+
+// JSON nesting deeper than this is refused before it is parsed: tinygltf copies "extras" and "extensions" values
+// recursively, and 100,000 nested arrays there overflowed its stack. glTF's own structure is about 8 deep.
+constexpr int kMaxJsonDepth = 128;
+
+void check_json_depth(const std::string& path, const unsigned char* text, size_t length) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t i = 0; i < length; ++i) {
+    const unsigned char c = text[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw Error(path + ": the JSON nests arrays and objects more than " + std::to_string(kMaxJsonDepth) +
+                    " deep (at byte " + std::to_string(i) + "); a glTF file needs about 8");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 // ---- The JSON's objects ------------------------------------------------------------------------------------------
 
 // A JSON number that is a whole number (1, 1.0 or 1e3), as a double; nothing for any other value. No conversion of a
@@ -572,6 +599,7 @@ CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, Hos
   }
   if (text_length == 0) throw Error(path + ": the file is empty; a glTF file is a JSON object");
   budget.charge(text_length * 8, "the glTF JSON (parsed twice, about 4 times its size each)");
+  check_json_depth(path, text, text_length);
   json doc;
   try {
     doc = json::parse(text, text + text_length);
