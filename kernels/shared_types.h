@@ -51,7 +51,7 @@ typedef struct {
 
 #define TEXTURE_NONE (-1)
 
-// How the cache shades a surface's specular lobe (docs/NOTES.md "Material kinds"; host/scene/material_kind.h decides):
+// How the cache shades a surface's specular lobe (docs/NOTES.md "Material kinds"; material_lobe below decides):
 // LOBE_NONE: Lambertian (metallic 0 and no specular layer), exactly base / pi: the irradiance cache is exact for it.
 // LOBE_ROUGH: a wide lobe; its indirect light is taken from the cached irradiance, E / pi times the lobe's albedo.
 // LOBE_GLOSSY: a lobe too sharp for the highest HSH order; its indirect light is estimated per pixel by sampling the
@@ -209,7 +209,7 @@ typedef struct {
 } HitDesc;
 
 #define RECORD_HORIZON_SECTORS 8
-// An irradiance cache record (ALGORITHM.md section 2): where it sits, how far it reaches, its irradiance and the
+// An irradiance cache record (docs/METHOD.md section 2): where it sits, how far it reaches, its irradiance and the
 // Ward-Heckbert gradients. A gradient row is d(E.rgb)/d(axis): E_k(P) = E + sum_axis delta[axis] * row[axis].
 typedef struct {
   float position[3];

@@ -49,7 +49,7 @@ class GpuContext {
   cl::CommandQueue& queue() { return queue_; }
 
   // The program built from kernels/<file> (its includes resolved) with the given switches; built once per device and
-  // set of switches, and kept on disk between runs (see program_cache.cpp). Throws rcsplat::Error with the build log.
+  // set of switches, and kept on disk between runs (GpuContext::cache_file). Throws rcsplat::Error with the build log.
   cl::Program& program(const std::string& file, const KernelDefines& defines = {});
 
   // Kernel `name` of kernels/<file>, its arguments set by name.
