@@ -567,10 +567,14 @@ HostBudget::HostBudget(const std::string& scene_file, const SceneLimits& limits)
     : scene_file_(scene_file), budget_(limits.host_budget()) {}
 
 void HostBudget::charge(uint64_t bytes, const std::string& what) {
+  check_fits(bytes, what);
+  used_ += bytes;
+}
+
+void HostBudget::check_fits(uint64_t bytes, const std::string& what) const {
   if (bytes > budget_ - std::min(used_, budget_))
     throw Error(scene_file_ + ": " + what + " needs " + mib(bytes) + " of host memory, beyond the scene's budget of " +
                 mib(budget_) + " (" + mib(used_) + " taken already; --max-host-memory sets it)");
-  used_ += bytes;
 }
 
 CheckedGltf check_gltf(const AssetAccess& access, const SceneLimits& limits, HostBudget& budget) {

@@ -20,6 +20,8 @@ class HostBudget {
  public:
   HostBudget(const std::string& scene_file, const SceneLimits& limits);
   void charge(uint64_t bytes, const std::string& what);
+  // Refuses as charge() would, without taking the bytes: for arrays freed again before more is charged.
+  void check_fits(uint64_t bytes, const std::string& what) const;
   uint64_t used() const { return used_; }
   uint64_t budget() const { return budget_; }
 

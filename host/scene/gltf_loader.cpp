@@ -149,10 +149,7 @@ class GltfReader {
   }
 
   // Arrays a primitive reads are freed when it is done; they only need to fit beside what the scene holds.
-  void charge_transient(uint64_t bytes, const std::string& name) const {
-    HostBudget probe = budget_;
-    probe.charge(bytes, name);
-  }
+  void charge_transient(uint64_t bytes, const std::string& name) const { budget_.check_fits(bytes, name); }
 
   // One component at p as a float (see read_floats).
   float component(int type, const unsigned char* p, bool integers, const std::string& name) const {
@@ -219,7 +216,7 @@ class GltfReader {
     return view;
   }
 
-  // The first `needed` indices (all, when fewer) of a primitive's index accessor.
+  // A primitive's indices, all of them: their count is what the triangle limit bounds.
   std::vector<uint32_t> read_indices(int accessor_index, const std::string& use) const {
     const tinygltf::Accessor& acc = accessor(accessor_index, use);
     const std::string name = accessor_name(accessor_index, use);
@@ -844,9 +841,11 @@ bool write_nothing(std::string*, const std::string&, const std::vector<unsigned 
 bool decode_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                   const unsigned char* bytes, int size, void* user) {
   LoadContext& context = *static_cast<LoadContext*>(user);
-  const std::string name = context.access->scene_file() + ": images[" + std::to_string(index) + "]" +
-                           (!image->uri.empty() ? " '" + image->uri.substr(0, 80) + "'"
-                                                : !image->name.empty() ? " '" + image->name + "'" : "");
+  const std::string object = "images[" + std::to_string(index) + "]" +
+                             (!image->uri.empty()    ? " '" + image->uri.substr(0, 80) + "'"
+                              : !image->name.empty() ? " '" + image->name + "'"
+                                                     : "");
+  const std::string name = context.access->scene_file() + ": " + object;
   auto refuse = [&](const std::string& what) {
     if (context.refusal.empty()) context.refusal = name + ": " + what;
     if (err) *err += "refused\n";
@@ -870,7 +869,7 @@ bool decode_image(tinygltf::Image* image, const int index, std::string* err, std
                   std::to_string(side) + " pixels a side");
   const uint64_t pixels = uint64_t(width) * uint64_t(height);
   try {
-    context.budget->charge(pixels * (uint64_t(channels) + 4), name.substr(name.find(": ") + 2) + " (decoded)");
+    context.budget->charge(pixels * (uint64_t(channels) + 4), object + " (decoded)");
   } catch (const Error& e) {
     if (context.refusal.empty()) context.refusal = e.what();
     return false;
