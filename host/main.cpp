@@ -78,11 +78,13 @@ void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device) {
 }
 
 // The options every image-making command shares: scene, outputs, device, frame and camera, light samples.
-void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env) {
+void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env,
+                       const std::string& lab) {
   cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
   cmd->add_option("-o,--output", o.outputs, "Output image(s): .exr (linear, with layers) or .png (tone-mapped)")
       ->required();
   cmd->add_option("--device", o.device, "OpenCL device: index or name substring (see `rcsplat devices`)");
+  // The library's 0 (the camera's aspect decides) is not for the command line, which leaves the option out instead.
   cmd->add_option("--width", o.settings.width, "Image width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", o.settings.height, "Image height in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--camera", o.settings.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
@@ -91,26 +93,23 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
   cmd->add_option("--up", cam.up, "Camera up vector x,y,z")->delimiter(',')->expected(3);
   cmd->add_option("--fov", cam.fov, "Vertical field of view in degrees");
   cmd->add_option("--light-samples", o.settings.light_samples,
-                  "Samples per pixel on emissive triangles (rounded up to a square)")
-      ->check(CLI::Range(0u, 1u << 20));
+                  "Samples per pixel on emissive triangles (rounded up to a square; 0 to 1048576)");
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
   cmd->add_option("--pixel-samples", o.settings.pixel_samples,
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
                   "and path samples are per pixel, records are those of one sample; default 4 for render, 16 for "
                   "reference (a finer grid, so compare counts a render's edge aliasing as error), fewer where --spp "
                   "does not divide by them or the frame is very large; path tracing takes each sample at a random "
-                  "point of its cell of the grid, so it integrates over the pixel's area")
-      ->check(CLI::Range(1u, 64u));
+                  "point of its cell of the grid, so it integrates over the pixel's area");
   cmd->add_flag("!--sub-pixel-grid", o.settings.path.pixel_area,
                 "Path tracing: take the pixel samples at the fixed points a cache render shades (a rotated grid, one "
-                "point in each cell of the s x s grid) instead of a random point of each cell");
-  o.settings.pixel_samples = 0;  // chosen by render() (render/pixel_samples.h)
-  o.settings.bounces = 0;
+                "point in each cell of the s x s grid) instead of a random point of each cell")
+      ->group(lab);
   cmd->add_option("--bounces", o.settings.bounces,
                   "Indirect bounces: 1 lights the first bounce's hit directly, each more adds a reflection (every "
                   "method, the reference too); default 0: chosen from the scene, the fewest that leave out at most 5% "
-                  "of the indirect light, as a few photons measure it (at most 8; 3 with --sky or --environment)")
-      ->check(CLI::Range(0u, kMaxBounces));
+                  "of the indirect light, as a few photons measure it (at most 8; 3 with --sky or --environment); at most " +
+                      std::to_string(kMaxBounces));
   env.add(cmd, o.environment);
   add_scene_limit_options(cmd, o.limits, true);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
@@ -121,6 +120,19 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
 
 int main(int argc, char** argv) {
   keep_freed_host_memory();
+  // `render --help-all`: --help with the experiment options shown too (their group is hidden otherwise).
+  std::vector<char*> args(argv, argv + argc);
+  bool help_all = false;
+  static char help[] = "--help";
+  for (char*& a : args)
+    if (std::string(a) == "--help-all") {
+      help_all = true;
+      a = help;
+    }
+  argc = int(args.size());
+  argv = args.data();
+  // Options kept for measuring the method (benchmarks/RESULTS.md says what each bought), not for rendering.
+  const std::string lab = help_all ? "Experiment options (measured in benchmarks/RESULTS.md)" : "";
   CLI::App app{"rcsplat: global illumination by radiance cache splatting on OpenCL devices"};
   app.require_subcommand(1);
   app.fallthrough();  // -q may follow the subcommand
@@ -135,50 +147,58 @@ int main(int argc, char** argv) {
   CameraFlags render_camera;
   EnvironmentFlags render_environment;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
-  add_frame_options(render_cmd, render, render_camera, render_environment);
+  add_frame_options(render_cmd, render, render_camera, render_environment, lab);
+  if (!help_all) render_cmd->footer("--help-all also lists the experiment options.");
+  render_cmd->add_option("--quality", render.quality,
+                         "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
+                         "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
+                         "where the frame allows, 64 light samples); options given on the command line win")
+      ->check(CLI::IsMember({"draft", "standard", "final"}));
   std::string gi = "splat", hemisphere, spacing;
   render_cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
                                      "irradiance cache on the host), path (path tracing), none")
       ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
   const CacheSettings cache_defaults;
   render_cmd->add_option("--accuracy", render.settings.cache.accuracy,
-                         "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer")
-      ->check(CLI::Range(kMinAccuracy, kMaxAccuracy));
+                         "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer (" +
+                             shortest(kMinAccuracy) + " to " + shortest(kMaxAccuracy) + ", default " +
+                             shortest(cache_defaults.accuracy) + ")");
   render_cmd->add_option("--hemisphere", hemisphere,
                          "Rays per record as MxN strata (theta x phi), default " +
                              std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
   std::string fine_hemisphere;
   render_cmd->add_option("--fine-hemisphere", fine_hemisphere,
                          "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
-                         "few pixels each, as MxN; default: as --hemisphere");
+                         "few pixels each, as MxN; default: as --hemisphere")
+      ->group(lab);
   render_cmd->add_option("--spacing", spacing,
                          "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
-                             shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels));
+                             shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
+      ->group(lab);
   render_cmd->add_option("--hessian-error", render.settings.cache.hessian_error,
                          "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
                          "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
                              shortest(cache_defaults.hessian_error))
-      ->check(CLI::Range(0.0f, 1e6f));
+      ->group(lab);
   render_cmd->add_option("--adaptive-rays", render.settings.cache.adaptive_error,
                          "Adaptive rays: trace each record with half the strata each way first, and again with all "
                          "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
                              shortest(cache_defaults.adaptive_error))
-      ->check(CLI::Range(0.0f, 1e6f));
+      ->group(lab);
   render_cmd->add_option("--guide-rays", render.settings.cache.guide_rays,
                          "Rays per record aimed at the brightest directly lit places (photons from the lights find "
                          "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
-                             std::to_string(cache_defaults.guide_rays))
-      ->check(CLI::Range(0u, 4096u));
-  render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path)")
-      ->check(CLI::Range(1u, 1u << 20));
+                             std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
+      ->group(lab);
+  render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
   render_cmd->add_option("--glossy-samples", render.settings.glossy_samples,
                          "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
-                         "(stratified; default 16)")
-      ->check(CLI::Range(1u, 1u << 16));
+                         "(stratified; default 16, at most 65536)")
+      ->group(lab);
   render_cmd->add_option("--hsh-order", render.settings.hsh_order,
                          "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
                          "channel, 1.." + std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
-      ->check(CLI::Range(1u, unsigned(HSH_MAX_ORDER)));
+      ->group(lab);
   render_cmd->add_flag("--stratified", render.settings.path.stratified,
                        "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
   std::string bounce_method;
@@ -186,19 +206,20 @@ int main(int argc, char** argv) {
                          "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
                          "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
                          "unless the scene has a sky or an environment map")
-      ->check(CLI::IsMember({"auto", "path", "photons"}));
+      ->group(lab);
   render_cmd->add_option("--photons", render.settings.photon_paths,
                          "Photons shot for --bounce-method photons; default: rounds of " +
                              std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
                              std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
-                             " rounds)")
-      ->check(CLI::Range(1u, 1u << 26));
+                             " rounds; 0 too; at most 67108864)")
+      ->group(lab);
   render_cmd->add_option("--short-ray-paths", render.settings.short_ray_paths,
                          "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
                          "continue their path one bounce and read the map there (0: every ray reads it where it "
                          "lands); default " +
                              shortest(render.settings.short_ray_paths))
-      ->check(CLI::Range(0.0f, 1.0e6f));
+      ->group(lab)
+      ->group(lab);
 
   RenderOptions reference;
   CameraFlags reference_camera;
@@ -210,10 +231,9 @@ int main(int argc, char** argv) {
   bool light_samples_given = false;
   CLI::App* reference_cmd =
       app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
-  add_frame_options(reference_cmd, reference, reference_camera, reference_environment);
+  add_frame_options(reference_cmd, reference, reference_camera, reference_environment, lab);
   reference_cmd->add_option("--spp", reference.settings.path.samples, "Samples per pixel (default 1024); the light "
-                                                                      "samples default to the same number")
-      ->check(CLI::Range(1u, 1u << 20));
+                                                                      "samples default to the same number");
   reference_cmd->add_flag("--resume", reference.resume,
                           "Add samples to the .exr output an earlier run wrote, up to --spp in all");
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
@@ -316,6 +336,7 @@ int main(int argc, char** argv) {
       if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
       if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
       if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, render.settings.cache, true);
+      apply_quality(render.quality, render.settings, [&](const char* option) { return render_cmd->count(option) > 0; });
       return run_render(render);
     }
     if (*reference_cmd) {

@@ -2,7 +2,7 @@
 // Ward's weight, the usability and in-front tests, gradient extrapolation, the neighbour clamp, the splat's
 // fixed-point scale, and the constants they share. The splat, the placement kernels and the host's octree cache all
 // decide with these functions, so the two cache methods place the same records.
-// Not built on it, on purpose: host/cache/host_records.cpp computes records in double precision, written
+// Not built on it, on purpose: tests/reference/host_records.cpp computes records in double precision, written
 // independently, as the record kernel's test reference.
 #ifndef RCSPLAT_CACHE_MATH_H
 #define RCSPLAT_CACHE_MATH_H

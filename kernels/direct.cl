@@ -4,6 +4,7 @@
 // albedo / pi times the irradiance; pixels with a specular lobe (HAS_SPECULAR_BRDF) evaluate the BRDF toward the
 // camera per light sample, glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission
 // itself is not included. Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
+#include "counter_random.h"
 #include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
@@ -19,7 +20,7 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
 }
 
 // The environment's samples draw from their own stream, independent of the emitters'.
-#define ENVIRONMENT_KEY 0x2545f491u
+#define ENVIRONMENT_KEY STREAM_ENVIRONMENT_SHADOW
 
 #if HAS_SPECULAR_BRDF
 // Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters

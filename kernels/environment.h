@@ -9,6 +9,7 @@
 // Texel w holds the smooth fraction of its RGB.
 #ifndef RCSPLAT_ENVIRONMENT_H
 #define RCSPLAT_ENVIRONMENT_H
+#include "counter_random.h"
 #include "lighting.h"
 #include "scene_args.h"
 
@@ -128,7 +129,7 @@ inline float3 environment_irradiance(SCENE_ARGS, float3 p, float3 n, float3 ng, 
 // Two more uniform numbers for the environment, derived from a light sample's (u, v) by hashing, so that the callers
 // of hit_direct keep their random dimensions (and a scene without an environment its bits).
 inline float2 environment_extra_randoms(float u, float v, uint salt) {
-  uint h = hash_u32(as_uint(u) ^ hash_u32(as_uint(v) ^ hash_u32(salt + 0x68e31da4u)));
+  uint h = hash_u32(as_uint(u) ^ hash_u32(as_uint(v) ^ hash_u32(salt + STREAM_ENVIRONMENT_EXTRA)));
   return (float2)((float)(h >> 8), (float)(hash_u32(h) >> 8)) * (1.0f / 16777216.0f);
 }
 #endif

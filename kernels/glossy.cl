@@ -7,6 +7,7 @@
 // sampled too, for cache methods that do not radiance-cache them; without it, and with a light guide, the LOBE_HSH
 // pixels get the share of their light that their radiance records leave to the guide (guide_share).
 #include "bounce.h"
+#include "counter_random.h"
 #include "light_guide.h"
 
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
@@ -97,7 +98,7 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   BrdfInputs in = gbuffer_brdf(g);
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
-  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x2c1b3c6du));
+  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ STREAM_GLOSSY));
   if (cached_with_guide) {
     uint rays = 0;
     float3 share = guide_share(SCENE, guide, params, p, ng, origin, frame, in, wo, key, &rays);

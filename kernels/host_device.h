@@ -25,11 +25,15 @@ typedef float3 rc_float3;
 #define rc_load3(row, p) vload3(row, p)
 #define rc_max_zero(v) max(v, (float3)(0.0f))
 #define rc_make3(x, y, z) ((float3)((x), (y), (z)))
+#define rc_float_as_int as_int
+#define rc_int_as_float as_float
 #else
 #include <glm/glm.hpp>
 
+#include <bit>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 typedef glm::vec3 rc_float3;
 #define RC_GLOBAL
 inline float rc_length(rc_float3 v) { return glm::length(v); }
@@ -45,7 +49,20 @@ inline float rc_sin(float a) { return std::sin(a); }
 inline rc_float3 rc_load3(int row, const float* p) { return rc_float3(p[3 * row], p[3 * row + 1], p[3 * row + 2]); }
 inline rc_float3 rc_max_zero(rc_float3 v) { return glm::max(v, rc_float3(0.0f)); }
 inline rc_float3 rc_make3(float x, float y, float z) { return rc_float3(x, y, z); }
+inline int rc_float_as_int(float f) { return std::bit_cast<int>(f); }
+inline float rc_int_as_float(int i) { return std::bit_cast<float>(i); }
 #endif
+
+// Moves a surface point's coordinate p off its surface along the geometric normal's component n (pointing to the side
+// the ray leaves to) by a fixed number of float ULPs, so the offset scales with the coordinate's magnitude; near the
+// origin, where ULPs vanish, by a small absolute step instead (Wächter and Binder, Ray Tracing Gems, chapter 6). The
+// kernels' offset_ray_origin (kernels/sampling.h) and the host's (host/util/ray_offset.h) apply it to each axis.
+inline float offset_ray_coordinate(float p, float n) {
+  const float near_origin = 1.0f / 32.0f, float_step = 1.0f / 65536.0f, ulp_scale = 256.0f;
+  if (rc_fabs(p) < near_origin) return p + float_step * n;
+  const int ulps = (int)(ulp_scale * n);
+  return rc_int_as_float(rc_float_as_int(p) + (p < 0.0f ? -ulps : ulps));
+}
 
 // An orthonormal frame around the unit vector n (Duff et al. 2017, branch-free): the kernels' sampling frame and the
 // frame a record's horizon sectors are measured in (kernels/cache_math.h), the same bits on host and device.

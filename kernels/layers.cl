@@ -4,11 +4,6 @@
 // (benchmarks/RESULTS.md, issue 13 on the H200). Sums run in a fixed order: same input, same bits.
 #include "shared_types.h"
 
-// Where lobe_counts keeps a lobe's count (8 bits each: side^2 <= 64); 32 for a lobe it does not count.
-inline uint lobe_count_shift(int lobe) {
-  return lobe == LOBE_ROUGH ? 0u : lobe == LOBE_GLOSSY ? 8u : lobe == LOBE_HSH ? 16u : 32u;
-}
-
 // The first sub-pixel of output pixel (x, y), in a sub-pixel frame side times as wide.
 inline size_t first_sub_pixel(int x, int y, uint side, int out_width) {
   return ((size_t)y * side) * ((size_t)out_width * side) + (size_t)x * side;

@@ -6,6 +6,7 @@
 // Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
+#include "counter_random.h"
 
 __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* sum,
                             __global float4* sum_squares, __global ulong* ray_total) {
@@ -19,7 +20,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;
   tangent_frame(n, &t, &b);
-  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ 0x5bd1e995u));
+  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ STREAM_PATH));
   float3 s1 = (float3)(0.0f), s2 = (float3)(0.0f);
   uint rays = 0;
 #if HAS_SPECULAR_BRDF

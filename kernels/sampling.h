@@ -4,16 +4,9 @@
 #include "counter_random.h"
 #include "host_device.h"
 
-// Moves a surface point off its surface along the geometric normal n (pointing to the side the ray leaves to) by a
-// fixed number of float ULPs, so the offset scales with the coordinates' magnitude; near the origin, where ULPs
-// vanish, by a small absolute step instead (Wächter and Binder, Ray Tracing Gems, chapter 6).
+// A surface point moved off its surface along the geometric normal n (host_device.h offset_ray_coordinate, per axis).
 inline float3 offset_ray_origin(float3 p, float3 n) {
-  const float near_origin = 1.0f / 32.0f;
-  const float float_step = 1.0f / 65536.0f;
-  const float ulp_scale = 256.0f;
-  int3 ulps = convert_int3(ulp_scale * n);
-  float3 shifted = as_float3(as_int3(p) + select(ulps, -ulps, as_int3(p) < 0));
-  return select(shifted, p + float_step * n, fabs(p) < near_origin);
+  return (float3)(offset_ray_coordinate(p.x, n.x), offset_ray_coordinate(p.y, n.y), offset_ray_coordinate(p.z, n.z));
 }
 
 inline float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }

@@ -102,10 +102,16 @@ typedef struct {
 #define WRAP_CLAMP 1
 #define WRAP_MIRROR 2
 #define TEXTURE_NEAREST (1u << 16)  // in TextureInfo.wrap: the nearest texel instead of bilinear filtering
+// TextureInfo.wrap, packed by the host and read by kernels/surface.h.
+inline rc_uint texture_wrap(rc_uint wrap_s, rc_uint wrap_t, int nearest) {
+  return wrap_s | wrap_t << 8 | (nearest ? TEXTURE_NEAREST : 0u);
+}
+inline rc_uint texture_wrap_s(rc_uint wrap) { return wrap & 255u; }
+inline rc_uint texture_wrap_t(rc_uint wrap) { return (wrap >> 8) & 255u; }
 typedef struct {
   rc_uint first_texel;  // offset into the RGBA8 (sRGB-encoded) texel array
   rc_uint width, height;
-  rc_uint wrap;  // wrap_s | wrap_t << 8, | TEXTURE_NEAREST
+  rc_uint wrap;  // texture_wrap(): wrap_s | wrap_t << 8, | TEXTURE_NEAREST
 } TextureInfo;
 
 #define LIGHT_POINT 0
@@ -190,9 +196,16 @@ typedef struct {
   rc_uint pad;
   float position[3];
   // Sub-pixels with geometry by how the cache shades their lobe: 8 bits each (s^2 <= 64), LOBE_ROUGH in the lowest,
-  // then LOBE_GLOSSY, then LOBE_HSH (layers.cl lobe_count_shift).
+  // then LOBE_GLOSSY, then LOBE_HSH (lobe_count_shift, lobe_count).
   rc_uint lobe_counts;
 } PixelSurface;
+
+// Where PixelSurface::lobe_counts keeps a lobe's count (8 bits each: side^2 <= 64); 32 for a lobe it does not count.
+inline rc_uint lobe_count_shift(rc_int lobe) {
+  return lobe == LOBE_ROUGH ? 0u : lobe == LOBE_GLOSSY ? 8u : lobe == LOBE_HSH ? 16u : 32u;
+}
+// The count of a lobe it counts (LOBE_ROUGH, LOBE_GLOSSY, LOBE_HSH).
+inline rc_uint lobe_count(rc_uint lobe_counts, rc_int lobe) { return (lobe_counts >> lobe_count_shift(lobe)) & 0xffu; }
 
 // A ray for the generic ray-casting kernel (tests, benchmarks) and its result.
 typedef struct {

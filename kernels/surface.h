@@ -80,7 +80,7 @@ inline float4 sample_texture_encoded(__global const TextureInfo* infos, __global
                                      float2 uv, bool srgb) {
   TextureInfo info = infos[index];
   int w = (int)info.width, h = (int)info.height;
-  uint ws = info.wrap & 255u, wt = (info.wrap >> 8) & 255u;
+  uint ws = texture_wrap_s(info.wrap), wt = texture_wrap_t(info.wrap);
   if (info.wrap & TEXTURE_NEAREST) {
     float nx = floor(uv.x * (float)w), ny = floor(uv.y * (float)h);
     if (!isfinite(nx) || !isfinite(ny) || fabs(nx) > 1e8f || fabs(ny) > 1e8f) nx = ny = 0.0f;

@@ -4,7 +4,7 @@
 
 #include "bvh/bvh8.h"
 #include "bvh/embree_scene.h"
-#include "cache/host_shading.h"
+#include "reference/host_shading.h"
 #include "cl/device_scene.h"
 #include "render/camera.h"
 #include "corridor_scene.h"

@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "image/error_metrics.h"
 #include "image/image_io.h"
+#include "render/frame_plan.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -32,10 +33,12 @@ TEST(CliOptions, HemisphereAndSpacingParse) {
 }
 
 TEST(CliOptions, BadValuesAreRefusedByName) {
-  CacheSettings c;
+  // The command line parses; the plan's check_request refuses what is out of range, once, by the option's name.
   for (const char* bad : {"16", "0x32", "16x0", "16x32x", "65x8", "ax8"}) {
     try {
-      parse_hemisphere(bad, c);
+      RenderSettings s;
+      parse_hemisphere(bad, s.cache);
+      check_request(s);
       ADD_FAILURE() << bad << " was accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("--hemisphere"), std::string::npos) << e.what();
@@ -43,13 +46,14 @@ TEST(CliOptions, BadValuesAreRefusedByName) {
   }
   for (const char* bad : {"3", "20,3", "0,5", "a,b", "3,20,1"}) {
     try {
-      parse_spacing(bad, c);
+      RenderSettings s;
+      parse_spacing(bad, s.cache);
+      check_request(s);
       ADD_FAILURE() << bad << " was accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("--spacing"), std::string::npos) << e.what();
     }
   }
-  EXPECT_EQ(c.theta_strata, CacheSettings().theta_strata) << "a refused value must leave the settings as they were";
   EXPECT_THROW(parse_gi_method("photon"), Error);
   CacheSettings bad_accuracy;
   bad_accuracy.accuracy = -1.0f;
@@ -167,6 +171,7 @@ TEST(Reference, ResumeAddsIndependentSamples) {
   o.settings.gi = GiMethod::path;
   o.settings.path.stratified = true;
   o.settings.path.samples = o.settings.light_samples = 8;
+  o.settings.bounces = o.settings.pixel_samples = 1;  // what the refusals below change
   o.resume = true;  // no file yet: an ordinary first run
   ASSERT_EQ(run_render(o), 0);
   int w = 0, h = 0;
@@ -223,7 +228,7 @@ TEST(Info, NamesTheBouncesARenderChooses) {
   EXPECT_EQ(j["bounces"]["chosen"], 5);
   EXPECT_NEAR(j["bounces"]["kept_per_bounce"].get<double>(), 0.50, 0.03);
   EXPECT_EQ(j["bounces"]["cache_method"], "photons");
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 8;
   settings.bounces = 0;
   EXPECT_EQ(render(test::gpu(), load_scene(""), settings).stats.bounces, 5u) << "what a render chooses";

@@ -91,7 +91,7 @@ TEST(CornellDirect, MatchesHostReferenceStatistically) {
   Scene scene = make_cornell_box();
   const int size = 48, region = 6, reference_samples = 1024;
   const unsigned device_samples = 16;
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.gi = GiMethod::none;
   settings.width = settings.height = size;
   settings.light_samples = device_samples;

@@ -33,7 +33,7 @@ Scene plane_scene() {
 }
 
 RenderedImage render(const Scene& s, int size, unsigned light_samples) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.gi = GiMethod::none;
   settings.width = settings.height = size;
   settings.light_samples = light_samples;

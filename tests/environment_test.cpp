@@ -66,7 +66,7 @@ TEST(Environment, FurnaceWhitePlaneAndSphereUnderUniformSkyReflectAlbedoTimesSky
     e.sky = sky;
     scene.environment = make_environment(e);
     for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
-      RenderSettings settings;
+      RenderSettings settings = test::one_bounce_one_sample();
       settings.width = settings.height = 48;
       settings.gi = gi;
       settings.path.samples = 8;
@@ -110,7 +110,7 @@ TEST(Environment, BackgroundLooksUpTheRotatedMapAsAHostDoublePrecisionLookup) {
     e.file = path;
     e.rotation_degrees = rotation;
     scene.environment = make_environment(e);
-    RenderSettings settings;
+    RenderSettings settings = test::one_bounce_one_sample();
     settings.width = settings.height = 40;
     settings.gi = GiMethod::none;
     const RenderedImage image = render(test::gpu(), scene, settings);
@@ -212,7 +212,7 @@ TEST(Environment, WhitePlaneUnderASunMapReflectsAlbedoTimesItsIrradiance) {
   e.rotation_degrees = 30.0f;
   scene.environment = make_environment(e);
   for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
-    RenderSettings settings;
+    RenderSettings settings = test::one_bounce_one_sample();
     settings.width = settings.height = 32;
     settings.gi = gi;
     settings.path.samples = 16;
@@ -247,7 +247,7 @@ TEST(Environment, MapImportanceSamplingConvergesToTheUniformlySampledImage) {
   e.file = path;
   e.rotation_degrees = 30.0f;
   scene.environment = make_environment(e);
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 32;
   settings.gi = GiMethod::path;
   settings.path.samples = 64;

@@ -61,7 +61,7 @@ TEST(Furnace, ClosedEmittingSphereReflectsTheAlbedoThenTheAlbedoOfTheAlbedo) {
       scene.cameras[0].eye = glm::vec3(0.2f, 0.1f, 0.5f);
       scene.cameras[0].target = glm::vec3(-0.6f, 0.0f, -1.0f);
       scene.cameras[0].yfov = 1.4f;
-      RenderSettings settings;
+      RenderSettings settings = test::one_bounce_one_sample();
       settings.width = settings.height = 32;
       settings.light_samples = 64;
       settings.gi = GiMethod::path;

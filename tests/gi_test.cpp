@@ -35,7 +35,7 @@ TEST(GlobalIllumination, ClosedSphereLitFromItsCentreMatchesClosedForm) {
   scene.cameras[0].yfov = 1.2f;
   const double expected = rho * rho * intensity / (std::numbers::pi * radius * radius);
 
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   settings.gi = GiMethod::path;
   settings.path.samples = 16;
@@ -71,7 +71,7 @@ struct PathReference {
 
 // The frame most tests here render: 48 x 48, 4 light samples a pixel, `pixel_samples` primary samples.
 RenderSettings small_frame(unsigned pixel_samples = 1) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   settings.light_samples = 4;
   settings.pixel_samples = pixel_samples;
@@ -97,7 +97,7 @@ PathReference path_reference(const Scene& scene, RenderSettings settings, unsign
 // a = 0.4: 1.9e-4, a = 0.2: 9.1e-5; the thresholds allow twice that.
 TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
   Scene scene = make_cornell_box();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 64;
   settings.light_samples = 4;
   PathReference reference = path_reference(scene, settings, 4096);
@@ -206,7 +206,7 @@ TEST(GlobalIllumination, AntiAliasedSplatConvergesWithTheRecordsOfOneSample) {
 // image: the specular branches are taken per pixel and per hit only where a lobe exists.
 TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
   Scene scene = make_cornell_box();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
     settings.gi = gi;
@@ -350,7 +350,7 @@ TEST(GlobalIllumination, AntiAliasedRadianceRecordsAreOneSamplesAndConverge) {
 
 // An HSH order above the highest offered is refused before any work, in the command line's words.
 TEST(GlobalIllumination, RefusesAnHshOrderAboveTheHighest) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 8;
   settings.hsh_order = HSH_MAX_ORDER + 1;
   try {
@@ -359,6 +359,76 @@ TEST(GlobalIllumination, RefusesAnHshOrderAboveTheHighest) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--hsh-order"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+bool same_bits(const RenderedImage& a, const RenderedImage& b) {
+  return a.color == b.color && a.indirect == b.indirect && a.direct == b.direct && a.records.size() == b.records.size();
+}
+
+// A renderer made once renders many frames (render/renderer.h): each the same bits as a renderer made for it alone,
+// whatever the frames before it (another camera, another seed: the photon map and the light guide it keeps must be
+// rebuilt for a new seed and kept for a new camera), and only the first pays for the BVH, the upload and the probe.
+// The scene has radiance-cached lobes, so the lobe table and the HSH order come from the renderer too.
+TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
+  const Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  RenderSettings first;  // the library's defaults: bounces, their method, pixel samples and HSH order chosen
+  first.width = first.height = 32;
+  first.light_samples = 4;
+  RenderSettings moved = first;
+  moved.camera_overrides.eye = glm::vec3(0.2f, 1.0f, 3.2f);
+  RenderSettings reseeded = moved;
+  reseeded.seed = 7;
+
+  Renderer renderer(test::gpu(), scene);
+  const FramePlan plan = renderer.plan(first);
+  EXPECT_GE(plan.settings.bounces, 2u) << "chosen from the scene";
+  EXPECT_EQ(plan.settings.bounce_method, BounceMethod::photons);
+  EXPECT_EQ(plan.settings.pixel_samples, 4u);
+  EXPECT_EQ(plan.side, 2u);
+  EXPECT_GE(plan.settings.hsh_order, 1u) << "chosen from the roughness";
+  EXPECT_EQ(plan.frame.cache.min_reach_pixels, 2.0f * first.cache.min_reach_pixels) << "reach in sub-pixels";
+
+  const RenderedImage a = renderer.render(plan);
+  const RenderedImage b = renderer.render(moved);
+  const RenderedImage c = renderer.render(reseeded);
+  const RenderedImage again = renderer.render(plan);
+  EXPECT_GT(a.stats.bvh_build_s + a.stats.upload_s, 0.0);
+  for (const RenderedImage* later : {&b, &c, &again}) {
+    EXPECT_EQ(later->stats.bvh_build_s, 0.0);
+    EXPECT_EQ(later->stats.upload_s, 0.0);
+    EXPECT_EQ(later->stats.probe_s, 0.0);
+    EXPECT_EQ(later->stats.bounces, a.stats.bounces);
+  }
+  EXPECT_EQ(b.stats.photon_map_s, 0.0) << "another camera keeps the photon map";
+  EXPECT_GT(c.stats.photon_map_s, 0.0) << "another seed rebuilds it";
+  EXPECT_TRUE(same_bits(a, again));
+  EXPECT_TRUE(same_bits(a, render(test::gpu(), scene, first)));
+  EXPECT_TRUE(same_bits(b, render(test::gpu(), scene, moved)));
+  EXPECT_TRUE(same_bits(c, render(test::gpu(), scene, reseeded)));
+  EXPECT_FALSE(same_bits(a, b));
+}
+
+// Every method through one renderer, at one and four samples a pixel, the same bits as fresh renders.
+TEST(Renderer, EveryMethodThroughOneRendererMatchesFreshRenders) {
+  const Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  Renderer renderer(test::gpu(), scene);
+  for (GiMethod gi : {GiMethod::splat, GiMethod::octree, GiMethod::path, GiMethod::none})
+    for (unsigned pixel_samples : {1u, 4u}) {
+      RenderSettings s;
+      s.width = s.height = 24;
+      s.light_samples = 4;
+      s.gi = gi;
+      s.path.samples = 8;
+      s.pixel_samples = pixel_samples;
+      EXPECT_TRUE(same_bits(renderer.render(s), render(test::gpu(), scene, s)))
+          << gi_method_name(gi) << ", " << pixel_samples << " pixel samples";
+    }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "gltf_builder.h"
+#include "test_support.h"
 #include "render/camera.h"
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
@@ -156,7 +157,7 @@ float albedo_at_quarter(bool nearest) {
   b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"camera", 0}, {"translation", {0.5, 0.5, 3}}}});
   Scene scene = load_gltf(b.write(dir, nearest ? "nearest" : "linear"));
   add_view_defaults(scene, 0, {});
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 16;
   settings.gi = GiMethod::none;
   RenderedImage img = render(test::gpu(), scene, settings);
@@ -201,7 +202,7 @@ TEST(GltfConformance, AlphaMaskMakesHolesForEveryRay) {
                                 {{"translation", {0.5, 0.5, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}});
   Scene scene = load_gltf(b.write(dir, "masked"));
   EXPECT_TRUE(scene.unsupported.empty()) << scene.unsupported.front();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 16;
   settings.gi = GiMethod::none;
   RenderedImage img = render(test::gpu(), scene, settings);
@@ -236,7 +237,7 @@ TEST(GltfConformance, VertexColorMultipliesTheBaseColor) {
   Scene scene = load(b, "colors");
   ASSERT_TRUE(scene.has_vertex_colors());
   add_view_defaults(scene, 0, {});
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 16;
   settings.gi = GiMethod::none;
   RenderedImage img = render(test::gpu(), scene, settings);
@@ -266,7 +267,7 @@ TEST(GltfConformance, DefaultLightFollowsTheCameraTheUserGave) {
   ASSERT_EQ(scene.lights.size(), 1u);
   EXPECT_LT(scene.lights[0].position.z, 0.0f) << "the light should be on the side of the camera at z = -3";
 
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 16;
   settings.gi = GiMethod::none;
   settings.camera_overrides = view;
@@ -311,7 +312,7 @@ TEST(GltfConformance, OrthographicCameraRaysAreParallel) {
   b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"camera", 0}, {"translation", {0.5, 0.5, 3}}}});
   Scene scene = load(b, "orthographic");
   add_view_defaults(scene, 0, {});
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = 32;  // the height follows xmag / ymag: 16
   settings.gi = GiMethod::none;
   RenderedImage img = render(test::gpu(), scene, settings);

@@ -36,7 +36,7 @@ Scene moved_and_scaled(const Scene& s, glm::dvec3 offset, double scale) {
 
 TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
   const Scene original = moved_and_scaled(make_cornell_box(), glm::dvec3(0.0), 1.0 / 555.0);
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 64;
   settings.light_samples = 4;
   settings.seed = 1;
@@ -85,7 +85,7 @@ struct CorridorErrors {
 
 CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_reference) {
   const Scene corridor = test::bright_patch_corridor(metal_wall_roughness);
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = 64;
   settings.height = 48;
   settings.light_samples = 1;
@@ -191,7 +191,7 @@ TEST(Determinism, OutputFilesAreTheSameBytesAcrossRuns) {
 // that frame's values. A second frame in the same process must be the same bits as the first.
 TEST(Determinism, AFrameOnTheLastFramesMemoryIsTheSameBits) {
   keep_freed_host_memory();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = 96;
   settings.height = 72;
   const Scene scene = make_cornell_box();
@@ -206,7 +206,7 @@ TEST(Determinism, AFrameOnTheLastFramesMemoryIsTheSameBits) {
 // The image layers come down from the device in pieces (passes/layer_pass.h): pieces of 13 pixels, the last one short,
 // must fill every layer with the same bits as one piece.
 TEST(Determinism, LayersInSmallPiecesAreTheSameBits) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = 40;
   settings.height = 30;
   settings.pixel_samples = 4;
@@ -245,7 +245,7 @@ TEST(DeviceMemory, RefusalNamesWhatAndTheSizeAskedFor) {
 // same image scaled by the same factor (no overflow at the top, no lost bits at the bottom), every pixel finite and
 // non-negative.
 TEST(HardCases, LightOverTenDecadesScalesTheImageExactly) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   settings.light_samples = 4;
   // Without the light guide: its choices (which clusters a record aims at, in which order) compare fluxes, and
@@ -275,7 +275,7 @@ TEST(HardCases, LightOverTenDecadesScalesTheImageExactly) {
 TEST(HardCases, DegenerateTrianglesAndAGrazingCameraStayFinite) {
   Scene scene = make_cornell_box();
   const size_t original_triangles = scene.triangle_count();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   settings.light_samples = 4;
   scene.cameras[0].eye = glm::vec3(278.0f, 0.05f, 100.0f);   // a twentieth of a unit above the floor
@@ -345,7 +345,7 @@ double floor_indirect_mean(const Scene& s, const RenderedImage& img) {
 // mean indirect light at roughness just below the boundary (sampled), at it (cached, order chosen from the roughness)
 // and at it with --hsh-order HSH_MAX_ORDER, against path tracing at the boundary.
 TEST(HardCases, RadianceCacheBoundaryAndHighestOrderAgreeWithPathTracing) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 48;
   settings.light_samples = 4;
   const Scene at = cornell_with_metal_floor(HSH_MIN_ROUGHNESS), below = cornell_with_metal_floor(0.4499f);
@@ -403,7 +403,7 @@ Scene two_boxes(float dim) {
 // room's emitter, which the dim room cannot see), and every pixel finite and non-negative: nothing lost to the
 // fixed-point sums, and no room starved of light samples (with emitters chosen by power alone its light vanished).
 TEST(HardCases, RoomsAMillionTimesApartInOneFrame) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = 96;
   settings.height = 48;
   settings.light_samples = 4;

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "image/exr_file.h"
 #include "image/image_io.h"
+#include "render/render_output.h"
 #include "test_support.h"
 #include "util/error.h"
 

@@ -50,7 +50,7 @@ struct CacheAndReference {
 };
 
 CacheAndReference render_both(const Scene& scene, int size, unsigned reference_samples) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = size;
   settings.light_samples = 1;
   CacheAndReference r;

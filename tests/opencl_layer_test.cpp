@@ -50,7 +50,7 @@ TEST(OpenClLayer, BuildFailureNamesFileAndLine) {
 
 TEST(OpenClLayer, SameInputSameImage) {
   Scene scene = make_cornell_box();
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.gi = GiMethod::none;
   settings.width = settings.height = 40;
   RenderedImage a = render(test::gpu(), scene, settings);

@@ -485,7 +485,7 @@ TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
   Scene cube = lit_closed_cube();
   Bvh8 bvh = build_bvh8(cube.positions);
   DeviceScene device(test::gpu(), cube, bvh);
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.bounces = 0;
   BounceChoice choice = choose_bounces(test::gpu(), cube, device, settings);
   EXPECT_NEAR(choice.kept_per_bounce, 0.5, 1e-4);
@@ -524,7 +524,7 @@ TEST(BounceChoice, ClosedCubeKeepsHalfAndAnOpenFloorNothing) {
 TEST(BounceChoice, ASkyAloneIsMeasuredToo) {
   EnvironmentSettings sky_settings;
   sky_settings.sky = glm::vec3(1.0f);
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.bounces = 0;
 
   Scene floor;

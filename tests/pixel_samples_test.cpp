@@ -70,7 +70,7 @@ struct EdgeError {
 
 // How far each pixel the edge crosses is from its covered fraction.
 EdgeError edge_error(unsigned pixel_samples) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 32;
   settings.gi = GiMethod::none;
   settings.pixel_samples = pixel_samples;
@@ -123,7 +123,7 @@ Scene vertical_edge(float into = 0.1f) {
 
 // Column 16's mean value less its covered fraction 0.9, path traced with 16 pixel samples.
 double column_error(bool pixel_area) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 32;
   settings.gi = GiMethod::path;
   settings.bounces = 1;
@@ -156,7 +156,7 @@ TEST(PixelSamples, PathTracingIntegratesOverThePixelsArea) {
 // x within the pixel are 1/8, 3/8, 5/8 and 7/8, so an edge 0.3 of a pixel into column 16 (0.7 covered) leaves three of
 // four lit, 0.75 in every row, where the cells' centres (x = 1/4, 3/4) gave 0.5. Exact: four sub-pixels of 0 or 1.
 TEST(PixelSamples, RotatedGridResolvesNearVerticalEdges) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 32;
   settings.gi = GiMethod::none;
   settings.pixel_samples = 4;
@@ -169,7 +169,7 @@ TEST(PixelSamples, RotatedGridResolvesNearVerticalEdges) {
 }
 
 TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {
-  RenderSettings settings;
+  RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 8;
   settings.gi = GiMethod::none;
   settings.pixel_samples = 3;
@@ -188,9 +188,9 @@ TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {
 // --pixel-samples left out: 4 for renders, 16 for references (a finer grid than the render's), fewer where the path
 // samples do not divide by them or the sub-pixel frame would be too large.
 TEST(PixelSamples, DefaultsAreFourForRendersAndSixteenForReferences) {
-  RenderSettings render_settings;
+  RenderSettings render_settings = test::one_bounce_one_sample();
   EXPECT_EQ(default_pixel_samples(render_settings, 512, 384), 4u);
-  RenderSettings reference;
+  RenderSettings reference = test::one_bounce_one_sample();
   reference.gi = GiMethod::path;
   reference.preferred_pixel_samples = kReferencePixelSamples;
   reference.path.samples = 1024;

@@ -8,7 +8,7 @@
 #include <random>
 #include <sstream>
 
-#include "cache/host_records.h"
+#include "reference/host_records.h"
 #include "cache/hsh_rotation.h"
 #include "cache/light_guide.h"
 #include "brdf_reference.h"

@@ -109,7 +109,7 @@ TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
     }
     ASSERT_EQ(plan_scene(scene).switches.at(forced), "0") << forced << " is already on";
     for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
-      RenderSettings settings;
+      RenderSettings settings = test::one_bounce_one_sample();
       settings.width = settings.height = 32;
       settings.gi = gi;
       settings.path.samples = 4;

@@ -11,6 +11,7 @@
 
 #include "cache/octree_lookup.h"
 #include "cache_test_scenes.h"
+#include "test_support.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/splat_pass.h"
 #include "render/camera.h"
@@ -148,7 +149,7 @@ TEST(Splat, FootprintHoldsEveryReachedPixelAndValuesMatchDirectEvaluation) {
 }
 
 RenderSettings small_splat(int size) {
-  RenderSettings s;
+  RenderSettings s = test::one_bounce_one_sample();
   s.width = s.height = size;
   s.gi = GiMethod::splat;
   s.light_samples = 4;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cl/gpu_context.h"
+#include "render/settings.h"
 
 namespace rcsplat::test {
 
@@ -15,5 +16,14 @@ GpuContext& gpu();
 std::string scratch_dir();
 
 void write_file(const std::string& path, const std::string& content);
+
+// A request for one bounce and one sample a pixel, what most tests isolate; the library's own defaults (0: chosen
+// from the scene, as on the command line) are tested where a test says so.
+inline RenderSettings one_bounce_one_sample() {
+  RenderSettings s;
+  s.bounces = 1;
+  s.pixel_samples = 1;
+  return s;
+}
 
 }  // namespace rcsplat::test

@@ -9,18 +9,9 @@
 namespace rcsplat {
 namespace {
 
-// An orthonormal basis around n (Duff et al. 2017's branchless construction).
-void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  float sign = std::copysign(1.0f, n.z);
-  float a = -1.0f / (sign + n.z);
-  float c = n.x * n.y * a;
-  t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
 glm::vec3 cosine_direction(const glm::vec3& n, float u1, float u2) {
   glm::vec3 t, b;
-  basis(n, t, b);
+  tangent_frame(n, &t, &b);  // the kernels' frame (kernels/host_device.h)
   float r = std::sqrt(u1), phi = 6.2831853f * u2;
   return r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
 }

@@ -9,7 +9,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "util/luminance.h"
+#include "util/colour.h"
 
 namespace rcsplat {
 namespace {

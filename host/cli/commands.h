@@ -3,6 +3,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,13 @@ struct RenderOptions {
   float exposure = 0.0f;
   std::string json_path;
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
+  std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
 };
+// --quality: draft, standard (the defaults) or final sets accuracy, rays per record, pixel and light samples, except
+// those whose option was given (`given("--accuracy")`). quality_summary says what the preset set, for the summary.
+void apply_quality(const std::string& quality, RenderSettings& settings,
+                   const std::function<bool(const char*)>& given);
+std::string quality_summary(const std::string& quality);
 int run_render(const RenderOptions& options);
 
 // A reference continued: reads the path-traced layers of the earlier .exr at `path`, renders the missing samples with

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "render/camera.h"
 #include "render/pixel_samples.h"
 #include "scene/cornell_box.h"
@@ -44,25 +45,11 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  fs::path target(path);
-  fs::path temp = target;
-  temp += ".tmp" + std::to_string(getpid());
-  {
+  write_file_atomically(path, [&](const std::string& temp) -> std::string {
     std::ofstream out(temp, std::ios::binary);
     out << text;
-    if (!out.flush()) {
-      std::error_code ec;
-      fs::remove(temp, ec);
-      throw Error(path + ": cannot be written");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw Error(path + ": cannot be written: " + ec.message());
-  }
+    return out.flush() ? "" : "cannot be written";
+  });
 }
 
 }  // namespace rcsplat

@@ -10,6 +10,7 @@
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "render/bounce_choice.h"
+#include "render/renderer.h"
 #include "scene/scene_frame.h"
 #include "util/error.h"
 
@@ -86,15 +87,15 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
 
 namespace {
 
-// What --bounces and --bounce-method become when left out, as a render chooses them (render/bounce_choice.h), or why
-// info cannot tell: the probe's photons need an OpenCL device.
-nlohmann::json probe_bounces(const Scene& scene, const SceneFrame& frame, const Bvh8& bvh, const std::string& device) {
+// The frame plan a render with the defaults makes (render/frame_plan.h): what --bounces and --bounce-method become
+// when left out, the resolution, pixel samples and HSH order; or why info cannot tell: the probe's photons and the
+// lobe table need an OpenCL device.
+nlohmann::json plan_report(const Scene& scene, const std::string& device) {
   try {
     GpuContext gpu(select_device(device));
-    DeviceScene device_scene(gpu, scene, bvh, {}, frame);
-    RenderSettings settings;
-    settings.bounces = 0;
-    const BounceChoice cache = choose_bounces(gpu, scene, device_scene, settings);
+    Renderer renderer(gpu, scene);
+    const FramePlan plan = renderer.plan(RenderSettings{});  // the library's defaults are the command line's
+    const BounceChoice& cache = plan.bounces;
     std::printf("bounces      %u when --bounces is left out: each reflection keeps %.0f%% of the light it receives "
                 "(photons measured it on %s), so the bounces left out carry at most %.0f%% of the indirect light; "
                 "the cache takes the bounces after the first %s\n",
@@ -103,8 +104,22 @@ nlohmann::json probe_bounces(const Scene& scene, const SceneFrame& frame, const 
                 cache.bounces == 1 ? "(none)"
                 : cache.method == BounceMethod::photons ? "from a photon map"
                                                         : "by path continuation");
-    return {{"chosen", cache.bounces}, {"kept_per_bounce", cache.kept_per_bounce},
-            {"cache_method", bounce_method_name(cache.method)}, {"device", gpu.device_info().name}};
+    std::printf("plan         render's defaults: %d x %d, %u pixel samples (%ux%u sub-pixels), %u light samples, "
+                "accuracy %g, %ux%u rays a record",
+                plan.width, plan.height, plan.settings.pixel_samples, plan.side, plan.side,
+                plan.settings.light_samples, double(plan.settings.cache.accuracy), plan.settings.cache.theta_strata,
+                plan.settings.cache.phi_strata);
+    if (plan.settings.hsh_order)
+      std::printf(", HSH order %u for the radiance-cached lobes (it holds %.0f%% of the sharpest; their records at "
+                  "accuracy %g)",
+                  plan.settings.hsh_order, 100.0 * plan.hsh_captured_energy, double(plan.radiance_accuracy));
+    std::printf("\n");
+    nlohmann::json report = {{"chosen", cache.bounces}, {"kept_per_bounce", cache.kept_per_bounce},
+                             {"cache_method", bounce_method_name(cache.method)}, {"device", gpu.device_info().name}};
+    report["plan"] = {{"width", plan.width}, {"height", plan.height}, {"pixel_samples", plan.settings.pixel_samples},
+                      {"light_samples", plan.settings.light_samples}, {"accuracy", plan.settings.cache.accuracy},
+                      {"hsh_order", plan.settings.hsh_order}, {"radiance_accuracy", plan.radiance_accuracy}};
+    return report;
   } catch (const std::exception& e) {  // no OpenCL platform or device, or one that cannot run the probe
     std::printf("bounces      chosen when rendering (the photon probe needs an OpenCL device: %s)\n", e.what());
     return {{"chosen", nullptr}, {"why_not", e.what()}};
@@ -121,7 +136,7 @@ int run_info(const InfoOptions& options) {
   const Bvh8 bvh = build_bvh8(frame.device_positions(scene));
   std::printf("scene        %s\n", scene.source.c_str());
   print_scene_plan(plan, bvh.depth);
-  const nlohmann::json bounces = probe_bounces(scene, frame, bvh, options.device);
+  const nlohmann::json bounces = plan_report(scene, options.device);
   if (!options.json_path.empty()) {
     nlohmann::json report = scene_plan_json(plan, bvh.depth);
     report["scene"] = scene.source;

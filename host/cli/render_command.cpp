@@ -8,8 +8,10 @@
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
+#include "render/render_output.h"
 #include "kernels/hsh.h"
 #include "render/bounce_choice.h"
+#include "render/frame_plan.h"
 #include "render/pixel_samples.h"
 #include "util/atomic_file.h"
 #include "util/byte_size.h"
@@ -210,6 +212,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
 }  // namespace
 
 int run_render(const RenderOptions& options) {
+  check_request(options.settings);  // every range, before the scene is read
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
@@ -240,9 +243,12 @@ int run_render(const RenderOptions& options) {
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);
-  if (!options.json_path.empty())
-    write_text_file(options.json_path,
-                    summary_json(scene, plan, image, options.settings, options.outputs).dump(2) + "\n");
+  if (options.settings.gi != GiMethod::path) std::printf("quality      %s\n", quality_summary(options.quality).c_str());
+  if (!options.json_path.empty()) {
+    nlohmann::json j = summary_json(scene, plan, image, options.settings, options.outputs);
+    if (options.settings.gi != GiMethod::path) j["quality"] = options.quality;
+    write_text_file(options.json_path, j.dump(2) + "\n");
+  }
   return 0;
 }
 

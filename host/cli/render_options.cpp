@@ -24,11 +24,9 @@ void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine) 
   std::string option = fine ? "--fine-hemisphere " : "--hemisphere ";
   if (std::sscanf(text.c_str(), "%ux%u%c", &m, &n, &tail) != 2 || m == 0 || n == 0)
     throw Error(option + text + ": expected MxN, for example 16x32");
-  CacheSettings changed = cache;  // checked before it replaces the settings: a refused value leaves them as they were
-  (fine ? changed.fine_theta_strata : changed.theta_strata) = m;
-  (fine ? changed.fine_phi_strata : changed.phi_strata) = n;
-  validate_cache_settings(changed);
-  cache = changed;
+  // Parsed only: the frame plan checks the range (render/frame_plan.h check_request).
+  (fine ? cache.fine_theta_strata : cache.theta_strata) = m;
+  (fine ? cache.fine_phi_strata : cache.phi_strata) = n;
 }
 
 void parse_spacing(const std::string& text, CacheSettings& cache) {
@@ -36,11 +34,59 @@ void parse_spacing(const std::string& text, CacheSettings& cache) {
   char tail = 0;
   if (std::sscanf(text.c_str(), "%f,%f%c", &lo, &hi, &tail) != 2)
     throw Error("--spacing " + text + ": expected MIN,MAX in pixels, for example 3,20");
-  CacheSettings changed = cache;
-  changed.min_reach_pixels = lo;
-  changed.max_reach_pixels = hi;
-  validate_cache_settings(changed);
-  cache = changed;
+  cache.min_reach_pixels = lo;
+  cache.max_reach_pixels = hi;
+}
+
+namespace {
+
+// What each --quality sets (standard: the library's defaults, RenderSettings and CacheSettings).
+struct QualityPreset {
+  const char* name;
+  float accuracy;
+  unsigned theta_strata, phi_strata, light_samples;
+  unsigned pixel_samples, preferred_pixel_samples;  // 0: chosen, up to preferred_pixel_samples
+};
+
+QualityPreset quality_preset(const std::string& quality) {
+  const RenderSettings defaults;
+  const QualityPreset standard{"standard",
+                               defaults.cache.accuracy,
+                               defaults.cache.theta_strata,
+                               defaults.cache.phi_strata,
+                               defaults.light_samples,
+                               defaults.pixel_samples,
+                               defaults.preferred_pixel_samples};
+  if (quality == "standard") return standard;
+  if (quality == "draft") return {"draft", 0.6f, 8, 16, 4, 1, 1};
+  if (quality == "final") return {"final", 0.15f, defaults.cache.theta_strata, defaults.cache.phi_strata, 64, 0, 16};
+  throw Error("--quality " + quality + ": unknown preset (use draft, standard or final)");
+}
+
+}  // namespace
+
+void apply_quality(const std::string& quality, RenderSettings& s, const std::function<bool(const char*)>& given) {
+  const QualityPreset p = quality_preset(quality);
+  if (!given("--accuracy")) s.cache.accuracy = p.accuracy;
+  if (!given("--hemisphere")) {
+    s.cache.theta_strata = p.theta_strata;
+    s.cache.phi_strata = p.phi_strata;
+  }
+  if (!given("--light-samples")) s.light_samples = p.light_samples;
+  if (!given("--pixel-samples")) {
+    s.pixel_samples = p.pixel_samples;
+    s.preferred_pixel_samples = p.preferred_pixel_samples;
+  }
+}
+
+std::string quality_summary(const std::string& quality) {
+  const QualityPreset p = quality_preset(quality);
+  char text[200];
+  std::snprintf(text, sizeof text, "%s: accuracy %g, %ux%u rays a record, %u light samples, %s pixel samples", p.name,
+                double(p.accuracy), p.theta_strata, p.phi_strata, p.light_samples,
+                p.pixel_samples ? std::to_string(p.pixel_samples).c_str()
+                                : ("up to " + std::to_string(p.preferred_pixel_samples)).c_str());
+  return text;
 }
 
 }  // namespace rcsplat

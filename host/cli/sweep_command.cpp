@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "image/comparison.h"
 #include "image/image_io.h"
+#include "render/render_output.h"
 #include "util/error.h"
 #include "util/log.h"
 

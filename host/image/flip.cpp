@@ -7,13 +7,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
+#include "util/colour.h"
 #include "util/error.h"
 
 namespace rcsplat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 using Vec3 = std::array<double, 3>;
 
@@ -33,7 +35,6 @@ Vec3 multiply(const double m[3][3], const Vec3& v) {
 // The white point: XYZ of linear RGB (1, 1, 1).
 Vec3 white() { return multiply(kRgbToXyz, {1.0, 1.0, 1.0}); }
 
-double srgb_decode(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 // YCxCz: L*a*b* without the cube root, the opponent space in which FLIP applies its contrast sensitivity functions.
 Vec3 xyz_to_ycxcz(const Vec3& xyz) {
@@ -163,7 +164,7 @@ Prepared prepare(const std::vector<float>& srgb, int width, int height) {
     Vec3 rgb;
     for (int c = 0; c < 3; ++c) {
       const float v = srgb[3 * i + size_t(c)];
-      rgb[size_t(c)] = srgb_decode(std::clamp(std::isfinite(v) ? double(v) : 0.0, 0.0, 1.0));
+      rgb[size_t(c)] = srgb_to_linear(std::clamp(std::isfinite(v) ? double(v) : 0.0, 0.0, 1.0));
     }
     const Vec3 ycxcz = xyz_to_ycxcz(multiply(kRgbToXyz, rgb));
     for (int c = 0; c < 3; ++c) p.ycxcz[size_t(c)].v[i] = ycxcz[size_t(c)];

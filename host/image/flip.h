@@ -4,12 +4,13 @@
 // `compare` and `sweep` need nothing beyond the renderer; benchmarks/flip_check.py checks it against NVIDIA's
 // flip-evaluator package.
 #pragma once
+#include <numbers>
 #include <vector>
 
 namespace rcsplat {
 
 // Pixels per degree of visual angle for FLIP's default viewer: 0.7 m from a 0.7 m wide, 3840-pixel-wide display.
-constexpr double kFlipDefaultPixelsPerDegree = 0.7 * (3840.0 / 0.7) * (3.14159265358979323846 / 180.0);
+constexpr double kFlipDefaultPixelsPerDegree = 0.7 * (3840.0 / 0.7) * (std::numbers::pi / 180.0);
 
 struct FlipResult {
   std::vector<float> error;  // per pixel, row-major

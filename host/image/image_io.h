@@ -5,8 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "render/frame.h"
-
 namespace rcsplat {
 
 struct ImageLayer {
@@ -28,14 +26,11 @@ void write_png_display(const std::string& path, int width, int height, const std
 // False in a build without OpenImageIO (RCSPLAT_WITH_OPENIMAGEIO=OFF): then PNG functions throw rcsplat::Error, and
 // EXR files are written uncompressed and read only when uncompressed (exr_file.h).
 bool have_openimageio();
-// The extensions write_render accepts in this build, for messages (".exr or .png").
+// The extensions write_render (render/render_output.h) accepts in this build, for messages (".exr or .png").
 std::string output_formats();
 // Whether write_render can write this path (.exr or .png, any case).
 bool is_output_format(const std::string& path);
 
-// Writes the render to a .exr (all layers) or .png (tone-mapped) file chosen by the path's extension.
-void write_render(const std::string& path, const RenderedImage& image, float exposure_stops,
-                  const ExrAttributes& attributes = {});
 // The string attributes of an EXR whose names start with "rcsplat:".
 ExrAttributes read_exr_attributes(const std::string& path);
 

@@ -17,6 +17,8 @@ class LayerPass {
   LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height);
 
   unsigned side() const { return side_; }
+  int out_width() const { return width_; }
+  int out_height() const { return height_; }
   size_t pixel_count() const { return size_t(width_) * size_t(height_); }
 
   // A layer's pixels come down in pieces, each handed to `visit` (the first pixel's index, the piece, its pixels)
@@ -40,8 +42,10 @@ class LayerPass {
   std::vector<float> record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
                                    const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel);
 
-  // Pixels a piece holds (tests make it small, to cross pieces' edges).
-  void set_piece_pixels(size_t pixels) { piece_pixels_ = std::max<size_t>(pixels, 1); }
+  // Pixels a piece holds (tests make it small, to cross pieces' edges); 0: kDefaultPiecePixels.
+  // 20 MB of surface, 4 MB of RGBA: 16 blocks of parallel_ranges.
+  static constexpr size_t kDefaultPiecePixels = size_t(1) << 18;
+  void set_piece_pixels(size_t pixels) { piece_pixels_ = pixels ? pixels : kDefaultPiecePixels; }
 
  private:
   void resolve_rgba(const cl::Buffer& source, float scale);
@@ -57,7 +61,7 @@ class LayerPass {
   int width_, height_;
   NamedKernel surface_, rgba_, counts_;
   cl::Buffer rgba_out_;  // the float4 images' gathered pixels
-  size_t piece_pixels_ = size_t(1) << 18;  // 20 MB of surface, 4 MB of RGBA: 16 blocks of parallel_ranges
+  size_t piece_pixels_ = kDefaultPiecePixels;
 };
 
 }  // namespace rcsplat

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "util/luminance.h"
+#include "util/colour.h"
 
 namespace rcsplat {
 

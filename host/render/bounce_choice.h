@@ -3,6 +3,8 @@
 // smooth part included (the reflected flux of each landing over the last's: albedo and openness together), and the
 // method from what the scene allows.
 #pragma once
+#include <functional>
+
 #include "cl/device_scene.h"
 #include "render/settings.h"
 
@@ -27,8 +29,19 @@ struct BounceChoice {
 // The method for `settings` (auto: photons for the cache methods where the scene allows, else path) and the bounce
 // count (settings.bounces, or for 0 the fewest that leave out at most kMissingIndirectShare of the indirect light
 // when each bounce keeps kept_per_bounce of the last's, at most 8, or 3 in a scene with an environment).
-BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
-                            const RenderSettings& settings);
+// measure_kept_per_bounce: the scene's measure (kept_per_bounce below), asked for only when the count is chosen.
+BounceChoice choose_bounces(const Scene& scene, const RenderSettings& settings,
+                            const std::function<double()>& measure_kept_per_bounce);
+
+// The scene's measure: reflected flux of landings 1 .. 3 over that of landings 0 .. 2, by a few photons from its
+// lights and its environment (kBounceProbe* in bounce_choice.cpp).
+double kept_per_bounce(GpuContext& gpu, const DeviceScene& device_scene);
+
+// The same, measuring on the device when the count is chosen (`info` and tests; the Renderer keeps its measure).
+inline BounceChoice choose_bounces(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
+                                   const RenderSettings& settings) {
+  return choose_bounces(scene, settings, [&] { return kept_per_bounce(gpu, device_scene); });
+}
 
 // The fewest bounces N >= 1 with kept^N <= kMissingIndirectShare, at most max_bounces.
 unsigned bounces_for(double kept_per_bounce, unsigned max_bounces);

@@ -9,6 +9,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
+#include "passes/brdf_table_pass.h"
 #include "passes/photon_map_pass.h"
 #include "passes/radiance_splat_pass.h"
 #include "passes/record_pass.h"
@@ -33,6 +34,46 @@ class TimeWithoutBuilds {
   double builds_before_;
 };
 
+// The lobe table of the radiance-cached (LOBE_HSH) materials at the highest order (kernels/brdf_table.cl), computed
+// once per scene and seed: the plan chooses the HSH order and the radiance records' accuracy from it.
+struct RadianceLobeTable {
+  BrdfTable full;
+  size_t materials = 0;                // rows of `full`: the LOBE_HSH materials
+  std::vector<int> row_of_material;    // each material's row, -1 where it is not radiance-cached
+  float sharpest_roughness = 1.0f;
+};
+RadianceLobeTable radiance_lobe_table(GpuContext& gpu, const DeviceScene& device_scene, unsigned seed);
+// The smallest order that holds 95% of what the highest holds of every cached lobe.
+unsigned automatic_hsh_order(const RadianceLobeTable& table);
+// The smallest share of a cached lobe that `order` holds.
+float hsh_captured_energy(const RadianceLobeTable& table, unsigned order);
+// Radiance caching's stricter accuracy for glossier lobes: a times the sharpest cached roughness (the lobe's angular
+// width goes as roughness^2 = alpha; roughness itself keeps records from crowding), at least a / 2.
+float radiance_accuracy(const RadianceLobeTable& table, float accuracy);
+
+// What the records read that does not depend on the view, each with the settings it was built for: the Renderer
+// keeps them across frames and rebuilds one only when its settings change (same settings, same bits).
+struct ViewIndependentLight {
+  // The light guide's clusters (attach_light_guide): the irradiance and radiance records and the glossy pass share
+  // them. Depends on the seed and --guide-rays' photons.
+  struct Guide {
+    unsigned seed = 0, photons = 0;
+    std::vector<GuideCluster> clusters;
+    uint64_t hits = 0;
+  };
+  std::optional<Guide> guide;
+  // The photon map (attach_photon_map): the irradiance and radiance records share it.
+  struct PhotonKey {
+    unsigned seed = 0, bounces = 0, paths = 0, neighbours = 0;
+    float short_ray_paths = 0.0f;
+    bool operator==(const PhotonKey&) const = default;
+  };
+  std::optional<PhotonKey> photon_key;
+  std::unique_ptr<PhotonMapPass> photon_map;
+  uint64_t photon_paths = 0, photons = 0;
+  float photon_radius = 0.0f;  // world units
+};
+
 struct IndirectFrame {
   GpuContext& gpu;
   const Scene& scene;
@@ -44,11 +85,10 @@ struct IndirectFrame {
   // the G-buffer's frame, layers.side() times as wide and high with sub-pixels, and `layers` gathers their images.
   RenderedImage& image;
   LayerPass& layers;
-  // The light guide's clusters once attach_light_guide has built them: the irradiance and radiance records and the
-  // glossy pass share them.
-  std::optional<std::vector<GuideCluster>> light_guide{};
-  // The photon map once attach_photon_map has built it: the irradiance and radiance records share it.
-  std::unique_ptr<PhotonMapPass> photon_map{};
+  // The light guide and the photon map: built by the first frame that needs them, kept by the Renderer.
+  ViewIndependentLight& light;
+  // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer.
+  const RadianceLobeTable* lobe_table = nullptr;
   // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
   Progress* progress = nullptr;
   size_t progress_done_before = 0;
@@ -62,6 +102,8 @@ void octree_indirect(IndirectFrame& frame);
 // Builds the frame's light guide (photons from the lights, clustered: cache/light_guide.h) on its first call, and
 // hands it to the record pass, unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
 void attach_light_guide(IndirectFrame& frame, RecordPass& records);
+// The light guide built for this frame's settings, or null (none asked for, or not built yet).
+const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& frame);
 // The photon map the records read their hits' later bounces from (--bounce-method photons with --bounces 2 or more),
 // built on the first call; null otherwise. Fills its statistics.
 const PhotonMapPass* attach_photon_map(IndirectFrame& frame);

@@ -19,7 +19,8 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
   // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
   const CacheSettings& cs = f.settings.cache;
-  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && f.light_guide && !f.light_guide->empty();
+  const std::vector<GuideCluster>* guide = frame_light_guide(f);
+  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && guide && !guide->empty();
   if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
     glossy.emplace(f.gpu, f.device_scene, sample_hsh);
   ComposePass compose(f.gpu, f.device_scene, radiance_cached != nullptr);
@@ -28,7 +29,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   if (glossy) {
     auto t = Clock::now();
     glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed,
-                f.light_guide ? *f.light_guide : std::vector<GuideCluster>{},
+                guide ? *guide : std::vector<GuideCluster>{},
                 guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
                 f.settings.bounces);
     st.glossy_s = seconds_since(t);

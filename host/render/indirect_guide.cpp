@@ -1,32 +1,41 @@
 // The light guide for a frame's records: photons from the lights, clustered into the brightest directly lit places.
+// Built by the first frame that asks for it and kept by the Renderer while the seed and photon count stay the same.
 #include "cache/light_guide.h"
 #include "passes/light_guide_pass.h"
 #include "render/indirect.h"
+#include "kernels/counter_random.h"
 #include "render/timing.h"
 
 namespace rcsplat {
+
+const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& f) {
+  const CacheSettings& cs = f.settings.cache;
+  const auto& guide = f.light.guide;
+  if (!cs.guide_rays || !cs.guide_photons || !guide || guide->seed != f.settings.seed ||
+      guide->photons != cs.guide_photons)
+    return nullptr;
+  return &guide->clusters;
+}
 
 void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   const CacheSettings& cs = f.settings.cache;
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
-  if (f.light_guide) {
-    records.set_light_guide(*f.light_guide, cs.guide_rays);
-    return;
+  if (!frame_light_guide(f)) {
+    auto t = Clock::now();
+    double program_before = f.gpu.program_seconds();
+    LightGuidePass photons(f.gpu, f.device_scene);
+    double program_s = f.gpu.program_seconds() - program_before;
+    st.program_s += program_s;
+    // Its own seed stream: the photons must not correlate with the records' hemispheres.
+    std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ STREAM_LIGHT_GUIDE);
+    f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
+                                                cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
+    st.guide_s = seconds_since(t) - program_s;
   }
-  auto t = Clock::now();
-  double program_before = f.gpu.program_seconds();
-  LightGuidePass photons(f.gpu, f.device_scene);
-  double program_s = f.gpu.program_seconds() - program_before;
-  st.program_s += program_s;
-  // Its own seed stream: the photons must not correlate with the records' hemispheres.
-  std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ 0x6c677569u);
-  std::vector<GuideCluster> clusters = cluster_photons(hits, GUIDE_MAX_CLUSTERS);
-  records.set_light_guide(clusters, cs.guide_rays);
-  f.light_guide = std::move(clusters);
-  st.guide_photons = hits.size();
-  st.guide_clusters = unsigned(f.light_guide->size());
-  st.guide_s = seconds_since(t) - program_s;
+  records.set_light_guide(f.light.guide->clusters, cs.guide_rays);
+  st.guide_photons = f.light.guide->hits;
+  st.guide_clusters = unsigned(f.light.guide->clusters.size());
 }
 
 }  // namespace rcsplat

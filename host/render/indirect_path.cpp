@@ -1,6 +1,7 @@
 // Path-traced indirect light: the same bounce the cache estimates, sampled per pixel in rounds with progress.
 #include <algorithm>
 
+#include "kernels/counter_random.h"
 #include "passes/path_pass.h"
 #include "render/indirect.h"
 #include "util/error.h"
@@ -44,7 +45,7 @@ void path_traced_indirect(IndirectFrame& f) {
   size_t done_before = f.progress ? f.progress_done_before : 0;
   for (unsigned h = 0; h < halves; ++h) {
     unsigned samples = halves == 1 ? ps.samples : (h == 0 ? ps.samples / 2 : ps.samples - ps.samples / 2);
-    path.begin(f.gbuffer.view(), samples, ps.stratified, f.settings.seed + 0x9e3779b9u * h, f.settings.bounces);
+    path.begin(f.gbuffer.view(), samples, ps.stratified, f.settings.seed + STREAM_ROUND_STEP * h, f.settings.bounces);
     // Rounds of about a second's work keep progress moving without costing launches.
     unsigned round = std::clamp(4000000u / unsigned(std::max<size_t>(f.gbuffer.view().pixel_count(), 1)), 1u, 64u);
     while (path.samples_done() < samples) {

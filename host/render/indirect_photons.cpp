@@ -1,5 +1,5 @@
 // The photon map for a frame's records (--bounce-method photons): shot once, shared by the irradiance and radiance
-// records.
+// records, and kept by the Renderer for later frames with the same seed, bounces and photon settings.
 #include <algorithm>
 
 #include <glm/glm.hpp>
@@ -30,51 +30,62 @@ double device_surface_area(const Scene& scene, const SceneFrame& frame) {
 
 const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   if (f.settings.bounce_method != BounceMethod::photons || f.settings.bounces < 2) return nullptr;
-  if (f.photon_map) return f.photon_map.get();
   RenderStats& st = f.image.stats;
-  auto t = Clock::now();
-  double program_before = f.gpu.program_seconds();
-  const SceneFrame& frame = f.device_scene.frame();
-  const bool rounds = f.settings.photon_paths == 0;
-  // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths fills
-  // a closed scene's map.
-  const unsigned per_round =
-      rounds ? std::max(kPhotonMapPhotons / (f.settings.bounces - 1), 1024u) : f.settings.photon_paths;
-  std::vector<PhotonHit> kept;
-  uint64_t paths = 0;
-  // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double them.
-  for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9; ++round) {
-    const TimeWithoutBuilds shoot(f.gpu);
-    // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
-    std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
-                                                          f.settings.seed ^ 0x70686f74u ^ hash_u32(round));
-    kept.insert(kept.end(), more.begin(), more.end());
-    paths += per_round;
-    st.photon_map_shoot_s += shoot.seconds();
-  }
-  // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
-  const float share = float(per_round) / float(paths);
-  for (PhotonHit& p : kept)
-    for (int c = 0; c < 3; ++c) {
-      p.flux[c] *= share;
-      p.incident[c] *= share;
+  ViewIndependentLight& light = f.light;
+  const ViewIndependentLight::PhotonKey key{f.settings.seed, f.settings.bounces, f.settings.photon_paths,
+                                            f.settings.photon_neighbours, f.settings.short_ray_paths};
+  if (!light.photon_map || light.photon_key != key) {
+    light.photon_map.reset();
+    auto t = Clock::now();
+    double program_before = f.gpu.program_seconds();
+    const SceneFrame& frame = f.device_scene.frame();
+    const bool rounds = f.settings.photon_paths == 0;
+    // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths
+    // fills a closed scene's map.
+    const unsigned per_round =
+        rounds ? std::max(kPhotonMapPhotons / (f.settings.bounces - 1), 1024u) : f.settings.photon_paths;
+    std::vector<PhotonHit> kept;
+    uint64_t paths = 0;
+    // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double
+    // them.
+    for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9;
+         ++round) {
+      const TimeWithoutBuilds shoot(f.gpu);
+      // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
+      std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
+                                                            f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
+      kept.insert(kept.end(), more.begin(), more.end());
+      paths += per_round;
+      st.photon_map_shoot_s += shoot.seconds();
     }
-  auto grids_start = Clock::now();
-  PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
-                                          kPhotonLookupStride, frame.device_positions(f.scene));
-  grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
-  grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
-  st.photon_map_grids_s = seconds_since(grids_start);
-  const TimeWithoutBuilds estimate(f.gpu);
-  f.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
-  double program_s = f.gpu.program_seconds() - program_before;
-  st.photon_map_estimate_s = estimate.seconds();
-  st.program_s += program_s;
-  st.photon_map_paths = paths;
-  st.photon_map_photons = grids.all.photons.size();
-  st.photon_map_radius = frame.length_to_world(grids.all.params.radius);
-  st.photon_map_s = seconds_since(t) - program_s;
-  return f.photon_map.get();
+    // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
+    const float share = float(per_round) / float(paths);
+    for (PhotonHit& p : kept)
+      for (int c = 0; c < 3; ++c) {
+        p.flux[c] *= share;
+        p.incident[c] *= share;
+      }
+    auto grids_start = Clock::now();
+    PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
+                                            kPhotonLookupStride, frame.device_positions(f.scene));
+    grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
+    grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
+    st.photon_map_grids_s = seconds_since(grids_start);
+    const TimeWithoutBuilds estimate(f.gpu);
+    light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
+    light.photon_key = key;
+    light.photon_paths = paths;
+    light.photons = grids.all.photons.size();
+    light.photon_radius = frame.length_to_world(grids.all.params.radius);
+    double program_s = f.gpu.program_seconds() - program_before;
+    st.photon_map_estimate_s = estimate.seconds();
+    st.program_s += program_s;
+    st.photon_map_s = seconds_since(t) - program_s;
+  }
+  st.photon_map_paths = light.photon_paths;
+  st.photon_map_photons = light.photons;
+  st.photon_map_radius = light.photon_radius;
+  return light.photon_map.get();
 }
 
 }  // namespace rcsplat

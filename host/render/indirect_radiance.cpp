@@ -3,6 +3,7 @@
 // at a stricter accuracy, each projecting its strata onto HSH, then one splat of w * L_o with each pixel's view.
 #include <algorithm>
 
+#include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/brdf_table_pass.h"
 #include "passes/hsh_record_pass.h"
@@ -34,32 +35,13 @@ BrdfTable truncated(const BrdfTable& full, int order) {
   return t;
 }
 
-// The smallest order that holds kOrderShare of what the highest order holds of every cached lobe.
-int automatic_order(const BrdfTable& full, size_t materials) {
-  int order = 1;
-  for (size_t m = 0; m < materials; ++m) {
-    double best = full.worst_captured_energy(m, HSH_MAX_ORDER);
-    int n = 1;
-    while (n < HSH_MAX_ORDER && full.worst_captured_energy(m, n) < kOrderShare * best) ++n;
-    order = std::max(order, n);
-  }
-  return order;
-}
-
 }  // namespace
 
-std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
-  if (!f.device_scene.has_radiance_cache()) return nullptr;
-  RenderStats& st = f.image.stats;
-  const GBufferView& gbuffer = f.gbuffer.view();
-
-  // The lobe table of the cached materials, at the highest order; the frame's order from it.
-  auto t = Clock::now();
+RadianceLobeTable radiance_lobe_table(GpuContext& gpu, const DeviceScene& device_scene, unsigned seed) {
+  RadianceLobeTable t;
   std::vector<BrdfMaterial> cached;
-  std::vector<int> row_of_material;
-  float sharpest = 1.0f;
-  for (const Material& m : f.device_scene.materials()) {
-    row_of_material.push_back(m.lobe == LOBE_HSH ? int(cached.size()) : -1);
+  for (const Material& m : device_scene.materials()) {
+    t.row_of_material.push_back(m.lobe == LOBE_HSH ? int(cached.size()) : -1);
     if (m.lobe != LOBE_HSH) continue;
     BrdfMaterial b{};
     for (int c = 0; c < 3; ++c) b.base_color[c] = m.base_color[c];
@@ -67,36 +49,67 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
     b.roughness = m.roughness;
     b.specular = m.specular;
     cached.push_back(b);
-    sharpest = std::min(sharpest, m.roughness);
+    t.sharpest_roughness = std::min(t.sharpest_roughness, m.roughness);
   }
-  double program_before = f.gpu.program_seconds();
-  BrdfTable full = BrdfTablePass(f.gpu).compute(cached, HSH_MAX_ORDER, kTableAngles, kTableSamples, f.settings.seed);
-  int order = f.settings.hsh_order ? int(f.settings.hsh_order) : automatic_order(full, cached.size());
-  st.hsh_order = unsigned(order);
-  st.hsh_captured_energy = 1.0f;
-  for (size_t m = 0; m < cached.size(); ++m)
-    st.hsh_captured_energy = std::min(st.hsh_captured_energy, float(full.worst_captured_energy(m, order)));
-  BrdfTable table = truncated(full, order);
+  t.materials = cached.size();
+  t.full = BrdfTablePass(gpu).compute(cached, HSH_MAX_ORDER, kTableAngles, kTableSamples, seed);
+  return t;
+}
 
+unsigned automatic_hsh_order(const RadianceLobeTable& table) {
+  int order = 1;
+  for (size_t m = 0; m < table.materials; ++m) {
+    double best = table.full.worst_captured_energy(m, HSH_MAX_ORDER);
+    int n = 1;
+    while (n < HSH_MAX_ORDER && table.full.worst_captured_energy(m, n) < kOrderShare * best) ++n;
+    order = std::max(order, n);
+  }
+  return unsigned(order);
+}
+
+float hsh_captured_energy(const RadianceLobeTable& table, unsigned order) {
+  float captured = 1.0f;
+  for (size_t m = 0; m < table.materials; ++m)
+    captured = std::min(captured, float(table.full.worst_captured_energy(m, int(order))));
+  return captured;
+}
+
+float radiance_accuracy(const RadianceLobeTable& table, float accuracy) {
   // Radiance caching's stricter accuracy for glossier lobes: a times the sharpest cached roughness (the lobe's
   // angular width goes as roughness^2 = alpha; roughness itself keeps records from crowding), at least a / 2.
+  return accuracy * std::max(0.5f, table.sharpest_roughness);
+}
+
+std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
+  if (!f.device_scene.has_radiance_cache()) return nullptr;
+  RenderStats& st = f.image.stats;
+  const GBufferView& gbuffer = f.gbuffer.view();
+  const RadianceLobeTable& lobes = *f.lobe_table;  // the plan settled the order from it
+
+  auto t = Clock::now();
+  const unsigned order = f.settings.hsh_order;
+  st.hsh_order = order;
+  st.hsh_captured_energy = hsh_captured_energy(lobes, order);
+  BrdfTable table = truncated(lobes.full, int(order));
+  double program_before = f.gpu.program_seconds();
+
   CacheSettings cs = f.settings.cache;
-  cs.accuracy = f.settings.cache.accuracy * std::max(0.5f, sharpest);
+  cs.accuracy = radiance_accuracy(lobes, f.settings.cache.accuracy);
   st.radiance_accuracy = cs.accuracy;
 
-  auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, row_of_material);
+  auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, lobes.row_of_material);
   const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
   RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), true, attach_photon_map(f));
   records.set_bounces(f.settings.bounces);
-  HshRecordPass hsh(f.gpu, order);
+  HshRecordPass hsh(f.gpu, int(order));
   DeviceRecordIndex index(f.gpu, kept, cs);
   st.program_s += f.gpu.program_seconds() - program_before;
-  st.hsh_table_s = seconds_since(t);
+  st.hsh_table_s += seconds_since(t);  // the lobe table itself: when the plan computed it
   attach_light_guide(f, records);  // the irradiance records' guide, built once per frame
 
   RenderStats placed;
   uint32_t total = place_records(
-      index, records, kept, cs, f.settings.seed ^ 0x68736831u, placed,
+      index, records, kept, cs, f.settings.seed ^ STREAM_RADIANCE_RECORDS, placed,
       [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
         hsh.project(records.strata(), records.records(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
       },

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "render/camera.h"
-#include "render/renderer.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -26,27 +25,6 @@ unsigned default_pixel_samples(const RenderSettings& s, int width, int height) {
     return n;
   }
   return 1;
-}
-
-RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {
-  RenderSettings settings = requested;
-  int width = settings.width, height = settings.height;
-  resolve_resolution(choose_camera(scene, settings.camera, settings.camera_overrides), width, height);
-  if (settings.pixel_samples == 0) settings.pixel_samples = default_pixel_samples(settings, width, height);
-  const unsigned side = pixel_sample_side(settings.pixel_samples);
-  // Path tracing over the pixel's area traces rounds of the output frame itself (renderer.cpp).
-  if (side == 1 || (settings.gi == GiMethod::path && settings.path.pixel_area))
-    return render_single_sample(gpu, scene, settings);
-  if (std::max(width, height) * int(side) > 16384)
-    throw Error("--pixel-samples " + std::to_string(settings.pixel_samples) + " at " + std::to_string(width) + "x" +
-                std::to_string(height) + " needs a sub-pixel frame above 16384 pixels wide or high");
-  // The sub-pixel frame, its layers gathered into output pixels on the device (passes/layer_pass.h).
-  RenderedImage out = render_single_sample(gpu, scene, sub_pixel_settings(settings, width, height, side));
-  const unsigned n = side * side;
-  out.stats.pixel_samples = n;
-  out.stats.light_samples *= n;
-  out.stats.path_samples *= n;
-  return out;
 }
 
 RenderSettings samples_per_sub_pixel(const RenderSettings& s, unsigned n) {

@@ -67,80 +67,6 @@ void check_frame_fits(int width, int height, unsigned side, const DeviceInfo& de
                 " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
 }
 
-// Primary visibility through `camera`, direct light (strata x strata samples a sub-pixel) and the indirect light of
-// one frame, into img (output resolution, layers.side() times smaller than the G-buffer; its statistics already hold
-// the setup's); progress: the path tracer's, shared by rounds.
-void shade_frame(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene, const SceneFrame& scene_frame,
-                 GBufferPass& gbuffer, DirectPass& direct, LayerPass& layers, const CameraParams& camera,
-                 unsigned strata, const RenderSettings& settings, RenderedImage& img, Progress* progress = nullptr,
-                 size_t progress_done_before = 0) {
-  RenderStats& st = img.stats;
-  auto t = Clock::now();
-  gbuffer.run(camera);
-  st.gbuffer_s = seconds_since(t);
-  t = Clock::now();
-  direct.run(gbuffer.view(), strata, settings.seed);
-  st.direct_s = seconds_since(t);
-
-  t = Clock::now();
-  const size_t pixels = layers.pixel_count();
-  img.color.resize(pixels * 3);
-  img.direct.resize(pixels * 3);
-  img.emission.resize(pixels * 3);
-  img.albedo.resize(pixels * 3);
-  img.normal.resize(pixels * 3);
-  img.position.resize(pixels * 3);
-  img.depth.resize(pixels);
-  img.triangle.resize(pixels);
-  st.primary_rays = gbuffer.view().pixel_count();
-  std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
-  layers.surface(gbuffer.view(), direct.radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
-    parallel_ranges(count, [&](size_t begin, size_t end) {
-      uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
-      for (size_t k = begin; k < end; ++k) {
-        const PixelSurface& s = piece[k];
-        const size_t i = first + k;
-        img.triangle[i] = s.triangle;
-        range_rough += s.lobe_counts & 0xffu;  // kernels/layers.cl lobe_count_shift
-        range_glossy += (s.lobe_counts >> 8) & 0xffu;
-        range_hsh += (s.lobe_counts >> 16) & 0xffu;
-        img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
-        const glm::vec3 world = s.triangle >= 0
-                                    ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
-                                    : glm::vec3(0.0f);
-        range_shadow_rays += uint64_t(s.shadow_rays);
-        for (int c = 0; c < 3; ++c) {
-          img.direct[3 * i + c] = s.direct[c];
-          img.emission[3 * i + c] = s.emission[c];
-          img.albedo[3 * i + c] = s.albedo[c];
-          img.normal[3 * i + c] = s.normal[c];
-          img.position[3 * i + c] = world[c];
-          img.color[3 * i + c] = s.emission[c] + s.direct[c];
-        }
-      }
-      rough += range_rough;
-      glossy += range_glossy;
-      hsh += range_hsh;
-      shadow_rays += range_shadow_rays;
-    });
-  });
-  st.rough_pixels += rough;
-  st.glossy_pixels += glossy;
-  st.hsh_pixels += hsh;
-  st.shadow_rays += shadow_rays;
-  st.layers_s += seconds_since(t);
-
-  IndirectFrame frame{gpu, scene, device_scene, gbuffer, direct, settings, img, layers};
-  frame.progress = progress;
-  frame.progress_done_before = progress_done_before;
-  switch (settings.gi) {
-    case GiMethod::none: break;
-    case GiMethod::splat: splat_indirect(frame); break;
-    case GiMethod::octree: octree_indirect(frame); break;
-    case GiMethod::path: path_traced_indirect(frame); break;
-  }
-}
-
 // Adds round's layers that path tracing fills to sum's (sum empty: takes them).
 void add_round(RenderedImage& sum, const RenderedImage& round) {
   auto add = [](std::vector<float>& a, const std::vector<float>& b) {
@@ -171,17 +97,201 @@ void add_round(RenderedImage& sum, const RenderedImage& round) {
   a.hsh_pixels += b.hsh_pixels;
 }
 
-// Path tracing over the pixels' area (PathSettings::pixel_area): settings.pixel_samples = s^2 rounds of the frame,
-// round r's camera rays through a random point of cell r of an s x s grid over each pixel (stratified jitter), each
-// with its share of the light and path samples, averaged. The position, depth and triangle layers are those of the
-// round whose cell holds the pixel's centre. The BVH, the kernels and the buffers serve every round.
-void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScene& device_scene,
-                           const SceneFrame& scene_frame, GBufferPass& gbuffer, DirectPass& direct,
-                           LayerPass& layers, const CameraParams& camera, const RenderSettings& settings,
-                           RenderedImage& img) {
-  const unsigned side = pixel_sample_side(std::max(1u, settings.pixel_samples)), rounds = side * side;
+}  // namespace
+
+Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches)
+    : gpu_(gpu), scene_(scene), forced_switches_(forced_switches), light_(std::make_unique<ViewIndependentLight>()) {
+  const auto start = Clock::now();
+  const double builds_before = gpu_.program_seconds();
+  scene_.check_extent();
+  // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
+  // position and depth layers and the records go back to world units.
+  scene_frame_ = SceneFrame::fitted(scene_);
+  log_info("building the BVH over " + std::to_string(scene_.triangle_count()) + " triangles");
+  {
+    // Only the device keeps the BVH: the host's copy goes once it is uploaded.
+    Bvh8 bvh = build_bvh8(scene_frame_.device_positions(scene_));
+    setup_.bvh_build_s = bvh.build_seconds;
+    bvh_nodes_ = bvh.nodes.size();
+    bvh_blocks_ = bvh.blocks.size();
+    bvh_depth_ = bvh.depth;
+    auto t = Clock::now();
+    device_scene_ = std::make_unique<DeviceScene>(gpu_, scene_, bvh, forced_switches_, scene_frame_);
+    setup_.upload_s = seconds_since(t);
+  }
+  log_info("compiling kernels for " + gpu_.device_info().name);
+  gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
+  direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
+  setup_.program_s = gpu_.program_seconds() - builds_before;
+  setup_seconds_ = seconds_since(start);
+}
+
+Renderer::~Renderer() = default;
+
+double Renderer::kept_per_bounce() {
+  if (!kept_per_bounce_) {
+    // Kernel builds count in program_s, the probe's photon kernel's included (it was once left inside probe_s: 2 s
+    // of a cold 1080p frame on an H200 that no build column showed).
+    const auto start = Clock::now();
+    const TimeWithoutBuilds probe(gpu_);
+    kept_per_bounce_ = rcsplat::kept_per_bounce(gpu_, *device_scene_);
+    setup_.probe_s += probe.seconds();
+    setup_.program_s += probe.builds();
+    setup_seconds_ += seconds_since(start);
+  }
+  return *kept_per_bounce_;
+}
+
+const RadianceLobeTable& Renderer::lobe_table(unsigned seed) {
+  if (!lobe_table_ || lobe_table_seed_ != seed) {
+    const auto start = Clock::now();
+    const double builds_before = gpu_.program_seconds();
+    lobe_table_ = std::make_unique<RadianceLobeTable>(radiance_lobe_table(gpu_, *device_scene_, seed));
+    lobe_table_seed_ = seed;
+    const double builds = gpu_.program_seconds() - builds_before;
+    setup_.program_s += builds;
+    setup_.hsh_table_s += seconds_since(start) - builds;
+    setup_seconds_ += seconds_since(start);
+  }
+  return *lobe_table_;
+}
+
+FramePlan Renderer::plan(const RenderSettings& request) {
+  check_request(request);
+  if (request.forced_switches != forced_switches_)
+    throw Error("this renderer was made with other forced kernel switches than the request's");
+  FramePlan p;
+  p.settings = request;
+  RenderSettings& s = p.settings;
+  p.camera = choose_camera(scene_, s.camera, s.camera_overrides);
+  p.width = s.width;
+  p.height = s.height;
+  resolve_resolution(p.camera, p.width, p.height);
+  s.width = p.width;
+  s.height = p.height;
+  if (s.pixel_samples == 0) s.pixel_samples = default_pixel_samples(s, p.width, p.height);
+  const unsigned side = pixel_sample_side(s.pixel_samples);
+  // Path tracing over the pixel's area traces rounds of the image's frame itself.
+  const bool rounds = s.gi == GiMethod::path && s.path.pixel_area;
+  p.side = rounds ? 1 : side;
+  p.rounds = rounds ? side * side : 1;
+  if (std::max(p.width, p.height) * int(p.side) > 16384)
+    throw Error("--pixel-samples " + std::to_string(s.pixel_samples) + " at " + std::to_string(p.width) + "x" +
+                std::to_string(p.height) + " needs a sub-pixel frame above 16384 pixels wide or high");
+  p.frame_width = p.width * int(p.side);
+  p.frame_height = p.height * int(p.side);
+  check_frame_fits(p.frame_width, p.frame_height, p.side, gpu_.device_info());
+
+  const bool cache = s.gi == GiMethod::splat || s.gi == GiMethod::octree;
+  if (s.bounce_method == BounceMethod::photons && s.bounces != 1 && cache && scene_.environment.present())
+    throw Error("--bounce-method photons: the photons come from the lights and an environment's peak, not from its "
+                "gathered part, so a sky's later bounces would be lost; use --bounce-method path with --sky or "
+                "--environment");
+  p.bounces = choose_bounces(scene_, s, [this] { return kept_per_bounce(); });
+  s.bounces = p.bounces.bounces;
+  s.bounce_method = p.bounces.method;
+
+  // Radiance caching (the splat's LOBE_HSH pixels): the order from the lobe table unless the request gives one.
+  if (s.gi == GiMethod::splat && device_scene_->has_radiance_cache()) {
+    const RadianceLobeTable& lobes = lobe_table(s.seed);
+    if (s.hsh_order == 0) s.hsh_order = automatic_hsh_order(lobes);
+    p.hsh_captured_energy = hsh_captured_energy(lobes, s.hsh_order);
+    p.radiance_accuracy = radiance_accuracy(lobes, s.cache.accuracy);
+  }
+
+  p.frame = p.side > 1 ? sub_pixel_settings(s, p.width, p.height, p.side) : s;
+  if (p.side > 1) p.frame.sub_pixel_side = p.side;
+  const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
+  p.light_strata = light_sample_strata(light_samples);
+  return p;
+}
+
+// Primary visibility through `camera`, direct light and the indirect light of one frame (or one round of path
+// tracing over the pixel's area) into img; progress: the path tracer's, shared by rounds.
+void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, const RenderSettings& settings,
+                           RenderedImage& img, Progress* progress, size_t progress_done_before) {
+  GBufferPass& gbuffer = *gbuffer_;
+  DirectPass& direct = *direct_;
+  LayerPass& layers = *layers_;
+  const SceneFrame& scene_frame = scene_frame_;
+  const unsigned strata = plan.light_strata;
+  RenderStats& st = img.stats;
+  auto t = Clock::now();
+  gbuffer.run(camera);
+  st.gbuffer_s = seconds_since(t);
+  t = Clock::now();
+  direct.run(gbuffer.view(), strata, settings.seed);
+  st.direct_s = seconds_since(t);
+
+  t = Clock::now();
+  const size_t pixels = layers.pixel_count();
+  img.color.resize(pixels * 3);
+  img.direct.resize(pixels * 3);
+  img.emission.resize(pixels * 3);
+  img.albedo.resize(pixels * 3);
+  img.normal.resize(pixels * 3);
+  img.position.resize(pixels * 3);
+  img.depth.resize(pixels);
+  img.triangle.resize(pixels);
+  st.primary_rays = gbuffer.view().pixel_count();
+  std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
+  layers.surface(gbuffer.view(), direct.radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
+    parallel_ranges(count, [&](size_t begin, size_t end) {
+      uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
+      for (size_t k = begin; k < end; ++k) {
+        const PixelSurface& s = piece[k];
+        const size_t i = first + k;
+        img.triangle[i] = s.triangle;
+        range_rough += lobe_count(s.lobe_counts, LOBE_ROUGH);
+        range_glossy += lobe_count(s.lobe_counts, LOBE_GLOSSY);
+        range_hsh += lobe_count(s.lobe_counts, LOBE_HSH);
+        img.depth[i] = s.triangle >= 0 ? scene_frame.length_to_world(s.depth) : 0.0f;
+        const glm::vec3 world = s.triangle >= 0
+                                    ? scene_frame.to_world(glm::vec3(s.position[0], s.position[1], s.position[2]))
+                                    : glm::vec3(0.0f);
+        range_shadow_rays += uint64_t(s.shadow_rays);
+        for (int c = 0; c < 3; ++c) {
+          img.direct[3 * i + c] = s.direct[c];
+          img.emission[3 * i + c] = s.emission[c];
+          img.albedo[3 * i + c] = s.albedo[c];
+          img.normal[3 * i + c] = s.normal[c];
+          img.position[3 * i + c] = world[c];
+          img.color[3 * i + c] = s.emission[c] + s.direct[c];
+        }
+      }
+      rough += range_rough;
+      glossy += range_glossy;
+      hsh += range_hsh;
+      shadow_rays += range_shadow_rays;
+    });
+  });
+  st.rough_pixels += rough;
+  st.glossy_pixels += glossy;
+  st.hsh_pixels += hsh;
+  st.shadow_rays += shadow_rays;
+  st.layers_s += seconds_since(t);
+
+  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_};
+  frame.lobe_table = lobe_table_.get();
+  frame.progress = progress;
+  frame.progress_done_before = progress_done_before;
+  switch (settings.gi) {
+    case GiMethod::none: break;
+    case GiMethod::splat: splat_indirect(frame); break;
+    case GiMethod::octree: octree_indirect(frame); break;
+    case GiMethod::path: path_traced_indirect(frame); break;
+  }
+}
+
+
+// Path tracing over the pixels' area (PathSettings::pixel_area): plan.rounds = s^2 rounds of the frame, round r's
+// camera rays through a random point of cell r of an s x s grid over each pixel (stratified jitter), each with its
+// share of the light and path samples, averaged. The position, depth and triangle layers are those of the round whose
+// cell holds the pixel's centre. The BVH, the kernels and the buffers serve every round.
+void Renderer::path_trace_pixel_area(const FramePlan& plan, const CameraParams& camera, RenderedImage& img) {
+  const RenderSettings& settings = plan.frame;
+  const unsigned rounds = plan.rounds, side = pixel_sample_side(rounds);
   RenderSettings round_settings = samples_per_sub_pixel(settings, rounds);
-  const unsigned strata = light_sample_strata(round_settings.light_samples);
   const unsigned centre_round = (side / 2) * side + side / 2;
   RenderedImage sum;
   sum.width = img.width;
@@ -190,17 +300,16 @@ void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScen
   Progress progress("path tracing", size_t(settings.path.samples));
   for (unsigned r = 0; r < rounds; ++r) {
     CameraParams round_camera = camera;
-    round_camera.jitter_seed = hash_u32(settings.seed ^ hash_u32(r + 0x6a697474u)) | 1u;  // never 0: jittered
+    round_camera.jitter_seed = hash_u32(settings.seed ^ hash_u32(r + STREAM_PIXEL_JITTER)) | 1u;  // never 0: jittered
     round_camera.jitter_cell = 1.0f / float(side);
     round_camera.jitter_origin[0] = float(r % side) / float(side);
     round_camera.jitter_origin[1] = float(r / side) / float(side);
-    round_settings.seed = r == 0 ? settings.seed : hash_u32(settings.seed + 0x9e3779b9u * r);
+    round_settings.seed = r == 0 ? settings.seed : hash_u32(settings.seed + STREAM_ROUND_STEP * r);
     RenderedImage round;
     round.width = img.width;
     round.height = img.height;
     round.stats = img.stats;
-    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, round_camera, strata, round_settings,
-                round, &progress, size_t(r) * round_settings.path.samples);
+    shade_frame(plan, round_camera, round_settings, round, &progress, size_t(r) * round_settings.path.samples);
     if (r == centre_round) {
       sum.position = std::move(round.position);
       sum.depth = std::move(round.depth);
@@ -214,94 +323,79 @@ void path_trace_pixel_area(GpuContext& gpu, const Scene& scene, const DeviceScen
   for (std::vector<float>* layer : {&sum.color, &sum.direct, &sum.emission, &sum.albedo, &sum.normal, &sum.indirect})
     for (float& v : *layer) v *= mean;
   for (float& v : sum.indirect_variance) v *= variance_of_mean;  // independent rounds: the mean's variance
-  sum.stats.light_samples = strata * strata * rounds;
+  sum.stats.light_samples = plan.light_strata * plan.light_strata * rounds;
   sum.stats.pixel_samples = rounds;
   sum.stats.rough_pixels /= rounds;
   sum.stats.glossy_pixels /= rounds;
   sum.stats.hsh_pixels /= rounds;
   img = std::move(sum);
 }
-}  // namespace
 
-RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& requested) {
-  RenderSettings settings = requested;  // with the bounces and their method chosen, below
-  if (settings.gi == GiMethod::splat || settings.gi == GiMethod::octree) validate_cache_settings(settings.cache);
-  // The command line refuses it too; a caller of the library gets the same words before any work.
-  if (settings.bounces > kMaxBounces)
-    throw Error("--bounces must be between 1 and " + std::to_string(kMaxBounces) + " (0: chosen from the scene)");
-  if (settings.bounce_method == BounceMethod::photons && settings.bounces != 1 && settings.gi != GiMethod::path &&
-      settings.gi != GiMethod::none && scene.environment.present())
-    throw Error("--bounce-method photons: the photons come from the lights and an environment's peak, not from its "
-                "gathered part, so a sky's later bounces would be lost; use --bounce-method path with --sky or "
-                "--environment");
-  if (settings.hsh_order > HSH_MAX_ORDER)
-    throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER) + " (0: chosen from the roughness)");
-  auto start = Clock::now();
-  gpu.restart_memory_peak();
+RenderedImage Renderer::render(const FramePlan& plan) {
+  const auto start = Clock::now();
+  gpu_.restart_memory_peak();
   RenderedImage img;
   RenderStats& st = img.stats;
-  st.device = gpu.device_info().name;
-  st.triangles = scene.triangle_count();
-  st.gi = settings.gi;
+  // A plan made before another seed's frame: its lobe table again (kept per seed, as the photon map and the guide).
+  if (plan.settings.gi == GiMethod::splat && device_scene_->has_radiance_cache()) lobe_table(plan.settings.seed);
+  // The setup this frame pays for (all of it for a renderer's first frame, none for a later one with the same plan).
+  st.bvh_build_s = setup_.bvh_build_s;
+  st.upload_s = setup_.upload_s;
+  st.probe_s = setup_.probe_s;
+  st.hsh_table_s = setup_.hsh_table_s;
+  st.program_s = setup_.program_s;
+  const double setup_seconds = setup_seconds_;
+  setup_ = RenderStats{};
+  setup_seconds_ = 0.0;
+  const double builds_before = gpu_.program_seconds();
 
-  SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
-  // The G-buffer's frame: the image's, or side times as wide and high with sub-pixels (render/pixel_samples.h).
-  int frame_width = settings.width, frame_height = settings.height;
-  resolve_resolution(cam, frame_width, frame_height);
-  const unsigned side = std::max(1u, settings.sub_pixel_side);
-  img.width = frame_width / int(side);
-  img.height = frame_height / int(side);
-  check_frame_fits(frame_width, frame_height, side, gpu.device_info());
-  scene.check_extent();
-  // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
-  // position and depth layers and the records go back to world units below.
-  const SceneFrame scene_frame = SceneFrame::fitted(scene);
-  CameraParams params = camera_params(scene_frame.device_camera(cam), frame_width, frame_height);
-  params.sub_pixel_side = int(settings.sub_pixel_side);
-  const unsigned strata = light_sample_strata(settings.light_samples);
-  st.light_samples = strata * strata;
+  st.device = gpu_.device_info().name;
+  st.triangles = scene_.triangle_count();
+  st.gi = plan.settings.gi;
+  st.bvh_nodes = bvh_nodes_;
+  st.bvh_blocks = bvh_blocks_;
+  st.bvh_depth = bvh_depth_;
+  st.lambertian_materials = device_scene_->lobe_counts()[LOBE_NONE];
+  st.rough_materials = device_scene_->lobe_counts()[LOBE_ROUGH];
+  st.glossy_materials = device_scene_->lobe_counts()[LOBE_GLOSSY];
+  st.hsh_materials = device_scene_->lobe_counts()[LOBE_HSH];
+  st.specular_brdf = device_scene_->has_specular_brdf();
+  st.bounces = plan.bounces.bounces;
+  st.bounce_method = plan.bounces.method;
+  st.bounces_chosen = plan.bounces.bounces_chosen;
+  st.kept_per_bounce = plan.bounces.kept_per_bounce;
+  st.light_samples = plan.light_strata * plan.light_strata;
+  img.width = plan.width;
+  img.height = plan.height;
 
-  log_info("building the BVH over " + std::to_string(st.triangles) + " triangles");
-  Bvh8 bvh = build_bvh8(scene_frame.device_positions(scene));
-  st.bvh_build_s = bvh.build_seconds;
-  st.bvh_nodes = bvh.nodes.size();
-  st.bvh_blocks = bvh.blocks.size();
-  st.bvh_depth = bvh.depth;
+  CameraParams params = camera_params(scene_frame_.device_camera(plan.camera), plan.frame_width, plan.frame_height);
+  params.sub_pixel_side = int(plan.side);
+  if (!layers_ || layers_->side() != plan.side || layers_->out_width() != plan.width ||
+      layers_->out_height() != plan.height)
+    layers_ = std::make_unique<LayerPass>(gpu_, plan.side, plan.width, plan.height);
+  layers_->set_piece_pixels(plan.settings.layer_piece_pixels);
+  st.program_s += gpu_.program_seconds() - builds_before;
 
-  auto t = Clock::now();
-  DeviceScene device_scene(gpu, scene, bvh, settings.forced_switches, scene_frame);
-  st.lambertian_materials = device_scene.lobe_counts()[LOBE_NONE];
-  st.rough_materials = device_scene.lobe_counts()[LOBE_ROUGH];
-  st.glossy_materials = device_scene.lobe_counts()[LOBE_GLOSSY];
-  st.hsh_materials = device_scene.lobe_counts()[LOBE_HSH];
-  st.specular_brdf = device_scene.has_specular_brdf();
-  st.upload_s = seconds_since(t);
-  // Kernel builds count in program_s, the probe's photon kernel's included (it was once left inside probe_s: 2 s of
-  // a cold 1080p frame on an H200 that no build column showed).
-  const TimeWithoutBuilds probe(gpu);
-  const BounceChoice bounce_choice = choose_bounces(gpu, scene, device_scene, settings);
-  st.probe_s = probe.seconds();
-  settings.bounces = bounce_choice.bounces;
-  settings.bounce_method = bounce_choice.method;
-  st.bounces = bounce_choice.bounces;
-  st.bounce_method = bounce_choice.method;
-  st.bounces_chosen = bounce_choice.bounces_chosen;
-  st.kept_per_bounce = bounce_choice.kept_per_bounce;
-  log_info("compiling kernels for " + st.device);
-  GBufferPass gbuffer(gpu, device_scene);
-  DirectPass direct(gpu, device_scene);
-  LayerPass layers(gpu, side, img.width, img.height);
-  if (settings.layer_piece_pixels) layers.set_piece_pixels(settings.layer_piece_pixels);
-  st.program_s = probe.builds();  // the probe's and these three passes'; later passes add their own
-
-  if (settings.gi == GiMethod::path && settings.path.pixel_area)
-    path_trace_pixel_area(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, params, settings, img);
+  if (plan.rounds > 1)
+    path_trace_pixel_area(plan, params, img);
   else
-    shade_frame(gpu, scene, device_scene, scene_frame, gbuffer, direct, layers, params, strata, settings, img);
-  for (CacheRecord& r : img.records) r = scene_frame.world_record(r);
-  st.total_s = seconds_since(start);
-  st.device_memory = gpu.memory_use();
+    shade_frame(plan, params, plan.frame, img);
+  for (CacheRecord& r : img.records) r = scene_frame_.world_record(r);
+  if (plan.side > 1) {
+    const unsigned n = plan.side * plan.side;
+    st.pixel_samples = n;
+    st.light_samples *= n;
+    st.path_samples *= n;
+  }
+  st.total_s = setup_seconds + seconds_since(start);
+  st.device_memory = gpu_.memory_use();
   return img;
+}
+
+RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {
+  check_request(settings);  // before the BVH is built
+  Renderer renderer(gpu, scene, settings.forced_switches);
+  return renderer.render(renderer.plan(settings));
 }
 
 }  // namespace rcsplat

@@ -1,16 +1,79 @@
-// The render pipeline, pass after pass: BVH build and upload, primary visibility, direct light, then indirect light by
-// radiance cache splatting (or the classic octree lookup, or path tracing), and composition.
+// The renderer: made once per scene and device, it renders any number of frames. It owns what does not change from
+// frame to frame: the scene in the device's coordinates (scene/scene_frame.h), the BVH, the device scene, the
+// programs (through the GpuContext's cache), the primary passes and their buffers, the bounce probe's measure, the
+// lobe table of radiance-cached materials, the photon map and the light guide (the last two rebuilt only when the
+// settings they depend on change). A frame is planned (render/frame_plan.h), then rendered: primary visibility,
+// direct light, then indirect light by radiance cache splatting (or the classic octree lookup, or path tracing), and
+// composition.
 #pragma once
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
 #include "cl/gpu_context.h"
 #include "render/frame.h"
+#include "render/frame_plan.h"
 #include "render/settings.h"
 #include "scene/scene.h"
+#include "scene/scene_frame.h"
+#include "util/log.h"
 
 namespace rcsplat {
 
+class DeviceScene;
+class GBufferPass;
+class DirectPass;
+class LayerPass;
+struct RadianceLobeTable;
+struct ViewIndependentLight;
+
+class Renderer {
+ public:
+  // Builds the BVH and uploads the scene. forced_switches: kernel switches compiled on whether the scene needs them
+  // or not (tests; scene/scene_plan.h). gpu and scene must outlive the renderer.
+  Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The request settled for this scene and device (render/frame_plan.h): may run the bounce probe and the lobe table
+  // the first time a request needs them. Throws rcsplat::Error, naming the option, for a request out of range.
+  FramePlan plan(const RenderSettings& request);
+  // One frame. Its statistics carry the setup (BVH, upload, probe, kernel builds) only where this frame paid for it:
+  // the first frame of a renderer does, later frames do not.
+  RenderedImage render(const FramePlan& plan);
+  RenderedImage render(const RenderSettings& request) { return render(plan(request)); }
+
+  const DeviceScene& device_scene() const { return *device_scene_; }
+
+ private:
+  double kept_per_bounce();
+  const RadianceLobeTable& lobe_table(unsigned seed);
+  void shade_frame(const FramePlan& plan, const CameraParams& camera, const RenderSettings& settings,
+                   RenderedImage& img, Progress* progress = nullptr, size_t progress_done_before = 0);
+  void path_trace_pixel_area(const FramePlan& plan, const CameraParams& camera, RenderedImage& img);
+
+  GpuContext& gpu_;
+  const Scene& scene_;
+  std::set<std::string> forced_switches_;
+  SceneFrame scene_frame_;
+  size_t bvh_nodes_ = 0, bvh_blocks_ = 0;
+  int bvh_depth_ = 0;
+  std::unique_ptr<DeviceScene> device_scene_;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<DirectPass> direct_;
+  std::unique_ptr<LayerPass> layers_;
+  std::unique_ptr<ViewIndependentLight> light_;
+  std::optional<double> kept_per_bounce_;
+  unsigned lobe_table_seed_ = 0;
+  std::unique_ptr<RadianceLobeTable> lobe_table_;
+  // Setup done since the last frame (BVH, upload, probe, lobe table, kernel builds): the next frame reports it.
+  RenderStats setup_;
+  double setup_seconds_ = 0.0;
+};
+
+// One frame with a renderer made for it: what `render` and most tests use.
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
-// One primary sample per pixel of the G-buffer's frame (render() calls it once, on the sub-pixel frame when
-// settings.pixel_samples > 1, settings.sub_pixel_side times the image's size); returns the image's layers, gathered.
-RenderedImage render_single_sample(GpuContext& gpu, const Scene& scene, const RenderSettings& settings);
 
 }  // namespace rcsplat

@@ -45,9 +45,9 @@ struct RenderSettings {
   unsigned hsh_order = 0;
   unsigned seed = 0;
   // Indirect bounces every method gathers (kernels/bounce.h): 1 is the first bounce lit directly; each more continues
-  // the path from the bounce's hit. The command line's --bounces, whose default is 0: chosen from the scene
-  // (render/bounce_choice.h); 1 here so that tests see one bounce unless they ask.
-  unsigned bounces = 1;  // 0 .. kMaxBounces
+  // the path from the bounce's hit. 0 (the command line's default too): chosen from the scene
+  // (render/bounce_choice.h).
+  unsigned bounces = 0;  // 0 .. kMaxBounces
   BounceMethod bounce_method = BounceMethod::automatic;
   // --bounce-method photons: photons shot from the lights, each landing up to `bounces` times (0: in rounds of
   // kPhotonMapPhotons / (bounces - 1), until the map holds about kPhotonMapPhotons), and how many of them the density estimate's radius holds on average over the scene's
@@ -62,13 +62,13 @@ struct RenderSettings {
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are
-  // per output pixel. The command line's --pixel-samples, whose default is 0: chosen by render() (4 unless --spp does
-  // not divide by 4: render/pixel_samples.h); 1 here so that tests see single samples unless they ask.
-  unsigned pixel_samples = 1;
+  // per output pixel. 0 (the command line's default too): chosen by the plan (4 unless --spp does not divide by 4:
+  // render/pixel_samples.h).
+  unsigned pixel_samples = 0;
   // What pixel_samples 0 becomes, where --spp and the frame allow it: 4 for renders, 16 for references (a finer grid
   // than a render's: compare then counts the render's edge aliasing as its error).
   unsigned preferred_pixel_samples = 4;
-  // Set by render() for the s-times larger frame it renders (render/pixel_samples.h): s, whose sub-pixels then take
+  // Set by the plan for the s-times larger frame it renders (render/pixel_samples.h): s, whose sub-pixels then take
   // their points on a rotated grid (CameraParams::sub_pixel_side); 1 for a frame of its own.
   unsigned sub_pixel_side = 1;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.

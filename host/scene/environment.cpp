@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
-#include "util/luminance.h"
+#include "util/colour.h"
 
 
 namespace rcsplat {
@@ -16,7 +17,7 @@ std::string format_rgb(const glm::vec3& c) {
 }
 
 double environment_row_solid_angle(int row, int height) {
-  const double pi = 3.14159265358979323846;
+  const double pi = std::numbers::pi;
   return 2.0 * pi * (std::cos(pi * row / height) - std::cos(pi * (row + 1) / height));
 }
 
@@ -39,7 +40,7 @@ PackedEnvironment pack_environment(const Environment& e) {
   const int w = e.width, h = e.height;
   p.width = unsigned(w);
   p.height = unsigned(h);
-  const double radians = double(e.rotation_degrees) * (3.14159265358979323846 / 180.0);
+  const double radians = double(e.rotation_degrees) * (std::numbers::pi / 180.0);
   p.rotation[0] = float(std::cos(radians));
   p.rotation[1] = float(std::sin(radians));
 
@@ -50,7 +51,7 @@ PackedEnvironment pack_environment(const Environment& e) {
     for (int i = 0; i < w; ++i) row += luminance(e.radiance[size_t(j) * w + i]);
     power += row * environment_row_solid_angle(j, h) / w;
   }
-  p.mean_luminance = power / (4.0 * 3.14159265358979323846);
+  p.mean_luminance = power / (4.0 * std::numbers::pi);
   const double threshold = kEnvironmentPeakOverMean * p.mean_luminance;
 
   // Texels: the smooth fraction keeps each texel's luminance at most the threshold; the peak its excess.

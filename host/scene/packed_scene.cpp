@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "util/colour.h"
+
 namespace rcsplat {
 namespace {
 
@@ -77,7 +79,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
       s.uv2[k] = scene.uvs[3 * t + 2][k];
     }
     const SceneMaterial& m = scene.materials[s.material];
-    float luminance = 0.2126f * m.emission.x + 0.7152f * m.emission.y + 0.0722f * m.emission.z;
+    float luminance = luminance_f(m.emission.x, m.emission.y, m.emission.z);
     if (luminance > 0.0f && twice_area > 0.0f) {
       EmissiveTriangle e{};
       put3(e.v0, v[0]);
@@ -130,7 +132,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     info.first_texel = uint32_t(p.texels.size());
     info.width = uint32_t(t.width);
     info.height = uint32_t(t.height);
-    info.wrap = uint32_t(t.wrap_s) | uint32_t(t.wrap_t) << 8 | (t.nearest ? TEXTURE_NEAREST : 0u);
+    info.wrap = texture_wrap(uint32_t(t.wrap_s), uint32_t(t.wrap_t), t.nearest);
     size_t start = p.texels.size();
     p.texels.resize(start + t.rgba.size() / 4);
     std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());

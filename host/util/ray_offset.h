@@ -1,25 +1,13 @@
-// Host twin of offset_ray_origin in kernels/sampling.h (the same ULP-scaled offset), for host-side ray casting.
+// The host's offset_ray_origin: kernels/host_device.h offset_ray_coordinate on each axis, the kernels' own bits.
 #pragma once
 #include <glm/glm.hpp>
 
-#include <cmath>
-#include <cstring>
+#include "kernels/host_device.h"
 
 namespace rcsplat {
 
 inline glm::vec3 offset_ray_origin(const glm::vec3& p, const glm::vec3& n) {
-  glm::vec3 out;
-  for (int i = 0; i < 3; ++i) {
-    if (std::fabs(p[i]) < 1.0f / 32.0f) {
-      out[i] = p[i] + (1.0f / 65536.0f) * n[i];
-      continue;
-    }
-    int32_t bits, ulps = int32_t(256.0f * n[i]);
-    std::memcpy(&bits, &p[i], 4);
-    bits += p[i] < 0.0f ? -ulps : ulps;
-    std::memcpy(&out[i], &bits, 4);
-  }
-  return out;
+  return glm::vec3(offset_ray_coordinate(p.x, n.x), offset_ray_coordinate(p.y, n.y), offset_ray_coordinate(p.z, n.z));
 }
 
 }  // namespace rcsplat

@@ -1,10 +1,11 @@
-#include "cache/host_shading.h"
+#include "reference/host_shading.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
+#include "util/colour.h"
 #include "util/ray_offset.h"
 
 namespace rcsplat {
@@ -15,7 +16,6 @@ constexpr double kPi = std::numbers::pi;
 
 dvec3 load3(const float* v) { return dvec3(v[0], v[1], v[2]); }
 
-double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 int wrap(int i, int n, uint32_t mode) {
   if (mode == WRAP_CLAMP) return std::clamp(i, 0, n - 1);

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cache/host_shading.h"
+#include "reference/host_shading.h"
 #include "kernels/shared_types.h"
 
 namespace rcsplat {

@@ -1,4 +1,4 @@
-#include "cache/host_records.h"
+#include "reference/host_records.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "kernels/counter_random.h"
 #include "kernels/low_discrepancy.h"
-#include "util/luminance.h"
+#include "util/colour.h"
 #include "util/ray_offset.h"
 
 namespace rcsplat {

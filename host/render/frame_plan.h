@@ -1,0 +1,37 @@
+// A frame's settings, settled once: what the user asked for (RenderSettings, where 0 and `automatic` mean "let rcsplat
+// choose") turned into what every pass reads, each automatic value chosen and each derived value computed here and
+// nowhere else. The command line only parses; Renderer::plan (render/renderer.h) makes the plan, the passes read
+// it and never check or change it again.
+#pragma once
+#include "render/bounce_choice.h"
+#include "render/camera.h"
+#include "render/settings.h"
+
+namespace rcsplat {
+
+struct FramePlan {
+  // The request with every automatic value settled: resolution, pixel_samples, bounces, bounce_method and, for a
+  // scene with radiance-cached lobes, hsh_order. What the summary and the files' attributes report.
+  RenderSettings settings;
+  SceneCamera camera;
+  int width = 0, height = 0;  // the image
+  // The G-buffer's frame: side x side sub-pixels an image pixel (render/pixel_samples.h), or 1 (one sample a pixel;
+  // also path tracing over the pixel's area, which instead renders `rounds` frames of the image's size).
+  unsigned side = 1, rounds = 1;
+  int frame_width = 0, frame_height = 0;
+  // What the passes read: `settings` with the samples divided among the sub-pixels and the cache's pixel distances
+  // (reach, Hessian budget, placement spacing) in sub-pixels (sub_pixel_settings), or `settings` itself.
+  RenderSettings frame;
+  unsigned light_strata = 0;  // per axis, each sub-pixel's (or round's) direct light
+  BounceChoice bounces;       // the count and method, and the scene's measure when it chose them
+  // Radiance-cached lobes (0 without): accuracy a times the sharpest cached roughness, at least a / 2, and the share
+  // of the sharpest lobe the order holds.
+  float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
+};
+
+// Every range of a request, checked once, each message naming its option (--accuracy, --bounces, --hsh-order,
+// --pixel-samples, --hemisphere, --spacing, ...). Throws rcsplat::Error. The command line calls it before it loads
+// the scene; Renderer::plan calls it again for library callers.
+void check_request(const RenderSettings& request);
+
+}  // namespace rcsplat
