@@ -1,6 +1,5 @@
 // Primary visibility: what the ray through each pixel's centre (or a jittered point of it) hits, with its normals, albedo and emission (where it
 // leaves the scene, the environment it sees).
-// traverse.h first: its FP_CONTRACT OFF must also cover surface.h's interpolation, as in every tracing kernel.
 #include "traverse.h"
 #include "environment.h"
 #include "scene_args.h"

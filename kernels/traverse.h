@@ -7,8 +7,7 @@
 
 // The watertight test needs its edge functions evaluated exactly as written: a fused multiply-add would round a*b - c*d
 // differently from its mirror image on the neighbouring triangle (cracks), and would make the empty lanes' zero
-// determinant non-zero.
-#pragma OPENCL FP_CONTRACT OFF
+// determinant non-zero. Every program is built without contraction (GpuContext's kProgramPrologue).
 #include "surface.h"
 
 // The traversal's view of the scene: the BVH, and with alpha-masked materials (HAS_ALPHA_MASK) what a hit needs to
@@ -112,7 +111,7 @@ inline int lowest_bit(uint mask) {
 #define SEL_MAX(a, b) ((a) > (b) ? (a) : (b))
 
 // Which of the eight children the ray enters before t_far, and at what distance. The slab distances use explicit
-// fma (contraction is off in this file): one instruction each, and conservative enough for the box test.
+// fma (contraction is off in every program): one instruction each, and conservative enough for the box test.
 inline uint node_hit_mask(__global const float8* node, const RayPrecomp* r, float t_min, float t_far, float8* t_entry) {
   float8 nx = fma(node[r->near_x], (float8)(r->inv_dir.x), (float8)(-r->org_inv.x));
   float8 fx = fma(node[r->near_x ^ 1], (float8)(r->inv_dir.x), (float8)(-r->org_inv.x));

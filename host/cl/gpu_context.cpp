@@ -103,16 +103,22 @@ std::string kernel_source_dir() {
   return dir && *dir ? dir : "";
 }
 
+// The first line of every program: OpenCL C may contract a * b + c into one fused multiply-add where C++ on the host
+// (built with -ffp-contract=off, CMakeLists.txt) does not. Off for every kernel, set here once: the math both sides
+// compile (kernels/host_device.h, cache_math.h) gives the same bits on both, and the watertight triangle test's edge
+// functions (kernels/traverse.h) are evaluated exactly as written, as their mirror images on the neighbour are.
+constexpr const char* kProgramPrologue = "#pragma OPENCL FP_CONTRACT OFF\n";
+
 std::string resolve_kernel_source(const std::string& file) {
   std::set<std::string> seen;
-  std::string out;
+  std::string out = kProgramPrologue;
   append_resolved(file, seen, out);
   return out;
 }
 
 std::string resolve_kernel_text(const std::string& label, const std::string& text) {
   std::set<std::string> seen;
-  std::string out;
+  std::string out = kProgramPrologue;
   append_text(label, text, seen, out);
   return out;
 }

@@ -27,22 +27,23 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   st.program_s += f.gpu.program_seconds() - program_before;
 
   if (glossy) {
-    auto t = Clock::now();
-    glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed,
-                guide ? *guide : std::vector<GuideCluster>{},
-                guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
-                f.settings.bounces);
-    st.glossy_s = seconds_since(t);
+    {
+      StageTimer timing(st.glossy_s);
+      glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
+                  guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
+                  f.settings.bounces);
+    }
     st.glossy_samples = f.settings.glossy_samples;
     const std::vector<float> rays = f.layers.sum_rgba(glossy->radiance());
     for (size_t i = 3; i < rays.size(); i += 4) st.glossy_rays += uint64_t(rays[i]);
   }
-  auto t = Clock::now();
-  compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
-              radiance_cached ? &radiance_cached->lobe_radiance() : nullptr, guide_share);
-  st.resolve_s += seconds_since(t);
+  {
+    StageTimer timing(st.resolve_s);
+    compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
+                radiance_cached ? &radiance_cached->lobe_radiance() : nullptr, guide_share);
+  }
 
-  t = Clock::now();
+  StageTimer timing(st.layers_s);
   const size_t pixels = f.layers.pixel_count();
   img.indirect.resize(pixels * 3);
   // The RGB of a piece of RGBA pixels into a layer.
@@ -56,7 +57,6 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   };
   f.layers.mean_rgba(compose.indirect(), rgb_into(img.indirect));
   f.layers.mean_rgba(compose.color(), rgb_into(img.color));
-  st.layers_s += seconds_since(t);
 }
 
 void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,

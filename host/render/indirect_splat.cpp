@@ -24,22 +24,25 @@ void splat_indirect(IndirectFrame& f) {
   attach_light_guide(f, records);
 
   uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st);
-  // One splat of every record with its final radius, at the frame's fixed-point scale.
-  auto t = Clock::now();
-  splat.splat_all(gbuffer, records.records(), total, cs.accuracy);
-  st.splat_s += seconds_since(t);
-  t = Clock::now();
-  splat.resolve(gbuffer);
-  if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
-    st.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
-                                                int(std::ceil(cs.max_reach_pixels)));
-  st.resolve_s = seconds_since(t);
+  {
+    // One splat of every record with its final radius, at the frame's fixed-point scale.
+    StageTimer timing(st.splat_s);
+    splat.splat_all(gbuffer, records.records(), total, cs.accuracy);
+  }
+  {
+    StageTimer timing(st.resolve_s);
+    splat.resolve(gbuffer);
+    if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
+      st.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
+                                                  int(std::ceil(cs.max_reach_pixels)));
+  }
   std::unique_ptr<RadianceSplatPass> radiance = radiance_cached_lobes(f);
   compose_cached_indirect(f, splat.irradiance(), radiance.get());
-  t = Clock::now();
-  img.records = records.download(0, total);  // once per frame, for the summary and the tests
-  count_clamped_radii(img.records, cs, st);
-  st.layers_s += seconds_since(t);
+  {
+    StageTimer timing(st.layers_s);
+    img.records = records.download(0, total);  // once per frame, for the summary and the tests
+    count_clamped_radii(img.records, cs, st);
+  }
   fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }
 

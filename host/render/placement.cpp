@@ -30,28 +30,32 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
   for (int spacing = coarsest, level = 0; spacing >= finest; spacing /= 2, ++level) {
     uint32_t unchanged = 0;  // in the extra rounds older records keep their radii: only new ones add coverage
     for (int round = 0; round < (spacing == finest ? kRoundsAtFinestSpacing : 1); ++round) {
-      auto t = Clock::now();
-      uint32_t count = index.find_uncovered(records, total, spacing, unchanged);
-      st.placement_s += seconds_since(t);
+      uint32_t count = 0;
+      {
+        StageTimer timing(st.placement_s);
+        count = index.find_uncovered(records, total, spacing, unchanged);
+      }
       if (!count) break;
-      t = Clock::now();
-      HemisphereParams hemisphere = hemisphere_params(cache, seed, spacing);
-      HemisphereParams coarse = hemisphere;
-      coarse.theta_strata /= 2;
-      coarse.phi_strata /= 2;
-      if (adaptive && coarse.theta_strata > 0 && coarse.phi_strata > 0)
-        st.adaptive_records += records.compute_adaptive(gbuffer, index.candidates(), count, total, coarse, hemisphere,
-                                                        cache.adaptive_error);
-      else
-        records.compute(gbuffer, index.candidates(), count, total, hemisphere);
-      if (after_batch) after_batch(total, count, hemisphere);
-      st.records_s += seconds_since(t);
-      t = Clock::now();
-      index.add_records(records, total, count);
-      total += count;
-      index.clamp_neighbours(records, total, total - count, round == 0);
-      unchanged = round == 0 ? 0 : total - count;
-      st.placement_s += seconds_since(t);
+      {
+        StageTimer timing(st.records_s);
+        HemisphereParams hemisphere = hemisphere_params(cache, seed, spacing);
+        HemisphereParams coarse = hemisphere;
+        coarse.theta_strata /= 2;
+        coarse.phi_strata /= 2;
+        if (adaptive && coarse.theta_strata > 0 && coarse.phi_strata > 0)
+          st.adaptive_records += records.compute_adaptive(gbuffer, index.candidates(), count, total, coarse,
+                                                          hemisphere, cache.adaptive_error);
+        else
+          records.compute(gbuffer, index.candidates(), count, total, hemisphere);
+        if (after_batch) after_batch(total, count, hemisphere);
+      }
+      {
+        StageTimer timing(st.placement_s);
+        index.add_records(records, total, count);
+        total += count;
+        index.clamp_neighbours(records, total, total - count, round == 0);
+        unchanged = round == 0 ? 0 : total - count;
+      }
       count_placed(st, spacing, count);
     }
     progress.update(size_t(level + 1));

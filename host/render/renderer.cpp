@@ -216,14 +216,16 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   const SceneFrame& scene_frame = scene_frame_;
   const unsigned strata = plan.light_strata;
   RenderStats& st = img.stats;
-  auto t = Clock::now();
-  gbuffer.run(camera);
-  st.gbuffer_s = seconds_since(t);
-  t = Clock::now();
-  direct.run(gbuffer.view(), strata, settings.seed);
-  st.direct_s = seconds_since(t);
+  {
+    StageTimer timing(st.gbuffer_s);
+    gbuffer.run(camera);
+  }
+  {
+    StageTimer timing(st.direct_s);
+    direct.run(gbuffer.view(), strata, settings.seed);
+  }
 
-  t = Clock::now();
+  auto t = Clock::now();
   const size_t pixels = layers.pixel_count();
   img.color.resize(pixels * 3);
   img.direct.resize(pixels * 3);
