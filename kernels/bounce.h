@@ -1,5 +1,5 @@
 // Indirect light: what a ray leaving a surface sees, counted as the directly lit radiance reflected by the surface it
-// lands on (never that surface's emission, which direct light already counts: docs/METHOD.md section 1), and with
+// lands on (never that surface's emission, which direct light already counts: docs/ALGORITHM.md section 1), and with
 // --bounces N > 1 what the path continued from there gathers.
 // Shared by the record pass and the path tracer so that both estimate the same integral.
 #ifndef RCSPLAT_BOUNCE_H

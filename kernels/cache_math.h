@@ -1,4 +1,4 @@
-// The irradiance cache's math (docs/METHOD.md sections 3 and 4), one source compiled by the kernels and by the host:
+// The irradiance cache's math (docs/ALGORITHM.md sections 3 and 4), one source compiled by the kernels and by the host:
 // Ward's weight, the usability and in-front tests, gradient extrapolation, the neighbour clamp, the splat's
 // fixed-point scale, and the constants they share. The splat, the placement kernels and the host's octree cache all
 // decide with these functions, so the two cache methods place the same records.
@@ -29,7 +29,7 @@
 #define FIXED_POINT_ONE 281474976710656.0f
 
 // 1 / (|P - Pk| / R + sqrt(1 - n.nk)), with sqrt(1 - n.nk) computed as |n - nk| / sqrt(2), which keeps its precision
-// for nearly equal normals (docs/METHOD.md section 3).
+// for nearly equal normals (docs/ALGORITHM.md section 3).
 inline float ward_weight(rc_float3 p, rc_float3 n, rc_float3 pk, rc_float3 nk, float radius) {
   float denom = rc_length(p - pk) / radius + rc_length(n - nk) * 0.70710678f;
   return denom * MAX_RECORD_WEIGHT > 1.0f ? 1.0f / denom : MAX_RECORD_WEIGHT;

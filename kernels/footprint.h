@@ -1,4 +1,4 @@
-// A record's screen footprint (docs/METHOD.md section 3): the conservative pixel rectangle of the sphere a record can
+// A record's screen footprint (docs/ALGORITHM.md section 3): the conservative pixel rectangle of the sphere a record can
 // reach, shared by the placement and splat kernels. Device-only: the host's octree finds neighbours in world space.
 #ifndef RCSPLAT_FOOTPRINT_H
 #define RCSPLAT_FOOTPRINT_H

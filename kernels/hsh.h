@@ -1,4 +1,4 @@
-// Hemispherical harmonics (Gautron et al. 2004; docs/METHOD.md section 6): an orthonormal basis over the hemisphere
+// Hemispherical harmonics (Gautron et al. 2004; docs/ALGORITHM.md section 6): an orthonormal basis over the hemisphere
 // around +z, compiled by the kernels and by the host. With the shifted argument x = 2 cos(theta) - 1 and the
 // associated Legendre functions P_l^m (without the Condon-Shortley phase),
 //   H_l^m = sqrt(2) K_l^m cos(m phi) P_l^m(x)        for m > 0,
@@ -63,7 +63,7 @@ inline void hsh_basis(float cos_theta, float phi, int order, float* out) {
   }
 }
 
-// Projection of incident radiance from a record's M x N strata (equal in sin^2(theta) and phi, docs/METHOD.md
+// Projection of incident radiance from a record's M x N strata (equal in sin^2(theta) and phi, docs/ALGORITHM.md
 // section 5), with the radiance taken constant in each stratum and the basis integrated over it exactly, so that a
 // constant projects exactly and no sample carries the 1 / cos(theta) weight of the cosine-weighted pdf (unbounded
 // variance at the horizon). Separable: lambda_l^m = sum_rows R_row^{l|m|} sum_columns L Phi_column^m, with

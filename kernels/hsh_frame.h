@@ -1,4 +1,4 @@
-// From a radiance record's frame to a pixel's (docs/METHOD.md section 6): the record's coefficients live in the frame
+// From a radiance record's frame to a pixel's (docs/ALGORITHM.md section 6): the record's coefficients live in the frame
 // tangent_frame(n_record); the pixel's BRDF table (kernels/brdf_table.cl) in a frame around the pixel's normal whose
 // x axis is the view's azimuth. The change is a tilt carrying the record's normal onto the pixel's (small where the
 // record is usable: Ward's weight bounds the angle), taken to first order, lambda + alpha_x D_x lambda +

@@ -1,4 +1,4 @@
-// Radiance records (Křivánek et al. 2005; docs/METHOD.md sections 5 and 6): the incident radiance a record's M x N
+// Radiance records (Křivánek et al. 2005; docs/ALGORITHM.md sections 5 and 6): the incident radiance a record's M x N
 // strata saw (kernels/records.cl with STORE_STRATA) projected onto hemispherical harmonics in the record's frame
 // (tangent_frame of its normal), with the translational gradient of every coefficient, then the tilt derivatives
 // D_x lambda and D_y lambda that the splat needs to turn the coefficients into each pixel's frame.

@@ -1,4 +1,4 @@
-// A record's rays aimed at the light guide's clusters (docs/METHOD.md section 4 samples the hemisphere uniformly in
+// A record's rays aimed at the light guide's clusters (docs/ALGORITHM.md section 4 samples the hemisphere uniformly in
 // projected solid angle; a small bright patch that covers part of one stratum is then found by a few records only,
 // each of which turns it into a bright disc: the blotches of issue 10). Each record picks clusters in proportion to
 // the irradiance they could give it and samples directions uniformly in the cone each one subtends. Both kinds of ray

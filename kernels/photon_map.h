@@ -1,4 +1,4 @@
-// Final gathering from a photon map (--bounce-method photons, docs/METHOD.md section 8): a record's ray that lands on a
+// Final gathering from a photon map (--bounce-method photons, docs/ALGORITHM.md section 8): a record's ray that lands on a
 // surface takes the light of the bounces after the first from the photons that landed near it, instead of continuing
 // its path. Each lookup photon carries two estimates made once per frame (kernels/photon_map.cl): the light its
 // neighbours' surfaces reflect (their albedo averaged in) and the irradiance, both over pi; a lookup reflects them by

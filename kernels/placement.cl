@@ -1,4 +1,4 @@
-// Record placement, coarse to fine (docs/METHOD.md section 7), and neighbour clamping of radii (Křivánek et al. 2006).
+// Record placement, coarse to fine (docs/ALGORITHM.md section 7), and neighbour clamping of radii (Křivánek et al. 2006).
 // Only counts cross to the host: candidates are compacted on the device.
 #include "footprint.h"
 #include "scene_args.h"

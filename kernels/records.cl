@@ -1,4 +1,4 @@
-// Record computation (docs/METHOD.md sections 4 and 5): for each candidate pixel, M x N stratified cosine-weighted rays
+// Record computation (docs/ALGORITHM.md sections 4 and 5): for each candidate pixel, M x N stratified cosine-weighted rays
 // over the hemisphere of its G-buffer point give the irradiance E, the validity radius (Ward's harmonic mean distance,
 // or with hessian_error the occlusion Hessian's; clamped in screen space) and Ward & Heckbert's rotational and
 // translational gradients, bounded.
@@ -475,7 +475,7 @@ __kernel void reduce_records(GBUFFER_ARGS, __global const uint* candidates, Reco
   }
   float radius = clamp(unclamped, hp.min_radius_pixels * pixel_size, hp.max_radius_pixels * pixel_size);
   if (!(radius > 0.0f)) radius = fmax(hp.min_radius_pixels * pixel_size, 1e-30f);
-  // Bounded gradients (docs/METHOD.md section 5): translation changes E by at most E across R, rotation by at most E.
+  // Bounded gradients (docs/ALGORITHM.md section 5): translation changes E by at most E across R, rotation by at most E.
   bound_gradient(grad_t, e / radius);
   bound_gradient(grad_r, e);
 

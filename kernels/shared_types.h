@@ -222,7 +222,7 @@ typedef struct {
 } HitDesc;
 
 #define RECORD_HORIZON_SECTORS 8
-// An irradiance cache record (docs/METHOD.md section 2): where it sits, how far it reaches, its irradiance and the
+// An irradiance cache record (docs/ALGORITHM.md section 2): where it sits, how far it reaches, its irradiance and the
 // Ward-Heckbert gradients. A gradient row is d(E.rgb)/d(axis): E_k(P) = E + sum_axis delta[axis] * row[axis].
 typedef struct {
   float position[3];
@@ -332,7 +332,7 @@ typedef struct {
 } PhotonMapParams;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
-// (host/cl/kernel_args.h checks names and types against the compiled kernels).
+// (host/cl/named_kernel.h checks names and types against the compiled kernels).
 
 // The counts the shading kernels loop over; the scene's arrays travel as SCENE_ARGS buffers (kernels/scene_args.h).
 typedef struct {

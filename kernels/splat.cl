@@ -1,4 +1,4 @@
-// The splat (docs/METHOD.md section 3): each record adds w * E_k(P) and w to every pixel of its screen footprint where its
+// The splat (docs/ALGORITHM.md section 3): each record adds w * E_k(P) and w to every pixel of its screen footprint where its
 // full Ward weight exceeds 1/a, into 64-bit fixed-point sums that come out the same whatever order records land in.
 // Then the normalisation divides (kernels/compose.cl composes).
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable

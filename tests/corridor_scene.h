@@ -17,8 +17,8 @@ namespace rcsplat::test {
 // A closed corridor (10 x 2 x 2.5 m, grey) lit by one 1e6 cd spot whose cone reaches only a disc of radius 0.25 m
 // on the floor near the far end: every wall, and the ceiling, is lit only by the light that patch reflects. Cosine
 // sampling of a record's hemisphere finds the patch in some records and misses it in others: each one that finds it
-// becomes a bright disc on the walls (the blotches of issue 10). benchmarks/hard_cases/bright_patch_corridor.py
-// writes the same scene as glTF.
+// becomes a bright disc on the walls (the blotches of issue 10). benchmarks/hard_case_corridor.cpp renders and times
+// it against its exact indirect light.
 // With metal_wall_roughness > 0 the walls and ceiling are metal of that roughness instead of grey Lambertian: at
 // HSH_MIN_ROUGHNESS .. ROUGH_METAL_MIN_ROUGHNESS their light is radiance-cached (kernels/hsh_records.cl), and each
 // record that sees the disc holds its bright reflection.

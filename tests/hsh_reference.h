@@ -1,4 +1,4 @@
-// Hemispherical harmonics in double precision, from the definition (docs/METHOD.md section 6), written apart from
+// Hemispherical harmonics in double precision, from the definition (docs/ALGORITHM.md section 6), written apart from
 // kernels/hsh.h: the reference of the HSH tests.
 #pragma once
 #include <cmath>

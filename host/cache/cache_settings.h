@@ -1,4 +1,4 @@
-// The irradiance cache's controls (docs/METHOD.md sections 3 to 7): defined, defaulted and validated here, and turned
+// The irradiance cache's controls (docs/ALGORITHM.md sections 3 to 7): defined, defaulted and validated here, and turned
 // into the record kernel's parameters here. Both cache methods (splat and octree) read them.
 #pragma once
 #include <cstdint>

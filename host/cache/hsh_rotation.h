@@ -1,4 +1,4 @@
-// Turning a record's hemispherical-harmonic coefficients into a pixel's frame (docs/METHOD.md section 6). HSH are not
+// Turning a record's hemispherical-harmonic coefficients into a pixel's frame (docs/ALGORITHM.md section 6). HSH are not
 // closed under rotation (a tilted hemisphere is not the same hemisphere), so there is no exact finite rotation matrix;
 // rcsplat uses Křivánek et al.'s small-angle approximation for the tilt between the record's normal and the pixel's,
 //   lambda' = (I + alpha_x D_x + alpha_y D_y) lambda,
@@ -10,7 +10,7 @@
 
 namespace rcsplat {
 
-// H_l^m(cos theta, phi) in double, from std::assoc_legendre and the definition (docs/METHOD.md section 6): the
+// H_l^m(cos theta, phi) in double, from std::assoc_legendre and the definition (docs/ALGORITHM.md section 6): the
 // reference the float basis (kernels/hsh.h) is checked against, and what the derivative matrices are built from.
 double hsh_basis_double(int l, int m, double cos_theta, double phi);
 

@@ -1,4 +1,4 @@
-// Image error against a reference (docs/METHOD.md section 10): relMSE = mean (x - ref)^2 / (ref^2 + 0.01), RMSE, mean
+// Image error against a reference (docs/ALGORITHM.md section 10): relMSE = mean (x - ref)^2 / (ref^2 + 0.01), RMSE, mean
 // absolute error, over every channel of every pixel. The +0.01 ties relMSE to the scene's radiance scale: state the
 // scene and exposure with every threshold.
 #pragma once

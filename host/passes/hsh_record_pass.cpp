@@ -62,8 +62,6 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
       order_(order),
       project_(gpu.kernel("hsh_records.cl", "project_radiance_records")),
       tilt_(gpu.kernel("hsh_records.cl", "tilt_radiance_records")) {
-  if (order < 1 || order > HSH_MAX_ORDER)
-    throw Error("--hsh-order must be between 1 and " + std::to_string(HSH_MAX_ORDER));
   const HshRotationDerivatives& d = hsh_rotation_derivatives(order);
   tilt_x_ = gpu_.upload(d.dx, CL_MEM_READ_ONLY, "radiance records");
   tilt_y_ = gpu_.upload(d.dy, CL_MEM_READ_ONLY, "radiance records");

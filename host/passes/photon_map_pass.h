@@ -1,4 +1,4 @@
-// The photon map of --bounce-method photons (kernels/photon_map.cl, docs/METHOD.md section 8) on the device: the grids
+// The photon map of --bounce-method photons (kernels/photon_map.cl, docs/ALGORITHM.md section 8) on the device: the grids
 // the host built (cache/photon_map.h) and the lookup photons' irradiance estimates, which the record pass reads at its
 // rays' hits (kernels/photon_map.h) in place of continuing their paths.
 #pragma once

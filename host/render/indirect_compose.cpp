@@ -62,7 +62,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,
                        const cl::Buffer& record_at_pixel) {
   RenderedImage& img = f.image;
-  auto t = Clock::now();
+  StageTimer timing(img.stats.layers_s);
   const size_t pixels = f.layers.pixel_count();
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);
@@ -91,7 +91,6 @@ void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl:
                            });
                          });
   img.stats.uncovered_pixels += uncovered;
-  img.stats.layers_s += seconds_since(t);
 }
 
 }  // namespace rcsplat

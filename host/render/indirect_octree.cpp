@@ -109,7 +109,7 @@ void octree_indirect(IndirectFrame& f) {
   OctreeRecordIndex index(f.gpu, geo, view.width, view.height, f.scene, f.device_scene.frame(), cs);
   place_records(index, records, view, cs, f.settings.seed, st);
 
-  auto t = Clock::now();
+  StageTimer timing(st.resolve_s);
   // The sub-pixels' interpolated irradiance (E, weight) and records reaching each, which the device composes and
   // gathers into the image's layers as the splat's.
   std::vector<cl_float4> irradiance(pixels, cl_float4{{0, 0, 0, 0}});
@@ -139,7 +139,7 @@ void octree_indirect(IndirectFrame& f) {
     for (int c = 0; c < 3; ++c) irradiance[i].s[c] = float(e[c]);
     irradiance[i].s[3] = float(in.weight);
   }, 256);
-  st.resolve_s = seconds_since(t);
+  timing.stop();
   st.filled_sub_pixels = filled;
   const cl::Buffer irradiance_buffer = f.gpu.upload(irradiance, CL_MEM_READ_ONLY, "octree irradiance");
   compose_cached_indirect(f, irradiance_buffer);

@@ -33,7 +33,7 @@ void path_traced_indirect(IndirectFrame& f) {
   PathPass path(f.gpu, f.device_scene);
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  auto t = Clock::now();
+  StageTimer timing(st.path_s);
   // Two independent halves (different seeds): their difference estimates the error of their mean without bias, even
   // when stratified (the spread of stratified samples would overstate it). Plain sampling uses the samples' spread.
   unsigned halves = ps.stratified && ps.samples >= 2 ? 2 : 1;
@@ -59,7 +59,7 @@ void path_traced_indirect(IndirectFrame& f) {
     if (halves == 1) variance = path.mean_variance_rgb();
   }
   if (!f.progress) progress.finish();
-  st.path_s = seconds_since(t);
+  timing.stop();
   st.path_samples = ps.samples;
   // Per sub-pixel (the G-buffer's frame), then gathered into output pixels.
   std::vector<float> indirect = means[0];

@@ -86,7 +86,7 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   const GBufferView& gbuffer = f.gbuffer.view();
   const RadianceLobeTable& lobes = *f.lobe_table;  // the plan settled the order from it
 
-  auto t = Clock::now();
+  StageTimer table_timing(st.hsh_table_s);  // the lobe table itself counts where the plan computed it
   const unsigned order = f.settings.hsh_order;
   st.hsh_order = order;
   st.hsh_captured_energy = hsh_captured_energy(lobes, order);
@@ -104,7 +104,7 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   HshRecordPass hsh(f.gpu, int(order));
   DeviceRecordIndex index(f.gpu, kept, cs);
   st.program_s += f.gpu.program_seconds() - program_before;
-  st.hsh_table_s += seconds_since(t);  // the lobe table itself: when the plan computed it
+  table_timing.stop();
   attach_light_guide(f, records);  // the irradiance records' guide, built once per frame
 
   RenderStats placed;
@@ -119,14 +119,14 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   st.radiance_records_s = placed.records_s;
   st.radiance_placement_s = placed.placement_s;
 
-  t = Clock::now();
+  StageTimer splat_timing(st.radiance_splat_s);
   splat->splat_all(gbuffer, records.records(), hsh.coefficients(), total, cs.accuracy, hsh.largest_radiance());
   splat->resolve(gbuffer);
   if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
     st.radiance_filled_sub_pixels = splat->fill_uncovered(gbuffer, records.records(), hsh.coefficients(),
                                                           index.record_at_pixel_buffer(),
                                                           int(std::ceil(cs.max_reach_pixels)));
-  st.radiance_splat_s = seconds_since(t);
+  splat_timing.stop();
   return splat;
 }
 

@@ -1,4 +1,4 @@
-// Record placement, coarse to fine (docs/METHOD.md section 7), written once for both cache methods. What differs
+// Record placement, coarse to fine (docs/ALGORITHM.md section 7), written once for both cache methods. What differs
 // between them is behind RecordIndex: how a grid's uncovered pixels are found and how radii are clamped against
 // neighbours (the device's coverage and clamping kernels, or the host's octree). Records are computed by the one
 // record pass for both, so the two methods place the same records at the same pixels.

@@ -115,9 +115,8 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
     bvh_nodes_ = bvh.nodes.size();
     bvh_blocks_ = bvh.blocks.size();
     bvh_depth_ = bvh.depth;
-    auto t = Clock::now();
+    StageTimer timing(setup_.upload_s);
     device_scene_ = std::make_unique<DeviceScene>(gpu_, scene_, bvh, forced_switches_, scene_frame_);
-    setup_.upload_s = seconds_since(t);
   }
   log_info("compiling kernels for " + gpu_.device_info().name);
   gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
@@ -225,9 +224,12 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
     direct.run(gbuffer.view(), strata, settings.seed);
   }
 
-  auto t = Clock::now();
+  StageTimer layers_timing(st.layers_s);
   const size_t pixels = layers.pixel_count();
   img.color.resize(pixels * 3);
+  // The cache methods' colour comes whole from the device's composition (indirect_compose.cpp); path tracing and
+  // direct light alone add up emission, direct and their indirect here.
+  const bool colour_on_host = settings.gi == GiMethod::path || settings.gi == GiMethod::none;
   img.direct.resize(pixels * 3);
   img.emission.resize(pixels * 3);
   img.albedo.resize(pixels * 3);
@@ -258,7 +260,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
           img.albedo[3 * i + c] = s.albedo[c];
           img.normal[3 * i + c] = s.normal[c];
           img.position[3 * i + c] = world[c];
-          img.color[3 * i + c] = s.emission[c] + s.direct[c];
+          if (colour_on_host) img.color[3 * i + c] = s.emission[c] + s.direct[c];
         }
       }
       rough += range_rough;
@@ -271,7 +273,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   st.glossy_pixels += glossy;
   st.hsh_pixels += hsh;
   st.shadow_rays += shadow_rays;
-  st.layers_s += seconds_since(t);
+  layers_timing.stop();
 
   IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_};
   frame.lobe_table = lobe_table_.get();
