@@ -87,8 +87,10 @@ struct IndirectFrame {
   LayerPass& layers;
   // The light guide and the photon map: built by the first frame that needs them, kept by the Renderer.
   ViewIndependentLight& light;
-  // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer.
+  // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer, and what the
+  // plan derived from it (FramePlan::radiance_accuracy, hsh_captured_energy).
   const RadianceLobeTable* lobe_table = nullptr;
+  float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
   // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
   Progress* progress = nullptr;
   size_t progress_done_before = 0;

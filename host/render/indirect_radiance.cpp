@@ -89,12 +89,12 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   StageTimer table_timing(st.hsh_table_s);  // the lobe table itself counts where the plan computed it
   const unsigned order = f.settings.hsh_order;
   st.hsh_order = order;
-  st.hsh_captured_energy = hsh_captured_energy(lobes, order);
+  st.hsh_captured_energy = f.hsh_captured_energy;
   BrdfTable table = truncated(lobes.full, int(order));
   double program_before = f.gpu.program_seconds();
 
   CacheSettings cs = f.settings.cache;
-  cs.accuracy = radiance_accuracy(lobes, f.settings.cache.accuracy);
+  cs.accuracy = f.radiance_accuracy;
   st.radiance_accuracy = cs.accuracy;
 
   auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, lobes.row_of_material);

@@ -141,6 +141,10 @@ double Renderer::kept_per_bounce() {
   return *kept_per_bounce_;
 }
 
+bool Renderer::radiance_cached(const RenderSettings& settings) const {
+  return settings.gi == GiMethod::splat && device_scene_->has_radiance_cache();
+}
+
 const RadianceLobeTable& Renderer::lobe_table(unsigned seed) {
   if (!lobe_table_ || lobe_table_seed_ != seed) {
     const auto start = Clock::now();
@@ -191,7 +195,7 @@ FramePlan Renderer::plan(const RenderSettings& request) {
   s.bounce_method = p.bounces.method;
 
   // Radiance caching (the splat's LOBE_HSH pixels): the order from the lobe table unless the request gives one.
-  if (s.gi == GiMethod::splat && device_scene_->has_radiance_cache()) {
+  if (radiance_cached(s)) {
     const RadianceLobeTable& lobes = lobe_table(s.seed);
     if (s.hsh_order == 0) s.hsh_order = automatic_hsh_order(lobes);
     p.hsh_captured_energy = hsh_captured_energy(lobes, s.hsh_order);
@@ -277,6 +281,8 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
 
   IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_};
   frame.lobe_table = lobe_table_.get();
+  frame.radiance_accuracy = plan.radiance_accuracy;
+  frame.hsh_captured_energy = plan.hsh_captured_energy;
   frame.progress = progress;
   frame.progress_done_before = progress_done_before;
   switch (settings.gi) {
@@ -341,7 +347,7 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   RenderedImage img;
   RenderStats& st = img.stats;
   // A plan made before another seed's frame: its lobe table again (kept per seed, as the photon map and the guide).
-  if (plan.settings.gi == GiMethod::splat && device_scene_->has_radiance_cache()) lobe_table(plan.settings.seed);
+  if (radiance_cached(plan.settings)) lobe_table(plan.settings.seed);
   // The setup this frame pays for (all of it for a renderer's first frame, none for a later one with the same plan).
   st.bvh_build_s = setup_.bvh_build_s;
   st.upload_s = setup_.upload_s;

@@ -49,6 +49,8 @@ class Renderer {
 
  private:
   double kept_per_bounce();
+  // Whether a frame with these settings radiance-caches lobes: the splat's, in a scene with a LOBE_HSH material.
+  bool radiance_cached(const RenderSettings& settings) const;
   const RadianceLobeTable& lobe_table(unsigned seed);
   void shade_frame(const FramePlan& plan, const CameraParams& camera, const RenderSettings& settings,
                    RenderedImage& img, Progress* progress = nullptr, size_t progress_done_before = 0);
