@@ -33,10 +33,11 @@ struct RenderOptions {
   std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
 };
 // --quality: draft, standard (the defaults) or final sets accuracy, rays per record, pixel and light samples, except
-// those whose option was given (`given("--accuracy")`). quality_summary says what the preset set, for the summary.
+// those whose option was given (`given("--accuracy")`). quality_summary says what the request holds after it, for the
+// summary, and whether given options replaced some of the preset's.
 void apply_quality(const std::string& quality, RenderSettings& settings,
                    const std::function<bool(const char*)>& given);
-std::string quality_summary(const std::string& quality);
+std::string quality_summary(const std::string& quality, const RenderSettings& settings);
 int run_render(const RenderOptions& options);
 
 // A reference continued: reads the path-traced layers of the earlier .exr at `path`, renders the missing samples with

@@ -243,7 +243,7 @@ int run_render(const RenderOptions& options) {
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
   print_summary(scene, plan, image, options.settings, options.outputs);
-  if (options.settings.gi != GiMethod::path) std::printf("quality      %s\n", quality_summary(options.quality).c_str());
+  if (options.settings.gi != GiMethod::path) std::printf("quality      %s\n", quality_summary(options.quality, options.settings).c_str());
   if (!options.json_path.empty()) {
     nlohmann::json j = summary_json(scene, plan, image, options.settings, options.outputs);
     if (options.settings.gi != GiMethod::path) j["quality"] = options.quality;

@@ -79,13 +79,19 @@ void apply_quality(const std::string& quality, RenderSettings& s, const std::fun
   }
 }
 
-std::string quality_summary(const std::string& quality) {
+std::string quality_summary(const std::string& quality, const RenderSettings& s) {
   const QualityPreset p = quality_preset(quality);
-  char text[200];
-  std::snprintf(text, sizeof text, "%s: accuracy %g, %ux%u rays a record, %u light samples, %s pixel samples", p.name,
-                double(p.accuracy), p.theta_strata, p.phi_strata, p.light_samples,
-                p.pixel_samples ? std::to_string(p.pixel_samples).c_str()
-                                : ("up to " + std::to_string(p.preferred_pixel_samples)).c_str());
+  char text[240];
+  // The values the request holds, the preset's unless an option was given: the summary must not claim the preset's.
+  std::snprintf(text, sizeof text, "%s: accuracy %g, %ux%u rays a record, %u light samples, %s pixel samples%s", p.name,
+                double(s.cache.accuracy), s.cache.theta_strata, s.cache.phi_strata, s.light_samples,
+                s.pixel_samples ? std::to_string(s.pixel_samples).c_str()
+                                : ("up to " + std::to_string(s.preferred_pixel_samples)).c_str(),
+                s.cache.accuracy != p.accuracy || s.cache.theta_strata != p.theta_strata ||
+                        s.cache.phi_strata != p.phi_strata || s.light_samples != p.light_samples ||
+                        s.pixel_samples != p.pixel_samples
+                    ? " (options given replace the preset's)"
+                    : "");
   return text;
 }
 
