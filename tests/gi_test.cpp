@@ -413,6 +413,28 @@ TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
   EXPECT_FALSE(same_bits(a, b));
 }
 
+// A later frame of the same plan makes no device buffer: every pass, the method's included, keeps its buffers in the
+// Renderer (render/indirect.h MethodPasses), except the image layers' one (LayerPass::surface, freed on return so it
+// never sits through a frame's peak), made once per round of path tracing. The scene has glossy and radiance-cached
+// lobes, so every splat pass runs. (The octree method, the classic baseline, keeps its index on the host and uploads
+// it each frame.)
+TEST(Renderer, ALaterFrameMakesNoBufferButTheLayersOne) {
+  const Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
+    RenderSettings s;
+    s.width = s.height = 24;
+    s.light_samples = 4;
+    s.gi = gi;
+    s.path.samples = 4;
+    Renderer renderer(test::gpu(), scene);
+    const FramePlan plan = renderer.plan(s);
+    renderer.render(plan);
+    const size_t before = test::gpu().buffers_made();
+    renderer.render(plan);
+    EXPECT_EQ(test::gpu().buffers_made() - before, plan.rounds) << gi_method_name(gi);
+  }
+}
+
 // Every method through one renderer, at one and four samples a pixel, the same bits as fresh renders. The plain
 // Cornell box (its kernels are those most tests build; the lobes' state is the test above's).
 TEST(Renderer, EveryMethodThroughOneRendererMatchesFreshRenders) {

@@ -367,6 +367,7 @@ cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::strin
                  "raise --max-device-memory");
   try {
     cl::Buffer made(context_, flags, bytes);
+    ++buffers_made_;
     {
       std::lock_guard<std::mutex> lock(counted_mutex);
       (*counted_buffers)[made()] = CountedBuffer{memory_, what, bytes};

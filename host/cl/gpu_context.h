@@ -77,6 +77,8 @@ class GpuContext {
   // A device buffer of `bytes`; running out of device memory (or asking for more than one buffer may hold) throws
   // rcsplat::Error naming `what`, the size asked for and what the device has.
   cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
+  // How many buffers buffer() has made so far (tests: a later frame through a Renderer makes none).
+  size_t buffers_made() const { return buffers_made_; }
   // The most device memory this context's buffers may hold at once (--max-device-memory); 0: what the device has.
   void set_memory_budget(uint64_t bytes) { memory_budget_ = bytes; }
 
@@ -105,6 +107,19 @@ class GpuContext {
     return buffer;
   }
 
+  // As upload, into `buffer` where it holds `capacity` elements or more (a pass kept across frames re-uploads small
+  // per-frame inputs without a new buffer each time); otherwise into a new buffer, and capacity becomes its size.
+  template <typename T>
+  void upload_into(cl::Buffer& buffer, size_t& capacity, const std::vector<T>& data, cl_mem_flags flags,
+                   const char* what) {
+    if (!buffer() || data.size() > capacity) {
+      buffer = upload(data, flags, what);
+      capacity = std::max<size_t>(data.size(), 1);
+    } else if (!data.empty()) {
+      queue_.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+    }
+  }
+
   template <typename T>
   std::vector<T> download(const cl::Buffer& buffer, size_t count) {
     std::vector<T> data(count);
@@ -130,6 +145,7 @@ class GpuContext {
   std::map<std::string, bool> launched_;
   std::map<std::string, cl::Buffer> device_tables_;
   size_t tables_computed_ = 0;
+  size_t buffers_made_ = 0;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;
   uint64_t memory_budget_ = 0;

@@ -15,7 +15,7 @@ void GBufferPass::run(const CameraParams& camera) {
     view_.samples = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample), "G-buffer");
   view_.width = camera.width;
   view_.height = camera.height;
-  view_.camera = gpu_.upload(std::vector<CameraParams>{camera}, CL_MEM_READ_ONLY, "G-buffer");
+  gpu_.upload_into(view_.camera, camera_capacity_, std::vector<CameraParams>{camera}, CL_MEM_READ_ONLY, "G-buffer");
   scene_.bind(kernel_);
   view_.bind(kernel_);
   // Square tiles: neighbouring rays in one group, as the traversal prefers.

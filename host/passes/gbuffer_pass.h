@@ -30,6 +30,7 @@ class GBufferPass {
   const DeviceScene& scene_;
   NamedKernel kernel_;
   GBufferView view_;
+  size_t camera_capacity_ = 0;
 };
 
 }  // namespace rcsplat

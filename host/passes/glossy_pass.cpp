@@ -33,8 +33,8 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
     params.guide_share_samples = std::max(1u, samples);
   }
   // An unused one-cluster buffer when there is no guide: the kernel reads none.
-  guide_ = gpu_.upload(guide.empty() ? std::vector<GuideCluster>(1, GuideCluster{}) : guide, CL_MEM_READ_ONLY,
-                       "light guide");
+  gpu_.upload_into(guide_, guide_capacity_, guide.empty() ? std::vector<GuideCluster>(1, GuideCluster{}) : guide,
+                   CL_MEM_READ_ONLY, "light guide");
   scene_.bind(kernel_);
   gbuffer.bind(kernel_);
   kernel_.set("params", params)

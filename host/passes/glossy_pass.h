@@ -29,7 +29,7 @@ class GlossyPass {
   const DeviceScene& scene_;
   NamedKernel kernel_;
   cl::Buffer radiance_, guide_;
-  size_t pixels_ = 0;
+  size_t pixels_ = 0, guide_capacity_ = 0;
 };
 
 }  // namespace rcsplat

@@ -108,6 +108,10 @@ void HshRecordPass::project(const cl::Buffer& strata, const cl::Buffer& records,
   gpu_.queue().finish();
 }
 
+void HshRecordPass::begin_frame() {
+  gpu_.queue().enqueueFillBuffer(largest_bits_, cl_uint(0), 0, sizeof(cl_uint));
+}
+
 float HshRecordPass::largest_radiance() {
   return std::bit_cast<float>(gpu_.download<cl_uint>(largest_bits_, 1)[0]);
 }

@@ -20,6 +20,8 @@ std::vector<float> hsh_column_table(int order, unsigned columns);
 class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
+  // A new frame's records: the brightest stratum seen starts again from nothing (kept passes, render/indirect.h).
+  void begin_frame();
 
   // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each), their
   // gradients bounded by the records' radii (records: the record pass's buffer); blocks.

@@ -1,5 +1,6 @@
 #include "passes/path_pass.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rcsplat {
@@ -13,10 +14,17 @@ void PathPass::begin(const GBufferView& gbuffer, unsigned total_samples, bool st
                      unsigned bounces) {
   bounces_ = bounces;
   gbuffer_ = gbuffer;
-  pixels_ = gbuffer.pixel_count();
-  std::vector<cl_float4> zeros(pixels_, cl_float4{{0, 0, 0, 0}});
-  sum_ = gpu_.upload(zeros, CL_MEM_READ_WRITE, "path sums");
-  sum_squares_ = gpu_.upload(zeros, CL_MEM_READ_WRITE, "path sums");
+  // The sums are kept while the frame's size is (a pass kept across frames, render/indirect.h) and cleared.
+  if (!sum_() || gbuffer.pixel_count() != pixels_) {
+    pixels_ = gbuffer.pixel_count();
+    const size_t bytes = std::max<size_t>(pixels_, 1) * sizeof(cl_float4);
+    sum_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "path sums");
+    sum_squares_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "path sums");
+  }
+  if (pixels_) {
+    gpu_.queue().enqueueFillBuffer(sum_, cl_float4{{0, 0, 0, 0}}, 0, pixels_ * sizeof(cl_float4));
+    gpu_.queue().enqueueFillBuffer(sum_squares_, cl_float4{{0, 0, 0, 0}}, 0, pixels_ * sizeof(cl_float4));
+  }
   gpu_.queue().enqueueFillBuffer(ray_total_, cl_ulong(0), 0, sizeof(cl_ulong));
   total_ = total_samples;
   done_ = 0;
@@ -44,26 +52,24 @@ void PathPass::add_samples(unsigned count) {
   done_ += count;
 }
 
-std::vector<float> PathPass::mean_rgb() {
-  std::vector<float> sum = gpu_.download<float>(sum_, pixels_ * 4), rgb(pixels_ * 3, 0.0f);
-  if (!done_) return rgb;
-  for (size_t i = 0; i < pixels_; ++i)
-    for (size_t c = 0; c < 3; ++c) rgb[3 * i + c] = sum[4 * i + c] / float(done_);
-  return rgb;
-}
-
-std::vector<float> PathPass::mean_variance_rgb() {
-  std::vector<float> sum = gpu_.download<float>(sum_, pixels_ * 4);
-  std::vector<float> squares = gpu_.download<float>(sum_squares_, pixels_ * 4), var(pixels_ * 3, 0.0f);
-  if (done_ < 2) return var;
-  double n = done_;
+std::vector<float> PathPass::mean_rgb(std::vector<float>* variance) {
+  const std::vector<float> sum = gpu_.download<float>(sum_, pixels_ * 4);
+  std::vector<float> rgb(pixels_ * 3, 0.0f);
+  if (done_)
+    for (size_t i = 0; i < pixels_; ++i)
+      for (size_t c = 0; c < 3; ++c) rgb[3 * i + c] = sum[4 * i + c] / float(done_);
+  if (!variance) return rgb;
+  variance->assign(pixels_ * 3, 0.0f);
+  if (done_ < 2) return rgb;
+  const std::vector<float> squares = gpu_.download<float>(sum_squares_, pixels_ * 4);
+  const double n = done_;
   for (size_t i = 0; i < pixels_; ++i)
     for (size_t c = 0; c < 3; ++c) {
       double mean = sum[4 * i + c] / n;
       double sample_var = std::max(0.0, (squares[4 * i + c] / n - mean * mean) * n / (n - 1));
-      var[3 * i + c] = float(sample_var / n);
+      (*variance)[3 * i + c] = float(sample_var / n);
     }
-  return var;
+  return rgb;
 }
 
 uint64_t PathPass::rays_cast() { return gpu_.download<cl_ulong>(ray_total_, 1)[0]; }

@@ -19,8 +19,8 @@ class PathPass {
   void add_samples(unsigned count);
   unsigned samples_done() const { return done_; }
 
-  std::vector<float> mean_rgb();           // indirect radiance per pixel
-  std::vector<float> mean_variance_rgb();  // the variance of that mean, per channel
+  // Indirect radiance per pixel; with variance, also the variance of that mean, per channel (one download each).
+  std::vector<float> mean_rgb(std::vector<float>* variance = nullptr);
   uint64_t rays_cast();
 
  private:

@@ -14,14 +14,25 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
       mark_(gpu.kernel("placement.cl", "mark_records")),
       clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
       apply_(gpu.kernel("placement.cl", "apply_radii")) {
-  size_t pixels = gbuffer.pixel_count();
-  candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(cl_uint), "placement candidates");
   count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "placement");
-  record_map_ = gpu_.upload(std::vector<cl_int>(pixels, -1), CL_MEM_READ_WRITE, "placement");
-  covered_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1), "placement covered");
+  begin(gbuffer);
+}
+
+void PlacementPass::begin(const GBufferView& gbuffer) {
+  const size_t pixels = gbuffer.pixel_count();
   auto tiles = [](int n) { return size_t((n + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE); };
-  tiles_ = tiles(gbuffer.width) * tiles(gbuffer.height);
-  new_in_tile_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1), "placement new in tile");
+  const size_t tiles_now = tiles(gbuffer.width) * tiles(gbuffer.height);
+  if (!candidates_() || pixels != gbuffer_.pixel_count() || tiles_now != tiles_) {
+    const size_t slots = std::max<size_t>(pixels, 1);
+    candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
+    record_map_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_int), "placement");
+    covered_ = gpu_.buffer(CL_MEM_READ_WRITE, slots, "placement covered");
+    tiles_ = tiles_now;
+    new_in_tile_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1), "placement new in tile");
+  }
+  gbuffer_ = gbuffer;
+  if (pixels) gpu_.queue().enqueueFillBuffer(record_map_, cl_int(-1), 0, pixels * sizeof(cl_int));
+  record_grid_ = 0;
 }
 
 uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,

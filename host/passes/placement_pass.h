@@ -12,6 +12,9 @@ namespace rcsplat {
 class PlacementPass {
  public:
   PlacementPass(GpuContext& gpu, const GBufferView& gbuffer);
+  // A new frame (a pass kept across frames, render/indirect.h): no record sits anywhere yet; the buffers are kept
+  // while the frame's size is.
+  void begin(const GBufferView& gbuffer);
 
   // Compacts the pixels with geometry on the grid of this spacing that hold no record and that no record among
   // 0 .. record_count - 1 reaches (Ward weight above 1/a, not in front) into candidates(); returns their count. With

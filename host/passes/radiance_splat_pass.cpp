@@ -18,6 +18,7 @@ RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
   if (rows.empty()) rows.push_back(-1);
   table_ = gpu_.upload(lobe, CL_MEM_READ_ONLY, "radiance splat tables");
   table_rows_ = gpu_.upload(rows, CL_MEM_READ_ONLY, "radiance splat tables");
+  filled_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "radiance splat sums");
   params_.order = cl_uint(table.order);
   params_.angle_count = cl_uint(table.angle_count);
 }
@@ -75,7 +76,7 @@ void RadianceSplatPass::resolve(const GBufferView& gbuffer) {
 uint32_t RadianceSplatPass::fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records,
                                            const cl::Buffer& coefficients, const cl::Buffer& record_at_pixel,
                                            int window) {
-  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "radiance splat sums");
+  gpu_.queue().enqueueFillBuffer(filled_, cl_uint(0), 0, sizeof(cl_uint));
   gbuffer.bind(fill_);
   fill_.set_buffer<CacheRecord>("records", records)
       .set_buffer<cl_float>("coefficients", coefficients)
@@ -85,9 +86,9 @@ uint32_t RadianceSplatPass::fill_uncovered(const GBufferView& gbuffer, const cl:
       .set("window", cl_int(window))
       .set("params", params_)
       .set_buffer<cl_float4>("lobe_out", lobe_radiance_)
-      .set_buffer<cl_uint>("filled", filled);
+      .set_buffer<cl_uint>("filled", filled_);
   fill_.launch(pixels_, gpu_.groups().per_item);
-  return gpu_.download<cl_uint>(filled, 1)[0];
+  return gpu_.download<cl_uint>(filled_, 1)[0];
 }
 
 std::vector<float> RadianceSplatPass::lobe_radiance_rgbw() { return gpu_.download<float>(lobe_radiance_, pixels_ * 4); }

@@ -38,7 +38,7 @@ class RadianceSplatPass {
 
   GpuContext& gpu_;
   NamedKernel keep_, clear_, splat_, resolve_, fill_;
-  cl::Buffer table_, table_rows_, kept_samples_, sums_, lobe_radiance_;
+  cl::Buffer table_, table_rows_, kept_samples_, sums_, lobe_radiance_, filled_;
   GBufferView kept_;
   RadianceSplatParams params_{};
   size_t pixels_ = 0;

@@ -21,20 +21,39 @@ KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bo
 
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
                        const PhotonMapPass* photon_map)
+    : RecordPass(gpu, scene, theta_strata, store_strata, photon_map != nullptr) {
+  photon_map_ = photon_map;
+}
+
+RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                       bool photon_gather)
     : gpu_(gpu),
       scene_(scene),
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
-      photon_map_(photon_map) {
-  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_map != nullptr);
+      photon_map_(nullptr),
+      photon_gather_(photon_gather) {
+  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_gather);
   aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
   trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
   trace_hits_ = gpu.kernel("records.cl", "trace_record_hits", defines);
   shade_hits_ = gpu.kernel("records.cl", "shade_record_hits", defines);
   reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
-  guide_ = gpu_.upload(std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY, "light guide");  // never read while guide_clusters_ is 0
+  // Never read while guide_clusters_ is 0.
+  gpu_.upload_into(guide_, guide_capacity_, std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY,
+                   "light guide");
   reserve(1024);
+}
+
+void RecordPass::begin_frame(const PhotonMapPass* photon_map) {
+  if ((photon_map != nullptr) != photon_gather_)
+    throw Error(photon_gather_ ? "records: compiled to read a photon map, but the frame has none"
+                               : "records: the frame has a photon map, but the pass was compiled without one");
+  photon_map_ = photon_map;
+  gpu_.queue().enqueueFillBuffer(ray_total_, cl_ulong(0), 0, sizeof(cl_ulong));
+  guide_clusters_ = guide_rays_ = 0;
+  bounces_ = 1;
 }
 
 void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record) {
@@ -43,7 +62,7 @@ void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsi
                 std::to_string(GUIDE_MAX_CLUSTERS) + ")");
   guide_clusters_ = rays_per_record ? unsigned(clusters.size()) : 0;
   guide_rays_ = guide_clusters_ ? rays_per_record : 0;
-  if (guide_clusters_) guide_ = gpu_.upload(clusters, CL_MEM_READ_ONLY, "light guide");
+  if (guide_clusters_) gpu_.upload_into(guide_, guide_capacity_, clusters, CL_MEM_READ_ONLY, "light guide");
 }
 
 void RecordPass::reserve(size_t count) {

@@ -22,9 +22,14 @@ class RecordPass {
   // Compiled for hemispheres of up to theta_strata rows (1 .. HEMISPHERE_MAX_THETA_STRATA). With store_strata the
   // last batch's per-stratum radiance and hit distance stay in strata() (radiance caching projects them). With a photon
   // map (--bounce-method photons) the records' rays take the bounces after the first from it (kernels/photon_map.h);
-  // it must outlive the pass.
+  // it must outlive the frame (photon_gather: compiled to read one, which each frame's begin_frame then names).
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false,
              const PhotonMapPass* photon_map = nullptr);
+  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather);
+  // A new frame through a pass kept across frames (render/indirect.h): records start again at 0 (the array and the
+  // sample buffers are kept), the ray count at 0, no light guide, one bounce; photon_map: this frame's, null exactly
+  // when the pass was compiled without photon_gather.
+  void begin_frame(const PhotonMapPass* photon_map);
 
   // Computes records first .. first + count - 1 at the G-buffer pixels listed in candidates (a device array of pixel
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
@@ -64,12 +69,13 @@ class RecordPass {
   const PhotonMapPass* photon_map_;
   NamedKernel aim_, trace_, trace_hits_, shade_hits_, reduce_;
   cl::Buffer records_, ray_total_, guide_;
+  bool photon_gather_;
   // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast, and with a split trace
   // (GroupSizes::split_record_trace) each sample's hit. With store_strata, samples_ is the whole batch's strata
   // (strata()).
   cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
-  size_t capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
+  size_t capacity_ = 0, guide_capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
          sample_hits_capacity_ = 0;
 };
 

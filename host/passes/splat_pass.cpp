@@ -14,6 +14,7 @@ SplatPass::SplatPass(GpuContext& gpu)
       resolve_(gpu.kernel("splat.cl", "resolve_indirect")),
       fill_(gpu.kernel("splat.cl", "fill_uncovered")) {
   max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
+  filled_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
 }
 
 void SplatPass::splat_all(const GBufferView& gbuffer, const cl::Buffer& records, uint32_t count, float accuracy) {
@@ -58,15 +59,15 @@ void SplatPass::resolve(const GBufferView& gbuffer) {
 
 uint32_t SplatPass::fill_uncovered(const GBufferView& gbuffer, const cl::Buffer& records,
                                    const cl::Buffer& record_at_pixel, int window) {
-  cl::Buffer filled = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
+  gpu_.queue().enqueueFillBuffer(filled_, cl_uint(0), 0, sizeof(cl_uint));
   gbuffer.bind(fill_);
   fill_.set_buffer<CacheRecord>("records", records)
       .set_buffer<cl_int>("record_at_pixel", record_at_pixel)
       .set("window", cl_int(window))
       .set_buffer<cl_float4>("irradiance_out", irradiance_)
-      .set_buffer<cl_uint>("filled", filled);
+      .set_buffer<cl_uint>("filled", filled_);
   fill_.launch(pixels_, gpu_.groups().per_item);
-  return gpu_.download<cl_uint>(filled, 1)[0];
+  return gpu_.download<cl_uint>(filled_, 1)[0];
 }
 
 std::vector<float> SplatPass::irradiance_rgbw() { return gpu_.download<float>(irradiance_, pixels_ * 4); }

@@ -32,7 +32,7 @@ class SplatPass {
  private:
   GpuContext& gpu_;
   NamedKernel clear_, max_irradiance_, splat_, resolve_, fill_;
-  cl::Buffer sums_, counts_, max_bits_, irradiance_;
+  cl::Buffer sums_, counts_, max_bits_, filled_, irradiance_;
   SplatParams params_{};
   size_t pixels_ = 0;
 };

@@ -12,6 +12,12 @@ class DeviceRecordIndex final : public RecordIndex {
  public:
   DeviceRecordIndex(GpuContext& gpu, const GBufferView& gbuffer, const CacheSettings& cache)
       : pass_(gpu, gbuffer), accuracy_(cache.accuracy), min_radius_pixels_(min_radius_pixels(cache)) {}
+  // A new frame through an index kept across frames: no record placed yet.
+  void begin(const GBufferView& gbuffer, const CacheSettings& cache) {
+    pass_.begin(gbuffer);
+    accuracy_ = cache.accuracy;
+    min_radius_pixels_ = min_radius_pixels(cache);
+  }
 
   uint32_t find_uncovered(RecordPass& records, uint32_t record_count, int spacing, uint32_t unchanged_before) override {
     return pass_.find_uncovered(records.records(), record_count, accuracy_, spacing, unchanged_before);

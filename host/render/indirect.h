@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "cl/device_scene.h"
@@ -10,9 +11,15 @@
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
 #include "passes/brdf_table_pass.h"
+#include "passes/compose_pass.h"
+#include "passes/glossy_pass.h"
+#include "passes/hsh_record_pass.h"
+#include "passes/path_pass.h"
 #include "passes/photon_map_pass.h"
 #include "passes/radiance_splat_pass.h"
 #include "passes/record_pass.h"
+#include "passes/splat_pass.h"
+#include "render/device_record_index.h"
 #include "render/frame.h"
 #include "render/timing.h"
 #include "util/log.h"
@@ -74,6 +81,52 @@ struct ViewIndependentLight {
   float photon_radius = 0.0f;  // world units
 };
 
+// A pass the Renderer keeps across frames while what it was compiled or sized for (its key) stays the same, and makes
+// again when that changes. Each frame begins it (begin_frame or begin), which resets what a frame accumulates.
+template <typename Pass, typename Key = std::monostate>
+class KeptPass {
+ public:
+  template <typename Make>
+  Pass& get(const Key& key, Make&& make) {
+    if (!pass_ || !(key_ == key)) {
+      pass_.reset();  // the old pass's buffers go before the new one's are made
+      pass_ = make();
+      key_ = key;
+    }
+    return *pass_;
+  }
+  Pass* get() const { return pass_.get(); }
+
+ private:
+  std::unique_ptr<Pass> pass_;
+  Key key_{};
+};
+
+// The per-method passes with their buffers, kept by the Renderer so that a later frame of the same method makes no
+// program, kernel or buffer again (tests/gi_test.cpp, Renderer tests). Only one method's passes are held at a time.
+struct MethodPasses {
+  // A record pass's program: hemisphere rows, and whether its rays read a photon map.
+  struct RecordKey {
+    unsigned theta_strata = 0;
+    bool photon_gather = false;
+    bool operator==(const RecordKey&) const = default;
+  };
+  // The lobe table a radiance splat holds: its order and the seed the table was sampled with.
+  struct LobeKey {
+    unsigned order = 0, seed = 0;
+    bool operator==(const LobeKey&) const = default;
+  };
+  GiMethod method = GiMethod::none;
+  KeptPass<RecordPass, RecordKey> irradiance_records, radiance_records;
+  KeptPass<DeviceRecordIndex> irradiance_index, radiance_index;
+  KeptPass<SplatPass> splat;
+  KeptPass<GlossyPass, bool> glossy;    // whether it samples the LOBE_HSH pixels too
+  KeptPass<ComposePass, bool> compose;  // whether the LOBE_HSH pixels' lobes come from radiance records
+  KeptPass<RadianceSplatPass, LobeKey> radiance_splat;
+  KeptPass<HshRecordPass, unsigned> hsh_records;  // the order
+  KeptPass<PathPass> path;
+};
+
 struct IndirectFrame {
   GpuContext& gpu;
   const Scene& scene;
@@ -87,9 +140,12 @@ struct IndirectFrame {
   LayerPass& layers;
   // The light guide and the photon map: built by the first frame that needs them, kept by the Renderer.
   ViewIndependentLight& light;
+  // The method's passes, kept by the Renderer.
+  MethodPasses& passes;
   // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer, and what the
   // plan derived from it (FramePlan::radiance_accuracy, hsh_captured_energy).
   const RadianceLobeTable* lobe_table = nullptr;
+  unsigned lobe_table_seed = 0;  // the seed it was sampled with
   float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
   // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
   Progress* progress = nullptr;
@@ -109,12 +165,17 @@ const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& frame);
 // The photon map the records read their hits' later bounces from (--bounce-method photons with --bounces 2 or more),
 // built on the first call; null otherwise. Fills its statistics.
 const PhotonMapPass* attach_photon_map(IndirectFrame& frame);
+// The frame's record pass, for irradiance records or (radiance) radiance records that keep their strata, kept in
+// frame.passes and begun for this frame: its photon map (attach_photon_map), bounces and light guide
+// (attach_light_guide). Its kernel builds count in the statistics' program_s.
+RecordPass& frame_record_pass(IndirectFrame& frame, const CacheSettings& cache, bool radiance);
 // Path-traced indirect light on the device, the ground truth and the competitor.
 void path_traced_indirect(IndirectFrame& frame);
 
-// Radiance caching of the LOBE_HSH pixels (kernels/hsh_records.cl, kernels/radiance_splat.cl): the pass that holds
-// their lobes' indirect light, or nothing when the scene has no radiance-cached material. Fills its statistics.
-std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& frame);
+// Radiance caching of the LOBE_HSH pixels (kernels/hsh_records.cl, kernels/radiance_splat.cl): the pass (kept in
+// frame.passes) that holds their lobes' indirect light, or null when the scene has no radiance-cached material. Fills
+// its statistics.
+const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& frame);
 
 // The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
 // a glossy material; also the LOBE_HSH pixels when radiance_cached is null), then composition (ComposePass) of the

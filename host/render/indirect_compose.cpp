@@ -1,7 +1,6 @@
 // The cache methods' composition: glossy pixels' specular light, then each pixel's BRDF applied to the cached
 // irradiance (kernels/glossy.cl, kernels/compose.cl).
 #include <atomic>
-#include <optional>
 
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
@@ -15,15 +14,18 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
   double program_before = f.gpu.program_seconds();
-  std::optional<GlossyPass> glossy;
+  GlossyPass* glossy = nullptr;
   bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
   // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
   const CacheSettings& cs = f.settings.cache;
   const std::vector<GuideCluster>* guide = frame_light_guide(f);
   const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && guide && !guide->empty();
   if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
-    glossy.emplace(f.gpu, f.device_scene, sample_hsh);
-  ComposePass compose(f.gpu, f.device_scene, radiance_cached != nullptr);
+    glossy = &f.passes.glossy.get(
+        sample_hsh, [&] { return std::make_unique<GlossyPass>(f.gpu, f.device_scene, sample_hsh); });
+  ComposePass& compose = f.passes.compose.get(radiance_cached != nullptr, [&] {
+    return std::make_unique<ComposePass>(f.gpu, f.device_scene, radiance_cached != nullptr);
+  });
   st.program_s += f.gpu.program_seconds() - program_before;
 
   if (glossy) {

@@ -100,12 +100,7 @@ void octree_indirect(IndirectFrame& f) {
   std::vector<PixelGeometry> geo(pixels);
   for (size_t i = 0; i < pixels; ++i) geo[i] = pixel_geometry(gb[i]);
 
-  const PhotonMapPass* photon_map = attach_photon_map(f);
-  double program_before = f.gpu.program_seconds();
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), false, photon_map);
-  records.set_bounces(f.settings.bounces);
-  st.program_s += f.gpu.program_seconds() - program_before;
-  attach_light_guide(f, records);
+  RecordPass& records = frame_record_pass(f, cs, false);
   OctreeRecordIndex index(f.gpu, geo, view.width, view.height, f.scene, f.device_scene.frame(), cs);
   place_records(index, records, view, cs, f.settings.seed, st);
 

@@ -6,19 +6,29 @@
 #include "render/indirect.h"
 #include "util/error.h"
 #include "util/log.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 namespace {
 
-// An RGB layer of the G-buffer's frame gathered into output pixels on the device, as every other layer (LayerPass):
-// the sub-pixels' mean, times scale.
-std::vector<float> gathered_rgb(IndirectFrame& f, const std::vector<float>& rgb, float scale) {
-  std::vector<cl_float4> rgba(rgb.size() / 3);
-  for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = cl_float4{{rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 0.0f}};
-  const std::vector<float> mean = f.layers.mean_rgba(f.gpu.upload(rgba, CL_MEM_READ_ONLY, "path layers"));
-  std::vector<float> out(f.layers.pixel_count() * 3);
-  for (size_t i = 0; i < f.layers.pixel_count(); ++i)
-    for (size_t c = 0; c < 3; ++c) out[3 * i + c] = mean[4 * i + c] * scale;
+// An RGB layer of the G-buffer's frame, already on the host, gathered into output pixels: the sub-pixels' mean, times
+// scale. The same float operations in the same order as the device's gather of every other layer (kernels/layers.cl
+// resolve_rgba), so the bits are those the device would give, without sending the layer back up to it.
+std::vector<float> gathered_rgb(const LayerPass& layers, const std::vector<float>& rgb, float scale) {
+  const size_t side = layers.side(), width = size_t(layers.out_width()), row = width * side;
+  const float mean_scale = 1.0f / float(side * side);
+  std::vector<float> out(layers.pixel_count() * 3);
+  parallel_ranges(layers.pixel_count(), [&](size_t begin, size_t end) {
+    for (size_t pixel = begin; pixel < end; ++pixel) {
+      const size_t x = pixel % width, y = pixel / width, first = y * side * row + x * side;
+      for (size_t c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        for (size_t j = 0; j < side; ++j)
+          for (size_t i = 0; i < side; ++i) sum += rgb[3 * (first + j * row + i) + c];
+        out[3 * pixel + c] = sum * mean_scale * scale;
+      }
+    }
+  });
   return out;
 }
 
@@ -30,7 +40,7 @@ void path_traced_indirect(IndirectFrame& f) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   double program_before = f.gpu.program_seconds();
-  PathPass path(f.gpu, f.device_scene);
+  PathPass& path = f.passes.path.get({}, [&] { return std::make_unique<PathPass>(f.gpu, f.device_scene); });
   st.program_s += f.gpu.program_seconds() - program_before;
 
   StageTimer timing(st.path_s);
@@ -54,9 +64,8 @@ void path_traced_indirect(IndirectFrame& f) {
     }
     done_before += samples;
     st.path_rays += path.rays_cast();
-    means.push_back(path.mean_rgb());
+    means.push_back(path.mean_rgb(halves == 1 ? &variance : nullptr));
     counts.push_back(samples);
-    if (halves == 1) variance = path.mean_variance_rgb();
   }
   if (!f.progress) progress.finish();
   timing.stop();
@@ -74,9 +83,9 @@ void path_traced_indirect(IndirectFrame& f) {
     }
   }
   const float sub_pixels = float(f.layers.side() * f.layers.side());
-  img.indirect = gathered_rgb(f, indirect, 1.0f);
+  img.indirect = gathered_rgb(f.layers, indirect, 1.0f);
   // The output pixel's mean of independent sub-pixel estimates: the mean of their variances over the count.
-  img.indirect_variance = gathered_rgb(f, variance, 1.0f / sub_pixels);
+  img.indirect_variance = gathered_rgb(f.layers, variance, 1.0f / sub_pixels);
   for (size_t i = 0; i < img.color.size(); ++i) img.color[i] += img.indirect[i];
 }
 

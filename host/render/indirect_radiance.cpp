@@ -80,7 +80,7 @@ float radiance_accuracy(const RadianceLobeTable& table, float accuracy) {
   return accuracy * std::max(0.5f, table.sharpest_roughness);
 }
 
-std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
+const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   if (!f.device_scene.has_radiance_cache()) return nullptr;
   RenderStats& st = f.image.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
@@ -90,22 +90,25 @@ std::unique_ptr<RadianceSplatPass> radiance_cached_lobes(IndirectFrame& f) {
   const unsigned order = f.settings.hsh_order;
   st.hsh_order = order;
   st.hsh_captured_energy = f.hsh_captured_energy;
-  BrdfTable table = truncated(lobes.full, int(order));
   double program_before = f.gpu.program_seconds();
 
   CacheSettings cs = f.settings.cache;
   cs.accuracy = f.radiance_accuracy;
   st.radiance_accuracy = cs.accuracy;
 
-  auto splat = std::make_unique<RadianceSplatPass>(f.gpu, table, lobes.row_of_material);
+  MethodPasses& passes = f.passes;
+  RadianceSplatPass* splat = &passes.radiance_splat.get({order, f.lobe_table_seed}, [&] {
+    return std::make_unique<RadianceSplatPass>(f.gpu, truncated(lobes.full, int(order)), lobes.row_of_material);
+  });
   const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), true, attach_photon_map(f));
-  records.set_bounces(f.settings.bounces);
-  HshRecordPass hsh(f.gpu, int(order));
-  DeviceRecordIndex index(f.gpu, kept, cs);
+  HshRecordPass& hsh = passes.hsh_records.get(order, [&] { return std::make_unique<HshRecordPass>(f.gpu, int(order)); });
+  hsh.begin_frame();
+  DeviceRecordIndex& index =
+      passes.radiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, kept, cs); });
+  index.begin(kept, cs);
   st.program_s += f.gpu.program_seconds() - program_before;
   table_timing.stop();
-  attach_light_guide(f, records);  // the irradiance records' guide, built once per frame
+  RecordPass& records = frame_record_pass(f, cs, true);  // the irradiance records' photon map and guide
 
   RenderStats placed;
   uint32_t total = place_records(

@@ -9,19 +9,32 @@
 
 namespace rcsplat {
 
+RecordPass& frame_record_pass(IndirectFrame& f, const CacheSettings& cache, bool radiance) {
+  const PhotonMapPass* photon_map = attach_photon_map(f);
+  const double program_before = f.gpu.program_seconds();
+  const MethodPasses::RecordKey key{largest_theta_strata(cache), photon_map != nullptr};
+  RecordPass& records = (radiance ? f.passes.radiance_records : f.passes.irradiance_records).get(key, [&] {
+    return std::make_unique<RecordPass>(f.gpu, f.device_scene, key.theta_strata, radiance, key.photon_gather);
+  });
+  f.image.stats.program_s += f.gpu.program_seconds() - program_before;
+  records.begin_frame(photon_map);
+  records.set_bounces(f.settings.bounces);
+  attach_light_guide(f, records);
+  return records;
+}
+
 void splat_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
-  const PhotonMapPass* photon_map = attach_photon_map(f);
+  RecordPass& records = frame_record_pass(f, cs, false);
   double program_before = f.gpu.program_seconds();
-  RecordPass records(f.gpu, f.device_scene, largest_theta_strata(cs), false, photon_map);
-  records.set_bounces(f.settings.bounces);
-  DeviceRecordIndex index(f.gpu, gbuffer, cs);
-  SplatPass splat(f.gpu);
+  DeviceRecordIndex& index =
+      f.passes.irradiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, gbuffer, cs); });
+  index.begin(gbuffer, cs);
+  SplatPass& splat = f.passes.splat.get({}, [&] { return std::make_unique<SplatPass>(f.gpu); });
   st.program_s += f.gpu.program_seconds() - program_before;
-  attach_light_guide(f, records);
 
   uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st);
   {
@@ -36,8 +49,8 @@ void splat_indirect(IndirectFrame& f) {
       st.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
                                                   int(std::ceil(cs.max_reach_pixels)));
   }
-  std::unique_ptr<RadianceSplatPass> radiance = radiance_cached_lobes(f);
-  compose_cached_indirect(f, splat.irradiance(), radiance.get());
+  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
+  compose_cached_indirect(f, splat.irradiance(), radiance);
   {
     StageTimer timing(st.layers_s);
     img.records = records.download(0, total);  // once per frame, for the summary and the tests

@@ -100,7 +100,11 @@ void add_round(RenderedImage& sum, const RenderedImage& round) {
 }  // namespace
 
 Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches)
-    : gpu_(gpu), scene_(scene), forced_switches_(forced_switches), light_(std::make_unique<ViewIndependentLight>()) {
+    : gpu_(gpu),
+      scene_(scene),
+      forced_switches_(forced_switches),
+      light_(std::make_unique<ViewIndependentLight>()),
+      passes_(std::make_unique<MethodPasses>()) {
   const auto start = Clock::now();
   const double builds_before = gpu_.program_seconds();
   scene_.check_extent();
@@ -279,8 +283,9 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   st.shadow_rays += shadow_rays;
   layers_timing.stop();
 
-  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_};
+  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
   frame.lobe_table = lobe_table_.get();
+  frame.lobe_table_seed = lobe_table_seed_;
   frame.radiance_accuracy = plan.radiance_accuracy;
   frame.hsh_captured_energy = plan.hsh_captured_energy;
   frame.progress = progress;
@@ -380,6 +385,11 @@ RenderedImage Renderer::render(const FramePlan& plan) {
 
   CameraParams params = camera_params(scene_frame_.device_camera(plan.camera), plan.frame_width, plan.frame_height);
   params.sub_pixel_side = int(plan.side);
+  // One method's passes at a time: another method's frame frees them before making its own.
+  if (passes_->method != plan.settings.gi) {
+    passes_ = std::make_unique<MethodPasses>();
+    passes_->method = plan.settings.gi;
+  }
   if (!layers_ || layers_->side() != plan.side || layers_->out_width() != plan.width ||
       layers_->out_height() != plan.height)
     layers_ = std::make_unique<LayerPass>(gpu_, plan.side, plan.width, plan.height);

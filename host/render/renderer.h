@@ -1,8 +1,8 @@
 // The renderer: made once per scene and device, it renders any number of frames. It owns what does not change from
 // frame to frame: the scene in the device's coordinates (scene/scene_frame.h), the BVH, the device scene, the
-// programs (through the GpuContext's cache), the primary passes and their buffers, the bounce probe's measure, the
-// lobe table of radiance-cached materials, the photon map and the light guide (the last two rebuilt only when the
-// settings they depend on change). A frame is planned (render/frame_plan.h), then rendered: primary visibility,
+// programs (through the GpuContext's cache), every pass with its buffers (the primary passes, and the last frame's
+// method's: render/indirect.h MethodPasses), the bounce probe's measure, the lobe table of radiance-cached materials,
+// the photon map and the light guide (the last two rebuilt only when the settings they depend on change). A frame is planned (render/frame_plan.h), then rendered: primary visibility,
 // direct light, then indirect light by radiance cache splatting (or the classic octree lookup, or path tracing), and
 // composition.
 #pragma once
@@ -27,6 +27,7 @@ class DirectPass;
 class LayerPass;
 struct RadianceLobeTable;
 struct ViewIndependentLight;
+struct MethodPasses;
 
 class Renderer {
  public:
@@ -67,6 +68,7 @@ class Renderer {
   std::unique_ptr<DirectPass> direct_;
   std::unique_ptr<LayerPass> layers_;
   std::unique_ptr<ViewIndependentLight> light_;
+  std::unique_ptr<MethodPasses> passes_;  // the last frame's method's
   std::optional<double> kept_per_bounce_;
   unsigned lobe_table_seed_ = 0;
   std::unique_ptr<RadianceLobeTable> lobe_table_;
