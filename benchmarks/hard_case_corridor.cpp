@@ -25,8 +25,9 @@ using namespace rcsplat;
 namespace {
 
 double indirect_seconds(const RenderStats& s) {
-  return s.guide_s + s.records_s + s.placement_s + s.splat_s + s.resolve_s + s.path_s + s.hsh_table_s +
-         s.radiance_records_s + s.radiance_placement_s + s.radiance_splat_s + s.glossy_s;
+  return s.guide.seconds + s.irradiance.records_s + s.irradiance.placement_s + s.irradiance.splat_s +
+         s.irradiance.resolve_s + s.path.seconds + s.radiance.lobe_table_s + s.radiance.records_s +
+         s.radiance.placement_s + s.radiance.splat_s + s.glossy.seconds;
 }
 
 struct Run {

@@ -228,7 +228,7 @@ TEST(Info, NamesTheBouncesARenderChooses) {
   RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 8;
   settings.bounces = 0;
-  EXPECT_EQ(render(test::gpu(), load_scene(""), settings).stats.bounces, 5u) << "what a render chooses";
+  EXPECT_EQ(render(test::gpu(), load_scene(""), settings).stats.bounces.count, 5u) << "what a render chooses";
 
   o.device = "no such device";
   ASSERT_EQ(run_info(o), 0);

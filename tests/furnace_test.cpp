@@ -68,7 +68,7 @@ TEST(Furnace, ClosedEmittingSphereReflectsTheAlbedoThenTheAlbedoOfTheAlbedo) {
       settings.path.samples = 64;
       settings.path.stratified = true;
       RenderedImage img = render(test::gpu(), scene, settings);
-      ASSERT_TRUE(img.stats.specular_brdf);
+      ASSERT_TRUE(img.stats.scene.specular_brdf);
 
       // Pixels whose view is not near grazing: there a facet (the shading normal is radial, the facet flat) hides
       // part of the lobe.

@@ -113,7 +113,7 @@ TEST(GlobalIllumination, CornellBoxSplatConvergesToPathTracedReference) {
     RenderedImage img = render(test::gpu(), scene, settings);
     errors.push_back(indirect_rel_mse(img, ref) - ref_noise);
     std::printf("a = %.2f: %llu records, indirect relMSE %.3e after subtracting the reference's own %.1e\n",
-                accuracies[i], (unsigned long long)img.stats.records, errors.back(), ref_noise);
+                accuracies[i], (unsigned long long)img.stats.irradiance.records, errors.back(), ref_noise);
     EXPECT_LT(errors.back(), limits[i]) << "a = " << accuracies[i];
   }
   EXPECT_LT(ref_noise, errors[2]) << "the reference is too noisy to judge the finest cache";
@@ -150,7 +150,7 @@ TEST(GlobalIllumination, SplatConvergesToPathTracingForOneTwoAndThreeBounces) {
       EXPECT_LT(error, 5e-4) << bounces << " bounces, " << bounce_method_name(method);
       double tolerance = method == BounceMethod::path ? 0.01 : 0.02;
       EXPECT_NEAR(mean, ref_mean, tolerance * ref_mean) << bounces << " bounces, " << bounce_method_name(method);
-      EXPECT_EQ(img.stats.photon_map_photons > 0, method == BounceMethod::photons);
+      EXPECT_EQ(img.stats.photon_map.photons > 0, method == BounceMethod::photons);
     }
     EXPECT_GT(ref_mean, 1.05 * previous_mean) << "bounce " << bounces << " adds light";
     previous_mean = ref_mean;
@@ -184,21 +184,22 @@ TEST(GlobalIllumination, AntiAliasedSplatConvergesWithTheRecordsOfOneSample) {
       mean += img.indirect[i];
       ref_mean += reference.image.indirect[i];
     }
-    std::printf("4 pixel samples, %s, Hessian C %g: indirect relMSE %.3e after the reference's own %.1e; records %llu "
-                "(one sample: %llu), record rays %llu (%llu); %llu sub-pixels filled, %llu left uncovered\n",
-                gi_method_name(c.gi), c.hessian_error, error, reference.noise, (unsigned long long)img.stats.records,
-                (unsigned long long)single.stats.records, (unsigned long long)img.stats.record_rays,
-                (unsigned long long)single.stats.record_rays, (unsigned long long)img.stats.filled_sub_pixels,
-                (unsigned long long)img.stats.uncovered_pixels);
+    std::printf(
+        "4 pixel samples, %s, Hessian C %g: indirect relMSE %.3e after the reference's own %.1e; records %llu "
+        "(one sample: %llu), record rays %llu (%llu); %llu sub-pixels filled, %llu left uncovered\n",
+        gi_method_name(c.gi), c.hessian_error, error, reference.noise, (unsigned long long)img.stats.irradiance.records,
+        (unsigned long long)single.stats.irradiance.records, (unsigned long long)img.stats.irradiance.rays,
+        (unsigned long long)single.stats.irradiance.rays, (unsigned long long)img.stats.irradiance.filled_sub_pixels,
+        (unsigned long long)img.stats.irradiance.uncovered_pixels);
     // Measured: relMSE 1.5e-4 (split sphere; one sample: 1.4e-4) and 1.5e-4 (Hessian); records 518 against 507 and
     // 528 against 523, record rays +3% and +2% (the sub-pixel grid's points differ from the pixel centres).
     const std::string name = std::string(gi_method_name(c.gi)) + " C " + std::to_string(c.hessian_error);
     EXPECT_LT(error, 5e-4) << name;
     EXPECT_NEAR(mean, ref_mean, 0.025 * ref_mean) << name;
-    EXPECT_LT(double(img.stats.records), 1.05 * double(single.stats.records)) << name;
-    EXPECT_LT(double(img.stats.record_rays), 1.05 * double(single.stats.record_rays)) << name;
-    EXPECT_GT(img.stats.filled_sub_pixels, 0u) << name;
-    EXPECT_EQ(img.stats.uncovered_pixels, 0u) << name;
+    EXPECT_LT(double(img.stats.irradiance.records), 1.05 * double(single.stats.irradiance.records)) << name;
+    EXPECT_LT(double(img.stats.irradiance.rays), 1.05 * double(single.stats.irradiance.rays)) << name;
+    EXPECT_GT(img.stats.irradiance.filled_sub_pixels, 0u) << name;
+    EXPECT_EQ(img.stats.irradiance.uncovered_pixels, 0u) << name;
   }
 }
 
@@ -215,8 +216,8 @@ TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
     RenderedImage plain = render(test::gpu(), scene, settings);
     settings.forced_switches = {"HAS_SPECULAR_BRDF"};
     RenderedImage compiled = render(test::gpu(), scene, settings);
-    EXPECT_FALSE(plain.stats.specular_brdf);
-    EXPECT_TRUE(compiled.stats.specular_brdf);
+    EXPECT_FALSE(plain.stats.scene.specular_brdf);
+    EXPECT_TRUE(compiled.stats.scene.specular_brdf);
     EXPECT_EQ(plain.direct, compiled.direct) << gi_method_name(gi);
     EXPECT_EQ(plain.indirect, compiled.indirect) << gi_method_name(gi);
     EXPECT_EQ(plain.color, compiled.color) << gi_method_name(gi);
@@ -278,16 +279,17 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
   settings.gi = GiMethod::splat;
   settings.glossy_samples = 64;
   RenderedImage img = render(test::gpu(), scene, settings);
-  EXPECT_EQ(img.stats.glossy_materials, 2u);
-  EXPECT_GT(img.stats.glossy_pixels, 200u);
-  EXPECT_GT(img.stats.rough_pixels, 1000u);
+  EXPECT_EQ(img.stats.scene.glossy_materials, 2u);
+  EXPECT_GT(img.stats.primary.glossy_pixels, 200u);
+  EXPECT_GT(img.stats.primary.rough_pixels, 1000u);
   double error = indirect_rel_mse(img, ref) - ref_noise;
   // The glossy pixels alone, where the sampled lobes' light must add up.
   double glossy_error = lobe_pixel_error(img, ref);
-  std::printf("glossy Cornell box: %llu records, %llu glossy pixels, indirect relMSE %.3e (glossy pixels: %.3e) after "
-              "subtracting the reference's own %.1e\n",
-              (unsigned long long)img.stats.records, (unsigned long long)img.stats.glossy_pixels, error, glossy_error,
-              ref_noise);
+  std::printf(
+      "glossy Cornell box: %llu records, %llu glossy pixels, indirect relMSE %.3e (glossy pixels: %.3e) after "
+      "subtracting the reference's own %.1e\n",
+      (unsigned long long)img.stats.irradiance.records, (unsigned long long)img.stats.primary.glossy_pixels, error,
+      glossy_error, ref_noise);
   EXPECT_LT(error, 8e-4);
   EXPECT_LT(glossy_error, 1.1e-3);
 }
@@ -306,16 +308,16 @@ TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
   for (unsigned order : {2u, 4u, 6u, 8u, 10u}) {
     settings.hsh_order = order;
     RenderedImage img = render(test::gpu(), scene, settings);
-    EXPECT_EQ(img.stats.hsh_materials, 2u);
-    EXPECT_EQ(img.stats.glossy_materials, 0u);
+    EXPECT_EQ(img.stats.scene.hsh_materials, 2u);
+    EXPECT_EQ(img.stats.scene.glossy_materials, 0u);
     errors.push_back(lobe_pixel_error(img, ref));
     std::printf("order %2u: %llu radiance records, %llu cached pixels, relMSE on them %.3e, whole image %.3e\n", order,
-                (unsigned long long)img.stats.radiance_records, (unsigned long long)img.stats.hsh_pixels,
+                (unsigned long long)img.stats.radiance.records, (unsigned long long)img.stats.primary.hsh_pixels,
                 errors.back(), indirect_rel_mse(img, ref) - reference.noise);
   }
   // Measured on PoCL (48 x 48, a = 0.3, so a = 0.15 for the radiance records), after the reference's own noise:
-  // 3.2e-4, 1.9e-4, 1.3e-4, 1.2e-4, 1.2e-4 for orders 2 to 10 (3.4e-4 .. 1.5e-4 before the gradients were bounded). Bounds: every step down, order 10 at most twice its
-  // measured error, and order 2 clearly worse than order 10.
+  // 3.2e-4, 1.9e-4, 1.3e-4, 1.2e-4, 1.2e-4 for orders 2 to 10 (3.4e-4 .. 1.5e-4 before the gradients were bounded).
+  // Bounds: every step down, order 10 at most twice its measured error, and order 2 clearly worse than order 10.
   for (size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], errors[i - 1]) << "order step " << i;
   EXPECT_LT(errors.back(), 3e-4);
   EXPECT_GT(errors.front(), 1.5 * errors.back());
@@ -337,10 +339,10 @@ TEST(GlobalIllumination, AntiAliasedRadianceRecordsAreOneSamplesAndConverge) {
   const double single_error = lobe_pixel_error(single, single_reference.image);
   std::printf("4 pixel samples: %llu radiance records (one sample: %llu), %llu sub-pixels filled; relMSE on the cached "
               "lobes' pixels %.3e (one sample: %.3e)\n",
-              (unsigned long long)img.stats.radiance_records, (unsigned long long)single.stats.radiance_records,
-              (unsigned long long)img.stats.radiance_filled_sub_pixels, error, single_error);
-  EXPECT_LT(double(img.stats.radiance_records), 1.05 * double(single.stats.radiance_records));
-  EXPECT_GT(img.stats.radiance_filled_sub_pixels, 0u);
+              (unsigned long long)img.stats.radiance.records, (unsigned long long)single.stats.radiance.records,
+              (unsigned long long)img.stats.radiance.filled_sub_pixels, error, single_error);
+  EXPECT_LT(double(img.stats.radiance.records), 1.05 * double(single.stats.radiance.records));
+  EXPECT_GT(img.stats.radiance.filled_sub_pixels, 0u);
   // Measured: 1.4e-4 against one sample's 1.2e-4. Before the radiance records' gradients were bounded
   // (kernels/hsh_records.cl bound_hsh_gradients) five floor pixels beside the tall box were 5-10x too bright at every
   // seed and N > 1 (a record beside the box extrapolated its brightest strata): 9.1e-3, with or without the fill.
@@ -398,15 +400,15 @@ TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
   const RenderedImage b = renderer.render(moved);
   const RenderedImage c = renderer.render(reseeded);
   const RenderedImage again = renderer.render(plan);
-  EXPECT_GT(a.stats.bvh_build_s + a.stats.upload_s, 0.0);
+  EXPECT_GT(a.stats.scene.bvh_build_s + a.stats.scene.upload_s, 0.0);
   for (const RenderedImage* later : {&b, &c, &again}) {
-    EXPECT_EQ(later->stats.bvh_build_s, 0.0);
-    EXPECT_EQ(later->stats.upload_s, 0.0);
-    EXPECT_EQ(later->stats.probe_s, 0.0);
-    EXPECT_EQ(later->stats.bounces, a.stats.bounces);
+    EXPECT_EQ(later->stats.scene.bvh_build_s, 0.0);
+    EXPECT_EQ(later->stats.scene.upload_s, 0.0);
+    EXPECT_EQ(later->stats.bounces.probe_s, 0.0);
+    EXPECT_EQ(later->stats.bounces.count, a.stats.bounces.count);
   }
-  EXPECT_EQ(b.stats.photon_map_s, 0.0) << "another camera keeps the photon map";
-  EXPECT_GT(c.stats.photon_map_s, 0.0) << "another seed rebuilds it";
+  EXPECT_EQ(b.stats.photon_map.seconds, 0.0) << "another camera keeps the photon map";
+  EXPECT_GT(c.stats.photon_map.seconds, 0.0) << "another seed rebuilds it";
   EXPECT_TRUE(same_bits(a, again));  // a is what render() gives: a renderer's first frame
   EXPECT_TRUE(same_bits(b, render(test::gpu(), scene, moved)));
   EXPECT_TRUE(same_bits(c, render(test::gpu(), scene, reseeded)));

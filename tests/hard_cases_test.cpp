@@ -46,7 +46,8 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
   const double seed_noise_indirect = image_error(other_seed.indirect, base.indirect).rel_mse;
   const double seed_noise_direct = image_error(other_seed.direct, base.direct).rel_mse;
   std::printf("two seeds: indirect %.3e direct %.3e, records %llu / %llu\n", seed_noise_indirect, seed_noise_direct,
-              (unsigned long long)base.stats.records, (unsigned long long)other_seed.stats.records);
+              (unsigned long long)base.stats.irradiance.records,
+              (unsigned long long)other_seed.stats.irradiance.records);
   settings.seed = 1;
   struct Case { const char* name; glm::dvec3 offset; double scale; };
   const Case cases[] = {{"offset 1e5", glm::dvec3(1e5, -1e5, 1e5), 1.0},
@@ -61,10 +62,12 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
     double indirect = image_error(img.indirect, back.indirect).rel_mse;
     double direct = image_error(img.direct, back.direct).rel_mse;
     std::printf("%s: indirect %.3e direct %.3e, records %llu\n", c.name, indirect, direct,
-                (unsigned long long)img.stats.records);
+                (unsigned long long)img.stats.irradiance.records);
     EXPECT_LT(indirect, seed_noise_indirect) << c.name;
     EXPECT_LT(direct, seed_noise_direct + 1e-6) << c.name;
-    EXPECT_NEAR(double(img.stats.records), double(base.stats.records), 0.1 * double(base.stats.records)) << c.name;
+    EXPECT_NEAR(double(img.stats.irradiance.records), double(base.stats.irradiance.records),
+                0.1 * double(base.stats.irradiance.records))
+        << c.name;
   }
 }
 
@@ -76,9 +79,9 @@ TEST(HardCases, SceneFarFromTheOriginOrRescaledRendersTheSame) {
 // With metal_wall_roughness > 0 the walls and ceiling are glossy metal. At roughness 0.6 (LOBE_HSH) the disc's glossy
 // reflection is held by HSH records, and a record whose strata found the disc stamped that reflection over its whole
 // footprint; the records now cache only their strata's balance-heuristic share beside the guide, and each pixel
-// samples the guide's share itself (kernels/glossy.cl guide_share). At roughness 0.3 (LOBE_GLOSSY) each pixel samples its own lobe, and the
-// disc appeared as fireflies; pixels now add half as many samples again aimed at the guide's cones
-// (kernels/glossy.cl). Rays counted: records', radiance records' and glossy samples'.
+// samples the guide's share itself (kernels/glossy.cl guide_share). At roughness 0.3 (LOBE_GLOSSY) each pixel samples
+// its own lobe, and the disc appeared as fireflies; pixels now add half as many samples again aimed at the guide's
+// cones (kernels/glossy.cl). Rays counted: records', radiance records' and glossy samples'.
 struct CorridorErrors {
   double guided, unguided, path;
 };
@@ -92,8 +95,8 @@ CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_refe
   settings.seed = 7;
   const RenderedImage guided = render(test::gpu(), corridor, settings);
   const bool glossy = metal_wall_roughness > 0.0f, cached = metal_wall_roughness >= HSH_MIN_ROUGHNESS;
-  EXPECT_EQ(guided.stats.radiance_records > 0, cached) << "which walls are radiance-cached";
-  EXPECT_EQ(guided.stats.glossy_pixels > 0, glossy && !cached) << "which walls are sampled per pixel";
+  EXPECT_EQ(guided.stats.radiance.records > 0, cached) << "which walls are radiance-cached";
+  EXPECT_EQ(guided.stats.primary.glossy_pixels > 0, glossy && !cached) << "which walls are sampled per pixel";
   const std::vector<float> exact = test::corridor_indirect_by_quadrature(corridor, guided);
   auto block_error = [&](const RenderedImage& img) {
     for (float v : img.indirect) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
@@ -108,9 +111,9 @@ CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_refe
   path_settings.path.stratified = true;
   path_settings.path.pixel_area = false;  // the quadrature's points, the pixels' centres
   path_settings.path.samples = 1;
-  const double rays_per_sample = double(render(test::gpu(), corridor, path_settings).stats.path_rays);
+  const double rays_per_sample = double(render(test::gpu(), corridor, path_settings).stats.path.rays);
   const double cache_rays =
-      double(guided.stats.record_rays + guided.stats.radiance_record_rays + guided.stats.glossy_rays);
+      double(guided.stats.irradiance.rays + guided.stats.radiance.rays + guided.stats.glossy.rays);
   unsigned side = unsigned(std::ceil(std::sqrt(cache_rays / rays_per_sample)));
   path_settings.path.samples = side * side;
   const RenderedImage path = render(test::gpu(), corridor, path_settings);
@@ -173,7 +176,8 @@ TEST(Determinism, OutputFilesAreTheSameBytesAcrossRuns) {
   run("first");
   // Into the next second, so that a clock time in the header would differ.
   auto now = std::chrono::system_clock::now().time_since_epoch();
-  std::this_thread::sleep_for(std::chrono::seconds(1) - (now % std::chrono::seconds(1)) + std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::seconds(1) - (now % std::chrono::seconds(1)) +
+                              std::chrono::milliseconds(20));
   run("second");
   for (const char* ext : {".exr", ".png"}) {
     std::string a = file_bytes(dir + "/first" + ext), b = file_bytes(dir + "/second" + ext);
@@ -221,8 +225,8 @@ TEST(Determinism, LayersInSmallPiecesAreTheSameBits) {
                      &RenderedImage::record_positions})
     EXPECT_TRUE(whole.*layer == pieces.*layer);
   EXPECT_TRUE(whole.triangle == pieces.triangle);
-  EXPECT_EQ(whole.stats.shadow_rays, pieces.stats.shadow_rays);
-  EXPECT_EQ(whole.stats.uncovered_pixels, pieces.stats.uncovered_pixels);
+  EXPECT_EQ(whole.stats.primary.shadow_rays, pieces.stats.primary.shadow_rays);
+  EXPECT_EQ(whole.stats.irradiance.uncovered_pixels, pieces.stats.irradiance.uncovered_pixels);
 }
 
 // A buffer larger than the device can hold is refused with the words "out of device memory", what it was for and the
@@ -237,7 +241,8 @@ TEST(DeviceMemory, RefusalNamesWhatAndTheSizeAskedFor) {
     std::string message = e.what();
     char size[32];
     std::snprintf(size, sizeof size, "%.1f MiB", double(too_big) / (1024.0 * 1024.0));
-    EXPECT_NE(message.find("out of device memory: test buffer needs " + std::string(size)), std::string::npos) << message;
+    EXPECT_NE(message.find("out of device memory: test buffer needs " + std::string(size)), std::string::npos)
+        << message;
   }
 }
 
@@ -257,7 +262,7 @@ TEST(HardCases, LightOverTenDecadesScalesTheImageExactly) {
     Scene scaled = original;
     for (SceneMaterial& m : scaled.materials) m.emission *= factor;
     RenderedImage img = render(test::gpu(), scaled, settings);
-    ASSERT_EQ(img.stats.records, base.stats.records) << "placement does not depend on brightness";
+    ASSERT_EQ(img.stats.irradiance.records, base.stats.irradiance.records) << "placement does not depend on brightness";
     double worst = 0.0;
     for (size_t i = 0; i < img.indirect.size(); ++i) {
       ASSERT_TRUE(std::isfinite(img.indirect[i]) && img.indirect[i] >= 0.0f) << "pixel value " << i;
@@ -293,7 +298,7 @@ TEST(HardCases, DegenerateTrianglesAndAGrazingCameraStayFinite) {
   const RenderedImage degenerate = render(test::gpu(), scene, settings);
   size_t empty = 0;
   for (const RenderedImage* img : {&clean, &degenerate}) {
-    EXPECT_EQ(img->stats.uncovered_pixels, 0u);
+    EXPECT_EQ(img->stats.irradiance.uncovered_pixels, 0u);
     for (size_t i = 0; i < img->color.size(); ++i)
       ASSERT_TRUE(std::isfinite(img->color[i]) && img->color[i] >= 0.0f) << "pixel value " << i;
   }
@@ -361,11 +366,11 @@ TEST(HardCases, RadianceCacheBoundaryAndHighestOrderAgreeWithPathTracing) {
   const double reference = floor_indirect_mean(at, render(test::gpu(), at, path));
   std::printf("metal floor's mean indirect: sampled at 0.4499 %.4f, cached at 0.45 %.4f, order %d %.4f (order used "
               "%u), path-traced %.4f\n",
-              sampled, cached, HSH_MAX_ORDER, highest, highest_image.stats.hsh_order, reference);
+              sampled, cached, HSH_MAX_ORDER, highest, highest_image.stats.radiance.order, reference);
   EXPECT_NEAR(sampled, reference, 0.05 * reference);
   EXPECT_NEAR(cached, reference, 0.1 * reference);
   EXPECT_NEAR(highest, reference, 0.1 * reference);
-  EXPECT_EQ(highest_image.stats.hsh_order, unsigned(HSH_MAX_ORDER));
+  EXPECT_EQ(highest_image.stats.radiance.order, unsigned(HSH_MAX_ORDER));
 }
 
 }  // namespace

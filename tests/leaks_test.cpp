@@ -157,7 +157,7 @@ void check_corner(float degrees) {
   std::printf("%g degrees: %zu pixels within 5 cm of the apex, cache %.4f, reference %.4f +- %.5f; largest %.4f "
               "(reference %.4f); %llu records\n",
               degrees, apex.pixels, apex.cache, apex.reference, apex.reference_sigma, seam, reference_peak,
-              (unsigned long long)r.cache.stats.records);
+              (unsigned long long)r.cache.stats.irradiance.records);
   ASSERT_GT(apex.pixels, 30u);
   EXPECT_NEAR(apex.cache, apex.reference, 0.1 * apex.reference + 3.0 * apex.reference_sigma) << degrees << " degrees";
   EXPECT_LT(seam, 3.0 * reference_peak) << degrees << " degrees";
@@ -219,8 +219,10 @@ TEST(Leaks, BothSidesOfATwoSidedSheet) {
   // The left side's outside faces up and left (normal x < 0); the right side's inside faces down and left too, but
   // down: the two sides of the same sheet differ in the sign of the normal's y.
   auto on_sheet = [](const glm::vec3& x, const glm::vec3&) { return x.y > 0.05f && std::abs(x.z) < 0.95f; };
-  const RegionMeans outside = r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y > 0.3f; });
-  const RegionMeans inside = r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y < -0.3f; });
+  const RegionMeans outside =
+      r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y > 0.3f; });
+  const RegionMeans inside =
+      r.means([&](const glm::vec3& x, const glm::vec3& n) { return on_sheet(x, n) && n.y < -0.3f; });
   std::printf("outside %zu pixels %.4f (ref %.4f), inside %zu pixels %.4f (ref %.4f +- %.4f)\n", outside.pixels,
               outside.cache, outside.reference, inside.pixels, inside.cache, inside.reference, inside.reference_sigma);
   ASSERT_GT(outside.pixels, 100u);

@@ -181,8 +181,8 @@ TEST(PixelSamples, CountsThatAreNotSquaresOrDoNotDivideTheSamplesAreRefused) {
   settings.path.samples = 8;
   const RenderedImage image = render(test::gpu(), slanted_edge(), settings);
   EXPECT_EQ(image.width, 8);
-  EXPECT_EQ(image.stats.path_samples, 8u);
-  EXPECT_EQ(image.stats.pixel_samples, 4u);
+  EXPECT_EQ(image.stats.path.samples, 8u);
+  EXPECT_EQ(image.stats.primary.pixel_samples, 4u);
 }
 
 // --pixel-samples left out: 4 for renders, 16 for references (a finer grid than the render's), fewer where the path

@@ -162,8 +162,8 @@ TEST(Splat, SameInputSameBits) {
   Scene scene = make_cornell_box();
   RenderedImage a = render(test::gpu(), scene, small_splat(64));
   RenderedImage b = render(test::gpu(), scene, small_splat(64));
-  ASSERT_GT(a.stats.records, 0u);
-  EXPECT_EQ(a.stats.records, b.stats.records);
+  ASSERT_GT(a.stats.irradiance.records, 0u);
+  EXPECT_EQ(a.stats.irradiance.records, b.stats.irradiance.records);
   EXPECT_EQ(0, std::memcmp(a.irradiance.data(), b.irradiance.data(), a.irradiance.size() * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(float)));
   for (float v : a.color) ASSERT_TRUE(std::isfinite(v));
@@ -209,12 +209,12 @@ void expect_same_placement(const Scene& scene, RenderSettings settings) {
   RenderedImage splat = render(test::gpu(), scene, settings);
   settings.gi = GiMethod::octree;
   RenderedImage octree = render(test::gpu(), scene, settings);
-  ASSERT_GT(splat.stats.records, 100u);
-  ASSERT_EQ(octree.stats.records, splat.stats.records);
-  ASSERT_EQ(octree.stats.levels.size(), splat.stats.levels.size());
-  for (size_t l = 0; l < splat.stats.levels.size(); ++l) {
-    EXPECT_EQ(octree.stats.levels[l].spacing_pixels, splat.stats.levels[l].spacing_pixels);
-    EXPECT_EQ(octree.stats.levels[l].records, splat.stats.levels[l].records) << "level " << l;
+  ASSERT_GT(splat.stats.irradiance.records, 100u);
+  ASSERT_EQ(octree.stats.irradiance.records, splat.stats.irradiance.records);
+  ASSERT_EQ(octree.stats.irradiance.levels.size(), splat.stats.irradiance.levels.size());
+  for (size_t l = 0; l < splat.stats.irradiance.levels.size(); ++l) {
+    EXPECT_EQ(octree.stats.irradiance.levels[l].spacing_pixels, splat.stats.irradiance.levels[l].spacing_pixels);
+    EXPECT_EQ(octree.stats.irradiance.levels[l].records, splat.stats.irradiance.levels[l].records) << "level " << l;
   }
   EXPECT_EQ(octree.record_positions, splat.record_positions);
   // Candidates are compacted with an atomic counter on the device, so records are compared by their pixel.
@@ -277,9 +277,9 @@ TEST(Splat, AtMostOneRecordPerPixelAndEveryPixelCovered) {
     ++with_geometry;
     EXPECT_GT(img.coverage[i], 0.0f) << "pixel " << i << " is uncovered";
   }
-  EXPECT_EQ(img.stats.records, marked);
-  EXPECT_LE(img.stats.records, with_geometry);
-  EXPECT_EQ(img.stats.uncovered_pixels, 0u);
+  EXPECT_EQ(img.stats.irradiance.records, marked);
+  EXPECT_LE(img.stats.irradiance.records, with_geometry);
+  EXPECT_EQ(img.stats.irradiance.uncovered_pixels, 0u);
 }
 
 }  // namespace
@@ -314,22 +314,23 @@ TEST(Splat, AdaptiveRaysGiveTheFullOrTheHalfHemispheresRecords) {
   RenderSettings strict = full;
   strict.cache.adaptive_error = 1e-12f;
   RenderedImage strict_img = render(test::gpu(), scene, strict);
-  EXPECT_EQ(strict_img.stats.adaptive_records, strict_img.stats.records);
+  EXPECT_EQ(strict_img.stats.irradiance.adaptive_records, strict_img.stats.irradiance.records);
   expect_same_records_and_image(strict_img, full_img, "every record traced again");
 
   RenderSettings lax = full;
   lax.cache.adaptive_error = 1e30f;
   RenderedImage lax_img = render(test::gpu(), scene, lax);
-  EXPECT_EQ(lax_img.stats.adaptive_records, 0u);
+  EXPECT_EQ(lax_img.stats.irradiance.adaptive_records, 0u);
   expect_same_records_and_image(lax_img, half_img, "no record traced again");
 
   RenderSettings between = full;
   between.cache.adaptive_error = 0.3f;
   RenderedImage between_img = render(test::gpu(), scene, between);
-  EXPECT_GT(between_img.stats.adaptive_records, between_img.stats.records / 10);
-  EXPECT_LT(between_img.stats.adaptive_records, between_img.stats.records * 9 / 10);
+  EXPECT_GT(between_img.stats.irradiance.adaptive_records, between_img.stats.irradiance.records / 10);
+  EXPECT_LT(between_img.stats.irradiance.adaptive_records, between_img.stats.irradiance.records * 9 / 10);
   std::printf("adaptive rays at 0.3: %llu of %llu records traced again\n",
-              (unsigned long long)between_img.stats.adaptive_records, (unsigned long long)between_img.stats.records);
+              (unsigned long long)between_img.stats.irradiance.adaptive_records,
+              (unsigned long long)between_img.stats.irradiance.records);
 }
 
 // --short-ray-paths: a short record ray continues its path one bounce and reads the map there without its last
@@ -346,17 +347,17 @@ TEST(Splat, ShortRayPathsSpanThePathAndPhotonGathers) {
   all_short.short_ray_paths = 1e6f;
   none_short.short_ray_paths = 0.0f;
   RenderedImage path_img = render(test::gpu(), scene, path), all_img = render(test::gpu(), scene, all_short);
-  ASSERT_GT(all_img.stats.photon_map_photons, 0u);
-  EXPECT_EQ(all_img.stats.record_rays, path_img.stats.record_rays);
+  ASSERT_GT(all_img.stats.photon_map.photons, 0u);
+  EXPECT_EQ(all_img.stats.irradiance.rays, path_img.stats.irradiance.rays);
   expect_same_records_and_image(all_img, path_img, "every record ray continues a bounce (two bounces: the path's)");
 
   RenderedImage none_img = render(test::gpu(), scene, none_short);
   RenderedImage default_img = render(test::gpu(), scene, default_short);
-  EXPECT_LT(none_img.stats.record_rays, default_img.stats.record_rays);
-  EXPECT_LT(default_img.stats.record_rays, all_img.stats.record_rays);
+  EXPECT_LT(none_img.stats.irradiance.rays, default_img.stats.irradiance.rays);
+  EXPECT_LT(default_img.stats.irradiance.rays, all_img.stats.irradiance.rays);
   std::printf("record rays: map only %llu, short rays continued %llu, every ray continued %llu\n",
-              (unsigned long long)none_img.stats.record_rays, (unsigned long long)default_img.stats.record_rays,
-              (unsigned long long)all_img.stats.record_rays);
+              (unsigned long long)none_img.stats.irradiance.rays, (unsigned long long)default_img.stats.irradiance.rays,
+              (unsigned long long)all_img.stats.irradiance.rays);
 }
 
 }  // namespace

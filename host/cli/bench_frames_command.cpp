@@ -34,20 +34,6 @@ std::vector<DeviceInfo> chosen_devices(const std::string& selection) {
   return chosen;
 }
 
-// The passes a frame's time is split into, in the order a frame runs them.
-struct PassTime {
-  const char* name;
-  double RenderStats::*seconds;
-};
-const PassTime kPasses[] = {{"bvh", &RenderStats::bvh_build_s},     {"upload", &RenderStats::upload_s},
-                            {"probe", &RenderStats::probe_s},
-                            {"gbuffer", &RenderStats::gbuffer_s},   {"direct", &RenderStats::direct_s},
-                            {"photons", &RenderStats::photon_map_s}, {"guide", &RenderStats::guide_s},
-                            {"records", &RenderStats::records_s},   {"placement", &RenderStats::placement_s},
-                            {"splat", &RenderStats::splat_s},       {"resolve", &RenderStats::resolve_s},
-                            {"glossy", &RenderStats::glossy_s},     {"path", &RenderStats::path_s},
-                            {"layers", &RenderStats::layers_s}};
-
 }  // namespace
 
 int run_bench_frames(const BenchOptions& o) {
@@ -65,7 +51,7 @@ int run_bench_frames(const BenchOptions& o) {
               "renderer's first frame, then the median of the %d frames it renders next\n",
               scene.source.c_str(), scene.triangle_count(), o.width, o.height, o.repeats);
   std::printf("%-36s %8s %8s %8s %8s", "device", "cold_s", "cold_fr", "cached_s", "first_s");
-  for (const PassTime& p : kPasses) std::printf(" %9s", p.name);
+  for (const RenderStats::StageTime& stage : RenderStats{}.stage_times()) std::printf(" %9s", stage.name);
   std::printf(" %9s %9s %9s %9s %9s\n", "other", "frame_s", "records", "rec_Mr/s", "peak_MiB");
   for (const DeviceInfo& device : devices) {
     log_info("bench: " + device.name);
@@ -89,36 +75,37 @@ int run_bench_frames(const BenchOptions& o) {
     };
     const double frame = median_field([](const RenderStats& s) { return s.seconds_without_builds(); });
     const double record_rate = median_field([](const RenderStats& s) {
-      return s.records_s > 0 ? double(s.record_rays) / s.records_s * 1e-6 : 0.0;
+      return s.irradiance.records_s > 0 ? double(s.irradiance.rays) / s.irradiance.records_s * 1e-6 : 0.0;
     });
     const RenderStats& last = frames.back();
     std::printf("%-36.36s %8.3f %8.3f %8.3f %8.3f", device.name.c_str(), cold.program_s, cold.total_s, first.program_s,
                 first.seconds_without_builds());
     nlohmann::json passes;
-    for (const PassTime& p : kPasses) {
-      const double t = median_field([&](const RenderStats& s) { return s.*(p.seconds); });
+    const size_t stages = RenderStats{}.stage_times().size();
+    for (size_t k = 0; k < stages; ++k) {
+      const double t = median_field([&](const RenderStats& s) { return s.stage_times()[k].seconds; });
       std::printf(" %9.3f", t);
-      passes[p.name] = t;
+      passes[RenderStats{}.stage_times()[k].name] = t;
     }
-    // What no pass's timer holds (buffers allocated and cleared, setup between passes): frames without builds, less
-    // their passes.
+    // What no stage's timer holds (buffers allocated and cleared, setup between passes): frames without builds, less
+    // their stages.
     const double other = median_field([](const RenderStats& s) {
       double named = 0.0;
-      for (const PassTime& p : kPasses) named += s.*(p.seconds);
+      for (const RenderStats::StageTime& stage : s.stage_times()) named += stage.seconds;
       return s.seconds_without_builds() - named;
     });
     passes["other"] = other;
-    std::printf(" %9.3f %9.3f %9llu %9.2f %9.1f\n", other, frame, (unsigned long long)last.records, record_rate,
-                double(last.device_memory.peak_bytes) / double(1 << 20));
+    std::printf(" %9.3f %9.3f %9llu %9.2f %9.1f\n", other, frame, (unsigned long long)last.irradiance.records,
+                record_rate, double(last.device_memory.peak_bytes) / double(1 << 20));
     std::fflush(stdout);
     report["devices"].push_back({{"device", device.name}, {"platform", device.platform_name},
                                  {"driver", device.driver_version}, {"type", device.type},
                                  {"kernel_build_cold_s", cold.program_s}, {"cold_frame_s", cold.total_s},
                                  {"kernel_build_cached_s", first.program_s},
                                  {"first_frame_s", first.seconds_without_builds()},
-                                 {"median_seconds", passes}, {"frame_s", frame}, {"records", last.records},
-                                 {"record_rays", last.record_rays}, {"record_mrays_per_s", record_rate},
-                                 {"bounces", last.bounces}, {"pixel_samples", last.pixel_samples},
+                                 {"median_seconds", passes}, {"frame_s", frame}, {"records", last.irradiance.records},
+                                 {"record_rays", last.irradiance.rays}, {"record_mrays_per_s", record_rate},
+                                 {"bounces", last.bounces.count}, {"pixel_samples", last.primary.pixel_samples},
                                  {"device_peak_bytes", last.device_memory.peak_bytes},
                                  {"device_at_peak_by_use", last.device_memory.at_peak_by_use}});
   }

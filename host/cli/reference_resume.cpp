@@ -52,9 +52,9 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   refuse_other("rcsplat:environment", "none", false, scene.environment.describe(), "environment");
   // Pixel samples left to rcsplat (0) continue with the file's.
   auto pixel_samples_in_file = attributes.find("rcsplat:pixel_samples");
-  const unsigned file_pixel_samples =
-      pixel_samples_in_file == attributes.end() ? 1u
-                                                : parse_count(path, "rcsplat:pixel_samples", pixel_samples_in_file->second);
+  const unsigned file_pixel_samples = pixel_samples_in_file == attributes.end()
+                                          ? 1u
+                                          : parse_count(path, "rcsplat:pixel_samples", pixel_samples_in_file->second);
   if (o.settings.pixel_samples)
     refuse_other("rcsplat:pixel_samples", "1", true, std::to_string(o.settings.pixel_samples), "--pixel-samples");
   refuse_other("rcsplat:pixel_points", "centres", false, pixel_points_name(o.settings), "pixel points");
@@ -84,7 +84,7 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   image = render(gpu, scene, more);
 
   double n0 = samples_before, n1 = more.path.samples, n = n0 + n1;
-  double l0 = lights_before, l1 = image.stats.light_samples, l = std::max(l0 + l1, 1.0);
+  double l0 = lights_before, l1 = image.stats.primary.light_samples, l = std::max(l0 + l1, 1.0);
   for (size_t i = 0; i < indirect.size(); ++i) {
     image.indirect[i] = float((indirect[i] * n0 + image.indirect[i] * n1) / n);
     // Independent means: var((a n0 + b n1) / n) = (var a n0^2 + var b n1^2) / n^2.
@@ -92,8 +92,8 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
     image.direct[i] = float((direct[i] * l0 + image.direct[i] * l1) / l);
     image.color[i] = image.emission[i] + image.direct[i] + image.indirect[i];
   }
-  image.stats.path_samples = unsigned(n);
-  image.stats.light_samples = unsigned(l0 + l1);
+  image.stats.path.samples = unsigned(n);
+  image.stats.primary.light_samples = unsigned(l0 + l1);
   return true;
 }
 

@@ -38,7 +38,9 @@ std::string benchmark_python() {
   return fs::exists(venv) ? venv.string() : "python3";
 }
 
-std::string script_path(const std::string& name) { return (fs::path(RCSPLAT_SOURCE_DIR) / "benchmarks" / name).string(); }
+std::string script_path(const std::string& name) {
+  return (fs::path(RCSPLAT_SOURCE_DIR) / "benchmarks" / name).string();
+}
 
 std::string shell_quoted(const std::string& s) {
   std::string out = "'";
@@ -47,7 +49,8 @@ std::string shell_quoted(const std::string& s) {
 }
 
 bool python_has(const std::string& python, const std::string& modules) {
-  return std::system((shell_quoted(python) + " -c " + shell_quoted("import " + modules) + " > /dev/null 2>&1").c_str()) == 0;
+  return std::system(
+             (shell_quoted(python) + " -c " + shell_quoted("import " + modules) + " > /dev/null 2>&1").c_str()) == 0;
 }
 
 std::string float_text(double v) {
@@ -101,7 +104,8 @@ std::string metric_cells(const ImageComparison& c, const std::string& layer) {
 
 int run_sweep(const SweepOptions& o) {
   if (o.output_dir.empty()) throw Error("sweep: give an output folder with -o DIR");
-  if (o.accuracies.empty() && o.path_samples.empty()) throw Error("sweep: nothing to render (no --accuracy, no --path-spp)");
+  if (o.accuracies.empty() && o.path_samples.empty())
+    throw Error("sweep: nothing to render (no --accuracy, no --path-spp)");
   for (unsigned spp : o.path_samples)
     if (spp == 0) throw Error("--path-spp: sample counts must be positive");
   // The frame and the bounces are the reference's, so that every run shows what the reference shows.
@@ -179,8 +183,9 @@ int run_sweep(const SweepOptions& o) {
       // what the script measured around the denoiser itself.
       image = last_path;
       const std::string report = (fs::path(o.output_dir) / (run.name + ".json")).string();
-      const std::string command = shell_quoted(python) + " " + shell_quoted(script_path("denoise.py")) + " " + shell_quoted(last_path_exr) +
-                                  " " + shell_quoted(exr) + " --json " + shell_quoted(report) + " > /dev/null";
+      const std::string command = shell_quoted(python) + " " + shell_quoted(script_path("denoise.py")) + " " +
+                                  shell_quoted(last_path_exr) + " " + shell_quoted(exr) + " --json " +
+                                  shell_quoted(report) + " > /dev/null";
       if (std::system(command.c_str()) != 0) throw Error("sweep: denoising failed: " + command);
       std::ifstream in(report);
       denoise_s = nlohmann::json::parse(in).at("seconds").get<double>();
@@ -200,16 +205,21 @@ int run_sweep(const SweepOptions& o) {
     const RenderStats& s = image.stats;
     const double seconds = s.seconds_without_builds() + denoise_s;
     const bool cache = run.settings.gi == GiMethod::splat;
-    csv << (cache ? "cache" : run.denoise ? "path+denoise" : "path") << "," << run.name << ","
-        << (cache ? float_text(run.settings.cache.accuracy) : "") << ","
-        << (cache ? std::to_string(run.settings.cache.theta_strata) + "x" + std::to_string(run.settings.cache.phi_strata) : "")
-        << "," << (cache ? std::to_string(s.hsh_order) : "") << ","
+    csv << (cache         ? "cache"
+            : run.denoise ? "path+denoise"
+                          : "path")
+        << "," << run.name << "," << (cache ? float_text(run.settings.cache.accuracy) : "") << ","
+        << (cache
+                ? std::to_string(run.settings.cache.theta_strata) + "x" + std::to_string(run.settings.cache.phi_strata)
+                : "")
+        << "," << (cache ? std::to_string(s.radiance.order) : "") << ","
         << (cache ? "" : std::to_string(run.settings.path.samples)) << "," << (run.denoise ? 1 : 0) << "," << seconds
-        << "," << s.program_s << "," << s.gbuffer_s << "," << s.direct_s << "," << s.records_s << "," << s.placement_s
-        << "," << s.splat_s << "," << s.resolve_s << "," << s.photon_map_s << "," << s.guide_s << "," << s.glossy_s
-        << "," << s.radiance_records_s + s.radiance_placement_s + s.radiance_splat_s + s.hsh_table_s << ","
-        << s.path_s << "," << denoise_s << "," << s.records << "," << s.record_rays << "," << s.path_rays << ","
-        << s.device_memory.peak_bytes << "," << s.bounces << "," << s.pixel_samples;
+        << "," << s.program_s << "," << s.primary.gbuffer_s << "," << s.primary.direct_s << ","
+        << s.irradiance.records_s << "," << s.irradiance.placement_s << "," << s.irradiance.splat_s << ","
+        << s.irradiance.resolve_s << "," << s.photon_map.seconds << "," << s.guide.seconds << "," << s.glossy.seconds
+        << "," << s.radiance.records_s + s.radiance.placement_s + s.radiance.splat_s + s.radiance.lobe_table_s << ","
+        << s.path.seconds << "," << denoise_s << "," << s.irradiance.records << "," << s.irradiance.rays << ","
+        << s.path.rays << "," << s.device_memory.peak_bytes << "," << s.bounces.count << "," << s.primary.pixel_samples;
     for (const char* layer : {"full", "indirect"}) csv << "," << metric_cells(c, layer);
     csv << "\n";
     const LayerComparison* ind = c.find("indirect") ? c.find("indirect") : c.find("full");
@@ -225,8 +235,9 @@ int run_sweep(const SweepOptions& o) {
     if (!python_has(python, "matplotlib")) {
       log_warning("sweep: no plot: " + python + " lacks matplotlib (benchmarks/setup_python.sh makes an environment "
                   "that has it); plot later with: python3 benchmarks/plot_sweep.py " + csv_path);
-    } else if (std::system((shell_quoted(python) + " " + shell_quoted(script_path("plot_sweep.py")) + " " + shell_quoted(csv_path) +
-                            " -o " + shell_quoted(png) + " > /dev/null").c_str()) != 0) {
+    } else if (std::system((shell_quoted(python) + " " + shell_quoted(script_path("plot_sweep.py")) + " " +
+                            shell_quoted(csv_path) + " -o " + shell_quoted(png) + " > /dev/null")
+                               .c_str()) != 0) {
       log_warning("sweep: benchmarks/plot_sweep.py failed; the CSV is complete");
     } else {
       std::printf("wrote        %s\n", png.c_str());

@@ -16,62 +16,128 @@ struct PlacementLevel {
   uint32_t records = 0;
 };
 
-struct RenderStats {
-  std::string device;
-  GiMethod gi = GiMethod::none;
+// A frame's statistics, one struct per stage. Times are wall seconds less the kernel builds inside them, which count
+// in program_s (a cold build on a GPU is seconds: it would swamp the stage); render/timing.h's StageTimer adds them.
+// A stage that did not run keeps its zeros.
+
+// The scene as the device holds it. Every frame reports it; the BVH build and upload times only the first frame of a
+// Renderer (they are paid once).
+struct SceneStats {
   size_t triangles = 0, bvh_nodes = 0, bvh_blocks = 0;
   int bvh_depth = 0;
-  unsigned light_samples = 0;  // per pixel, all of its sub-pixels together
-  unsigned pixel_samples = 1;  // primary samples per pixel (render/pixel_samples.h)
-  double bvh_build_s = 0, upload_s = 0, program_s = 0, gbuffer_s = 0, direct_s = 0, total_s = 0;
-  // A frame's time without its kernel builds (once per device and switch set, then cached on disk): what `bench` and
-  // `sweep` compare.
-  double seconds_without_builds() const { return total_s - program_s; }
-  // Work between the passes: the bounce probe's photons, and the image layers gathered on the device (LayerPass),
-  // downloaded and filled on the host; on a GPU these were half a frame (benchmarks/RESULTS.md, issue 13 on the H200).
-  double probe_s = 0, layers_s = 0;
-  DeviceMemoryUse device_memory;  // this frame's buffers (the scene's included)
-  uint64_t primary_rays = 0, shadow_rays = 0;
+  double bvh_build_s = 0, upload_s = 0;
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
   unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0, hsh_materials = 0;
   bool specular_brdf = false;
-  // Cache methods: glossy pixels' specular light, sampled per pixel (kernels/glossy.cl); rough pixels' from E.
-  uint64_t glossy_pixels = 0, rough_pixels = 0, glossy_rays = 0;
-  unsigned glossy_samples = 0;
-  double glossy_s = 0;
-  // Radiance caching (LOBE_HSH pixels): order, the radiance records (placed on those pixels alone, at a stricter
-  // accuracy), what the lobe table and the splat cost, and the smallest share of a cached lobe the order holds.
-  uint64_t hsh_pixels = 0, radiance_records = 0, radiance_record_rays = 0;
-  uint64_t radiance_filled_sub_pixels = 0;  // as filled_sub_pixels, for the radiance records
-  unsigned hsh_order = 0;
-  float radiance_accuracy = 0, hsh_captured_energy = 0;
-  double hsh_table_s = 0, radiance_records_s = 0, radiance_placement_s = 0, radiance_splat_s = 0;
-  // Irradiance cache
-  std::vector<PlacementLevel> levels;
-  uint64_t records = 0, record_rays = 0, uncovered_pixels = 0;
-  uint64_t filled_sub_pixels = 0;  // anti-aliasing: sub-pixels no record reached, given the best-weighted one near
-  uint64_t records_at_min_radius = 0, records_at_max_radius = 0;  // radius at a screen-space clamp
-  uint64_t adaptive_records = 0;  // records traced again with the full hemisphere (--adaptive-rays)
-  double records_s = 0, placement_s = 0, splat_s = 0, resolve_s = 0;
-  unsigned guide_clusters = 0;  // the light guide's clusters (0: records took no guided rays)
-  uint64_t guide_photons = 0;
-  double guide_s = 0;
-  // Bounces as rendered (chosen from the scene when --bounces was 0, with the scene's measure) and their method.
-  unsigned bounces = 1;
-  BounceMethod bounce_method = BounceMethod::path;
-  bool bounces_chosen = false;
+};
+
+// Primary visibility, direct light and the image layers gathered on the device (LayerPass), downloaded and filled on
+// the host (on a GPU these were half a frame: benchmarks/RESULTS.md, issue 13 on the H200).
+struct PrimaryStats {
+  unsigned light_samples = 0;  // per pixel, all of its sub-pixels together
+  unsigned pixel_samples = 1;  // primary samples per pixel (render/pixel_samples.h)
+  uint64_t primary_rays = 0, shadow_rays = 0;
+  // Sub-pixels by their lobe: rough (shaded from E), glossy (sampled, kernels/glossy.cl), radiance-cached (LOBE_HSH).
+  uint64_t rough_pixels = 0, glossy_pixels = 0, hsh_pixels = 0;
+  double gbuffer_s = 0, direct_s = 0, layers_s = 0;
+};
+
+// Bounces as rendered (chosen from the scene when --bounces was 0, with the probe's measure) and their method.
+struct BounceStats {
+  unsigned count = 1;
+  BounceMethod method = BounceMethod::path;
+  bool chosen = false;
   double kept_per_bounce = 0;
-  // The photon map (--bounce-method photons): photons kept (landings after a reflection), radius (world units).
-  uint64_t photon_map_paths = 0, photon_map_photons = 0;
-  float photon_map_radius = 0;
-  double photon_map_s = 0;
-  // Its parts: shooting (device) with the landings kept (host), the grids built (host), the lookup photons' estimates
-  // uploaded and made (device).
-  double photon_map_shoot_s = 0, photon_map_grids_s = 0, photon_map_estimate_s = 0;
-  // Path tracing
-  unsigned path_samples = 0;
-  uint64_t path_rays = 0;
-  double path_s = 0;
+  double probe_s = 0;  // the bounce probe's photons (once per Renderer)
+};
+
+// One cache's records as placement made them (render/placement.h): the irradiance records, or the radiance records.
+struct RecordStats {
+  std::vector<PlacementLevel> levels;
+  uint64_t records = 0, rays = 0;
+  uint64_t filled_sub_pixels = 0;  // anti-aliasing: sub-pixels no record reached, given the best-weighted one near
+  uint64_t at_min_radius = 0, at_max_radius = 0;  // records whose reach sits at a screen-space clamp
+  uint64_t adaptive_records = 0;  // records traced again with the full hemisphere (--adaptive-rays)
+  double records_s = 0, placement_s = 0, splat_s = 0;
+};
+
+// The irradiance cache: its records, then normalisation and composition (resolve), and what no record reached.
+struct IrradianceCacheStats : RecordStats {
+  uint64_t uncovered_pixels = 0;
+  double resolve_s = 0;
+};
+
+// Radiance caching of the LOBE_HSH pixels: its records (at a stricter accuracy), the HSH order, the smallest share of
+// a cached lobe that order holds, and the lobe table (once per Renderer and seed).
+struct RadianceCacheStats : RecordStats {
+  unsigned order = 0;
+  float accuracy = 0, captured_energy = 0;
+  double lobe_table_s = 0;
+};
+
+// The glossy pixels' specular light, sampled per pixel (kernels/glossy.cl).
+struct GlossyStats {
+  unsigned samples = 0;
+  uint64_t rays = 0;
+  double seconds = 0;
+};
+
+// The light guide (cache/light_guide.h): its clusters (0: records took no guided rays) and the photons behind them.
+struct GuideStats {
+  unsigned clusters = 0;
+  uint64_t photons = 0;
+  double seconds = 0;
+};
+
+// The photon map (--bounce-method photons): paths shot, photons kept (landings after a reflection), radius (world
+// units); its parts: shooting (device) with the landings kept (host), the grids built (host), the lookup photons'
+// estimates uploaded and made (device).
+struct PhotonMapStats {
+  uint64_t paths = 0, photons = 0;
+  float radius = 0;
+  double seconds = 0, shoot_s = 0, grids_s = 0, estimate_s = 0;
+};
+
+// Path-traced indirect light.
+struct PathStats {
+  unsigned samples = 0;
+  uint64_t rays = 0;
+  double seconds = 0;
+};
+
+struct RenderStats {
+  std::string device;
+  GiMethod gi = GiMethod::none;
+  double program_s = 0, total_s = 0;  // kernel builds (once per device and switch set, then cached on disk); all
+  // A frame's time without its kernel builds: what `bench` and `sweep` compare.
+  double seconds_without_builds() const { return total_s - program_s; }
+  DeviceMemoryUse device_memory;  // this frame's buffers (the scene's included)
+  SceneStats scene;
+  PrimaryStats primary;
+  BounceStats bounces;
+  IrradianceCacheStats irradiance;
+  RadianceCacheStats radiance;
+  GlossyStats glossy;
+  GuideStats guide;
+  PhotonMapStats photon_map;
+  PathStats path;
+
+  // The stages' times in the order a frame runs them (bench's columns); kernel builds are in none of them.
+  struct StageTime {
+    const char* name;
+    double seconds;
+  };
+  std::vector<StageTime> stage_times() const {
+    const double radiance_s = radiance.lobe_table_s + radiance.records_s + radiance.placement_s + radiance.splat_s;
+    return {{"bvh", scene.bvh_build_s},           {"upload", scene.upload_s},
+            {"probe", bounces.probe_s},           {"gbuffer", primary.gbuffer_s},
+            {"direct", primary.direct_s},         {"photons", photon_map.seconds},
+            {"guide", guide.seconds},             {"records", irradiance.records_s},
+            {"placement", irradiance.placement_s}, {"splat", irradiance.splat_s},
+            {"radiance", radiance_s},             {"resolve", irradiance.resolve_s},
+            {"glossy", glossy.seconds},           {"path", path.seconds},
+            {"layers", primary.layers_s}};
+  }
 };
 
 // Linear images, row-major from the top, three floats a pixel (one-channel layers: one).

@@ -30,22 +30,22 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 
   if (glossy) {
     {
-      StageTimer timing(st.glossy_s);
+      StageTimer timing(st.glossy.seconds);
       glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
                   guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
                   f.settings.bounces);
     }
-    st.glossy_samples = f.settings.glossy_samples;
+    st.glossy.samples = f.settings.glossy_samples;
     const std::vector<float> rays = f.layers.sum_rgba(glossy->radiance());
-    for (size_t i = 3; i < rays.size(); i += 4) st.glossy_rays += uint64_t(rays[i]);
+    for (size_t i = 3; i < rays.size(); i += 4) st.glossy.rays += uint64_t(rays[i]);
   }
   {
-    StageTimer timing(st.resolve_s);
+    StageTimer timing(st.irradiance.resolve_s);
     compose.run(gbuffer, irradiance, f.direct.radiance(), glossy ? &glossy->radiance() : nullptr,
                 radiance_cached ? &radiance_cached->lobe_radiance() : nullptr, guide_share);
   }
 
-  StageTimer timing(st.layers_s);
+  StageTimer timing(st.primary.layers_s);
   const size_t pixels = f.layers.pixel_count();
   img.indirect.resize(pixels * 3);
   // The RGB of a piece of RGBA pixels into a layer.
@@ -64,7 +64,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,
                        const cl::Buffer& record_at_pixel) {
   RenderedImage& img = f.image;
-  StageTimer timing(img.stats.layers_s);
+  StageTimer timing(img.stats.primary.layers_s);
   const size_t pixels = f.layers.pixel_count();
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);
@@ -92,7 +92,7 @@ void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl:
                              uncovered += range_uncovered;
                            });
                          });
-  img.stats.uncovered_pixels += uncovered;
+  img.stats.irradiance.uncovered_pixels += uncovered;
 }
 
 }  // namespace rcsplat

@@ -31,11 +31,11 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
     std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ STREAM_LIGHT_GUIDE);
     f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
                                                 cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
-    st.guide_s = seconds_since(t) - program_s;
+    st.guide.seconds = seconds_since(t) - program_s;
   }
   records.set_light_guide(f.light.guide->clusters, cs.guide_rays);
-  st.guide_photons = f.light.guide->hits;
-  st.guide_clusters = unsigned(f.light.guide->clusters.size());
+  st.guide.photons = f.light.guide->hits;
+  st.guide.clusters = unsigned(f.light.guide->clusters.size());
 }
 
 }  // namespace rcsplat

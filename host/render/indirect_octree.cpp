@@ -31,7 +31,8 @@ class OctreeRecordIndex final : public RecordIndex {
         min_radius_pixels_(min_radius_pixels(cache)),
         octree_(dvec3(frame.to_device(scene.bounds_min())), dvec3(frame.to_device(scene.bounds_max()))),
         record_at_pixel_(pixels_.size(), -1),
-        candidates_(gpu.buffer(CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint), "octree candidates")) {}
+        candidates_(
+            gpu.buffer(CL_MEM_READ_ONLY, std::max<size_t>(pixels_.size(), 1) * sizeof(cl_uint), "octree candidates")) {}
 
   uint32_t find_uncovered(RecordPass&, uint32_t, int spacing, uint32_t) override {
     std::vector<cl_uint> found;
@@ -102,9 +103,9 @@ void octree_indirect(IndirectFrame& f) {
 
   RecordPass& records = frame_record_pass(f, cs, false);
   OctreeRecordIndex index(f.gpu, geo, view.width, view.height, f.scene, f.device_scene.frame(), cs);
-  place_records(index, records, view, cs, f.settings.seed, st);
+  place_records(index, records, view, cs, f.settings.seed, st.irradiance);
 
-  StageTimer timing(st.resolve_s);
+  StageTimer timing(st.irradiance.resolve_s);
   // The sub-pixels' interpolated irradiance (E, weight) and records reaching each, which the device composes and
   // gathers into the image's layers as the splat's.
   std::vector<cl_float4> irradiance(pixels, cl_float4{{0, 0, 0, 0}});
@@ -135,13 +136,13 @@ void octree_indirect(IndirectFrame& f) {
     irradiance[i].s[3] = float(in.weight);
   }, 256);
   timing.stop();
-  st.filled_sub_pixels = filled;
+  st.irradiance.filled_sub_pixels = filled;
   const cl::Buffer irradiance_buffer = f.gpu.upload(irradiance, CL_MEM_READ_ONLY, "octree irradiance");
   compose_cached_indirect(f, irradiance_buffer);
   fill_cache_layers(f, irradiance_buffer, f.gpu.upload(reaching, CL_MEM_READ_ONLY, "octree records per pixel"),
                     f.gpu.upload(index.record_at_pixel(), CL_MEM_READ_ONLY, "octree record map"));
   img.records = std::move(index.records());
-  count_clamped_radii(img.records, cs, st);
+  count_clamped_radii(img.records, cs, st.irradiance);
 }
 
 }  // namespace rcsplat

@@ -43,7 +43,7 @@ void path_traced_indirect(IndirectFrame& f) {
   PathPass& path = f.passes.path.get({}, [&] { return std::make_unique<PathPass>(f.gpu, f.device_scene); });
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  StageTimer timing(st.path_s);
+  StageTimer timing(st.path.seconds);
   // Two independent halves (different seeds): their difference estimates the error of their mean without bias, even
   // when stratified (the spread of stratified samples would overstate it). Plain sampling uses the samples' spread.
   unsigned halves = ps.stratified && ps.samples >= 2 ? 2 : 1;
@@ -63,13 +63,13 @@ void path_traced_indirect(IndirectFrame& f) {
       progress.update(done_before + path.samples_done());
     }
     done_before += samples;
-    st.path_rays += path.rays_cast();
+    st.path.rays += path.rays_cast();
     means.push_back(path.mean_rgb(halves == 1 ? &variance : nullptr));
     counts.push_back(samples);
   }
   if (!f.progress) progress.finish();
   timing.stop();
-  st.path_samples = ps.samples;
+  st.path.samples = ps.samples;
   // Per sub-pixel (the G-buffer's frame), then gathered into output pixels.
   std::vector<float> indirect = means[0];
   if (halves == 2) {

@@ -56,7 +56,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
                                                             f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
       kept.insert(kept.end(), more.begin(), more.end());
       paths += per_round;
-      st.photon_map_shoot_s += shoot.seconds();
+      st.photon_map.shoot_s += shoot.seconds();
     }
     // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
     const float share = float(per_round) / float(paths);
@@ -70,7 +70,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
                                             kPhotonLookupStride, frame.device_positions(f.scene));
     grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
     grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
-    st.photon_map_grids_s = seconds_since(grids_start);
+    st.photon_map.grids_s = seconds_since(grids_start);
     const TimeWithoutBuilds estimate(f.gpu);
     light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
     light.photon_key = key;
@@ -78,13 +78,13 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     light.photons = grids.all.photons.size();
     light.photon_radius = frame.length_to_world(grids.all.params.radius);
     double program_s = f.gpu.program_seconds() - program_before;
-    st.photon_map_estimate_s = estimate.seconds();
+    st.photon_map.estimate_s = estimate.seconds();
     st.program_s += program_s;
-    st.photon_map_s = seconds_since(t) - program_s;
+    st.photon_map.seconds = seconds_since(t) - program_s;
   }
-  st.photon_map_paths = light.photon_paths;
-  st.photon_map_photons = light.photons;
-  st.photon_map_radius = light.photon_radius;
+  st.photon_map.paths = light.photon_paths;
+  st.photon_map.photons = light.photons;
+  st.photon_map.radius = light.photon_radius;
   return light.photon_map.get();
 }
 

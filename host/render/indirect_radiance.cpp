@@ -86,22 +86,23 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   const GBufferView& gbuffer = f.gbuffer.view();
   const RadianceLobeTable& lobes = *f.lobe_table;  // the plan settled the order from it
 
-  StageTimer table_timing(st.hsh_table_s);  // the lobe table itself counts where the plan computed it
+  StageTimer table_timing(st.radiance.lobe_table_s);  // the lobe table itself counts where the plan computed it
   const unsigned order = f.settings.hsh_order;
-  st.hsh_order = order;
-  st.hsh_captured_energy = f.hsh_captured_energy;
+  st.radiance.order = order;
+  st.radiance.captured_energy = f.hsh_captured_energy;
   double program_before = f.gpu.program_seconds();
 
   CacheSettings cs = f.settings.cache;
   cs.accuracy = f.radiance_accuracy;
-  st.radiance_accuracy = cs.accuracy;
+  st.radiance.accuracy = cs.accuracy;
 
   MethodPasses& passes = f.passes;
   RadianceSplatPass* splat = &passes.radiance_splat.get({order, f.lobe_table_seed}, [&] {
     return std::make_unique<RadianceSplatPass>(f.gpu, truncated(lobes.full, int(order)), lobes.row_of_material);
   });
   const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
-  HshRecordPass& hsh = passes.hsh_records.get(order, [&] { return std::make_unique<HshRecordPass>(f.gpu, int(order)); });
+  HshRecordPass& hsh =
+      passes.hsh_records.get(order, [&] { return std::make_unique<HshRecordPass>(f.gpu, int(order)); });
   hsh.begin_frame();
   DeviceRecordIndex& index =
       passes.radiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, kept, cs); });
@@ -110,23 +111,18 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   table_timing.stop();
   RecordPass& records = frame_record_pass(f, cs, true);  // the irradiance records' photon map and guide
 
-  RenderStats placed;
-  uint32_t total = place_records(
-      index, records, kept, cs, f.settings.seed ^ STREAM_RADIANCE_RECORDS, placed,
+  const uint32_t total = place_records(
+      index, records, kept, cs, f.settings.seed ^ STREAM_RADIANCE_RECORDS, st.radiance,
       [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
         hsh.project(records.strata(), records.records(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
       },
       "radiance cache");
-  st.radiance_records = total;
-  st.radiance_record_rays = placed.record_rays;
-  st.radiance_records_s = placed.records_s;
-  st.radiance_placement_s = placed.placement_s;
 
-  StageTimer splat_timing(st.radiance_splat_s);
+  StageTimer splat_timing(st.radiance.splat_s);
   splat->splat_all(gbuffer, records.records(), hsh.coefficients(), total, cs.accuracy, hsh.largest_radiance());
   splat->resolve(gbuffer);
   if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
-    st.radiance_filled_sub_pixels = splat->fill_uncovered(gbuffer, records.records(), hsh.coefficients(),
+    st.radiance.filled_sub_pixels = splat->fill_uncovered(gbuffer, records.records(), hsh.coefficients(),
                                                           index.record_at_pixel_buffer(),
                                                           int(std::ceil(cs.max_reach_pixels)));
   splat_timing.stop();

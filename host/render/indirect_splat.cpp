@@ -36,25 +36,25 @@ void splat_indirect(IndirectFrame& f) {
   SplatPass& splat = f.passes.splat.get({}, [&] { return std::make_unique<SplatPass>(f.gpu); });
   st.program_s += f.gpu.program_seconds() - program_before;
 
-  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st);
+  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance);
   {
     // One splat of every record with its final radius, at the frame's fixed-point scale.
-    StageTimer timing(st.splat_s);
+    StageTimer timing(st.irradiance.splat_s);
     splat.splat_all(gbuffer, records.records(), total, cs.accuracy);
   }
   {
-    StageTimer timing(st.resolve_s);
+    StageTimer timing(st.irradiance.resolve_s);
     splat.resolve(gbuffer);
     if (cs.finest_spacing_pixels > 1)  // sub-pixels: placement stopped one output pixel apart
-      st.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
+      st.irradiance.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
                                                   int(std::ceil(cs.max_reach_pixels)));
   }
   const RadianceSplatPass* radiance = radiance_cached_lobes(f);
   compose_cached_indirect(f, splat.irradiance(), radiance);
   {
-    StageTimer timing(st.layers_s);
+    StageTimer timing(st.primary.layers_s);
     img.records = records.download(0, total);  // once per frame, for the summary and the tests
-    count_clamped_radii(img.records, cs, st);
+    count_clamped_radii(img.records, cs, st.irradiance);
   }
   fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }

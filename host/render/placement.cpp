@@ -9,7 +9,7 @@
 namespace rcsplat {
 namespace {
 
-void count_placed(RenderStats& st, int spacing, uint32_t records) {
+void count_placed(RecordStats& st, int spacing, uint32_t records) {
   if (!st.levels.empty() && st.levels.back().spacing_pixels == spacing) st.levels.back().records += records;
   else st.levels.push_back({spacing, records});
 }
@@ -17,7 +17,7 @@ void count_placed(RenderStats& st, int spacing, uint32_t records) {
 }  // namespace
 
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
-                       unsigned seed, RenderStats& st, const RecordBatchHook& after_batch, const char* progress_label) {
+                       unsigned seed, RecordStats& st, const RecordBatchHook& after_batch, const char* progress_label) {
   int coarsest = coarsest_placement_spacing(cache);
   Progress progress(progress_label, size_t(std::log2(coarsest)) + 1);
   uint32_t total = 0;
@@ -62,15 +62,15 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
   }
   progress.finish();
   st.records = total;
-  st.record_rays = records.rays_cast();
+  st.rays = records.rays_cast();
   return total;
 }
 
-void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RenderStats& st) {
+void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RecordStats& st) {
   for (const CacheRecord& r : records) {
     float px = cache.accuracy * r.radius / r.pixel_size;  // the reach in pixels
-    if (px <= cache.min_reach_pixels * 1.0001f) ++st.records_at_min_radius;
-    else if (px >= cache.max_reach_pixels * 0.9999f) ++st.records_at_max_radius;
+    if (px <= cache.min_reach_pixels * 1.0001f) ++st.at_min_radius;
+    else if (px >= cache.max_reach_pixels * 0.9999f) ++st.at_max_radius;
   }
 }
 

@@ -21,7 +21,8 @@ class RecordIndex {
   // 0 .. record_count - 1 reaches (Ward weight above 1/a, not in front); returns their count and lists them in
   // candidates(), a device array of pixel indices. Records 0 .. unchanged_before - 1 kept their radii since the last
   // call at this spacing.
-  virtual uint32_t find_uncovered(RecordPass& records, uint32_t record_count, int spacing, uint32_t unchanged_before) = 0;
+  virtual uint32_t find_uncovered(RecordPass& records, uint32_t record_count, int spacing,
+                                  uint32_t unchanged_before) = 0;
   virtual const cl::Buffer& candidates() const = 0;
   // Records first .. first + count - 1 have been computed and now sit on their pixels.
   virtual void add_records(RecordPass& records, uint32_t first, uint32_t count) = 0;
@@ -43,10 +44,10 @@ using RecordBatchHook = std::function<void(uint32_t first, uint32_t count, const
 // clamp radii against neighbours. Fills the statistics' per-level counts and times (the hook's time counts as the
 // records'); returns the number of records.
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
-                       unsigned seed, RenderStats& stats, const RecordBatchHook& after_batch = {},
+                       unsigned seed, RecordStats& stats, const RecordBatchHook& after_batch = {},
                        const char* progress_label = "irradiance cache");
 
 // Counts the records whose reach sits at a screen-space clamp, for the summary.
-void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RenderStats& stats);
+void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RecordStats& stats);
 
 }  // namespace rcsplat

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <string>
@@ -60,8 +61,9 @@ void check_frame_fits(int width, int height, unsigned side, const DeviceInfo& de
   auto gib = [](double bytes) { return byte_size(bytes, "GiB"); };
   const std::string frame = std::to_string(width) + "x" + std::to_string(height);
   if (device.global_memory && device_bytes > double(device.global_memory))
-    throw Error("out of device memory: a " + frame + " frame needs at least " + gib(device_bytes) + " of device memory; '" +
-                device.name + "' has " + gib(double(device.global_memory)) + " (--width, --height)");
+    throw Error("out of device memory: a " + frame + " frame needs at least " + gib(device_bytes) +
+                " of device memory; '" + device.name + "' has " + gib(double(device.global_memory)) +
+                " (--width, --height)");
   if (host_memory > 0.0 && host_bytes > host_memory)
     throw Error("out of host memory: a " + frame + " frame needs at least " + gib(host_bytes) +
                 " of host memory; this machine has " + gib(host_memory) + " (--width, --height)");
@@ -85,16 +87,16 @@ void add_round(RenderedImage& sum, const RenderedImage& round) {
   add(sum.indirect_variance, round.indirect_variance);
   RenderStats& a = sum.stats;
   const RenderStats& b = round.stats;
-  a.gbuffer_s += b.gbuffer_s;
-  a.direct_s += b.direct_s;
-  a.path_s += b.path_s;
-  a.primary_rays += b.primary_rays;
-  a.shadow_rays += b.shadow_rays;
-  a.path_rays += b.path_rays;
-  a.path_samples += b.path_samples;
-  a.rough_pixels += b.rough_pixels;
-  a.glossy_pixels += b.glossy_pixels;
-  a.hsh_pixels += b.hsh_pixels;
+  a.primary.gbuffer_s += b.primary.gbuffer_s;
+  a.primary.direct_s += b.primary.direct_s;
+  a.path.seconds += b.path.seconds;
+  a.primary.primary_rays += b.primary.primary_rays;
+  a.primary.shadow_rays += b.primary.shadow_rays;
+  a.path.rays += b.path.rays;
+  a.path.samples += b.path.samples;
+  a.primary.rough_pixels += b.primary.rough_pixels;
+  a.primary.glossy_pixels += b.primary.glossy_pixels;
+  a.primary.hsh_pixels += b.primary.hsh_pixels;
 }
 
 }  // namespace
@@ -115,13 +117,21 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   {
     // Only the device keeps the BVH: the host's copy goes once it is uploaded.
     Bvh8 bvh = build_bvh8(scene_frame_.device_positions(scene_));
-    setup_.bvh_build_s = bvh.build_seconds;
-    bvh_nodes_ = bvh.nodes.size();
-    bvh_blocks_ = bvh.blocks.size();
-    bvh_depth_ = bvh.depth;
-    StageTimer timing(setup_.upload_s);
+    scene_stats_.triangles = scene_.triangle_count();
+    scene_stats_.bvh_nodes = bvh.nodes.size();
+    scene_stats_.bvh_blocks = bvh.blocks.size();
+    scene_stats_.bvh_depth = bvh.depth;
+    scene_stats_.bvh_build_s = bvh.build_seconds;
+    StageTimer timing(scene_stats_.upload_s);
     device_scene_ = std::make_unique<DeviceScene>(gpu_, scene_, bvh, forced_switches_, scene_frame_);
   }
+  const std::array<unsigned, LOBE_KINDS>& lobes = device_scene_->lobe_counts();
+  scene_stats_.lambertian_materials = lobes[LOBE_NONE];
+  scene_stats_.rough_materials = lobes[LOBE_ROUGH];
+  scene_stats_.glossy_materials = lobes[LOBE_GLOSSY];
+  scene_stats_.hsh_materials = lobes[LOBE_HSH];
+  scene_stats_.specular_brdf = device_scene_->has_specular_brdf();
+  setup_.scene = scene_stats_;
   log_info("compiling kernels for " + gpu_.device_info().name);
   gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
   direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
@@ -138,7 +148,7 @@ double Renderer::kept_per_bounce() {
     const auto start = Clock::now();
     const TimeWithoutBuilds probe(gpu_);
     kept_per_bounce_ = rcsplat::kept_per_bounce(gpu_, *device_scene_);
-    setup_.probe_s += probe.seconds();
+    setup_.bounces.probe_s += probe.seconds();
     setup_.program_s += probe.builds();
     setup_seconds_ += seconds_since(start);
   }
@@ -157,7 +167,7 @@ const RadianceLobeTable& Renderer::lobe_table(unsigned seed) {
     lobe_table_seed_ = seed;
     const double builds = gpu_.program_seconds() - builds_before;
     setup_.program_s += builds;
-    setup_.hsh_table_s += seconds_since(start) - builds;
+    setup_.radiance.lobe_table_s += seconds_since(start) - builds;
     setup_seconds_ += seconds_since(start);
   }
   return *lobe_table_;
@@ -224,15 +234,15 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   const unsigned strata = plan.light_strata;
   RenderStats& st = img.stats;
   {
-    StageTimer timing(st.gbuffer_s);
+    StageTimer timing(st.primary.gbuffer_s);
     gbuffer.run(camera);
   }
   {
-    StageTimer timing(st.direct_s);
+    StageTimer timing(st.primary.direct_s);
     direct.run(gbuffer.view(), strata, settings.seed);
   }
 
-  StageTimer layers_timing(st.layers_s);
+  StageTimer layers_timing(st.primary.layers_s);
   const size_t pixels = layers.pixel_count();
   img.color.resize(pixels * 3);
   // The cache methods' colour comes whole from the device's composition (indirect_compose.cpp); path tracing and
@@ -245,7 +255,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   img.position.resize(pixels * 3);
   img.depth.resize(pixels);
   img.triangle.resize(pixels);
-  st.primary_rays = gbuffer.view().pixel_count();
+  st.primary.primary_rays = gbuffer.view().pixel_count();
   std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
   layers.surface(gbuffer.view(), direct.radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
     parallel_ranges(count, [&](size_t begin, size_t end) {
@@ -277,10 +287,10 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
       shadow_rays += range_shadow_rays;
     });
   });
-  st.rough_pixels += rough;
-  st.glossy_pixels += glossy;
-  st.hsh_pixels += hsh;
-  st.shadow_rays += shadow_rays;
+  st.primary.rough_pixels += rough;
+  st.primary.glossy_pixels += glossy;
+  st.primary.hsh_pixels += hsh;
+  st.primary.shadow_rays += shadow_rays;
   layers_timing.stop();
 
   IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
@@ -338,11 +348,11 @@ void Renderer::path_trace_pixel_area(const FramePlan& plan, const CameraParams& 
   for (std::vector<float>* layer : {&sum.color, &sum.direct, &sum.emission, &sum.albedo, &sum.normal, &sum.indirect})
     for (float& v : *layer) v *= mean;
   for (float& v : sum.indirect_variance) v *= variance_of_mean;  // independent rounds: the mean's variance
-  sum.stats.light_samples = plan.light_strata * plan.light_strata * rounds;
-  sum.stats.pixel_samples = rounds;
-  sum.stats.rough_pixels /= rounds;
-  sum.stats.glossy_pixels /= rounds;
-  sum.stats.hsh_pixels /= rounds;
+  sum.stats.primary.light_samples = plan.light_strata * plan.light_strata * rounds;
+  sum.stats.primary.pixel_samples = rounds;
+  sum.stats.primary.rough_pixels /= rounds;
+  sum.stats.primary.glossy_pixels /= rounds;
+  sum.stats.primary.hsh_pixels /= rounds;
   img = std::move(sum);
 }
 
@@ -354,10 +364,11 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   // A plan made before another seed's frame: its lobe table again (kept per seed, as the photon map and the guide).
   if (radiance_cached(plan.settings)) lobe_table(plan.settings.seed);
   // The setup this frame pays for (all of it for a renderer's first frame, none for a later one with the same plan).
-  st.bvh_build_s = setup_.bvh_build_s;
-  st.upload_s = setup_.upload_s;
-  st.probe_s = setup_.probe_s;
-  st.hsh_table_s = setup_.hsh_table_s;
+  st.scene = scene_stats_;
+  st.scene.bvh_build_s = setup_.scene.bvh_build_s;
+  st.scene.upload_s = setup_.scene.upload_s;
+  st.bounces.probe_s = setup_.bounces.probe_s;
+  st.radiance.lobe_table_s = setup_.radiance.lobe_table_s;
   st.program_s = setup_.program_s;
   const double setup_seconds = setup_seconds_;
   setup_ = RenderStats{};
@@ -365,21 +376,12 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   const double builds_before = gpu_.program_seconds();
 
   st.device = gpu_.device_info().name;
-  st.triangles = scene_.triangle_count();
   st.gi = plan.settings.gi;
-  st.bvh_nodes = bvh_nodes_;
-  st.bvh_blocks = bvh_blocks_;
-  st.bvh_depth = bvh_depth_;
-  st.lambertian_materials = device_scene_->lobe_counts()[LOBE_NONE];
-  st.rough_materials = device_scene_->lobe_counts()[LOBE_ROUGH];
-  st.glossy_materials = device_scene_->lobe_counts()[LOBE_GLOSSY];
-  st.hsh_materials = device_scene_->lobe_counts()[LOBE_HSH];
-  st.specular_brdf = device_scene_->has_specular_brdf();
-  st.bounces = plan.bounces.bounces;
-  st.bounce_method = plan.bounces.method;
-  st.bounces_chosen = plan.bounces.bounces_chosen;
-  st.kept_per_bounce = plan.bounces.kept_per_bounce;
-  st.light_samples = plan.light_strata * plan.light_strata;
+  st.bounces.count = plan.bounces.bounces;
+  st.bounces.method = plan.bounces.method;
+  st.bounces.chosen = plan.bounces.bounces_chosen;
+  st.bounces.kept_per_bounce = plan.bounces.kept_per_bounce;
+  st.primary.light_samples = plan.light_strata * plan.light_strata;
   img.width = plan.width;
   img.height = plan.height;
 
@@ -403,9 +405,9 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   for (CacheRecord& r : img.records) r = scene_frame_.world_record(r);
   if (plan.side > 1) {
     const unsigned n = plan.side * plan.side;
-    st.pixel_samples = n;
-    st.light_samples *= n;
-    st.path_samples *= n;
+    st.primary.pixel_samples = n;
+    st.primary.light_samples *= n;
+    st.path.samples *= n;
   }
   st.total_s = setup_seconds + seconds_since(start);
   st.device_memory = gpu_.memory_use();

@@ -2,9 +2,9 @@
 // frame to frame: the scene in the device's coordinates (scene/scene_frame.h), the BVH, the device scene, the
 // programs (through the GpuContext's cache), every pass with its buffers (the primary passes, and the last frame's
 // method's: render/indirect.h MethodPasses), the bounce probe's measure, the lobe table of radiance-cached materials,
-// the photon map and the light guide (the last two rebuilt only when the settings they depend on change). A frame is planned (render/frame_plan.h), then rendered: primary visibility,
-// direct light, then indirect light by radiance cache splatting (or the classic octree lookup, or path tracing), and
-// composition.
+// the photon map and the light guide (the last two rebuilt only when the settings they depend on change). A frame is
+// planned (render/frame_plan.h), then rendered: primary visibility, direct light, then indirect light by radiance cache
+// splatting (or the classic octree lookup, or path tracing), and composition.
 #pragma once
 #include <memory>
 #include <optional>
@@ -61,8 +61,7 @@ class Renderer {
   const Scene& scene_;
   std::set<std::string> forced_switches_;
   SceneFrame scene_frame_;
-  size_t bvh_nodes_ = 0, bvh_blocks_ = 0;
-  int bvh_depth_ = 0;
+  SceneStats scene_stats_;  // what every frame reports of the scene (its times only the first frame)
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

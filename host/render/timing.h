@@ -8,7 +8,7 @@ using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Adds the seconds from its construction to the end of its scope (or to stop()) to one of RenderStats' stage times:
-//   { StageTimer timing(st.splat_s); splat.splat_all(...); }
+//   { StageTimer timing(st.irradiance.splat_s); splat.splat_all(...); }
 class StageTimer {
  public:
   explicit StageTimer(double& stage_seconds) : stage_seconds_(stage_seconds), start_(Clock::now()) {}
