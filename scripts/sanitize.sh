@@ -17,7 +17,8 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # -O1 -g1: line tables for the reports at less compile time than RelWithDebInfo's -O2 -g; the library as a unity build
 # (16 files a unit; the tests stay one unit a file, tests/CMakeLists.txt): about a minute less on 2 cores.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-  -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DRCSPLAT_SANITIZE=ON -DRCSPLAT_BUILD_BENCHMARKS=OFF > /dev/null
+  -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DRCSPLAT_SANITIZE=ON -DRCSPLAT_BUILD_BENCHMARKS=OFF \
+  -DRCSPLAT_TEST_PER_PROCESS=ON > /dev/null
 cmake --build build-asan -j "$(nproc)" --target rcsplat rcsplat_tests
 kernel_numerics='^(GlobalIllumination|ScenePlan|HardCases|Environment|Splat|RecordKernel|RecordGradients|HshRecordKernel'
 kernel_numerics+='|HshRecordGradients|Brdf|BrdfTable|Furnace|LowDiscrepancy|DirectLight|CornellDirect|GlossyKernel|Hsh'

@@ -51,7 +51,8 @@ Scene cornell_box_with_glossy_and_cached_lobes() {
 }
 
 TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
-  GpuContext& gpu = test::gpu();
+  const std::unique_ptr<GpuContext> own = test::fresh_gpu();  // every kernel built here is this test's
+  GpuContext& gpu = *own;
   Scene scene = cornell_box_with_glossy_and_cached_lobes();
   RenderSettings settings = test::one_bounce_one_sample();
   settings.width = settings.height = 32;

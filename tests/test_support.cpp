@@ -11,11 +11,13 @@
 
 namespace rcsplat::test {
 
+std::unique_ptr<GpuContext> fresh_gpu() {
+  const char* selector = std::getenv("RCSPLAT_TEST_DEVICE");
+  return std::make_unique<GpuContext>(select_device(selector ? selector : ""));
+}
+
 GpuContext& gpu() {
-  static std::unique_ptr<GpuContext> context = [] {
-    const char* selector = std::getenv("RCSPLAT_TEST_DEVICE");
-    return std::make_unique<GpuContext>(select_device(selector ? selector : ""));
-  }();
+  static std::unique_ptr<GpuContext> context = fresh_gpu();
   return *context;
 }
 

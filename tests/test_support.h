@@ -2,6 +2,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "cl/gpu_context.h"
@@ -11,6 +12,9 @@ namespace rcsplat::test {
 
 // The device tests run on: RCSPLAT_TEST_DEVICE (index or name) or the default choice (PoCL's CPU device in CI).
 GpuContext& gpu();
+// A context of its own on the same device, for a test that reads what a context built and launched (the suite runs
+// in a few processes, so the shared one holds other tests' programs).
+std::unique_ptr<GpuContext> fresh_gpu();
 
 // A fresh scratch directory for this test, removed at exit.
 std::string scratch_dir();
