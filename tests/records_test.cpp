@@ -243,8 +243,8 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
     shape.split_record_trace = split;
     gpu.set_groups(shape);
     RecordPass pass(gpu, twin.device, hp.theta_strata);
+    pass.begin_frame(nullptr, bounces);
     pass.set_light_guide(guide, hp.guide_rays);
-    pass.set_bounces(bounces);
     pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
     gpu.set_groups(device_choice);
     return std::make_pair(pass.download(0, pixels.size()), pass.rays_cast());

@@ -14,7 +14,6 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
       mark_(gpu.kernel("placement.cl", "mark_records")),
       clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
       apply_(gpu.kernel("placement.cl", "apply_radii")) {
-  count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "placement");
   begin(gbuffer);
 }
 
@@ -30,6 +29,7 @@ void PlacementPass::begin(const GBufferView& gbuffer) {
     tiles_ = tiles_now;
     new_in_tile_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(tiles_, 1), "placement new in tile");
   }
+  if (!count_()) count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "placement");
   gbuffer_ = gbuffer;
   if (pixels) gpu_.queue().enqueueFillBuffer(record_map_, cl_int(-1), 0, pixels * sizeof(cl_int));
   record_grid_ = 0;

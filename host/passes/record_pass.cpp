@@ -46,14 +46,14 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
   reserve(1024);
 }
 
-void RecordPass::begin_frame(const PhotonMapPass* photon_map) {
+void RecordPass::begin_frame(const PhotonMapPass* photon_map, unsigned bounces) {
   if ((photon_map != nullptr) != photon_gather_)
     throw Error(photon_gather_ ? "records: compiled to read a photon map, but the frame has none"
                                : "records: the frame has a photon map, but the pass was compiled without one");
   photon_map_ = photon_map;
   gpu_.queue().enqueueFillBuffer(ray_total_, cl_ulong(0), 0, sizeof(cl_ulong));
   guide_clusters_ = guide_rays_ = 0;
-  bounces_ = 1;
+  bounces_ = bounces;
 }
 
 void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record) {

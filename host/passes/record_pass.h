@@ -26,10 +26,11 @@ class RecordPass {
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false,
              const PhotonMapPass* photon_map = nullptr);
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather);
-  // A new frame through a pass kept across frames (render/indirect.h): records start again at 0 (the array and the
-  // sample buffers are kept), the ray count at 0, no light guide, one bounce; photon_map: this frame's, null exactly
-  // when the pass was compiled without photon_gather.
-  void begin_frame(const PhotonMapPass* photon_map);
+  // A new frame (a pass may be kept across frames, render/indirect.h): records start again at 0 (the array and the
+  // sample buffers are kept), the ray count at 0, no light guide; bounces: the indirect bounces each record's rays
+  // gather (kernels/bounce.h); photon_map: this frame's, null exactly when the pass was compiled without
+  // photon_gather. A pass not begun gathers one bounce.
+  void begin_frame(const PhotonMapPass* photon_map, unsigned bounces);
 
   // Computes records first .. first + count - 1 at the G-buffer pixels listed in candidates (a device array of pixel
   // indices); blocks until done. Throws rcsplat::Error when the hemisphere has more rows than the pass was built for.
@@ -43,8 +44,6 @@ class RecordPass {
   // Aims rays_per_record rays of every later record at these clusters (kernels/light_guide.h), beside its M x N
   // strata; no clusters or no rays: none. Records computed without a guide ignore HemisphereParams' guide fields.
   void set_light_guide(const std::vector<GuideCluster>& clusters, unsigned rays_per_record);
-  // Indirect bounces each record's rays gather (kernels/bounce.h), for every later record; 1 unless set.
-  void set_bounces(unsigned bounces) { bounces_ = bounces; }
   const cl::Buffer& records() const { return records_; }
   // With store_strata, of the last batch: float4 (L.rgb, hit distance) per stratum, [(i * M + row) * N + column] for
   // its record i, L the share of the light the light guide leaves to the strata (such records cast no guided rays:

@@ -26,21 +26,6 @@
 
 namespace rcsplat {
 
-// A step's wall time less the kernel builds inside it, which count in RenderStats::program_s instead (a cold build
-// on a GPU is seconds: it would swamp the step).
-class TimeWithoutBuilds {
- public:
-  explicit TimeWithoutBuilds(const GpuContext& gpu)
-      : gpu_(gpu), start_(Clock::now()), builds_before_(gpu.program_seconds()) {}
-  double builds() const { return gpu_.program_seconds() - builds_before_; }
-  double seconds() const { return seconds_since(start_) - builds(); }
-
- private:
-  const GpuContext& gpu_;
-  Clock::time_point start_;
-  double builds_before_;
-};
-
 // The lobe table of the radiance-cached (LOBE_HSH) materials at the highest order (kernels/brdf_table.cl), computed
 // once per scene and seed: the plan chooses the HSH order and the radiance records' accuracy from it.
 struct RadianceLobeTable {

@@ -13,7 +13,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
-  double program_before = f.gpu.program_seconds();
+  BuildTimer builds(f.gpu, st.program_s);
   GlossyPass* glossy = nullptr;
   bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
   // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
@@ -26,7 +26,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   ComposePass& compose = f.passes.compose.get(radiance_cached != nullptr, [&] {
     return std::make_unique<ComposePass>(f.gpu, f.device_scene, radiance_cached != nullptr);
   });
-  st.program_s += f.gpu.program_seconds() - program_before;
+  builds.stop();
 
   if (glossy) {
     {

@@ -22,16 +22,12 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
   if (!frame_light_guide(f)) {
-    auto t = Clock::now();
-    double program_before = f.gpu.program_seconds();
+    StageTimer timing(st.guide.seconds, f.gpu, st.program_s);
     LightGuidePass photons(f.gpu, f.device_scene);
-    double program_s = f.gpu.program_seconds() - program_before;
-    st.program_s += program_s;
     // Its own seed stream: the photons must not correlate with the records' hemispheres.
     std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ STREAM_LIGHT_GUIDE);
     f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
                                                 cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
-    st.guide.seconds = seconds_since(t) - program_s;
   }
   records.set_light_guide(f.light.guide->clusters, cs.guide_rays);
   st.guide.photons = f.light.guide->hits;

@@ -39,11 +39,8 @@ void path_traced_indirect(IndirectFrame& f) {
   if (ps.samples == 0) throw Error("--spp must be at least 1");
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
-  double program_before = f.gpu.program_seconds();
+  StageTimer timing(st.path.seconds, f.gpu, st.program_s);
   PathPass& path = f.passes.path.get({}, [&] { return std::make_unique<PathPass>(f.gpu, f.device_scene); });
-  st.program_s += f.gpu.program_seconds() - program_before;
-
-  StageTimer timing(st.path.seconds);
   // Two independent halves (different seeds): their difference estimates the error of their mean without bias, even
   // when stratified (the spread of stratified samples would overstate it). Plain sampling uses the samples' spread.
   unsigned halves = ps.stratified && ps.samples >= 2 ? 2 : 1;

@@ -36,8 +36,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
                                             f.settings.photon_neighbours, f.settings.short_ray_paths};
   if (!light.photon_map || light.photon_key != key) {
     light.photon_map.reset();
-    auto t = Clock::now();
-    double program_before = f.gpu.program_seconds();
+    StageTimer timing(st.photon_map.seconds, f.gpu, st.program_s);
     const SceneFrame& frame = f.device_scene.frame();
     const bool rounds = f.settings.photon_paths == 0;
     // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths
@@ -50,13 +49,12 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     // them.
     for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9;
          ++round) {
-      const TimeWithoutBuilds shoot(f.gpu);
+      StageTimer shoot(st.photon_map.shoot_s, f.gpu);
       // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
       std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
                                                             f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
       kept.insert(kept.end(), more.begin(), more.end());
       paths += per_round;
-      st.photon_map.shoot_s += shoot.seconds();
     }
     // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
     const float share = float(per_round) / float(paths);
@@ -65,22 +63,18 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
         p.flux[c] *= share;
         p.incident[c] *= share;
       }
-    auto grids_start = Clock::now();
+    StageTimer grids_timing(st.photon_map.grids_s);
     PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                             kPhotonLookupStride, frame.device_positions(f.scene));
     grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
     grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
-    st.photon_map.grids_s = seconds_since(grids_start);
-    const TimeWithoutBuilds estimate(f.gpu);
+    grids_timing.stop();
+    StageTimer estimate(st.photon_map.estimate_s, f.gpu);
     light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
     light.photon_key = key;
     light.photon_paths = paths;
     light.photons = grids.all.photons.size();
     light.photon_radius = frame.length_to_world(grids.all.params.radius);
-    double program_s = f.gpu.program_seconds() - program_before;
-    st.photon_map.estimate_s = estimate.seconds();
-    st.program_s += program_s;
-    st.photon_map.seconds = seconds_since(t) - program_s;
   }
   st.photon_map.paths = light.photon_paths;
   st.photon_map.photons = light.photons;

@@ -86,11 +86,11 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   const GBufferView& gbuffer = f.gbuffer.view();
   const RadianceLobeTable& lobes = *f.lobe_table;  // the plan settled the order from it
 
-  StageTimer table_timing(st.radiance.lobe_table_s);  // the lobe table itself counts where the plan computed it
+  // The order's table and passes; the lobe table itself counts where the plan computed it.
+  StageTimer table_timing(st.radiance.lobe_table_s, f.gpu, st.program_s);
   const unsigned order = f.settings.hsh_order;
   st.radiance.order = order;
   st.radiance.captured_energy = f.hsh_captured_energy;
-  double program_before = f.gpu.program_seconds();
 
   CacheSettings cs = f.settings.cache;
   cs.accuracy = f.radiance_accuracy;
@@ -107,7 +107,6 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   DeviceRecordIndex& index =
       passes.radiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, kept, cs); });
   index.begin(kept, cs);
-  st.program_s += f.gpu.program_seconds() - program_before;
   table_timing.stop();
   RecordPass& records = frame_record_pass(f, cs, true);  // the irradiance records' photon map and guide
 

@@ -11,14 +11,13 @@ namespace rcsplat {
 
 RecordPass& frame_record_pass(IndirectFrame& f, const CacheSettings& cache, bool radiance) {
   const PhotonMapPass* photon_map = attach_photon_map(f);
-  const double program_before = f.gpu.program_seconds();
+  BuildTimer builds(f.gpu, f.image.stats.program_s);
   const MethodPasses::RecordKey key{largest_theta_strata(cache), photon_map != nullptr};
   RecordPass& records = (radiance ? f.passes.radiance_records : f.passes.irradiance_records).get(key, [&] {
     return std::make_unique<RecordPass>(f.gpu, f.device_scene, key.theta_strata, radiance, key.photon_gather);
   });
-  f.image.stats.program_s += f.gpu.program_seconds() - program_before;
-  records.begin_frame(photon_map);
-  records.set_bounces(f.settings.bounces);
+  builds.stop();
+  records.begin_frame(photon_map, f.settings.bounces);
   attach_light_guide(f, records);
   return records;
 }
@@ -29,12 +28,12 @@ void splat_indirect(IndirectFrame& f) {
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
   RecordPass& records = frame_record_pass(f, cs, false);
-  double program_before = f.gpu.program_seconds();
+  BuildTimer builds(f.gpu, st.program_s);
   DeviceRecordIndex& index =
       f.passes.irradiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, gbuffer, cs); });
   index.begin(gbuffer, cs);
   SplatPass& splat = f.passes.splat.get({}, [&] { return std::make_unique<SplatPass>(f.gpu); });
-  st.program_s += f.gpu.program_seconds() - program_before;
+  builds.stop();
 
   uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance);
   {

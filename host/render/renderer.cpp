@@ -107,8 +107,8 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
       forced_switches_(forced_switches),
       light_(std::make_unique<ViewIndependentLight>()),
       passes_(std::make_unique<MethodPasses>()) {
-  const auto start = Clock::now();
-  const double builds_before = gpu_.program_seconds();
+  StageTimer setup_time(setup_seconds_);
+  BuildTimer builds(gpu_, setup_.program_s);
   scene_.check_extent();
   // The device traces and shades in coordinates centred on the scene and scaled to it (scene/scene_frame.h); the
   // position and depth layers and the records go back to world units.
@@ -135,8 +135,6 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   log_info("compiling kernels for " + gpu_.device_info().name);
   gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
   direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
-  setup_.program_s = gpu_.program_seconds() - builds_before;
-  setup_seconds_ = seconds_since(start);
 }
 
 Renderer::~Renderer() = default;
@@ -145,12 +143,9 @@ double Renderer::kept_per_bounce() {
   if (!kept_per_bounce_) {
     // Kernel builds count in program_s, the probe's photon kernel's included (it was once left inside probe_s: 2 s
     // of a cold 1080p frame on an H200 that no build column showed).
-    const auto start = Clock::now();
-    const TimeWithoutBuilds probe(gpu_);
+    StageTimer setup_time(setup_seconds_);
+    StageTimer probe(setup_.bounces.probe_s, gpu_, setup_.program_s);
     kept_per_bounce_ = rcsplat::kept_per_bounce(gpu_, *device_scene_);
-    setup_.bounces.probe_s += probe.seconds();
-    setup_.program_s += probe.builds();
-    setup_seconds_ += seconds_since(start);
   }
   return *kept_per_bounce_;
 }
@@ -161,14 +156,10 @@ bool Renderer::radiance_cached(const RenderSettings& settings) const {
 
 const RadianceLobeTable& Renderer::lobe_table(unsigned seed) {
   if (!lobe_table_ || lobe_table_seed_ != seed) {
-    const auto start = Clock::now();
-    const double builds_before = gpu_.program_seconds();
+    StageTimer setup_time(setup_seconds_);
+    StageTimer table(setup_.radiance.lobe_table_s, gpu_, setup_.program_s);
     lobe_table_ = std::make_unique<RadianceLobeTable>(radiance_lobe_table(gpu_, *device_scene_, seed));
     lobe_table_seed_ = seed;
-    const double builds = gpu_.program_seconds() - builds_before;
-    setup_.program_s += builds;
-    setup_.radiance.lobe_table_s += seconds_since(start) - builds;
-    setup_seconds_ += seconds_since(start);
   }
   return *lobe_table_;
 }
@@ -373,7 +364,7 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   const double setup_seconds = setup_seconds_;
   setup_ = RenderStats{};
   setup_seconds_ = 0.0;
-  const double builds_before = gpu_.program_seconds();
+  BuildTimer builds(gpu_, st.program_s);
 
   st.device = gpu_.device_info().name;
   st.gi = plan.settings.gi;
@@ -396,7 +387,7 @@ RenderedImage Renderer::render(const FramePlan& plan) {
       layers_->out_height() != plan.height)
     layers_ = std::make_unique<LayerPass>(gpu_, plan.side, plan.width, plan.height);
   layers_->set_piece_pixels(plan.settings.layer_piece_pixels);
-  st.program_s += gpu_.program_seconds() - builds_before;
+  builds.stop();
 
   if (plan.rounds > 1)
     path_trace_pixel_area(plan, params, img);
