@@ -10,10 +10,13 @@ inline size_t first_sub_pixel(int x, int y, uint side, int out_width) {
 }
 
 // Each kernel takes the sub-pixel grid's side and the output frame last (LayerPass::launch sets them).
+// The surface comes in bands of rows first_row .. first_row + rows - 1 (out holds the band alone: LayerPass keeps one
+// band's buffer; the launch may run past the band's rows, rounded up to whole groups).
 __kernel void resolve_surface(__global const GBufferSample* gbuffer, __global const float4* direct,
-                              __global PixelSurface* out, uint side, int out_width, int out_height) {
-  const int x = get_global_id(0), y = get_global_id(1);
-  if (x >= out_width || y >= out_height) return;
+                              __global PixelSurface* out, int first_row, int rows, uint side, int out_width,
+                              int out_height) {
+  const int x = get_global_id(0), y = first_row + (int)get_global_id(1);
+  if (x >= out_width || (int)get_global_id(1) >= rows || y >= out_height) return;
   const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
   float3 emission = 0.0f, light = 0.0f, albedo = 0.0f, normal = 0.0f;
   float shadow_rays = 0.0f;
@@ -43,7 +46,7 @@ __kernel void resolve_surface(__global const GBufferSample* gbuffer, __global co
   s.depth = centre.depth;
   s.pad = 0;
   s.lobe_counts = lobe_counts;
-  out[(size_t)y * out_width + x] = s;
+  out[(size_t)(y - first_row) * out_width + x] = s;
 }
 
 // scale 1 / side^2: the sub-pixels' mean; 1: their sum.

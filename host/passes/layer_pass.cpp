@@ -31,10 +31,10 @@ void LayerPass::check_frame(const GBufferView& gbuffer) const {
                 std::to_string(height_) + " image");
 }
 
-void LayerPass::launch(NamedKernel& kernel) {
+void LayerPass::launch(NamedKernel& kernel, int rows) {
   // Every kernel of layers.cl takes the sub-pixel grid's side and the output frame, and runs over its pixels.
   kernel.set("side", cl_uint(side_)).set("out_width", cl_int(width_)).set("out_height", cl_int(height_));
-  kernel.launch_2d(size_t(width_), size_t(height_), gpu_.groups().tile_side);
+  kernel.launch_2d(size_t(width_), size_t(rows < 0 ? height_ : rows), gpu_.groups().tile_side);
 }
 
 template <typename T>
@@ -62,14 +62,30 @@ LayerPass::PieceVisit<T> into(std::vector<T>& out, size_t per_pixel) {
 
 void LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<PixelSurface>& visit) {
   check_frame(gbuffer);
-  // Freed on return: it would otherwise sit through the frame's peak (records, photon map).
-  const cl::Buffer out =
-      gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(pixel_count(), 1) * sizeof(PixelSurface), "image layers");
-  surface_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
-      .set_buffer<cl_float4>("direct", direct)
-      .set_buffer<PixelSurface>("out", out);
-  launch(surface_);
-  in_pieces<PixelSurface>(out, 1, visit);
+  // Bands of whole rows, about a piece each: the buffer holds one band, made once and kept, so neither a frame's peak
+  // nor a later frame pays for a whole frame of surfaces (a 1024 x 768 frame's: 60 MiB).
+  const int band_rows =
+      int(std::clamp<size_t>(piece_pixels_ / size_t(std::max(width_, 1)), 1, size_t(std::max(height_, 1))));
+  const size_t band_pixels = size_t(band_rows) * size_t(width_);
+  if (!surface_band_() || surface_band_pixels_ < band_pixels) {
+    surface_band_ = cl::Buffer();  // freed before its successor is made
+    surface_band_ = gpu_.buffer(CL_MEM_WRITE_ONLY, std::max<size_t>(band_pixels, 1) * sizeof(PixelSurface),
+                                "image layers");
+    surface_band_pixels_ = band_pixels;
+  }
+  std::vector<PixelSurface> piece(band_pixels);
+  for (int first_row = 0; first_row < height_; first_row += band_rows) {
+    const int rows = std::min(band_rows, height_ - first_row);
+    const size_t count = size_t(rows) * size_t(width_);
+    surface_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
+        .set_buffer<cl_float4>("direct", direct)
+        .set_buffer<PixelSurface>("out", surface_band_)
+        .set("first_row", cl_int(first_row))
+        .set("rows", cl_int(rows));
+    launch(surface_, rows);
+    gpu_.queue().enqueueReadBuffer(surface_band_, CL_TRUE, 0, count * sizeof(PixelSurface), piece.data());
+    visit(size_t(first_row) * size_t(width_), piece.data(), count);
+  }
 }
 
 std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const cl::Buffer& direct) {

@@ -49,7 +49,8 @@ class LayerPass {
 
  private:
   void resolve_rgba(const cl::Buffer& source, float scale);
-  void launch(NamedKernel& kernel);
+  // Over the output frame's pixels, or its first `rows` rows (a band: the kernel offsets them).
+  void launch(NamedKernel& kernel, int rows = -1);
   cl::Buffer& rgba_out();
   void check_frame(const GBufferView& gbuffer) const;
   // `buffer`'s pixels (per_pixel elements of T each) in pieces.
@@ -61,6 +62,8 @@ class LayerPass {
   int width_, height_;
   NamedKernel surface_, rgba_, counts_;
   cl::Buffer rgba_out_;  // the float4 images' gathered pixels
+  cl::Buffer surface_band_;  // one band of PixelSurfaces (surface())
+  size_t surface_band_pixels_ = 0;
   size_t piece_pixels_ = kDefaultPiecePixels;
 };
 
