@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "box_room.h"
 #include "brdf_reference.h"
 #include "render/frame.h"
 #include "scene/scene.h"
@@ -23,22 +24,13 @@ namespace rcsplat::test {
 // HSH_MIN_ROUGHNESS .. ROUGH_METAL_MIN_ROUGHNESS their light is radiance-cached (kernels/hsh_records.cl), and each
 // record that sees the disc holds its bright reflection.
 inline Scene bright_patch_corridor(float metal_wall_roughness = 0.0f) {
-  Scene s;
-  s.source = "bright-patch corridor";
-  s.materials.push_back({"floor", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), -1, glm::vec3(0.0f), false});
-  s.materials.push_back({"walls", glm::vec4(0.7f, 0.7f, 0.7f, 1.0f), -1, glm::vec3(0.0f), false});
+  // The camera at the near end, z = 0.
+  Scene s = grey_box_room("bright-patch corridor", {-1.0f, 0.0f, -10.0f}, {1.0f, 2.5f, 0.0f});
   if (metal_wall_roughness > 0.0f) {
     s.materials.back().metallic = 1.0f;
     s.materials.back().specular = 1.0f;
     s.materials.back().roughness = metal_wall_roughness;
   }
-  const float x0 = -1.0f, x1 = 1.0f, h = 2.5f, z1 = -10.0f;
-  s.add_quad({x0, 0, 0}, {x1, 0, 0}, {x1, 0, z1}, {x0, 0, z1}, 0);  // floor, facing up
-  s.add_quad({x0, h, 0}, {x0, h, z1}, {x1, h, z1}, {x1, h, 0}, 1);  // ceiling
-  s.add_quad({x0, 0, 0}, {x0, 0, z1}, {x0, h, z1}, {x0, h, 0}, 1);  // left wall
-  s.add_quad({x1, 0, 0}, {x1, h, 0}, {x1, h, z1}, {x1, 0, z1}, 1);  // right wall
-  s.add_quad({x0, 0, z1}, {x1, 0, z1}, {x1, h, z1}, {x0, h, z1}, 1);  // far end
-  s.add_quad({x0, 0, 0}, {x0, h, 0}, {x1, h, 0}, {x1, 0, 0}, 1);      // near end, behind the camera
   SceneLight spot;
   spot.type = LightType::spot;
   spot.position = {0.4f, 2.4f, -7.0f};
@@ -47,11 +39,7 @@ inline Scene bright_patch_corridor(float metal_wall_roughness = 0.0f) {
   spot.inner_cone = 0.0f;
   spot.outer_cone = std::atan(0.25f / 2.4f);
   s.lights.push_back(spot);
-  SceneCamera camera;
-  camera.eye = {0.0f, 1.2f, -0.2f};
-  camera.target = {0.0f, 1.2f, -5.0f};
-  camera.yfov = 1.0f;
-  s.cameras.push_back(camera);
+  add_camera(s, {0.0f, 1.2f, -0.2f}, {0.0f, 1.2f, -5.0f}, 1.0f);
   return s;
 }
 
