@@ -3,8 +3,9 @@
 // their later bounces by path continuation (--bounce-method path), and with one bounce, against stratified path
 // tracing with the defaults' bounce count (REFERENCE_SPP samples a pixel, default 1024). Prints each image's mean
 // against the reference's and its per-pixel and 8 x 8 block relMSE (the whole image a user sees), and writes every
-// image as PNG at exposures -2, 0 and +2 into OUT_DIR.
-//   build/benchmarks/gap_room OUT_DIR [REFERENCE_SPP [GAP_HEIGHT]]
+// image as PNG at exposures -2, 0 and +2 into OUT_DIR. PHOTON_PATHS (0: the default rounds) shoots the photon map
+// as one round of that many paths (--photons).
+//   build/benchmarks/gap_room OUT_DIR [REFERENCE_SPP [GAP_HEIGHT [PHOTON_PATHS]]]
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -32,12 +33,14 @@ int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : ".";
   const unsigned reference_spp = argc > 2 ? unsigned(std::stoul(argv[2])) : 1024u;
   const float gap = argc > 3 ? std::stof(argv[3]) : 0.3f;
+  const unsigned photon_paths = argc > 4 ? unsigned(std::stoul(argv[4])) : 0u;
   GpuContext gpu(select_device(""));
   const Scene room = test::gap_lit_room(gap);
   Renderer renderer(gpu, room);
   RenderSettings defaults;  // bounces, their method and pixel samples chosen, as the command line does
   defaults.width = 320;
   defaults.height = 240;
+  defaults.photon_paths = photon_paths;
   const FramePlan plan = renderer.plan(defaults);
 
   struct Run {
