@@ -26,8 +26,7 @@ namespace {
 
 double indirect_seconds(const RenderStats& s) {
   return s.guide.seconds + s.irradiance.records_s + s.irradiance.placement_s + s.irradiance.splat_s +
-         s.irradiance.resolve_s + s.path.seconds + s.radiance.lobe_table_s + s.radiance.records_s +
-         s.radiance.placement_s + s.radiance.splat_s + s.glossy.seconds;
+         s.irradiance.resolve_s + s.path.seconds + s.radiance.seconds() + s.glossy.seconds;
 }
 
 struct Run {

@@ -51,7 +51,8 @@ int run_bench_frames(const BenchOptions& o) {
               "renderer's first frame, then the median of the %d frames it renders next\n",
               scene.source.c_str(), scene.triangle_count(), o.width, o.height, o.repeats);
   std::printf("%-36s %8s %8s %8s %8s", "device", "cold_s", "cold_fr", "cached_s", "first_s");
-  for (const RenderStats::StageTime& stage : RenderStats{}.stage_times()) std::printf(" %9s", stage.name);
+  const std::vector<RenderStats::StageTime> stage_names = RenderStats{}.stage_times();  // the columns
+  for (const RenderStats::StageTime& stage : stage_names) std::printf(" %9s", stage.name);
   std::printf(" %9s %9s %9s %9s %9s\n", "other", "frame_s", "records", "rec_Mr/s", "peak_MiB");
   for (const DeviceInfo& device : devices) {
     log_info("bench: " + device.name);
@@ -81,11 +82,10 @@ int run_bench_frames(const BenchOptions& o) {
     std::printf("%-36.36s %8.3f %8.3f %8.3f %8.3f", device.name.c_str(), cold.program_s, cold.total_s, first.program_s,
                 first.seconds_without_builds());
     nlohmann::json passes;
-    const size_t stages = RenderStats{}.stage_times().size();
-    for (size_t k = 0; k < stages; ++k) {
+    for (size_t k = 0; k < stage_names.size(); ++k) {
       const double t = median_field([&](const RenderStats& s) { return s.stage_times()[k].seconds; });
       std::printf(" %9.3f", t);
-      passes[RenderStats{}.stage_times()[k].name] = t;
+      passes[stage_names[k].name] = t;
     }
     // What no stage's timer holds (buffers allocated and cleared, setup between passes): frames without builds, less
     // their stages.

@@ -217,7 +217,7 @@ int run_sweep(const SweepOptions& o) {
         << "," << s.program_s << "," << s.primary.gbuffer_s << "," << s.primary.direct_s << ","
         << s.irradiance.records_s << "," << s.irradiance.placement_s << "," << s.irradiance.splat_s << ","
         << s.irradiance.resolve_s << "," << s.photon_map.seconds << "," << s.guide.seconds << "," << s.glossy.seconds
-        << "," << s.radiance.records_s + s.radiance.placement_s + s.radiance.splat_s + s.radiance.lobe_table_s << ","
+        << "," << s.radiance.seconds() << ","
         << s.path.seconds << "," << denoise_s << "," << s.irradiance.records << "," << s.irradiance.rays << ","
         << s.path.rays << "," << s.device_memory.peak_bytes << "," << s.bounces.count << "," << s.primary.pixel_samples;
     for (const char* layer : {"full", "indirect"}) csv << "," << metric_cells(c, layer);

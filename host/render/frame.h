@@ -73,6 +73,7 @@ struct RadianceCacheStats : RecordStats {
   unsigned order = 0;
   float accuracy = 0, captured_energy = 0;
   double lobe_table_s = 0;
+  double seconds() const { return lobe_table_s + records_s + placement_s + splat_s; }  // the whole stage
 };
 
 // The glossy pixels' specular light, sampled per pixel (kernels/glossy.cl).
@@ -128,13 +129,12 @@ struct RenderStats {
     double seconds;
   };
   std::vector<StageTime> stage_times() const {
-    const double radiance_s = radiance.lobe_table_s + radiance.records_s + radiance.placement_s + radiance.splat_s;
     return {{"bvh", scene.bvh_build_s},           {"upload", scene.upload_s},
             {"probe", bounces.probe_s},           {"gbuffer", primary.gbuffer_s},
             {"direct", primary.direct_s},         {"photons", photon_map.seconds},
             {"guide", guide.seconds},             {"records", irradiance.records_s},
             {"placement", irradiance.placement_s}, {"splat", irradiance.splat_s},
-            {"radiance", radiance_s},             {"resolve", irradiance.resolve_s},
+            {"radiance", radiance.seconds()},             {"resolve", irradiance.resolve_s},
             {"glossy", glossy.seconds},           {"path", path.seconds},
             {"layers", primary.layers_s}};
   }

@@ -80,7 +80,6 @@ class KeptPass {
     }
     return *pass_;
   }
-  Pass* get() const { return pass_.get(); }
 
  private:
   std::unique_ptr<Pass> pass_;

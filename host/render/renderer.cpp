@@ -121,8 +121,8 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
     scene_stats_.bvh_nodes = bvh.nodes.size();
     scene_stats_.bvh_blocks = bvh.blocks.size();
     scene_stats_.bvh_depth = bvh.depth;
-    scene_stats_.bvh_build_s = bvh.build_seconds;
-    StageTimer timing(scene_stats_.upload_s);
+    setup_.scene.bvh_build_s = bvh.build_seconds;
+    StageTimer timing(setup_.scene.upload_s);
     device_scene_ = std::make_unique<DeviceScene>(gpu_, scene_, bvh, forced_switches_, scene_frame_);
   }
   const std::array<unsigned, LOBE_KINDS>& lobes = device_scene_->lobe_counts();
@@ -131,7 +131,6 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   scene_stats_.glossy_materials = lobes[LOBE_GLOSSY];
   scene_stats_.hsh_materials = lobes[LOBE_HSH];
   scene_stats_.specular_brdf = device_scene_->has_specular_brdf();
-  setup_.scene = scene_stats_;
   log_info("compiling kernels for " + gpu_.device_info().name);
   gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
   direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);

@@ -61,7 +61,7 @@ class Renderer {
   const Scene& scene_;
   std::set<std::string> forced_switches_;
   SceneFrame scene_frame_;
-  SceneStats scene_stats_;  // what every frame reports of the scene (its times only the first frame)
+  SceneStats scene_stats_;  // what every frame reports of the scene; its times (setup_) only the first frame
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;
