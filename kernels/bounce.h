@@ -115,7 +115,7 @@ inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput
 // at the nearest lookup photon (kernels/photon_map.h): R, the light its neighbours reflect (their albedo averaged in:
 // no texel read here), and E, the irradiance, both over pi. Lambertian: R. With a specular lobe, the incident light
 // taken as even over directions, as composition reflects a rough pixel's cached irradiance (kernels/compose.cl): the
-// diffuse base (1 - metallic)(1 - F(n.v)) R plus the lobe's directional albedo c0 T0 + c1 T1 (kernels/brdf_frame.h)
+// diffuse base (1 - metallic)(1 - E_d(n.v)) R plus the lobe's directional albedo c0 T0 + c1 T1 (kernels/brdf.h)
 // times E, whose metallic part of c0 (base colour) and of c1 (1 - base) reads R and E - R. shallow: without the map's
 // last landing.
 inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 dir, bool shallow) {
@@ -131,7 +131,7 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
     // Only the view's angle matters (the lobe's albedo is isotropic): no shading frame; as view_local, a normal tilted
     // past the viewer is taken just above the horizon.
     float cos_o = fmax(dot(h->ns, -dir), 1e-4f);
-    float2 terms = specular_albedo_split(map_specular_albedo, in, cos_o);
+    float2 terms = specular_albedo_split(in, cos_o);
     float dielectric = (1.0f - in.metallic) * in.specular;
     float3 c0 = dielectric * DIELECTRIC_F0 * irradiance + in.metallic * reflected;
     float3 c1 = dielectric * (1.0f - DIELECTRIC_F0) * irradiance + in.metallic * (irradiance - reflected);

@@ -1,14 +1,18 @@
 // The one BRDF of the renderer: glTF 2.0's metallic-roughness model (specification, appendix B), a Lambertian base
 // and a GGX microfacet lobe with height-correlated Smith masking-shadowing and Schlick's Fresnel:
 //   f = (1 - metallic) * dielectric + metallic * metal,
-//   dielectric = (1 - F_d(n.v)) * base / pi + F_d(v.h) * spec,   F_d(c) = specular * (0.04 + 0.96 (1 - c)^5),
+//   dielectric = (1 - E_d(n.v)) * base / pi + F_d(v.h) * spec,   F_d(c) = specular * (0.04 + 0.96 (1 - c)^5),
 //   metal = (base + (1 - base) (1 - v.h)^5) * spec,    spec = D(h) V(l, v),
 //   D = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2),          a = roughness^2,
 //   V = G2 / (4 n.l n.v) = 0.5 / (n.l sqrt((n.v)^2 (1 - a^2) + a^2) + n.v sqrt((n.l)^2 (1 - a^2) + a^2)).
-// The one departure from appendix B: the diffuse base is weighted by the Fresnel of the view angle, not of each
-// microfacet (v.h). Appendix B's per-microfacet weight reflects more than it receives at grazing view (a white
-// dielectric's albedo reaches 1.37 at cos 0.17, tests/brdf_test.cpp); the view-angle weight keeps the white furnace
-// at or below 1, and makes the diffuse part a constant times base / pi at each pixel, which an irradiance cache needs.
+// The one departure from appendix B: the diffuse base is weighted by 1 - E_d(n.v), one less the dielectric lobe's
+// directional albedo toward the view (what the lobe reflects of uniform light), not by 1 - F_d(v.h) per microfacet.
+// Appendix B's per-microfacet weight reflects more than it receives at grazing view (a white dielectric's albedo
+// reaches 1.37 at cos 0.17, tests/brdf_test.cpp); 1 - E_d keeps the white furnace at 1 exactly (the base takes what
+// the lobe leaves) and makes the diffuse part a constant times base / pi at each pixel, which an irradiance cache
+// needs. A smooth lobe's E_d is its Fresnel F_d(n.v); a rough lobe's is far below it at grazing view, where
+// 1 - F_d(n.v) (rcsplat's weight before) darkened rough surfaces by up to 70% against appendix B (docs/NOTES.md
+// "Issue 41: a dielectric as bright as glTF means").
 // `specular` is KHR_materials_specular's factor (1 by default); 0 with metallic 0 leaves exactly base / pi, the
 // Lambertian surfaces rcsplat shaded before. Vectors are in the local frame of the shading normal (+z).
 // Sampling mixes a cosine lobe and GGX's distribution of visible normals (Heitz 2018), chosen by their estimated
@@ -16,6 +20,7 @@
 #ifndef RCSPLAT_BRDF_H
 #define RCSPLAT_BRDF_H
 #include "host_device.h"
+#include "specular_albedo_values.h"
 
 #define DIELECTRIC_F0 0.04f
 // a = roughness^2 is kept above this: a smaller lobe is a near-mirror whose peak float cannot hold (D ~ 1 / a^2).
@@ -62,9 +67,25 @@ inline float ggx_visibility(float n_dot_l, float n_dot_v, float a2) {
   return 0.5f / (gv + gl);
 }
 
-// The dielectric's diffuse weight 1 - F_d(n.v) (without the (1 - metallic) factor).
+// The specular lobe's directional albedo terms (T0, T1) toward a view at cos_o (kernels/specular_albedo_values.h: a
+// lobe whose Fresnel is c0 + c1 (1 - v.h)^5 reflects c0 T0 + c1 T1 of uniform light), read bilinearly by cos_o and
+// roughness = sqrt(a).
+inline float2 specular_albedo_split(BrdfInputs in, float cos_o) {
+  const int n = SPECULAR_ALBEDO_TABLE_SIZE;
+  float x = clamp(cos_o, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
+  int x0 = min((int)x, n - 2), y0 = min((int)y, n - 2);
+  float fx = x - (float)x0, fy = y - (float)y0;
+  __constant const float* row0 = specular_albedo_values + 2 * (y0 * n + x0);
+  __constant const float* row1 = row0 + 2 * n;
+  float2 bottom = mix((float2)(row0[0], row0[1]), (float2)(row0[2], row0[3]), fx);
+  float2 top = mix((float2)(row1[0], row1[1]), (float2)(row1[2], row1[3]), fx);
+  return mix(bottom, top, fy);
+}
+
+// The dielectric's diffuse weight 1 - E_d(n.v) (without the (1 - metallic) factor): what its specular layer leaves.
 inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
-  return 1.0f - in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * schlick_weight(n_dot_v));
+  float2 t = specular_albedo_split(in, n_dot_v);
+  return 1.0f - in.specular * (DIELECTRIC_F0 * t.x + (1.0f - DIELECTRIC_F0) * t.y);
 }
 
 // The specular lobe's Fresnel colour is c0 + c1 (1 - v.h)^5: the dielectric layer's and the metal's Schlick terms,
@@ -86,7 +107,7 @@ inline float ggx_g2_over_g1(float n_dot_l, float n_dot_v, float a2) {
   return 4.0f * n_dot_l * n_dot_v * ggx_visibility(n_dot_l, n_dot_v, a2) / ggx_g1(n_dot_v, a2);
 }
 
-// The diffuse base alone: (1 - metallic) (1 - F_d(n.v)) base / pi, a constant over wi.
+// The diffuse base alone: (1 - metallic) (1 - E_d(n.v)) base / pi, a constant over wi.
 inline float3 brdf_eval_diffuse(BrdfInputs in, float n_dot_v) {
   return ((1.0f - in.metallic) * brdf_diffuse_weight(in, n_dot_v) * RC_INV_PI) * in.base_color;
 }

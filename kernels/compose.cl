@@ -1,7 +1,7 @@
 // Composition, shared by every cache method: the pixel's indirect light from the cached irradiance E (its weight in
 // A, 0 where no record reached), and the final colour = emission + direct + indirect.
 // A Lambertian pixel reflects albedo / pi * E. With a specular lobe (HAS_SPECULAR_BRDF) the irradiance carries the
-// diffuse base, (1 - metallic) (1 - F(n.v)) base / pi * E, exact because that part of the BRDF is constant over the
+// diffuse base, (1 - metallic) (1 - E_d(n.v)) base / pi * E, exact because that part of the BRDF is constant over the
 // incident directions; a rough lobe adds its directional albedo times E / pi (the incident light taken as uniform over
 // the lobe: an approximation, docs/NOTES.md "Material kinds"), a glossy lobe the light sampled from it (glossy.cl)
 // or, with RADIANCE_CACHED, a radiance-cached lobe (LOBE_HSH) the light its records reflect toward the pixel's view
@@ -14,7 +14,7 @@
 
 __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global const float4* direct,
                       __global const float4* glossy, __global const float4* cached_lobes,
-                      __global const float2* specular_albedo_terms, uint glossy_holds_guide_share,
+                      uint glossy_holds_guide_share,
                       __global float4* indirect_out, __global float4* color_out) {
   uint i = get_global_id(0);
   if (i >= (uint)(camera->width * camera->height)) return;
@@ -28,7 +28,7 @@ __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global 
     ShadingFrame frame = shading_frame(vload3(0, g.normal));
     float3 wo = view_local(frame, camera_view_direction(camera, vload3(0, g.position)));
     indirect = brdf_eval_diffuse(in, wo.z) * e;
-    if (g.lobe == LOBE_ROUGH) indirect += specular_albedo(specular_albedo_terms, in, wo) * RC_INV_PI * e;
+    if (g.lobe == LOBE_ROUGH) indirect += specular_albedo(in, wo) * RC_INV_PI * e;
     else if (RADIANCE_CACHED && g.lobe == LOBE_HSH)
       indirect += cached_lobes[i].xyz + (glossy_holds_guide_share ? glossy[i].xyz : (float3)(0.0f));
     else indirect += glossy[i].xyz;

@@ -12,12 +12,11 @@
 
 // The map as the kernels that read it take it: photons sorted by bucket, their estimates (two float4 per photon: the
 // reflected light, the irradiance), the buckets' first photons
-// (bucket_count + 1 entries), the grid, and the rough lobes' albedo table (kernels/specular_albedo.cl) by which a
-// lookup's surface reflects the estimate (kernels/bounce.h photon_gather; unread without HAS_SPECULAR_BRDF).
+// (bucket_count + 1 entries) and the grid.
 #define PHOTON_MAP_ARGS                                                                                      \
   __global const PhotonHit *map_photons, __global const float4 *map_radiance, __global const float4 *map_shallow, \
-      __global const uint *map_buckets, PhotonMapParams map, __global const float2 *map_specular_albedo
-#define PHOTON_MAP map_photons, map_radiance, map_shallow, map_buckets, map, map_specular_albedo
+      __global const uint *map_buckets, PhotonMapParams map
+#define PHOTON_MAP map_photons, map_radiance, map_shallow, map_buckets, map
 
 // Whether `bucket` is not among the first *count of visited (cells of a hashed grid can share a bucket), and if so
 // adds it: each bucket is searched once.

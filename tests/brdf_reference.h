@@ -26,10 +26,7 @@ struct Material {
 
 inline double alpha_of(const Material& m) { return std::max(m.roughness * m.roughness, 1e-3); }
 
-// glTF 2.0 appendix B in double, written from the specification's formulas: GGX D, height-correlated Smith V (as
-// G2 / (4 n.l n.v) from the Smith Lambda functions), Schlick Fresnel, with the diffuse weighted by the Fresnel of the
-// view angle (kernels/brdf.h says why; `per_microfacet_diffuse` gives appendix B's own weight, to show its excess).
-// Split into its diffuse and specular parts so the quadrature can integrate each where it is smooth.
+// GGX's Smith Lambda, distribution D (for cos(theta_h)) and Schlick's Fresnel weight (1 - v.h)^5.
 inline double lambda_ggx(double cos_t, double a) {
   double tan2 = (1.0 - cos_t * cos_t) / (cos_t * cos_t);
   return 0.5 * (std::sqrt(1.0 + a * a * tan2) - 1.0);
@@ -41,8 +38,40 @@ inline double d_ggx(double cos_h, double a) {
 }
 inline double schlick(double v_dot_h) { return std::pow(std::clamp(1.0 - v_dot_h, 0.0, 1.0), 5.0); }
 
+// The dielectric lobe's directional albedo toward a view at cos_o, for specular 1: the integral of
+// F_d(v.h) D G2 / (4 n.v) over half vectors drawn from D(h) cos(theta_h) (the reflection's density D cos / (4 v.h)), by
+// the midpoint rule on an n x n grid. The last value is kept: the quadratures below ask for one view many times.
+inline double dielectric_lobe_albedo(double cos_o, double a, int n = 128) {
+  thread_local double kept_cos = -1.0, kept_a = -1.0, kept = 0.0;
+  thread_local int kept_n = 0;
+  if (cos_o == kept_cos && a == kept_a && n == kept_n) return kept;
+  Vec wo{std::sqrt(std::max(1.0 - cos_o * cos_o, 0.0)), 0.0, cos_o};
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double u = (i + 0.5) / n, phi = 2.0 * kPi * (j + 0.5) / n;
+      double ch = 1.0 / std::sqrt(1.0 + a * a * u / (1.0 - u)), sh = std::sqrt(1.0 - ch * ch);
+      Vec h{sh * std::cos(phi), sh * std::sin(phi), ch};
+      double wo_h = dot(wo, h);
+      Vec wi = (2.0 * wo_h) * h + (-1.0) * wo;
+      if (wo_h <= 0.0 || wi.z <= 0.0) continue;
+      double g2 = 1.0 / (1.0 + lambda_ggx(cos_o, a) + lambda_ggx(wi.z, a));
+      // f cos / pdf = F D G2 / (4 n.v n.l) n.l 4 v.h / (D cos_h) = F G2 v.h / (n.v cos_h)
+      sum += (0.04 + 0.96 * schlick(wo_h)) * g2 * wo_h / (cos_o * ch);
+    }
+  kept_cos = cos_o, kept_a = a, kept_n = n;
+  return kept = sum / (double(n) * n);
+}
+
+// How a dielectric's diffuse base is weighted: rcsplat's 1 - E_d(n.v) (kernels/brdf.h says why), appendix B's own
+// 1 - F_d(v.h) per microfacet, or 1 - F_d(n.v), rcsplat's weight before issue 41.
+enum class DiffuseWeight { view_albedo, per_microfacet, view_fresnel };
+
+// glTF 2.0 appendix B in double, written from the specification's formulas: GGX D, height-correlated Smith V (as
+// G2 / (4 n.l n.v) from the Smith Lambda functions), Schlick Fresnel, with the diffuse weighted as `weight` says.
+// Split into its diffuse and specular parts so the quadrature can integrate each where it is smooth.
 inline std::array<double, 3> reference_brdf(const Material& m, Vec wo, Vec wi, bool diffuse_part, bool specular_part,
-                                     bool per_microfacet_diffuse = false) {
+                                            DiffuseWeight weight = DiffuseWeight::view_albedo) {
   std::array<double, 3> f{0.0, 0.0, 0.0};
   if (wo.z <= 0.0 || wi.z <= 0.0) return f;
   Vec h = unit(wo + wi);
@@ -51,9 +80,14 @@ inline std::array<double, 3> reference_brdf(const Material& m, Vec wo, Vec wi, b
   double spec = d_ggx(h.z, a) * g2 / (4.0 * wo.z * wi.z);
   double fw = schlick(dot(wo, h));
   double fd = m.specular * (0.04 + 0.96 * fw);
-  double fd_diffuse = per_microfacet_diffuse ? fd : m.specular * (0.04 + 0.96 * schlick(wo.z));
+  double taken = 0.0;  // what the specular layer takes from the diffuse base
+  if (diffuse_part && m.specular > 0.0) {
+    if (weight == DiffuseWeight::per_microfacet) taken = fd;
+    else if (weight == DiffuseWeight::view_fresnel) taken = m.specular * (0.04 + 0.96 * schlick(wo.z));
+    else taken = m.specular * dielectric_lobe_albedo(wo.z, a);
+  }
   for (int c = 0; c < 3; ++c) {
-    double diffuse = (1.0 - m.metallic) * (1.0 - fd_diffuse) * m.base[size_t(c)] / kPi;
+    double diffuse = (1.0 - m.metallic) * (1.0 - taken) * m.base[size_t(c)] / kPi;
     double specular = (1.0 - m.metallic) * fd * spec + m.metallic * (m.base[size_t(c)] + (1.0 - m.base[size_t(c)]) * fw) * spec;
     f[size_t(c)] = (diffuse_part ? diffuse : 0.0) + (specular_part ? specular : 0.0);
   }
@@ -72,8 +106,7 @@ double incident_radiance(const Incident& incident, Vec wi) {
 // the integrand stays smooth however narrow the lobe), both by the midpoint rule on an n x n grid.
 
 template <typename Incident>
-std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident incident, bool per_microfacet_diffuse,
-                                          int n) {
+std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident incident, DiffuseWeight weight, int n) {
   std::array<double, 3> sum{0.0, 0.0, 0.0};
   double a = alpha_of(m);
   for (int i = 0; i < n; ++i)
@@ -82,7 +115,7 @@ std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident in
       // Diffuse: wi with pdf cos / pi, so f cos / pdf = f pi.
       double s = std::sqrt(u);
       Vec wi{s * std::cos(phi), s * std::sin(phi), std::sqrt(1.0 - u)};
-      std::array<double, 3> fd = reference_brdf(m, wo, wi, true, false, per_microfacet_diffuse);
+      std::array<double, 3> fd = reference_brdf(m, wo, wi, true, false, weight);
       double l_diffuse = incident_radiance(incident, wi);
       // Specular: h with pdf D cos(theta_h); wi = reflect(wo, h) has pdf D cos(theta_h) / (4 wo.h).
       double tan2 = a * a * u / (1.0 - u);
@@ -103,9 +136,9 @@ std::array<double, 3> reference_reflected(const Material& m, Vec wo, Incident in
 }
 
 // Directional albedo: the radiance reflected from a uniform unit incident radiance.
-inline std::array<double, 3> reference_albedo(const Material& m, Vec wo, bool per_microfacet_diffuse = false,
-                                              int n = 600) {
-  return reference_reflected(m, wo, [](double) { return 1.0; }, per_microfacet_diffuse, n);
+inline std::array<double, 3> reference_albedo(const Material& m, Vec wo,
+                                              DiffuseWeight weight = DiffuseWeight::view_albedo, int n = 600) {
+  return reference_reflected(m, wo, [](double) { return 1.0; }, weight, n);
 }
 
 }  // namespace rcsplat::brdf_reference

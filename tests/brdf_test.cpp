@@ -22,7 +22,6 @@
 #include "kernels/hsh.h"
 #include "cache/hsh_rotation.h"
 #include "passes/brdf_table_pass.h"
-#include "passes/specular_albedo_table.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -33,14 +32,14 @@ using namespace brdf_reference;
 const char* kBrdfKernels = R"(
 #include "brdf_frame.h"
 #include "counter_random.h"
-// Per case, 12 floats as in evaluate_brdf: the specular lobe's albedo toward wo from the rough lobes' table.
-__kernel void tabulated_specular_albedo(__global const float* cases, uint count, __global const float2* table,
-                                        __global float* out) {
+// Per case, 12 floats as in evaluate_brdf: the specular lobe's albedo toward wo from the table, and the diffuse weight.
+__kernel void tabulated_specular_albedo(__global const float* cases, uint count, __global float* out) {
   uint i = get_global_id(0);
   if (i >= count) return;
   __global const float* c = cases + (size_t)i * 12;
   BrdfInputs in = brdf_inputs(vload3(0, c), c[3], c[4], c[5]);
-  vstore3(specular_albedo(table, in, vload3(2, c)), 0, out + (size_t)i * 4);
+  vstore3(specular_albedo(in, vload3(2, c)), 0, out + (size_t)i * 4);
+  out[(size_t)i * 4 + 3] = brdf_diffuse_weight(in, c[8]);
 }
 // Per case, 12 floats: base colour, metallic, roughness, specular, wo, wi.
 __kernel void evaluate_brdf(__global const float* cases, uint count, __global float* out) {
@@ -77,14 +76,20 @@ std::vector<float> case_floats(const Material& m, Vec wo, Vec wi) {
           float(wi.y),       float(wi.z)};
 }
 
+// How far the dielectric's diffuse weight, read bilinearly from a 32 x 32 table (kernels/specular_albedo_values.h), may
+// be from the quadrature: a smooth lobe's Fresnel (1 - cos)^5 bends fastest at grazing view, between the table's
+// columns. Worst seen over roughness 0.05..1: 2.6e-2 below cos 0.03, 9.6e-3 to 0.06, 5.0e-3 to 0.1, 1.5e-3 above.
+double diffuse_weight_tolerance(double cos_o) { return cos_o < 0.03 ? 0.04 : cos_o < 0.1 ? 0.015 : 2e-3; }
+
 Vec direction(double cos_t, double phi) {
   double s = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
   return {s * std::cos(phi), s * std::sin(phi), cos_t};
 }
 
-// The rough lobes' albedo (kernels/brdf_frame.h: a 32 x 32 table of two terms, read bilinearly, which the cache's
+// The rough lobes' albedo (kernels/brdf.h: a 32 x 32 table of two terms, read bilinearly, which the cache's
 // composition multiplies by E / pi) against the double model's specular albedo (the whole albedo by quadrature less the
-// diffuse base), over the roughness range that uses it and a little below.
+// diffuse base), over the roughness range that uses it and a little below; and the dielectric's diffuse weight, one
+// less the dielectric lobe's albedo, against the double model's quadrature of that lobe.
 TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
@@ -99,14 +104,10 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
     cases.insert(cases.end(), c.begin(), c.end());
   }
   GpuContext& gpu = test::gpu();
-  cl::Buffer table = specular_albedo_table(gpu, true);
   cl::Buffer in = gpu.upload(cases);
   cl::Buffer out(gpu.context(), CL_MEM_WRITE_ONLY, materials.size() * 4 * sizeof(float));
   NamedKernel kernel(gpu, gpu.program_from_text("brdf_test.cl", kBrdfKernels), "tabulated_specular_albedo");
-  kernel.set_buffer<cl_float>("cases", in)
-      .set("count", cl_uint(materials.size()))
-      .set_buffer<cl_float2>("table", table)
-      .set_buffer<cl_float>("out", out);
+  kernel.set_buffer<cl_float>("cases", in).set("count", cl_uint(materials.size())).set_buffer<cl_float>("out", out);
   kernel.launch(materials.size(), 64);
   gpu.queue().finish();
   std::vector<float> device = gpu.download<float>(out, materials.size() * 4);
@@ -114,10 +115,11 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
   for (size_t i = 0; i < materials.size(); ++i) {
     const Material& m = materials[i];
     Vec wo{cases[12 * i + 6], cases[12 * i + 7], cases[12 * i + 8]};
-    std::array<double, 3> albedo = reference_albedo(m, wo, false, 300);
-    double fd = m.specular * (0.04 + 0.96 * std::pow(1.0 - wo.z, 5.0));
+    std::array<double, 3> albedo = reference_albedo(m, wo, DiffuseWeight::view_albedo, 300);
+    double diffuse_weight = 1.0 - m.specular * dielectric_lobe_albedo(wo.z, alpha_of(m));
+    ASSERT_NEAR(device[4 * i + 3], diffuse_weight, diffuse_weight_tolerance(wo.z)) << "case " << i << " roughness " << m.roughness;
     for (size_t c = 0; c < 3; ++c) {
-      double expected = albedo[c] - (1.0 - m.metallic) * (1.0 - fd) * m.base[c];
+      double expected = albedo[c] - (1.0 - m.metallic) * diffuse_weight * m.base[c];
       double error = std::fabs(device[4 * i + c] - expected);
       worst = std::max(worst, error / std::max(expected, 0.01));
       // 1% of the lobe's albedo, or 1e-3 of a white surface's where the lobe is a dim dielectric's.
@@ -126,58 +128,6 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
     }
   }
   std::printf("worst relative error of the tabulated specular albedo: %.2e\n", worst);
-}
-
-// Composition and the photon map both ask for the table, every frame: one context makes it once (its 4 M lobe
-// samples cost PoCL a quarter of a second), and what it keeps is what a new context would make.
-TEST(Brdf, SpecularAlbedoTableIsMadeOncePerContext) {
-  GpuContext& gpu = test::gpu();
-  cl::Buffer first = specular_albedo_table(gpu, true), again = specular_albedo_table(gpu, true);
-  EXPECT_EQ(first(), again());
-  EXPECT_NE(specular_albedo_table(gpu, false)(), first());  // unfilled: a buffer of its own, never the shared one
-  constexpr size_t kFloats = 2 * SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
-  GpuContext fresh(gpu.device_info());
-  std::vector<float> kept = gpu.download<float>(first, kFloats),
-                     made = fresh.download<float>(specular_albedo_table(fresh, true), kFloats);
-  EXPECT_EQ(0, std::memcmp(kept.data(), made.data(), kFloats * sizeof(float)));
-}
-
-// The table is kept on disk beside the compiled programs: a new context (a later process) reads the bits an earlier
-// one computed instead of computing them, and a file of the wrong size is computed again and replaced.
-TEST(Brdf, SpecularAlbedoTableIsKeptOnDiskPerDevice) {
-  struct CacheDirFor {  // this test's own cache folder, the process's restored however the test ends
-    std::string saved;
-    bool had = false;
-    explicit CacheDirFor(const std::string& dir) {
-      if (const char* old = std::getenv("RCSPLAT_CACHE_DIR")) saved = old, had = true;
-      setenv("RCSPLAT_CACHE_DIR", dir.c_str(), 1);
-    }
-    ~CacheDirFor() { had ? setenv("RCSPLAT_CACHE_DIR", saved.c_str(), 1) : unsetenv("RCSPLAT_CACHE_DIR"); }
-  };
-  const std::string dir = test::scratch_dir() + "/table_cache";
-  CacheDirFor cache_dir(dir);
-  constexpr size_t kFloats = 2 * SPECULAR_ALBEDO_TABLE_SIZE * SPECULAR_ALBEDO_TABLE_SIZE;
-  auto table_of = [&](GpuContext& context) {
-    return context.download<float>(specular_albedo_table(context, true), kFloats);
-  };
-  GpuContext first(test::gpu().device_info());
-  const std::vector<float> computed = table_of(first);
-  EXPECT_EQ(first.tables_computed(), 1u);
-  std::vector<std::filesystem::path> stored;
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-    if (entry.path().extension() == ".table") stored.push_back(entry.path());
-  ASSERT_EQ(stored.size(), 1u);
-  EXPECT_EQ(std::filesystem::file_size(stored[0]), kFloats * sizeof(float));
-
-  GpuContext second(test::gpu().device_info());
-  EXPECT_EQ(table_of(second), computed);
-  EXPECT_EQ(second.tables_computed(), 0u);  // read from disk
-
-  std::filesystem::resize_file(stored[0], 100);
-  GpuContext third(test::gpu().device_info());
-  EXPECT_EQ(table_of(third), computed);
-  EXPECT_EQ(third.tables_computed(), 1u);  // the short file ignored, computed again
-  EXPECT_EQ(std::filesystem::file_size(stored[0]), kFloats * sizeof(float));
 }
 
 TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {
@@ -212,18 +162,22 @@ TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {
   std::vector<float> device = gpu.download<float>(out, materials.size() * 4);
   double worst = 0.0;
   for (size_t i = 0; i < materials.size(); ++i) {
-    std::array<double, 3> want = reference_brdf(materials[i], dirs[i].first, dirs[i].second, true, true);
+    const Material& m = materials[i];
+    std::array<double, 3> want = reference_brdf(m, dirs[i].first, dirs[i].second, true, true);
     for (size_t c = 0; c < 3; ++c) {
-      // Float evaluation of D near a sharp peak loses a few ulps of its argument: relative 1e-4.
-      double err = std::abs(device[i * 4 + c] - want[c]) / (want[c] + 1e-6);
-      worst = std::max(worst, err);
-      ASSERT_LT(err, 1e-4) << "case " << i << " channel " << c << ": device " << device[i * 4 + c] << ", reference "
-                           << want[c] << " (roughness " << materials[i].roughness << ", metallic "
-                           << materials[i].metallic << ")";
+      // Float evaluation of D near a sharp peak loses a few ulps of its argument: relative 1e-4; the diffuse weight
+      // is read from a table.
+      double tolerance = 1e-4 * want[c] + 1e-6 +
+                         diffuse_weight_tolerance(dirs[i].first.z) * (1.0 - m.metallic) * m.specular * m.base[c] / kPi;
+      double err = std::abs(device[i * 4 + c] - want[c]);
+      worst = std::max(worst, err / tolerance);
+      ASSERT_LT(err, tolerance) << "case " << i << " channel " << c << ": device " << device[i * 4 + c]
+                                << ", reference " << want[c] << " (roughness " << m.roughness << ", metallic "
+                                << m.metallic << ", cos " << dirs[i].first.z << ")";
     }
     ASSERT_GT(device[i * 4 + 3], 0.0f) << "pdf at a direction the BRDF reflects into";
   }
-  RecordProperty("worst_relative_error", std::to_string(worst));
+  RecordProperty("worst_error_over_tolerance", std::to_string(worst));
 }
 
 // For roughness 0.05..1 and metallic 0 and 1 on a white material, and a coloured one, at normal, oblique and grazing
@@ -273,10 +227,10 @@ TEST(Brdf, SamplingIsUnbiasedAndEnergyIsConserved) {
 // than it receives at grazing view.
 TEST(Brdf, AppendixBPerMicrofacetDiffuseGainsEnergyAtGrazingView) {
   Material white{{1.0, 1.0, 1.0}, 0.0, 0.2, 1.0};
-  double appendix_b = reference_albedo(white, direction(0.17, 0.0), true)[0];
+  double appendix_b = reference_albedo(white, direction(0.17, 0.0), DiffuseWeight::per_microfacet)[0];
   double ours = reference_albedo(white, direction(0.17, 0.0))[0];
   EXPECT_GT(appendix_b, 1.2);
-  EXPECT_LE(ours, 1.0);
+  EXPECT_NEAR(ours, 1.0, 2e-3);  // the base takes exactly what the lobe leaves: the quadratures' difference remains
   RecordProperty("appendix_b_albedo", std::to_string(appendix_b));
   RecordProperty("albedo", std::to_string(ours));
 }
@@ -349,7 +303,7 @@ TEST(BrdfTable, LobeCoefficientsMatchTheDoublePrecisionModel) {
       Vec wo = direction(float(cos_o), 0.0);
       Material white{{1, 1, 1}, 1, roughness[i], 1}, black{{0, 0, 0}, 1, roughness[i], 1};
       double t0 = reference_albedo(white, wo)[0], t1 = reference_albedo(black, wo)[0];
-      double reflected = reference_reflected(white, wo, incident, false, 600)[0];
+      double reflected = reference_reflected(white, wo, incident, DiffuseWeight::view_albedo, 600)[0];
       double dot = 0.0;
       for (int k = 0; k < 16; ++k) dot += lambda[size_t(k)] * table.coefficient(i, a, 0, k);
       std::string at = "roughness " + std::to_string(roughness[i]) + " cos(theta_o) " + std::to_string(cos_o);

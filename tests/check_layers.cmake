@@ -1,8 +1,10 @@
 # The layer rule of docs/ARCHITECTURE.md. First, every file under host/ includes only its own layer or lower ones:
-# util < scene, bvh, image, cache < cl < passes < render, bench < cli (main.cpp); kernels/ (the shared headers) anywhere.
+# util, tables < scene, bvh, image, cache < cl < passes < render, bench < cli (main.cpp); kernels/ (the shared headers)
+# anywhere. tables/ holds generators of the tables kernels include, outside the renderer's library.
 # Then nothing under host/cache, host/scene or host/image (nor the frame's results and settings) may include the
 # OpenCL headers, directly or through another header. Run by CTest with -DCXX=... -DSOURCE_DIR=... -DINCLUDES=...
 set(rank_util 0)
+set(rank_tables 0)
 set(rank_scene 1)
 set(rank_bvh 1)
 set(rank_image 1)

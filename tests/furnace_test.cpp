@@ -43,10 +43,10 @@ TEST(Furnace, ClosedEmittingSphereReflectsTheAlbedoThenTheAlbedoOfTheAlbedo) {
       Material m{{1.0, 1.0, 1.0}, metallic, roughness, 1.0};
       AngleTable albedo, bounced;
       for (int i = 0; i < nodes; ++i)
-        albedo.values.push_back(brdf_reference::reference_albedo(m, view_at((i + 0.5) / nodes), false, quadrature)[0]);
+        albedo.values.push_back(brdf_reference::reference_albedo(m, view_at((i + 0.5) / nodes), brdf_reference::DiffuseWeight::view_albedo, quadrature)[0]);
       for (int i = 0; i < nodes; ++i)
         bounced.values.push_back(
-            brdf_reference::reference_reflected(m, view_at((i + 0.5) / nodes), albedo, false, quadrature)[0]);
+            brdf_reference::reference_reflected(m, view_at((i + 0.5) / nodes), albedo, brdf_reference::DiffuseWeight::view_albedo, quadrature)[0]);
 
       Scene scene = make_icosphere(4, 1.0f, 0.0f);
       for (SceneMaterial& sm : scene.materials) {

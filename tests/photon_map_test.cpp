@@ -130,7 +130,7 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   const double r = grids.all.params.radius, r2 = r * r;
   ASSERT_GT(r, 0.0);
   ASSERT_EQ(float(r), expected_r);
-  PhotonMapPass pass(test::gpu(), grids, false);
+  PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> estimates = pass.estimates(), shallow = pass.shallow_estimates();
   ASSERT_EQ(estimates.size(), 2 * grids.lookup.photons.size());
   ASSERT_EQ(shallow.size(), 2 * grids.lookup.photons.size());
@@ -240,7 +240,7 @@ TEST(PhotonMap, EstimatesWithTheSceneSurfaceFitTheLightLinearlyToTheDiscsCentre)
   }
   PhotonMapGrids grids = build_photon_map(photons, 2.0, 128, 2, triangles);
   ASSERT_FALSE(grids.patches.patches.empty());
-  PhotonMapPass pass(test::gpu(), grids, false);
+  PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> estimates = pass.estimates();
   const double r = grids.all.params.radius;
   size_t compared = 0, edge_count = 0;
@@ -327,7 +327,7 @@ TEST(PhotonMap, LookupReturnsTheNearestFacingPhotonsEstimate) {
   PhotonMapGrids grids = build_photon_map(given.photons, given.area, 32, 4);
   const PhotonMapParams& m = grids.lookup.params;
   const double r = m.radius;
-  PhotonMapPass pass(test::gpu(), grids, false);
+  PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> estimates = pass.estimates();
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> u(-0.1f, 1.1f);
@@ -461,7 +461,7 @@ TEST(PhotonMap, CellOrderVisitsEachPhotonOnceAndWalksBetweenNearbyCells) {
 
 TEST(PhotonMap, AnEmptyMapIsDark) {
   PhotonMapGrids grids = build_photon_map({}, 1.0, 32, 4);
-  PhotonMapPass pass(test::gpu(), grids, false);
+  PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> found = pass.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}});
   EXPECT_EQ(found[0].s[0], 0.0f);
   PhotonMapGrids no_area = build_photon_map(random_photons(30, 1).photons, 0.0, 32, 4);

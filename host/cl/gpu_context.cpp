@@ -210,43 +210,6 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
   if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS")) extra_build_options_ = extra;
 }
 
-cl::Buffer GpuContext::device_table(const std::string& name, const std::string& file, size_t bytes,
-                                    const std::function<void(const cl::Buffer&)>& fill) {
-  auto found = device_tables_.find(name);
-  if (found != device_tables_.end()) return found->second;
-  cl::Buffer table = buffer(CL_MEM_READ_WRITE, bytes, name);
-  const fs::path stored =
-      cache_file(program_identity(resolve_kernel_source(file), build_options({})) + "|table " + name, ".table");
-  std::vector<char> data;
-  std::error_code size_error;  // a file that cannot be read is computed again, as a missing one
-  if (!stored.empty() && fs::file_size(stored, size_error) == bytes && !size_error) {
-    std::ifstream in(stored, std::ios::binary);
-    data.resize(bytes);
-    if (!in.read(data.data(), std::streamsize(bytes))) data.clear();
-  }
-  if (data.size() == bytes) {
-    queue_.enqueueWriteBuffer(table, CL_TRUE, 0, bytes, data.data());
-  } else {
-    fill(table);
-    queue_.finish();
-    ++tables_computed_;
-    if (!stored.empty()) {
-      try {
-        data.resize(bytes);
-        queue_.enqueueReadBuffer(table, CL_TRUE, 0, bytes, data.data());
-        fs::create_directories(stored.parent_path());
-        fs::path temp = stored;
-        temp += ".tmp" + std::to_string(::getpid());
-        std::ofstream(temp, std::ios::binary).write(data.data(), std::streamsize(bytes));
-        fs::rename(temp, stored);
-      } catch (const std::exception& e) {
-        log_warning("could not store the " + name + " in the cache: " + e.what());
-      }
-    }
-  }
-  return device_tables_[name] = table;
-}
-
 // Arguments are bound by name (cl/named_kernel.h): every program keeps its parameters' names and types.
 constexpr const char* kBaseBuildOptions = "-cl-std=CL1.2 -cl-kernel-arg-info";
 

@@ -3,7 +3,6 @@
 #include <CL/opencl.hpp>
 
 #include <filesystem>
-#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -89,15 +88,6 @@ class GpuContext {
   void restart_memory_peak();
   struct MemoryLedger;
 
-  // A table that depends on the device alone (the rough lobes' albedo), `bytes` long, which `fill` computes with the
-  // kernels of kernels/<file>: made the first time `name` is asked for, then the same buffer for every frame this
-  // context renders. It is kept on disk beside the compiled programs, keyed as the program that fills it is (device,
-  // driver, source, options), so later processes read its bits instead of computing them again.
-  cl::Buffer device_table(const std::string& name, const std::string& file, size_t bytes,
-                          const std::function<void(const cl::Buffer&)>& fill);
-  // How many tables this context computed rather than read from disk (tests).
-  size_t tables_computed() const { return tables_computed_; }
-
   template <typename T>
   cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY, const char* what = "other") {
     // Zero-sized buffers are invalid in OpenCL: keep one element so a kernel argument is always valid.
@@ -143,8 +133,6 @@ class GpuContext {
   GroupSizes groups_;
   std::map<std::string, std::unique_ptr<cl::Program>> programs_;
   std::map<std::string, bool> launched_;
-  std::map<std::string, cl::Buffer> device_tables_;
-  size_t tables_computed_ = 0;
   size_t buffers_made_ = 0;
   double program_seconds_ = 0.0;
   std::string cold_build_nonce_;

@@ -1,13 +1,10 @@
 #include "passes/compose_pass.h"
 
-#include "passes/specular_albedo_table.h"
-
 namespace rcsplat {
 
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
     : gpu_(gpu),
-      kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))),
-      specular_albedo_table_(specular_albedo_table(gpu, scene.has_specular_brdf())) {}
+      kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))) {}
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
                       const cl::Buffer* glossy, const cl::Buffer* cached_lobes, bool glossy_holds_guide_share) {
@@ -24,7 +21,6 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
       .set_buffer<cl_float4>("direct", direct)
       .set_buffer<cl_float4>("glossy", glossy ? *glossy : irradiance)
       .set_buffer<cl_float4>("cached_lobes", cached_lobes ? *cached_lobes : irradiance)
-      .set_buffer<cl_float2>("specular_albedo_terms", specular_albedo_table_)
       .set("glossy_holds_guide_share", cl_uint(glossy && glossy_holds_guide_share))
       .set_buffer<cl_float4>("indirect_out", indirect_)
       .set_buffer<cl_float4>("color_out", color_);

@@ -26,7 +26,7 @@ class ComposePass {
  private:
   GpuContext& gpu_;
   NamedKernel kernel_;
-  cl::Buffer indirect_, color_, specular_albedo_table_;  // the rough lobes' albedo (kernels/brdf_frame.h)
+  cl::Buffer indirect_, color_;
   size_t pixels_ = 0;
 };
 

@@ -1,7 +1,6 @@
 #include "passes/photon_map_pass.h"
 
 #include "passes/light_guide_pass.h"
-#include "passes/specular_albedo_table.h"
 
 namespace rcsplat {
 
@@ -10,8 +9,7 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
   return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
-PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf)
-    : gpu_(gpu), params_(grids.lookup.params), specular_albedo_(specular_albedo_table(gpu, specular_brdf)) {
+PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {
   photons_ = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
   buckets_ = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
   // Two float4 per lookup photon: the reflected light and the irradiance (kernels/photon_map.h).
@@ -50,8 +48,7 @@ void PhotonMapPass::bind(NamedKernel& kernel) const {
       .set_buffer<cl_float4>("map_radiance", radiance_)
       .set_buffer<cl_float4>("map_shallow", shallow_)
       .set_buffer<cl_uint>("map_buckets", buckets_)
-      .set("map", params_)
-      .set_buffer<cl_float2>("map_specular_albedo", specular_albedo_);
+      .set("map", params_);
 }
 
 std::vector<cl_float4> PhotonMapPass::estimates() {

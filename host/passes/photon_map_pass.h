@@ -17,9 +17,8 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
 
 class PhotonMapPass {
  public:
-  // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done. specular_brdf: the
-  // scene has a specular lobe, whose albedo table the lookups then read (kernels/bounce.h photon_gather).
-  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids, bool specular_brdf);
+  // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done.
+  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids);
 
   // Sets a kernel's PHOTON_MAP_ARGS (the lookup grid and its estimates).
   void bind(NamedKernel& kernel) const;
@@ -35,7 +34,7 @@ class PhotonMapPass {
  private:
   GpuContext& gpu_;
   PhotonMapParams params_;
-  cl::Buffer photons_, radiance_, shallow_, buckets_, specular_albedo_;
+  cl::Buffer photons_, radiance_, shallow_, buckets_;
 };
 
 }  // namespace rcsplat

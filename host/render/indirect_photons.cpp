@@ -70,7 +70,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
     grids_timing.stop();
     StageTimer estimate(st.photon_map.estimate_s, f.gpu);
-    light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids, f.device_scene.has_specular_brdf());
+    light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
     light.photon_key = key;
     light.photon_paths = paths;
     light.photons = grids.all.photons.size();
