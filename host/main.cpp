@@ -213,6 +213,11 @@ int main(int argc, char** argv) {
                              std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                              " rounds; 0 too; at most 67108864)")
       ->group(lab);
+  render_cmd->add_option("--photon-min-support", render.settings.photon_min_support,
+                         "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
+                         "this continue their path instead of reading the map (0: never); default " +
+                             shortest(render.settings.photon_min_support))
+      ->group(lab);
   render_cmd->add_option("--short-ray-paths", render.settings.short_ray_paths,
                          "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
                          "continue their path one bounce and read the map there (0: every ray reads it where it "

@@ -117,10 +117,8 @@ inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput
 // taken as even over directions, as composition reflects a rough pixel's cached irradiance (kernels/compose.cl): the
 // diffuse base (1 - metallic)(1 - E_d(n.v)) R plus the lobe's directional albedo c0 T0 + c1 T1 (kernels/brdf.h)
 // times E, whose metallic part of c0 (base colour) and of c1 (1 - base) reads R and E - R. shallow: without the map's
-// last landing.
-inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 dir, bool shallow) {
-  int nearest = photon_map_nearest(PHOTON_MAP, h->s.position, h->ng);
-  if (nearest < 0) return (float3)(0.0f);
+// last landing. nearest: the lookup photon (supported_photon).
+inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 dir, int nearest, bool shallow) {
   __global const float4* estimates = shallow ? map_shallow : map_radiance;
   float3 reflected = estimates[2 * nearest].xyz;
 #if HAS_SPECULAR_BRDF
@@ -142,12 +140,31 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
 }
 #endif
 
+// Bounces first .. more.bounces - 1 of a continued path from *h, added to *sum (path_step).
+inline void continue_path_from(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more,
+                               uint first, float3* sum, uint* rays) {
+  for (uint k = first; k < more.bounces; ++k)
+    if (!path_step(SCENE, h, dir, throughput, more, k, sum, rays)) break;
+}
+
 inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
   float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-  for (uint k = 0; k < more.bounces; ++k)
-    if (!path_step(SCENE, &h, &dir, &throughput, more, k, &sum, rays)) break;
+  continue_path_from(SCENE, &h, &dir, &throughput, more, 0u, &sum, rays);
   return finite_or_zero(sum);
 }
+
+#if PHOTON_GATHER
+// The lookup photon whose estimates stand for *h, or -1 where the map cannot support them: no lookup photon near, or
+// one whose disc held fewer than map.min_support photons. Where few photons land (a room lit through a gap, behind a
+// door), an estimate from a handful is noisy and biased (its fit is clamped, and a lookup that finds no photon reads
+// black): the ray continues its path there instead, which costs rays only where the map is thin (docs/ALGORITHM.md
+// section 8, "Where photons are scarce").
+inline int supported_photon(PHOTON_MAP_ARGS, HitSurface* h) {
+  int nearest = photon_map_nearest(PHOTON_MAP, h->s.position, h->ng);
+  if (nearest < 0) return map.min_support > 0.0f ? -1 : -2;  // -2: none, and no fallback asked for (reads black)
+  return map_radiance[2 * nearest].w >= map.min_support ? nearest : -1;
+}
+#endif
 
 // What a ray along dir that hits nothing brings: the environment's smooth part (kernels/environment.h; the peak is
 // the pixel's direct light), or nothing.
@@ -168,13 +185,18 @@ inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float
 #if PHOTON_GATHER
   if (distance < map.short_path_distance && more.bounces) {
     // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and
-    // reads there the map without its last landing (bounces 3 .. N).
+    // reads there the map without its last landing (bounces 3 .. N), or goes on where the map is thin.
     float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-    if (path_step(SCENE, h, &dir, &throughput, more, 0u, &sum, rays))
-      sum += throughput * photon_gather(SCENE, PHOTON_MAP, h, dir, true);
+    if (path_step(SCENE, h, &dir, &throughput, more, 0u, &sum, rays)) {
+      int nearest = supported_photon(PHOTON_MAP, h);
+      if (nearest >= 0) sum += throughput * photon_gather(SCENE, PHOTON_MAP, h, dir, nearest, true);
+      else if (nearest == -1) continue_path_from(SCENE, h, &dir, &throughput, more, 1u, &sum, rays);
+    }
     l += finite_or_zero(sum);
   } else {
-    l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, h, dir, false));
+    int nearest = supported_photon(PHOTON_MAP, h);
+    if (nearest >= 0) l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, h, dir, nearest, false));
+    else if (nearest == -1 && more.bounces) l += continued_path(SCENE, *h, dir, more, rays);
   }
 #else
   if (more.bounces) l += continued_path(SCENE, *h, dir, more, rays);

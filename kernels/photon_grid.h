@@ -28,6 +28,8 @@
 // The linear fit of an estimate over its disc (kernels/photon_map.cl density_at_centre) adds this share of a full
 // disc's second moment of area to the surface's, so that a narrow strip does not extrapolate its gradient from noise.
 #define PHOTON_GRADIENT_RIDGE 0.1f
+// A disc that holds fewer photons than this keeps its plain mean, unfitted (the render default's average count).
+#define PHOTON_FIT_SUPPORT 64.0f
 
 // The grid cell along one axis holding coordinate x; clamped (a NaN to a bound) so that the conversion is defined
 // even for a radius far below the scene's size.

@@ -24,10 +24,13 @@ typedef struct {
 // changes most (a contact's light is brightest at the contact). The gradient g solves M g = flux's first moment about
 // the centroid (M: the area's second moment about it, plus lambda = PHOTON_GRADIENT_RIDGE times a full disc's, so that
 // a strip of surface does not extrapolate from noise), and the centre's value is mean - g . centroid, kept within
-// [0, 2 mean].
-inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2) {
+// [0, 2 mean]. A disc of fewer than PHOTON_FIT_SUPPORT photons (`support`) keeps its mean: three parameters fitted
+// to a few photons follow their noise, and the clamp turns that noise into a bias (2% bright in a room lit through a
+// gap: benchmarks/RESULTS.md "Photons where they are scarce").
+inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2, uint support) {
   if (!(a.area > 0.0f)) return (float3)(0.0f);
   float3 mean = f.sum / a.area;
+  if ((float)support < PHOTON_FIT_SUPPORT) return mean;
   float cx = a.x / a.area, cy = a.y / a.area;
   float ridge = PHOTON_GRADIENT_RIDGE * a.area * r2 * 0.25f;
   float mxx = a.xx - a.area * cx * cx + ridge, mxy = a.xy - a.area * cx * cy, myy = a.yy - a.area * cy * cy + ridge;
@@ -47,7 +50,9 @@ inline bool in_disc(float3 d, float3 m, float3 n, float r2, float half_thickness
 // The estimates at the lookup grid's photon i (map_radiance[2i], [2i + 1]): the reflected light (photons' reflected
 // flux: their surfaces' albedo averaged in) and the irradiance, both over pi, of every photon (the `all` grid) in the
 // disc of radius all_grid.radius about it, per area of the facing surface the patches find in the same disc, fitted
-// linearly (density_at_centre). The 3 x 3 x 3 cells around the point hold every photon and patch of the disc (cells
+// linearly (density_at_centre); map_radiance[2i].w: how many photons the disc held besides photon i itself, which
+// is left out (a disc about a photon always holds it: counted, it would add one photon's worth, 1 / k of an estimate
+// from k, where photons are few). The 3 x 3 x 3 cells around the point hold every photon and patch of the disc (cells
 // are at least r wide). map_shallow: the same over the photons of landings below shallow_landings
 // (PhotonMapGrids::shallow_landings). Work-item k makes photon estimate_order[k]'s: neighbours in space run together
 // and read the same cells (host/cache/photon_map.h cell_order; 0.85x the kernel's time on PoCL, the same bits).
@@ -63,6 +68,8 @@ __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __
   tangent_frame(n, &t, &b);
   float r2 = all_grid.radius * all_grid.radius, half_thickness = PHOTON_DISC_HALF_THICKNESS * all_grid.radius;
   FluxMoments reflected = {0}, incident = {0}, shallow_reflected = {0}, shallow_incident = {0};
+  uint support = 0;  // photons in the disc
+  bool self_left_out = false;
   uint visited[27];
   uint visited_count = 0;
   int cx = photon_cell(x.x, all_grid.grid_origin[0], all_grid.cell_size);
@@ -74,8 +81,13 @@ __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __
     for (uint j = all_buckets[bucket]; j < all_buckets[bucket + 1u]; ++j) {
       float3 d = vload3(0, all_photons[j].position) - x;
       if (!in_disc(d, vload3(0, all_photons[j].normal), n, r2, half_thickness)) continue;
+      if (!self_left_out && d.x == 0.0f && d.y == 0.0f && d.z == 0.0f) {
+        self_left_out = true;
+        continue;
+      }
       float dx = dot(d, t), dy = dot(d, b);
       float3 fr = vload3(0, all_photons[j].flux), fi = vload3(0, all_photons[j].incident);
+      ++support;
       add_flux(&reflected, fr, dx, dy);
       add_flux(&incident, fi, dx, dy);
       if (all_photons[j].landing < shallow_landings) {
@@ -111,10 +123,13 @@ __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __
   }
   // An area below PHOTON_MIN_AREA_SHARE of the disc's (a lone sliver) is taken as that.
   area.area = fmax(area.area, PHOTON_MIN_AREA_SHARE * RC_PI * r2);
-  map_radiance[2 * i] = (float4)(finite_or_zero(density_at_centre(reflected, area, r2) * RC_INV_PI), 0.0f);
-  map_radiance[2 * i + 1] = (float4)(finite_or_zero(density_at_centre(incident, area, r2) * RC_INV_PI), 0.0f);
-  map_shallow[2 * i] = (float4)(finite_or_zero(density_at_centre(shallow_reflected, area, r2) * RC_INV_PI), 0.0f);
-  map_shallow[2 * i + 1] = (float4)(finite_or_zero(density_at_centre(shallow_incident, area, r2) * RC_INV_PI), 0.0f);
+  map_radiance[2 * i] =
+      (float4)(finite_or_zero(density_at_centre(reflected, area, r2, support) * RC_INV_PI), (float)support);
+  map_radiance[2 * i + 1] = (float4)(finite_or_zero(density_at_centre(incident, area, r2, support) * RC_INV_PI), 0.0f);
+  map_shallow[2 * i] =
+      (float4)(finite_or_zero(density_at_centre(shallow_reflected, area, r2, support) * RC_INV_PI), 0.0f);
+  map_shallow[2 * i + 1] =
+      (float4)(finite_or_zero(density_at_centre(shallow_incident, area, r2, support) * RC_INV_PI), 0.0f);
 }
 
 // photon_map_radiance at query points (float4: xyz) with their normals, for tests: the reflected estimate.

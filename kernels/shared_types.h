@@ -329,6 +329,10 @@ typedef struct {
   // (0: every ray reads it where it lands): the map's estimate averages a disc of `radius`, which at a short ray's end
   // spans the record's own neighbourhood, its contacts and recesses (--short-ray-paths, in radii).
   float short_path_distance;
+  // A lookup whose photon's estimate summed fewer photons than this (in its disc, all landings) is where few photons
+  // reach: its ray continues its path instead of reading the map (0: every lookup that finds a photon reads it).
+  float min_support;
+  rc_uint pad[3];
 } PhotonMapParams;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
@@ -501,7 +505,7 @@ static_assert(sizeof(GuideCluster) == 48);
 static_assert(sizeof(PhotonHit) == 64);
 static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
-static_assert(sizeof(PhotonMapParams) == 32);
+static_assert(sizeof(PhotonMapParams) == 48);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);

@@ -83,7 +83,9 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   photon.hit = 1;
   photon.normal[1] = 1.0f;
   photon.flux[0] = photon.incident[0] = 1.0f;
-  PhotonMapPass map(gpu, build_photon_map({photon}, 1.0, 1, 1));
+  PhotonHit beside = photon;  // a photon's own estimate leaves it out: a second one lights it
+  beside.position[0] = 0.01f;
+  PhotonMapPass map(gpu, build_photon_map({photon, beside}, 1.0, 1, 1));
   EXPECT_GT(map.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);

@@ -22,6 +22,8 @@
 #include "render/bounce_choice.h"
 #include "scene/environment.h"
 #include "closed_cube.h"
+#include "gap_room_scene.h"
+#include "render/renderer.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -106,7 +108,8 @@ glm::dvec3 normal_of(const PhotonHit& p) { return {p.normal[0], p.normal[1], p.n
 
 // Each lookup photon's estimate against the sum, in double, of the flux of every photon within the radius and within
 // PHOTON_DISC_HALF_THICKNESS r of the tangent plane on a surface facing the same way, over pi^2 r^2 (no surface
-// patches: every disc is taken as full). Beside the floor and the wall, two shelves above the floor facing up, at 0.4 of
+// patches: every disc is taken as full), leaving out the lookup photon itself, whose count the estimate carries too.
+// Beside the floor and the wall, two shelves above the floor facing up, at 0.4 of
 // the disc's half-thickness (within it: counted by the floor's estimates) and 1.7 times it (beyond: left out; no two
 // surfaces lie exactly one half-thickness apart). Photons within 1e-5 r of the disc's rim or faces could fall either way
 // in float: such estimates are skipped (counted). Tolerance 1e-4 relative (float sums of a few dozen terms). The
@@ -139,11 +142,16 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   for (size_t i = 0; i < grids.lookup.photons.size(); ++i) {
     glm::dvec3 x = position_of(grids.lookup.photons[i]), n = normal_of(grids.lookup.photons[i]);
     glm::dvec3 flux(0.0), shallow_flux(0.0), incident(0.0), shallow_incident(0.0);
-    bool rim = false;
+    bool rim = false, self = false;
+    double support = 0.0;
     for (const PhotonHit& p : grids.all.photons) {
       glm::dvec3 d = position_of(p) - x;
       double d2 = glm::dot(d, d);
       if (glm::dot(normal_of(p), n) <= 0.5) continue;
+      if (d2 == 0.0 && !self) {  // the lookup photon itself, left out of its own estimate
+        self = true;
+        continue;
+      }
       double height = std::abs(glm::dot(d, n));
       const double half = PHOTON_DISC_HALF_THICKNESS * r;
       rim = rim || std::abs(d2 - r2) < 1e-5 * r2 || std::abs(height - half) < 1e-5 * r;
@@ -151,13 +159,16 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
         const glm::dvec3 reflected(p.flux[0], p.flux[1], p.flux[2]), arrived(p.incident[0], p.incident[1], p.incident[2]);
         flux += reflected;
         incident += arrived;
+        support += 1.0;
         if (p.landing < 3) shallow_flux += reflected, shallow_incident += arrived;
       }
     }
+    ASSERT_TRUE(self) << "photon " << i << " is not among all photons";
     if (rim) {
       ++ambiguous;
       continue;
     }
+    ASSERT_EQ(estimates[2 * i].s[3], support) << "photon " << i << ": photons in its disc";
     // Reflected light and irradiance, each over pi, in the estimates' order (kernels/photon_map.cl).
     const glm::dvec3 expected[2] = {flux / (kPi * kPi * r2), incident / (kPi * kPi * r2)};
     const glm::dvec3 expected_shallow[2] = {shallow_flux / (kPi * kPi * r2), shallow_incident / (kPi * kPi * r2)};
@@ -180,7 +191,8 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
 
 // The estimate with the scene's surface, in double (kernels/photon_map.cl density_at_centre): the flux of the photons
 // in the disc about x (normal n) and the area of the patches in it, their moments in the tangent plane, the linear fit
-// with its ridge, and the clamp to [0, 2 mean]. incident: the arriving flux, else the reflected. *rim: a photon or
+// with its ridge, and the clamp to [0, 2 mean]; the photon at x itself left out, and the plain mean where fewer than
+// PHOTON_FIT_SUPPORT photons remain. incident: the arriving flux, else the reflected. *rim: a photon or
 // patch lies within 1e-5 r^2 of the disc's rim (float may place it either way).
 glm::dvec3 fitted_estimate(const PhotonMapGrids& grids, glm::dvec3 x, glm::dvec3 n, bool incident, bool* rim) {
   const double r2 = double(grids.all.params.radius) * grids.all.params.radius;
@@ -192,9 +204,16 @@ glm::dvec3 fitted_estimate(const PhotonMapGrids& grids, glm::dvec3 x, glm::dvec3
     return glm::dot(d, d) < r2 && std::abs(glm::dot(d, n)) < half && glm::dot(m, n) > 0.5;
   };
   glm::dvec3 sum(0.0), sx(0.0), sy(0.0);
+  bool self = false;
+  double support = 0.0;
   for (const PhotonHit& p : grids.all.photons) {
     glm::dvec3 d = position_of(p) - x;
     if (!inside(d, normal_of(p))) continue;
+    if (glm::dot(d, d) == 0.0 && !self) {  // the photon itself
+      self = true;
+      continue;
+    }
+    support += 1.0;
     const float* f = incident ? p.incident : p.flux;
     glm::dvec3 flux(f[0], f[1], f[2]);
     sum += flux, sx += flux * glm::dot(d, t), sy += flux * glm::dot(d, b);
@@ -209,6 +228,7 @@ glm::dvec3 fitted_estimate(const PhotonMapGrids& grids, glm::dvec3 x, glm::dvec3
   }
   area = std::max(area, double(PHOTON_MIN_AREA_SHARE) * kPi * r2);
   const glm::dvec3 mean = sum / area;
+  if (support < double(PHOTON_FIT_SUPPORT)) return mean / kPi;  // too few photons to fit a slope to
   const double cx = ax / area, cy = ay / area, ridge = double(PHOTON_GRADIENT_RIDGE) * area * r2 / 4.0;
   const double mxx = axx - area * cx * cx + ridge, mxy = axy - area * cx * cy, myy = ayy - area * cy * cy + ridge;
   const double det = mxx * myy - mxy * mxy;
@@ -238,7 +258,8 @@ TEST(PhotonMap, EstimatesWithTheSceneSurfaceFitTheLightLinearlyToTheDiscsCentre)
     photons.push_back(photon_at(float(x), 0.0f, float(u(rng)), {0, 1, 0}, glm::vec3(flux), 0.25f));
     if (i % 2) photons.push_back(photon_at(0.0f, float(u(rng)), float(u(rng)), {1, 0, 0}, glm::vec3(flux), 0.25f));
   }
-  PhotonMapGrids grids = build_photon_map(photons, 2.0, 128, 2, triangles);
+  // 256 photons a disc on average: the edges' half discs hold over PHOTON_FIT_SUPPORT, and are fitted.
+  PhotonMapGrids grids = build_photon_map(photons, 2.0, 256, 2, triangles);
   ASSERT_FALSE(grids.patches.patches.empty());
   PhotonMapPass pass(test::gpu(), grids);
   std::vector<cl_float4> estimates = pass.estimates();
@@ -566,6 +587,43 @@ TEST(BounceChoice, ASkyAloneIsMeasuredToo) {
   EXPECT_LT(choice.kept_per_bounce, 0.5);
   EXPECT_GE(choice.bounces, 2u);
   EXPECT_EQ(choice.method, BounceMethod::path);
+}
+
+}  // namespace
+}  // namespace rcsplat
+
+namespace rcsplat {
+namespace {
+
+// Issue 41 item 4: in a room lit through a gap (tests/gap_room_scene.h) the near side holds few photons. The render
+// defaults (8 bounces, photon map) must agree with the same records' later bounces by path continuation, which has no
+// density estimate to bias it. Two seeds each at 96 x 72; their means' spread over seeds is 0.2% (0.3% for path
+// continuation) at 320 x 240 (benchmarks/gap_room, 4 seeds), a few times that here: 2% is the tolerance. Before issue
+// 41 (every lookup read the map, black where it found no photon: --photon-min-support 0) the defaults read 4% dark.
+TEST(PhotonMap, RoomLitThroughAGapMatchesPathContinuation) {
+  const Scene room = test::gap_lit_room();
+  Renderer renderer(test::gpu(), room);
+  RenderSettings defaults;
+  defaults.width = 96;
+  defaults.height = 72;
+  const FramePlan plan = renderer.plan(defaults);
+  ASSERT_EQ(plan.settings.bounce_method, BounceMethod::photons);
+  ASSERT_GE(plan.settings.bounces, 4u);
+  RenderSettings path = defaults;
+  path.bounces = plan.settings.bounces;
+  path.bounce_method = BounceMethod::path;
+  auto mean_over_seeds = [&](RenderSettings s) {
+    double sum = 0.0;
+    for (unsigned seed : {1u, 2u}) {
+      s.seed = seed;
+      const RenderedImage image = renderer.render(s);
+      for (float v : image.color) sum += v;
+    }
+    return sum;
+  };
+  const double photons = mean_over_seeds(defaults), continued = mean_over_seeds(path);
+  std::printf("defaults over path continuation: %.4f\n", photons / continued);
+  EXPECT_NEAR(photons / continued, 1.0, 0.02);
 }
 
 }  // namespace

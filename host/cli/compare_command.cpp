@@ -11,12 +11,13 @@ namespace rcsplat {
 int run_compare(const CompareOptions& o) {
   const ImageComparison c = compare_exr_files(o.image_path, o.reference_path, o.block, o.exposure);
   const std::string block_name = std::to_string(o.block) + "x" + std::to_string(o.block) + " relMSE";
-  std::printf("%-10s %-12s %-12s %-12s %-14s %s\n", "layer", "relMSE", "RMSE", "MAE", block_name.c_str(), "FLIP");
+  std::printf("%-10s %-12s %-12s %-12s %-14s %-8s %s\n", "layer", "relMSE", "RMSE", "MAE", block_name.c_str(), "FLIP",
+              "mean/ref");
   for (const LayerComparison& l : c.layers) {
     char block[32] = "-";
     if (l.block_rel_mse) std::snprintf(block, sizeof block, "%.4e", *l.block_rel_mse);
-    std::printf("%-10s %-12.4e %-12.4e %-12.4e %-14s %.4f\n", l.layer.c_str(), l.pixel.rel_mse, l.pixel.rmse,
-                l.pixel.mae, block, l.mean_flip);
+    std::printf("%-10s %-12.4e %-12.4e %-12.4e %-14s %-8.4f %.4f\n", l.layer.c_str(), l.pixel.rel_mse, l.pixel.rmse,
+                l.pixel.mae, block, l.mean_flip, l.mean_ratio);
   }
   if (!c.find("indirect")) std::printf("indirect   (no indirect layer in both images)\n");
   if (const LayerComparison* l = c.find("indirect"); l && l->reference_noise) {

@@ -225,6 +225,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
           {"photons_kept", s.photon_map.photons},
           {"radius", s.photon_map.radius},
           {"short_ray_paths_below", s.photon_map.radius * settings.short_ray_paths},
+          {"min_support", settings.photon_min_support},
           {"seconds", s.photon_map.seconds},
           {"seconds_by_part",
            {{"shoot", s.photon_map.shoot_s},

@@ -18,6 +18,9 @@ LayerComparison compare_layer(const std::string& name, const std::vector<float>&
   LayerComparison c;
   c.layer = name;
   c.pixel = image_error(image, reference);
+  double image_sum = 0.0, reference_sum = 0.0;
+  for (size_t i = 0; i < image.size() && i < reference.size(); ++i) image_sum += image[i], reference_sum += reference[i];
+  c.mean_ratio = reference_sum > 0.0 ? image_sum / reference_sum : 0.0;
   if (width >= block && height >= block) c.block_rel_mse = block_rel_mse(image, reference, width, height, block);
   FlipResult flip =
       ldr_flip(display_image(reference, exposure_stops), display_image(image, exposure_stops), width, height);
@@ -104,7 +107,7 @@ nlohmann::json comparison_json(const ImageComparison& c) {
                       {"finer_pixel_reference", c.finer_pixel_reference}};
   for (const LayerComparison& l : c.layers) {
     nlohmann::json layer = {{"rel_mse", l.pixel.rel_mse}, {"rmse", l.pixel.rmse}, {"mae", l.pixel.mae},
-                            {"mean_flip", l.mean_flip}};
+                            {"mean_flip", l.mean_flip}, {"mean_ratio", l.mean_ratio}};
     if (l.block_rel_mse) layer["block_rel_mse"] = *l.block_rel_mse;
     if (l.reference_noise) {
       layer["reference_noise"] = *l.reference_noise;

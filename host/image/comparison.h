@@ -18,6 +18,7 @@ struct LayerComparison {
   ErrorMetrics pixel;
   std::optional<double> block_rel_mse;  // absent when the image is smaller than one block
   double mean_flip = 0.0;
+  double mean_ratio = 0.0;  // the image's mean over the reference's (all channels): too dark or too bright overall
   std::optional<double> reference_noise, block_reference_noise;  // expected relMSEs from the reference's variance
   std::vector<float> flip_map, rel_mse_map;  // per pixel, for heat maps
   // The relMSEs less the reference's own noise, where the reference carries its variance.

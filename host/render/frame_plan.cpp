@@ -26,6 +26,8 @@ void check_request(const RenderSettings& r) {
   range("RenderSettings::photon_neighbours", r.photon_neighbours, 1, 1 << 16, "");
   if (!(r.short_ray_paths >= 0.0f) || !std::isfinite(r.short_ray_paths))
     throw Error("--short-ray-paths must be 0 or positive (given " + std::to_string(r.short_ray_paths) + ")");
+  if (!(r.photon_min_support >= 0.0f) || !std::isfinite(r.photon_min_support))
+    throw Error("--photon-min-support must be 0 or positive (given " + std::to_string(r.photon_min_support) + ")");
   if (r.pixel_samples) pixel_sample_side(r.pixel_samples);  // a square number from 1 to 64
   validate_cache_settings(r.cache);
 }
