@@ -130,6 +130,39 @@ TEST(Brdf, SpecularAlbedoTableMatchesTheDoublePrecisionModel) {
   std::printf("worst relative error of the tabulated specular albedo: %.2e\n", worst);
 }
 
+// A smooth dielectric keeps its Fresnel: its lobe's albedo toward the view is F(n.v) itself, so the diffuse weight is
+// 1 - F(n.v), as before issue 41, where a rough one's is not (at roughness 1 and cos 0.1 the weight is 0.95, against
+// 1 - F = 0.39).
+TEST(Brdf, SmoothDielectricKeepsItsFresnel) {
+  std::vector<float> cases;
+  std::vector<double> cosines;
+  for (double roughness : {0.0, 1.0})
+    for (int i = 0; i < 19; ++i) {
+      double c = 0.1 + 0.05 * i;
+      cosines.push_back(c);
+      std::vector<float> one = case_floats(Material{{0.5, 0.5, 0.5}, 0.0, roughness, 1.0}, direction(c, 0.0),
+                                           direction(c, 0.0));
+      cases.insert(cases.end(), one.begin(), one.end());
+    }
+  GpuContext& gpu = test::gpu();
+  cl::Buffer in = gpu.upload(cases);
+  const size_t count = cosines.size();
+  cl::Buffer out(gpu.context(), CL_MEM_WRITE_ONLY, count * 4 * sizeof(float));
+  NamedKernel kernel(gpu, gpu.program_from_text("brdf_test.cl", kBrdfKernels), "tabulated_specular_albedo");
+  kernel.set_buffer<cl_float>("cases", in).set("count", cl_uint(count)).set_buffer<cl_float>("out", out);
+  kernel.launch(count, 64);
+  gpu.queue().finish();
+  std::vector<float> device = gpu.download<float>(out, count * 4);
+  for (size_t i = 0; i < count; ++i) {
+    const double cos_o = double(cases[12 * i + 8]), fresnel_weight = 1.0 - (0.04 + 0.96 * std::pow(1.0 - cos_o, 5.0));
+    if (i < count / 2)
+      EXPECT_NEAR(device[4 * i + 3], fresnel_weight, diffuse_weight_tolerance(cos_o)) << "smooth, cos " << cos_o;
+    else
+      EXPECT_GT(device[4 * i + 3], fresnel_weight + 0.01) << "rough, cos " << cos_o;
+  }
+  EXPECT_NEAR(device[4 * (count / 2) + 3], 0.95, 0.01);  // roughness 1, cos 0.1
+}
+
 TEST(Brdf, DeviceMatchesTheDoublePrecisionModel) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> uni(0.0, 1.0);

@@ -13,7 +13,8 @@
 # (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm),
 # wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
 # in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
-# budget (Sponza's frame at the defaults and at cheaper settings), heap (freed host memory reused, against
+# budget (Sponza's frame at the defaults and at cheaper settings), issue41 (Sponza and textured Sibenik on the GPU
+# against PoCL, and repeated), heap (freed host memory reused, against
 # .gpu/rcsplat_old), pieces (image layers downloaded in pieces, against .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
@@ -203,6 +204,24 @@ if [[ $parts == *defaults* ]]; then
     timeout 90 $G/$b -q bench $B --device NVIDIA --width 1920 --height 1080 --repeats 3 \
       --json $R/defaults_${b}_sibenik.json | grep NVIDIA | sed "s/^/sibenik $b: /"
   done
+fi
+
+# Issue 41 (the dielectric's diffuse weight as one less its lobe's albedo, read from a __constant table in every kernel;
+# record rays continue their path where photons are scarce): Sponza and textured Sibenik at 1024x768 with the defaults
+# on the GPU, twice (the same bits expected), and on PoCL over the host's cores; the GPU's images against PoCL's.
+if [[ $parts == *issue41* ]]; then
+  for sc in $S $B; do
+    n=$(basename $sc .gltf)
+    for i in 1 2; do
+      timeout 90 $rc -q render $sc --device NVIDIA --width 1024 --height 768 -o $work/${n}_gpu$i.exr \
+        --json $R/i41_${n}_gpu$i.json > /dev/null || echo "FAILED: $n GPU run $i"
+    done
+    cmp -s $work/${n}_gpu1.exr $work/${n}_gpu2.exr && echo "$n: GPU runs identical" || echo "$n: GPU runs DIFFER"
+    timeout 150 $rc -q render $sc --device $cpu --width 1024 --height 768 -o $work/${n}_pocl.exr \
+      --json $R/i41_${n}_pocl.json > /dev/null || echo "FAILED: $n PoCL"
+    $rc compare $work/${n}_gpu1.exr $work/${n}_pocl.exr --json $R/i41_${n}_gpu_vs_pocl.json | sed "s/^/$n GPU vs PoCL: /"
+  done
+  rm -f $work/*.exr
 fi
 
 # The cheapest frame of the budget part below, where the host's work is most of it.
