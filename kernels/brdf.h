@@ -136,7 +136,7 @@ inline float3 brdf_specular_weight(BrdfInputs in, float3 wo, float3 wi) {
 
 // Probability of sampling the GGX lobe rather than the cosine lobe, from the lobes' weights seen from wo, estimated
 // with Schlick's Fresnel of the view: any split keeps the estimate unbiased (brdf_pdf uses the same), and this one
-// reads no table (the diffuse weight's table, read three times a sample, cost textured Sibenik's frame 15%).
+// costs no table read (brdf_sample would read it three times a sample, in the kernels that trace paths).
 inline float brdf_specular_probability(BrdfInputs in, float3 wo) {
   float fw = schlick_weight(wo.z);
   float gray = (in.base_color.x + in.base_color.y + in.base_color.z) * (1.0f / 3.0f);
