@@ -160,7 +160,7 @@ inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuat
 // one whose disc held fewer than map.min_support photons. Where few photons land (a room lit through a gap, behind a
 // door), an estimate from a handful is noisy and biased (its fit is clamped, and a lookup that finds no photon reads
 // black): the ray continues its path there instead, which costs rays only where the map is thin (docs/ALGORITHM.md
-// section 8, "Where photons are scarce").
+// section 8).
 inline int supported_photon(PHOTON_MAP_ARGS, HitSurface* h) {
   int nearest = photon_map_nearest(PHOTON_MAP, h->s.position, h->ng);
   if (nearest < 0) return map.min_support > 0.0f ? -1 : -2;  // -2: none, and no fallback asked for (reads black)

@@ -26,7 +26,7 @@ typedef struct {
 // a strip of surface does not extrapolate from noise), and the centre's value is mean - g . centroid, kept within
 // [0, 2 mean]. A disc of fewer than PHOTON_FIT_SUPPORT photons (`support`) keeps its mean: three parameters fitted
 // to a few photons follow their noise, and the clamp turns that noise into a bias (2% bright in a room lit through a
-// gap: benchmarks/RESULTS.md "Photons where they are scarce").
+// gap: docs/NOTES.md "Issue 41: photons where they are scarce").
 inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2, uint support) {
   if (!(a.area > 0.0f)) return (float3)(0.0f);
   float3 mean = f.sum / a.area;

@@ -62,7 +62,7 @@ struct RenderSettings {
   // --bounce-method photons: a record ray whose hit's photon estimate summed fewer photons than this (the map's disc
   // holds photon_neighbours on average), or that finds no lookup photon near, continues its path instead of reading
   // the map: where few photons land, as in a room lit through a gap, a lookup that finds none would read black
-  // (benchmarks/RESULTS.md "Photons where they are scarce"). 0: every ray reads the map, black where it finds none.
+  // (docs/NOTES.md "Issue 41: photons where they are scarce"). 0: every ray reads the map, black where it finds none.
   float photon_min_support = 4.0f;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
