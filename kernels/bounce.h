@@ -133,9 +133,8 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
     float dielectric = (1.0f - in.metallic) * in.specular;
     float3 c0 = dielectric * DIELECTRIC_F0 * irradiance + in.metallic * reflected;
     float3 c1 = dielectric * (1.0f - DIELECTRIC_F0) * irradiance + in.metallic * (irradiance - reflected);
-    // The diffuse weight from the same terms (brdf_diffuse_weight), read once.
-    float diffuse_weight = 1.0f - in.specular * (DIELECTRIC_F0 * terms.x + (1.0f - DIELECTRIC_F0) * terms.y);
-    return (1.0f - in.metallic) * diffuse_weight * reflected + terms.x * c0 + terms.y * c1;
+    // The diffuse weight from the same terms: the table read once for both.
+    return (1.0f - in.metallic) * diffuse_weight_from_terms(in, terms) * reflected + terms.x * c0 + terms.y * c1;
   }
 #endif
   return reflected;

@@ -82,10 +82,14 @@ inline float2 specular_albedo_split(BrdfInputs in, float cos_o) {
   return mix(bottom, top, fy);
 }
 
-// The dielectric's diffuse weight 1 - E_d(n.v) (without the (1 - metallic) factor): what its specular layer leaves.
+// The dielectric's diffuse weight 1 - E_d (without the (1 - metallic) factor), from the lobe's albedo terms toward
+// the view (specular_albedo_split): what its specular layer leaves.
+inline float diffuse_weight_from_terms(BrdfInputs in, float2 terms) {
+  return 1.0f - in.specular * (DIELECTRIC_F0 * terms.x + (1.0f - DIELECTRIC_F0) * terms.y);
+}
+
 inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
-  float2 t = specular_albedo_split(in, n_dot_v);
-  return 1.0f - in.specular * (DIELECTRIC_F0 * t.x + (1.0f - DIELECTRIC_F0) * t.y);
+  return diffuse_weight_from_terms(in, specular_albedo_split(in, n_dot_v));
 }
 
 // The specular lobe's Fresnel colour is c0 + c1 (1 - v.h)^5: the dielectric layer's and the metal's Schlick terms,

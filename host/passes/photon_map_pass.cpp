@@ -43,6 +43,11 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
   gpu.queue().finish();
 }
 
+void PhotonMapPass::set_lookup(float short_ray_paths, float min_support) {
+  params_.short_path_distance = short_ray_paths * params_.radius;
+  params_.min_support = min_support;
+}
+
 void PhotonMapPass::bind(NamedKernel& kernel) const {
   kernel.set_buffer<PhotonHit>("map_photons", photons_)
       .set_buffer<cl_float4>("map_radiance", radiance_)

@@ -20,6 +20,9 @@ class PhotonMapPass {
   // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done.
   PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids);
 
+  // How the kernels bound later read the map (PhotonMapParams): record rays shorter than short_ray_paths radii
+  // continue a bounce first; a lookup whose estimate summed fewer than min_support photons continues its path.
+  void set_lookup(float short_ray_paths, float min_support);
   // Sets a kernel's PHOTON_MAP_ARGS (the lookup grid and its estimates).
   void bind(NamedKernel& kernel) const;
   const PhotonMapParams& params() const { return params_; }

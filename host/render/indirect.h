@@ -57,7 +57,6 @@ struct ViewIndependentLight {
   // The photon map (attach_photon_map): the irradiance and radiance records share it.
   struct PhotonKey {
     unsigned seed = 0, bounces = 0, paths = 0, neighbours = 0;
-    float short_ray_paths = 0.0f, min_support = 0.0f;
     bool operator==(const PhotonKey&) const = default;
   };
   std::optional<PhotonKey> photon_key;

@@ -33,8 +33,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   RenderStats& st = f.image.stats;
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::PhotonKey key{f.settings.seed, f.settings.bounces, f.settings.photon_paths,
-                                            f.settings.photon_neighbours, f.settings.short_ray_paths,
-                                            f.settings.photon_min_support};
+                                            f.settings.photon_neighbours};
   if (!light.photon_map || light.photon_key != key) {
     light.photon_map.reset();
     StageTimer timing(st.photon_map.seconds, f.gpu, st.program_s);
@@ -67,8 +66,6 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     StageTimer grids_timing(st.photon_map.grids_s);
     PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                             kPhotonLookupStride, frame.device_positions(f.scene));
-    grids.lookup.params.short_path_distance = f.settings.short_ray_paths * grids.lookup.params.radius;
-    grids.lookup.params.min_support = f.settings.photon_min_support;
     grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
     grids_timing.stop();
     StageTimer estimate(st.photon_map.estimate_s, f.gpu);
@@ -78,6 +75,9 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     light.photons = grids.all.photons.size();
     light.photon_radius = frame.length_to_world(grids.all.params.radius);
   }
+  // How lookups read the map is the frame's to say: a kept map serves other --short-ray-paths and
+  // --photon-min-support without being made again.
+  light.photon_map->set_lookup(f.settings.short_ray_paths, f.settings.photon_min_support);
   st.photon_map.paths = light.photon_paths;
   st.photon_map.photons = light.photons;
   st.photon_map.radius = light.photon_radius;
