@@ -213,6 +213,12 @@ int main(int argc, char** argv) {
                              std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                              " rounds; 0 too; at most 67108864)")
       ->group(lab);
+  render_cmd->add_option("--caustic-photons", render.settings.caustic_photons,
+                         "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
+                         "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
+                         "records' rays count it; at most 67108864); default " +
+                             std::to_string(render.settings.caustic_photons))
+      ->group(lab);
   render_cmd->add_option("--photon-min-support", render.settings.photon_min_support,
                          "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
                          "this continue their path instead of reading the map (0: never); default " +

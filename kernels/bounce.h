@@ -14,6 +14,10 @@
 
 // PHOTON_GATHER = 1 (the record pass with --bounce-method photons): the bounces after the first come from the photon
 // map (kernels/photon_map.h), which the kernels then take after SCENE_ARGS; otherwise from the continued path.
+#ifndef CAUSTICS_APART
+#define CAUSTICS_APART 0
+#endif
+
 #if PHOTON_GATHER
 #include "photon_map.h"
 #define GATHER_MAP_ARGS , PHOTON_MAP_ARGS
@@ -55,6 +59,38 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
   if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);  // what any albedo times it would give
   return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
 }
+
+#if CAUSTICS_APART
+// What a record's ray finds lit directly on the surface it hits, less the light a sharp lobe (LOBE_GLOSSY) reflects of
+// the sources the caustic map shoots photons from (punctual lights, emitters, the environment's peak): that path,
+// light -> glossy -> the record's surface, is the caustic map's (kernels/caustic_map.cl), read at the pixels. A
+// record counting it through its own ray made one stratum on a highlight carry most of the record's light, a bright
+// disc where the record splats (textured Sibenik's marble floor). The diffuse base keeps all direct light, and the
+// lobe keeps the environment's smooth part (one sample of the lobe that escapes), which the map does not shoot. Only
+// the irradiance records' program defines CAUSTICS_APART (host/passes/record_pass.cpp); later bounces, the radiance
+// records, the glossy pass and the path tracer count every path themselves.
+inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe,
+                                          uint* rays) {
+  if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY) return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
+  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h));
+  ShadingFrame frame = shading_frame(h->ns);
+  float3 wo = view_local(frame, -dir);
+  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
+                               h->s.position, h->ns, h->ng, u, v, rays);
+  float3 l = (float3)(0.0f);
+#if HAS_ENVIRONMENT
+  float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
+  e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
+  float2 lobe_u = environment_extra_randoms(u, v, 2u);
+  float3 m = ggx_sample_visible_normal(wo, in.alpha, lobe_u.x, lobe_u.y);
+  float3 wi = 2.0f * dot(wo, m) * m - wo, toward = to_world(frame, wi);
+  float3 origin = offset_ray_origin(h->s.position, h->ng);
+  if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f && escapes(BVH, origin, toward, rays))
+    l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward);
+#endif
+  return finite_or_zero(l + brdf_eval_diffuse(in, wo.z) * e);
+}
+#endif
 
 // The bounces after the first (--bounces N: N - 1 of them): from each hit the path goes on along a direction drawn
 // from the hit's BRDF (cosine-weighted where Lambertian), and each new hit adds its directly lit radiance times the
@@ -182,7 +218,11 @@ inline float3 miss_radiance(SCENE_ARGS, float3 dir) {
 // h, and u_lobe the lobe of its BRDF sample where h is glossy.
 inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
                                 float v, float u_lobe, PathContinuation more, uint* rays) {
+#if CAUSTICS_APART
+  float3 l = hit_direct_without_caustics(SCENE, h, dir, u, v, u_lobe, rays);
+#else
   float3 l = hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
+#endif
 #if PHOTON_GATHER
   if (distance < map.short_path_distance && more.bounces) {
     // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and

@@ -26,6 +26,7 @@ inline float random01(rc_uint a, rc_uint b, rc_uint c) {
 // rounds step the seed by the golden ratio, STREAM_ROUND_STEP (path-traced rounds and batches).
 #define STREAM_LIGHT_GUIDE 0x6c677569u        /* "lgui": the light guide's photons (render/indirect_guide.cpp) */
 #define STREAM_PHOTON_MAP 0x70686f74u         /* "phot": the photon map's photons, XOR hash_u32(round) */
+#define STREAM_CAUSTIC_MAP 0x63617573u        /* "caus": the caustic map's photons (render/indirect_caustics.cpp) */
 #define STREAM_RADIANCE_RECORDS 0x68736831u   /* "hsh1": the radiance records' hemispheres and placement */
 #define STREAM_PIXEL_JITTER 0x6a697474u       /* "jitt": path tracing's jitter over the pixel, + round */
 #define STREAM_BOUNCE_PROBE 0x626f756eu       /* "boun": the bounce probe's photons (a fixed seed, not --seed's) */

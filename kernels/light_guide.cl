@@ -44,6 +44,27 @@ inline float3 scatter_photon(SCENE_ARGS, HitSurface* h, float3 dir, float3 refle
   return cosine_direction(t, b, h->ns, u1, u2);
 }
 
+#if HAS_SPECULAR_BRDF
+// The caustic map's reflection at landing 0 (PhotonParams::caustic): a photon goes on only from a surface whose lobe is
+// sharp (LOBE_GLOSSY, the lobes kernels/bounce.h hit_direct_without_caustics leaves to the map), along a direction
+// drawn from that lobe's visible normals seen from the light, carrying f_specular cos / pdf = F G2 / G1 of its power
+// (brdf_specular_weight, which is symmetric in the two directions); the diffuse base's light stays with the records.
+inline float3 scatter_caustic_photon(SCENE_ARGS, HitSurface* h, float3 dir, uint key, float3* power) {
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  if (lobe.lobe != LOBE_GLOSSY) {
+    *power = (float3)(0.0f);
+    return dir;
+  }
+  ShadingFrame frame = shading_frame(h->ns);
+  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+  float3 toward_light = view_local(frame, -dir);
+  float3 m = ggx_sample_visible_normal(toward_light, in.alpha, random01(key, 0u, 6u), random01(key, 0u, 7u));
+  float3 next = 2.0f * dot(toward_light, m) * m - toward_light;
+  *power *= brdf_specular_weight(in, toward_light, next);
+  return to_world(frame, next);
+}
+#endif
+
 // A point of the unit disc facing axis, from uniform (u, v): photons of lights at infinity cross it.
 inline float3 unit_disc_point(float3 axis, float u, float v) {
   float3 t, b;
@@ -151,7 +172,11 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
       vstore3(flux, 0, out.flux);
       vstore3(finite_or_zero(power / per_photon), 0, out.incident);
       if (k + 1u < params.landings) {
-        dir = scatter_photon(SCENE, &h, dir, reflected, key, k, &power);
+#if HAS_SPECULAR_BRDF
+        if (params.caustic) dir = scatter_caustic_photon(SCENE, &h, dir, key, &power);
+        else
+#endif
+          dir = scatter_photon(SCENE, &h, dir, reflected, key, k, &power);
         float3 leaving = finite_or_zero(power / per_photon);
         alive = dot(dir, h.ng) > 0.0f && (leaving.x > 0.0f || leaving.y > 0.0f || leaving.z > 0.0f);
         origin = offset_ray_origin(h.s.position, h.ng);

@@ -41,12 +41,6 @@ inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2, uint sup
   return clamp(mean - (gx * cx + gy * cy), 0.0f, 2.0f * mean);
 }
 
-// Whether a point at offset d from a disc's centre (normal n) on a surface facing m lies in the disc: within the
-// radius, within PHOTON_DISC_HALF_THICKNESS r of the tangent plane, and facing within PHOTON_MIN_NORMAL_COSINE.
-inline bool in_disc(float3 d, float3 m, float3 n, float r2, float half_thickness) {
-  return dot(d, d) < r2 && fabs(dot(d, n)) < half_thickness && dot(m, n) > PHOTON_MIN_NORMAL_COSINE;
-}
-
 // The estimates at the lookup grid's photon i (map_radiance[2i], [2i + 1]): the reflected light (photons' reflected
 // flux: their surfaces' albedo averaged in) and the irradiance, both over pi, of every photon (the `all` grid) in the
 // disc of radius all_grid.radius about it, per area of the facing surface the patches find in the same disc, fitted

@@ -27,6 +27,12 @@ inline bool first_visit(uint bucket, uint* visited, uint* count) {
   return true;
 }
 
+// Whether a point at offset d from a disc's centre (normal n) on a surface facing m lies in the disc: within the
+// radius, within PHOTON_DISC_HALF_THICKNESS r of the tangent plane, and facing within PHOTON_MIN_NORMAL_COSINE.
+inline bool in_disc(float3 d, float3 m, float3 n, float r2, float half_thickness) {
+  return dot(d, d) < r2 && fabs(dot(d, n)) < half_thickness && dot(m, n) > PHOTON_MIN_NORMAL_COSINE;
+}
+
 // The nearest photon within map.radius of x on a surface facing ng's way (cosine above PHOTON_MIN_NORMAL_COSINE) among
 // those in `bucket`: updates *nearest (squared distance) and *index.
 inline void nearest_in_bucket(PHOTON_MAP_ARGS, uint bucket, float3 x, float3 ng, float* nearest, int* index) {

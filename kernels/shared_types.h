@@ -314,7 +314,11 @@ typedef struct {
   // 1: the last source is the environment's smooth part, a sky (the bounce probe only, host/render/bounce_choice.cpp:
   // the light guide and the photon map gather a sky's smooth light and never shoot it).
   rc_uint sky_source;
-  rc_uint pad[2];
+  // 1: the caustic map's photons (kernels/caustic_map.cl): landing 0 reflects a photon only where the surface's lobe
+  // is sharp (LOBE_GLOSSY), and only by that lobe, so that landing 1 holds exactly the light -> glossy -> surface paths
+  // the records leave out (kernels/bounce.h hit_direct_without_caustics).
+  rc_uint caustic;
+  rc_uint pad;
 } PhotonParams;
 
 // The photon map (--bounce-method photons; kernels/photon_map.h): photon landings after at least one reflection, sorted

@@ -12,6 +12,7 @@
 #include "cl/embedded_kernels.h"
 #include "passes/ray_cast_pass.h"
 #include "passes/splat_pass.h"
+#include "passes/caustic_map_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
@@ -36,13 +37,14 @@ std::set<std::string> every_kernel_in_the_sources() {
 }
 
 // The built-in Cornell box with a radiance-cached floor (metal, roughness 0.6: LOBE_HSH) and a glossy tall box
-// (roughness 0.2: LOBE_GLOSSY), so that the radiance cache's and the glossy pass's kernels run too.
+// (roughness 0.2: LOBE_GLOSSY), so that the radiance cache's, the glossy pass's and the caustic map's kernels run too.
 Scene cornell_box_with_glossy_and_cached_lobes() {
   Scene scene = make_cornell_box();
   SceneMaterial floor = scene.materials[0], box = scene.materials[0];
   floor.metallic = 1.0f;
   floor.roughness = 0.6f;
   box.roughness = 0.2f;
+  box.specular = 1.0f;  // a dielectric: without a specular layer or metal the box would be Lambertian
   scene.materials.push_back(floor);
   scene.materials.push_back(box);
   scene.triangle_material[0] = scene.triangle_material[1] = uint32_t(scene.materials.size() - 2);
@@ -87,6 +89,8 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   beside.position[0] = 0.01f;
   PhotonMapPass map(gpu, build_photon_map({photon, beside}, 1.0, 1, 1));
   EXPECT_GT(map.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
+  CausticMapPass caustics(gpu, {photon, beside}, 0.1f);
+  EXPECT_GT(caustics.irradiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);
   RayCastPass caster(gpu, device);

@@ -105,6 +105,11 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
           s.photon_map.radius, s.photon_map.radius * settings.short_ray_paths, s.photon_map.seconds);
     else if (s.bounces.count > 1)
       std::printf("bounces      2..%u at the records' hits by path continuation\n", s.bounces.count);
+    if (s.caustics.paths)
+      std::printf("caustic map  light -> glossy -> rough at the pixels: %llu landings after a glossy reflection, from "
+                  "%llu photons shot; radius %.4g (%.3f s)\n",
+                  (unsigned long long)s.caustics.photons, (unsigned long long)s.caustics.paths, s.caustics.radius,
+                  s.caustics.seconds);
     if (s.guide.clusters)
       std::printf("light guide  %u rays per record at %u bright places found by %llu photons (%.3f s)\n", c.guide_rays,
                   s.guide.clusters, (unsigned long long)s.guide.photons, s.guide.seconds);
@@ -184,7 +189,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                    {"gbuffer", s.primary.gbuffer_s}, {"direct", s.primary.direct_s},
                    {"records", s.irradiance.records_s}, {"placement", s.irradiance.placement_s},
                    {"splat", s.irradiance.splat_s}, {"resolve", s.irradiance.resolve_s}, {"path", s.path.seconds},
-                   {"photon_map", s.photon_map.seconds}, {"light_guide", s.guide.seconds},
+                   {"photon_map", s.photon_map.seconds}, {"caustic_map", s.caustics.seconds},
+                   {"light_guide", s.guide.seconds},
                    {"glossy", s.glossy.seconds}, {"bounce_probe", s.bounces.probe_s},
                    {"layers", s.primary.layers_s}, {"total", s.total_s}}},
       {"memory", memory_json(s.device_memory)},
@@ -230,7 +236,12 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
           {"seconds_by_part",
            {{"shoot", s.photon_map.shoot_s},
             {"grids", s.photon_map.grids_s},
-            {"estimates", s.photon_map.estimate_s}}}}}};
+            {"estimates", s.photon_map.estimate_s}}}}},
+        {"caustic_map",
+         {{"photons_shot", s.caustics.paths},
+          {"photons_kept", s.caustics.photons},
+          {"radius", s.caustics.radius},
+          {"seconds", s.caustics.seconds}}}};
     j["specular"] = {{"rough_pixels", s.primary.rough_pixels},
                      {"glossy_pixels", s.primary.glossy_pixels},
                      {"glossy_samples", s.glossy.samples},

@@ -47,7 +47,7 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double
 }
 
 std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings,
-                                             unsigned first_stored) {
+                                             unsigned first_stored, bool caustic) {
   if (!source_count_ || !photon_count || first_stored >= landings) return {};
   size_t slots = size_t(photon_count) * (landings - first_stored);
   cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(PhotonHit), "photons");
@@ -58,6 +58,7 @@ std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned see
   params.landings = landings;
   params.first_stored = first_stored;
   params.sky_source = sky_source_ ? 1u : 0u;
+  params.caustic = caustic ? 1u : 0u;
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);

@@ -17,8 +17,10 @@ class LightGuidePass {
 
   // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
   // diffusely in between), landings first_stored .. landings - 1 returned: photon i's landing k at
-  // [i * (landings - first_stored) + k - first_stored]; blocks until done.
-  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0);
+  // [i * (landings - first_stored) + k - first_stored]; blocks until done. caustic: landing 0 reflects only by a
+  // sharp lobe (PhotonParams::caustic).
+  std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0,
+                               bool caustic = false);
 
  private:
   GpuContext& gpu_;

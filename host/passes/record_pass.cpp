@@ -8,12 +8,15 @@ namespace rcsplat {
 namespace {
 
 // The reduction keeps one column of M strata in private memory: sizing it to M keeps that memory small.
-KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather) {
+KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather,
+                             bool caustics_apart) {
   if (theta_strata == 0 || theta_strata > HEMISPHERE_MAX_THETA_STRATA)
     throw Error("hemisphere: M must be between 1 and " + std::to_string(HEMISPHERE_MAX_THETA_STRATA));
   KernelDefines defines = scene.defines_with("STORE_STRATA", store_strata);
   defines["THETA_STRATA_CAPACITY"] = std::to_string(theta_strata);
   defines["PHOTON_GATHER"] = photon_gather ? "1" : "0";
+  if (caustics_apart && !scene.has_specular_brdf()) throw Error("records: caustics apart in a scene without a lobe");
+  defines["CAUSTICS_APART"] = caustics_apart ? "1" : "0";
   return defines;
 }
 
@@ -26,14 +29,14 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
 }
 
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
-                       bool photon_gather)
+                       bool photon_gather, bool caustics_apart)
     : gpu_(gpu),
       scene_(scene),
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
       photon_map_(nullptr),
       photon_gather_(photon_gather) {
-  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_gather);
+  const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_gather, caustics_apart);
   aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
   trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
   trace_hits_ = gpu.kernel("records.cl", "trace_record_hits", defines);

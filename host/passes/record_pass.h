@@ -25,7 +25,10 @@ class RecordPass {
   // it must outlive the frame (photon_gather: compiled to read one, which each frame's begin_frame then names).
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata = false,
              const PhotonMapPass* photon_map = nullptr);
-  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather);
+  // caustics_apart: the rays leave light -> glossy -> record to the caustic map (kernels/bounce.h
+  // hit_direct_without_caustics; passes/caustic_map_pass.h), whose irradiance the frame adds at the pixels.
+  RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather,
+             bool caustics_apart = false);
   // A new frame (a pass may be kept across frames, render/indirect.h): records start again at 0 (the array and the
   // sample buffers are kept), the ray count at 0, no light guide; bounces: the indirect bounces each record's rays
   // gather (kernels/bounce.h); photon_map: this frame's, null exactly when the pass was compiled without

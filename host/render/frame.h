@@ -99,6 +99,14 @@ struct PhotonMapStats {
   double seconds = 0, shoot_s = 0, grids_s = 0, estimate_s = 0;
 };
 
+// The caustic map (cache methods, scenes with a sharp lobe): paths shot, photons kept (landings after a reflection
+// off a sharp lobe), radius (world units), and its time (shooting, grid and the pixels' gather).
+struct CausticMapStats {
+  uint64_t paths = 0, photons = 0;
+  float radius = 0;
+  double seconds = 0;
+};
+
 // Path-traced indirect light.
 struct PathStats {
   unsigned samples = 0;
@@ -121,6 +129,7 @@ struct RenderStats {
   GlossyStats glossy;
   GuideStats guide;
   PhotonMapStats photon_map;
+  CausticMapStats caustics;
   PathStats path;
 
   // The stages' times in the order a frame runs them (bench's columns); kernel builds are in none of them.
@@ -132,6 +141,7 @@ struct RenderStats {
     return {{"bvh", scene.bvh_build_s},           {"upload", scene.upload_s},
             {"probe", bounces.probe_s},           {"gbuffer", primary.gbuffer_s},
             {"direct", primary.direct_s},         {"photons", photon_map.seconds},
+            {"caustics", caustics.seconds},
             {"guide", guide.seconds},             {"records", irradiance.records_s},
             {"placement", irradiance.placement_s}, {"splat", irradiance.splat_s},
             {"radiance", radiance.seconds()},             {"resolve", irradiance.resolve_s},

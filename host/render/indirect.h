@@ -11,6 +11,7 @@
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
 #include "passes/brdf_table_pass.h"
+#include "passes/caustic_map_pass.h"
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
 #include "passes/hsh_record_pass.h"
@@ -63,6 +64,15 @@ struct ViewIndependentLight {
   std::unique_ptr<PhotonMapPass> photon_map;
   uint64_t photon_paths = 0, photons = 0;
   float photon_radius = 0.0f;  // world units
+  // The caustic map (attach_caustic_map): depends on the seed, --caustic-photons and --photon-neighbours.
+  struct CausticKey {
+    unsigned seed = 0, paths = 0, neighbours = 0;
+    bool operator==(const CausticKey&) const = default;
+  };
+  std::optional<CausticKey> caustic_key;
+  std::unique_ptr<CausticMapPass> caustic_map;
+  uint64_t caustic_photons = 0;
+  float caustic_radius = 0.0f;  // world units
 };
 
 // A pass the Renderer keeps across frames while what it was compiled or sized for (its key) stays the same, and makes
@@ -92,6 +102,7 @@ struct MethodPasses {
   struct RecordKey {
     unsigned theta_strata = 0;
     bool photon_gather = false;
+    bool caustics_apart = false;  // its rays leave light -> glossy -> record to the caustic map
     bool operator==(const RecordKey&) const = default;
   };
   // The lobe table a radiance splat holds: its order and the seed the table was sampled with.
@@ -148,6 +159,14 @@ const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& frame);
 // The photon map the records read their hits' later bounces from (--bounce-method photons with --bounces 2 or more),
 // built on the first call; null otherwise. Fills its statistics.
 const PhotonMapPass* attach_photon_map(IndirectFrame& frame);
+// The caustic map the pixels read (cache methods with --caustic-photons above 0, in a scene with a sharp lobe:
+// scene_casts_caustics), built on the first call; null otherwise. Fills its statistics.
+CausticMapPass* attach_caustic_map(IndirectFrame& frame);
+// The scene's surface area in device units: the photon maps' radii start from their photons spread over it.
+double device_surface_area(const Scene& scene, const SceneFrame& frame);
+// Whether a surface of the scene can have a sharp lobe (LOBE_GLOSSY): a material's factors make one, or its
+// metallic-roughness texture can lower its roughness into one.
+bool scene_casts_caustics(const DeviceScene& scene);
 // The frame's record pass, for irradiance records or (radiance) radiance records that keep their strata, kept in
 // frame.passes and begun for this frame: its photon map (attach_photon_map), bounces and light guide
 // (attach_light_guide). Its kernel builds count in the statistics' program_s.

@@ -28,6 +28,10 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   });
   builds.stop();
 
+  if (CausticMapPass* caustics = attach_caustic_map(f)) {
+    StageTimer timing(st.caustics.seconds, f.gpu);
+    caustics->add_to(gbuffer, irradiance);
+  }
   if (glossy) {
     {
       StageTimer timing(st.glossy.seconds);

@@ -16,7 +16,8 @@ namespace {
 // searches this many times fewer photons, each estimate still sums all of them.
 constexpr unsigned kPhotonLookupStride = 8;
 
-// The scene's surface area in device units: the photon map's radius spreads its photons over it.
+}  // namespace
+
 double device_surface_area(const Scene& scene, const SceneFrame& frame) {
   double area = 0.0;
   for (size_t i = 0; i + 2 < scene.positions.size(); i += 3) {
@@ -25,8 +26,6 @@ double device_surface_area(const Scene& scene, const SceneFrame& frame) {
   }
   return area / (frame.scale * frame.scale);
 }
-
-}  // namespace
 
 const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   if (f.settings.bounce_method != BounceMethod::photons || f.settings.bounces < 2) return nullptr;

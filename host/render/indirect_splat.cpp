@@ -12,9 +12,13 @@ namespace rcsplat {
 RecordPass& frame_record_pass(IndirectFrame& f, const CacheSettings& cache, bool radiance) {
   const PhotonMapPass* photon_map = attach_photon_map(f);
   BuildTimer builds(f.gpu, f.image.stats.program_s);
-  const MethodPasses::RecordKey key{largest_theta_strata(cache), photon_map != nullptr};
+  // Radiance records keep the caustic paths in their rays: the map's irradiance reaches only the diffuse base and rough
+  // lobes (kernels/caustic_map.cl).
+  const bool caustics_apart = !radiance && attach_caustic_map(f) != nullptr;
+  const MethodPasses::RecordKey key{largest_theta_strata(cache), photon_map != nullptr, caustics_apart};
   RecordPass& records = (radiance ? f.passes.radiance_records : f.passes.irradiance_records).get(key, [&] {
-    return std::make_unique<RecordPass>(f.gpu, f.device_scene, key.theta_strata, radiance, key.photon_gather);
+    return std::make_unique<RecordPass>(f.gpu, f.device_scene, key.theta_strata, radiance, key.photon_gather,
+                                        key.caustics_apart);
   });
   builds.stop();
   records.begin_frame(photon_map, f.settings.bounces);

@@ -64,6 +64,11 @@ struct RenderSettings {
   // the map: where few photons land, as in a room lit through a gap, a lookup that finds none would read black
   // (docs/NOTES.md "Issue 41: photons where they are scarce"). 0: every ray reads the map, black where it finds none.
   float photon_min_support = 4.0f;
+  // Cache methods, scenes with a sharp lobe (LOBE_GLOSSY): photons shot for the caustic map, which carries light ->
+  // glossy -> rough paths to the pixels instead of the records' rays (kernels/caustic_map.cl); its radius holds
+  // photon_neighbours of them on average. 0: no caustic map, the records count those paths through their rays (one
+  // stratum on a highlight can then make a record a bright disc).
+  unsigned caustic_photons = 1u << 19;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are

@@ -1,0 +1,104 @@
+#include "passes/caustic_map_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/photon_grid.h"
+#include "passes/light_guide_pass.h"
+
+namespace rcsplat {
+namespace {
+
+// Photons the radius is fitted on (every k-th, so the same photons give the same radius) and the fixed-point steps.
+constexpr size_t kRadiusSample = 4096;
+constexpr int kRadiusSteps = 4;
+
+// How many of the grid's photons lie within its radius of photon p (p itself not counted), facing p's way.
+size_t neighbours_of(const PhotonGrid& grid, const PhotonHit& p) {
+  const PhotonMapParams& g = grid.params;
+  const float r2 = g.radius * g.radius;
+  int c[3];
+  for (int a = 0; a < 3; ++a) c[a] = photon_cell(p.position[a], g.grid_origin[a], g.cell_size);
+  uint32_t visited[27];
+  size_t visited_count = 0, count = 0;
+  for (int k = 0; k < 27; ++k) {
+    uint32_t bucket = photon_bucket(c[0] + k % 3 - 1, c[1] + (k / 3) % 3 - 1, c[2] + k / 9 - 1, g.bucket_count);
+    if (std::find(visited, visited + visited_count, bucket) != visited + visited_count) continue;
+    visited[visited_count++] = bucket;
+    for (uint32_t j = grid.bucket_starts[bucket]; j < grid.bucket_starts[bucket + 1]; ++j) {
+      const PhotonHit& q = grid.photons[j];
+      float d2 = 0.0f, facing = 0.0f;
+      for (int a = 0; a < 3; ++a) {
+        float d = q.position[a] - p.position[a];
+        d2 += d * d;
+        facing += q.normal[a] * p.normal[a];
+      }
+      count += d2 < r2 && facing > PHOTON_MIN_NORMAL_COSINE;
+    }
+  }
+  return count > 0 ? count - 1 : 0;
+}
+
+}  // namespace
+
+std::vector<PhotonHit> shoot_caustic_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths, unsigned seed) {
+  return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, 2, 1, true));
+}
+
+float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, unsigned neighbours) {
+  if (photons.empty() || !(start > 0.0f) || !std::isfinite(start)) return start;
+  const size_t stride = std::max<size_t>(photons.size() / kRadiusSample, 1);
+  float radius = start;
+  for (int step = 0; step < kRadiusSteps; ++step) {
+    const PhotonGrid grid = sort_into_grid(photons, radius);
+    double found = 0.0;
+    size_t sampled = 0;
+    for (size_t i = 0; i < photons.size(); i += stride, ++sampled) found += double(neighbours_of(grid, photons[i]));
+    const double mean = found / double(sampled);
+    // The count grows as r^2 on a surface: one step of that model, damped to a factor of 4 each way.
+    const double scale = std::clamp(std::sqrt(double(neighbours) / std::max(mean, 0.25)), 0.25, 4.0);
+    radius = std::min(start, float(radius * scale));
+  }
+  return radius;
+}
+
+CausticMapPass::CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& photons, float radius)
+    : gpu_(gpu), add_(gpu.kernel("caustic_map.cl", "add_caustics", {})) {
+  const PhotonGrid grid = sort_into_grid(photons, radius);
+  params_ = grid.params;
+  // A kernel reads no photon of an empty map, but buffers must be bound.
+  photons_ = gpu.upload(grid.photons.empty() ? std::vector<PhotonHit>(1) : grid.photons, CL_MEM_READ_ONLY,
+                        "caustic map");
+  buckets_ = gpu.upload(grid.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u) : grid.bucket_starts,
+                        CL_MEM_READ_ONLY, "caustic map buckets");
+}
+
+void CausticMapPass::add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance) {
+  if (params_.photon_count == 0) return;
+  gbuffer.bind(add_);
+  add_.set_buffer<PhotonHit>("photons", photons_)
+      .set_buffer<cl_uint>("buckets", buckets_)
+      .set("grid", params_)
+      .set_buffer<cl_float4>("irradiance", irradiance);
+  add_.launch(gbuffer.pixel_count(), gpu_.groups().traversal);
+  gpu_.queue().finish();
+}
+
+std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
+                                                     const std::vector<cl_float4>& normals) {
+  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "caustic lookups");
+  cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "caustic lookups");
+  cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
+  NamedKernel look_up = gpu_.kernel("caustic_map.cl", "caustic_irradiance_at", {});
+  look_up.set_buffer<PhotonHit>("photons", photons_)
+      .set_buffer<cl_uint>("buckets", buckets_)
+      .set("grid", params_)
+      .set_buffer<cl_float4>("points", p)
+      .set_buffer<cl_float4>("normals", n)
+      .set("point_count", cl_uint(points.size()))
+      .set_buffer<cl_float4>("irradiance", out);
+  look_up.launch(points.size(), gpu_.groups().traversal);
+  return gpu_.download<cl_float4>(out, points.size());
+}
+
+}  // namespace rcsplat

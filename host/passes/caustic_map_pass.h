@@ -1,0 +1,43 @@
+// The caustic map (kernels/caustic_map.cl, docs/ALGORITHM.md section 8): photons from the lights that reflected off a
+// sharp lobe (LOBE_GLOSSY) once before landing, sorted into a hashed grid on the host and read at every G-buffer
+// sample as irradiance that composition reflects with the records' light. Made for scenes with such a lobe, where the
+// irradiance records then leave that path out of their rays (kernels/bounce.h hit_direct_without_caustics).
+#pragma once
+#include <vector>
+
+#include "cache/photon_map.h"
+#include "cl/device_scene.h"
+#include "cl/gpu_context.h"
+#include "passes/gbuffer_pass.h"
+
+namespace rcsplat {
+
+// The landings after one reflection off a LOBE_GLOSSY surface of `paths` photons from the scene's lights (the light
+// guide's sources: punctual lights, emitters, the environment's peak), their flux each photon's share of the power.
+std::vector<PhotonHit> shoot_caustic_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths, unsigned seed);
+
+// The radius at which a photon of these has about `neighbours` others within it on average (full 3D distance), found
+// from start (photon_gather_radius over the whole surface) by a few fixed-point steps on a fixed subsample, and never
+// larger than start: caustic photons crowd into a small part of the surface, where the whole surface's radius would
+// blur them. Deterministic: the same photons give the same radius.
+float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, unsigned neighbours);
+
+class CausticMapPass {
+ public:
+  // Sorts the photons into a grid of `radius` and uploads it.
+  CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& photons, float radius);
+
+  // irradiance[i] += the caustic irradiance at G-buffer sample i (float4 per sample, as the splat resolves it).
+  void add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance);
+  // The caustic irradiance at these points (xyz) on surfaces facing these normals, for tests.
+  std::vector<cl_float4> irradiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
+  const PhotonMapParams& params() const { return params_; }
+
+ private:
+  GpuContext& gpu_;
+  PhotonMapParams params_;
+  cl::Buffer photons_, buckets_;
+  NamedKernel add_;
+};
+
+}  // namespace rcsplat

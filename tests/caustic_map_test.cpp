@@ -1,0 +1,130 @@
+// The caustic map (issue 41 item 1): its density estimate against a double-precision sum, its photons, and the split
+// it makes with the records (light -> glossy -> rough counted once) against the path tracer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+
+#include "cl/device_scene.h"
+#include "image/error_metrics.h"
+#include "kernels/photon_grid.h"
+#include "passes/caustic_map_pass.h"
+#include "render/renderer.h"
+#include "caustic_room_scene.h"
+#include "test_support.h"
+
+namespace rcsplat {
+namespace {
+
+PhotonHit caustic_photon(glm::vec3 position, glm::vec3 normal, glm::vec3 incident) {
+  PhotonHit p{};
+  p.hit = 1;
+  p.landing = 1;
+  for (int a = 0; a < 3; ++a) {
+    p.position[a] = position[a];
+    p.normal[a] = normal[a];
+    p.incident[a] = incident[a];
+    p.flux[a] = 0.5f * incident[a];
+  }
+  return p;
+}
+
+// Random photons on a floor (y = 0, facing up), a wall (z = 0, facing +z) and a shelf a little above the floor
+// (y = 0.4 r, facing up: inside the disc's half-thickness of 0.2 r only for points near it), read at random points of
+// the floor and the wall. The kernel's sum is float; the reference sums in double: 1e-4 relative.
+TEST(CausticMap, IrradianceMatchesADoublePrecisionSumOverTheDisc) {
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float radius = 0.05f;
+  std::vector<PhotonHit> photons;
+  for (int i = 0; i < 40000; ++i) {
+    glm::vec3 flux(u(rng), u(rng), u(rng));
+    flux *= 1e-4f;
+    switch (i % 3) {
+      case 0: photons.push_back(caustic_photon({u(rng), 0.0f, u(rng)}, {0, 1, 0}, flux)); break;
+      case 1: photons.push_back(caustic_photon({u(rng), u(rng), 0.0f}, {0, 0, 1}, flux)); break;
+      default: photons.push_back(caustic_photon({u(rng), 0.4f * radius, u(rng)}, {0, 1, 0}, flux)); break;
+    }
+  }
+  CausticMapPass map(test::gpu(), photons, radius);
+  ASSERT_EQ(map.params().photon_count, photons.size());
+  std::vector<cl_float4> points, normals;
+  for (int i = 0; i < 2000; ++i) {
+    const bool floor = i % 2 == 0;
+    points.push_back(floor ? cl_float4{{u(rng), 0.0f, u(rng), 0.0f}} : cl_float4{{u(rng), u(rng), 0.0f, 0.0f}});
+    normals.push_back(floor ? cl_float4{{0, 1, 0, 0}} : cl_float4{{0, 0, 1, 0}});
+  }
+  const std::vector<cl_float4> got = map.irradiance_at(points, normals);
+  const double r2 = double(radius) * radius, half = PHOTON_DISC_HALF_THICKNESS * double(radius);
+  size_t lit = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    glm::dvec3 x(points[i].s[0], points[i].s[1], points[i].s[2]), n(normals[i].s[0], normals[i].s[1], normals[i].s[2]);
+    glm::dvec3 sum(0.0);
+    for (const PhotonHit& p : photons) {
+      glm::dvec3 d = glm::dvec3(p.position[0], p.position[1], p.position[2]) - x;
+      glm::dvec3 m(p.normal[0], p.normal[1], p.normal[2]);
+      if (glm::dot(d, d) < r2 && std::abs(glm::dot(d, n)) < half && glm::dot(m, n) > PHOTON_MIN_NORMAL_COSINE)
+        sum += glm::dvec3(p.incident[0], p.incident[1], p.incident[2]);
+    }
+    sum /= std::numbers::pi * r2;
+    lit += sum.x > 0.0;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[i].s[c], sum[c], 1e-4 * sum[c] + 1e-9) << "point " << i;
+  }
+  EXPECT_GT(lit, points.size() * 9 / 10);
+}
+
+// Mean of an RGB layer.
+double mean_of(const std::vector<float>& rgb) {
+  double sum = 0.0;
+  for (float v : rgb) sum += v;
+  return sum / double(rgb.size());
+}
+
+// The split against the path tracer, in a room whose far wall and ceiling a glossy floor lights with the lamp's
+// mirror image (tests/caustic_room_scene.h): the cache's indirect light (records without the caustic paths, plus the
+// caustic map at the pixels) must agree with path tracing, which counts the caustic through each path's light sample
+// at the floor. A path lost (the map not read) or counted twice (the records keeping it too) moves the mean by the
+// caustic's share of the indirect light, which the test prints (about 20%). Tolerance: four standard deviations of the
+// reference's mean (from its per-pixel variance) plus 3% for the cache's own error at 96 x 72 (interpolation and the
+// map's blur, seeds averaged).
+TEST(CausticMap, GlossyFloorRoomMatchesThePathTracer) {
+  const Scene room = test::caustic_room();
+  Renderer renderer(test::gpu(), room);
+  RenderSettings cache;
+  cache.width = 96;
+  cache.height = 72;
+  const FramePlan plan = renderer.plan(cache);
+  RenderSettings path = cache;
+  path.bounces = plan.settings.bounces;
+  path.gi = GiMethod::path;
+  path.path.samples = 256;
+  path.path.stratified = true;
+  const RenderedImage reference = renderer.render(path);
+  const double reference_mean = mean_of(reference.indirect);
+  double variance_of_mean = 0.0;
+  for (float v : reference.indirect_variance) variance_of_mean += v;
+  variance_of_mean /= double(reference.indirect_variance.size()) * double(reference.indirect_variance.size());
+  auto cache_mean = [&](unsigned caustic_photons) {
+    double sum = 0.0;
+    for (unsigned seed : {1u, 2u}) {
+      RenderSettings s = cache;
+      s.seed = seed;
+      s.caustic_photons = caustic_photons;
+      const RenderedImage image = renderer.render(s);
+      if (caustic_photons) EXPECT_GT(image.stats.caustics.photons, 10000u);
+      sum += mean_of(image.indirect);
+    }
+    return sum / 2.0;
+  };
+  const double with_map = cache_mean(cache.caustic_photons), without_map = cache_mean(0);
+  const double tolerance = 4.0 * std::sqrt(variance_of_mean) / reference_mean + 0.03;
+  std::printf("indirect over the path tracer's: caustic map %.4f, records alone %.4f (tolerance %.4f)\n",
+              with_map / reference_mean, without_map / reference_mean, tolerance);
+  EXPECT_NEAR(with_map / reference_mean, 1.0, tolerance);
+  EXPECT_NEAR(without_map / reference_mean, 1.0, tolerance);
+}
+
+}  // namespace
+}  // namespace rcsplat
