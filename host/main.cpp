@@ -213,6 +213,11 @@ int main(int argc, char** argv) {
                              std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                              " rounds; 0 too; at most 67108864)")
       ->group(lab);
+  bool glossy_paths = false;
+  render_cmd->add_flag("--glossy-paths", glossy_paths,
+                       "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
+                       "records where they land on a rough surface a record reaches (the default)")
+      ->group(lab);
   render_cmd->add_option("--caustic-photons", render.settings.caustic_photons,
                          "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
                          "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
@@ -347,6 +352,7 @@ int main(int argc, char** argv) {
       if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
       if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
       if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, render.settings.cache, true);
+      render.settings.glossy_reads_records = !glossy_paths;
       apply_quality(render.quality, render.settings, [&](const char* option) { return render_cmd->count(option) > 0; });
       return run_render(render);
     }

@@ -18,8 +18,10 @@
 #define CAUSTICS_APART 0
 #endif
 
-#if PHOTON_GATHER
+// Included whatever PHOTON_GATHER says: kernel headers are include-once by name (host/cl/gpu_context.cpp), so a header
+// inlined inside a false #if would be missing for a later file that includes it.
 #include "photon_map.h"
+#if PHOTON_GATHER
 #define GATHER_MAP_ARGS , PHOTON_MAP_ARGS
 #define GATHER_MAP , PHOTON_MAP
 #else

@@ -7,8 +7,50 @@
 // sampled too, for cache methods that do not radiance-cache them; without it, and with a light guide, the LOBE_HSH
 // pixels get the share of their light that their radiance records leave to the guide (guide_share).
 #include "bounce.h"
+#include "brdf_frame.h"
+#include "caustic_map.h"
 #include "counter_random.h"
 #include "light_guide.h"
+#include "world_records.h"
+
+// Where a sample's ray lands on a Lambertian or rough surface that a record of the splat reaches (world_records.h),
+// the bounces after that hit are read from the records (their irradiance, and the caustic map's where the records
+// leave caustics to it), reflected toward the ray as composition reflects a pixel's (kernels/compose.cl), instead of
+// continuing the path: one ray and its light sample instead of a path of `bounces` hits. Elsewhere (a sharper lobe,
+// a surface no record reaches: off screen, hidden from the camera) the path goes on as before. What it trades
+// (docs/ALGORITHM.md section 8): the records' interpolation error, seen blurred through the lobe, for the paths'
+// noise; and the records hold the light of `bounces` bounces after the hit, one more than the path would gather.
+#define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS
+#define CACHED_LIGHT , WORLD_RECORDS, CAUSTIC_MAP
+
+inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e) {
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  float3 albedo = hit_albedo(materials, textures, texels, h);
+  if (lobe.lobe == LOBE_NONE) return albedo * RC_INV_PI * e;
+  BrdfInputs in = surface_brdf(albedo, lobe);
+  float3 wo = view_local(shading_frame(h->ns), -dir);
+  return brdf_eval_diffuse(in, wo.z) * e + specular_albedo(in, wo) * RC_INV_PI * e;
+}
+
+// The radiance a sample's ray along dir brings back (bounce_radiance, or the records where they reach its hit).
+inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
+                              PathContinuation more, uint* rays) {
+  HitSurface h;
+  float distance;
+  if (!trace_surface(SCENE, origin, dir, &h, &distance, rays)) return miss_radiance(SCENE, dir);
+  if (more.bounces && world_grid.record_count) {
+    int lobe = hit_lobe_kind(materials, textures, texels, &h);
+    if (lobe == LOBE_NONE || lobe == LOBE_ROUGH) {
+      float weight;
+      float3 e = world_cached_irradiance(WORLD_RECORDS, h.s.position, h.ns, &weight);
+      if (weight > 0.0f) {
+        e += caustic_irradiance(CAUSTIC_MAP, h.s.position, h.ng);
+        return hit_direct(SCENE, &h, dir, u, v, u_lobe, rays) + finite_or_zero(cached_reflection(SCENE, &h, dir, e));
+      }
+    }
+  }
+  return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays);
+}
 
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
 // adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
@@ -52,7 +94,8 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
 // same cones (the same clusters, selection and limits, seen from the pixel) and weighs each f cos L / p_g by the rest,
 // n_g p_g / (n_c p_c + n_g p_g). So the light of a small bright patch is never truncated to the HSH order: through the
 // basis it rang (dark bands beside its reflection) on glossy walls. Directions the lobe does not reflect cast no ray.
-inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, GlossyParams params, float3 p, float3 ng,
+inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideCluster* guide, GlossyParams params,
+                          float3 p, float3 ng,
                           float3 origin, ShadingFrame frame, BrdfInputs in, float3 wo, uint key, uint* rays) {
   const float strata_density = (float)params.record_strata * RC_INV_PI;  // n_c p_c / cos(theta)
   GuideCone cones[GUIDE_MAX_CONES];
@@ -70,16 +113,15 @@ inline float3 guide_share(SCENE_ARGS, __global const GuideCluster* guide, Glossy
     float3 f = brdf_eval_specular(in, wo, wi);
     if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
     float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
-    float r;
-    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               path_continuation(key, s, params.bounces), &r, rays);
+    float3 l = sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
+                               random01(key, s, 4u), path_continuation(key, s, params.bounces), rays);
     sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
   }
   return sum / (float)max(params.guide_share_samples, 1u);
 }
 
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                              __global float4* glossy_out) {
+                              WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];
@@ -101,7 +143,7 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   uint key = hash_u32(pixel ^ hash_u32(params.seed ^ STREAM_GLOSSY));
   if (cached_with_guide) {
     uint rays = 0;
-    float3 share = guide_share(SCENE, guide, params, p, ng, origin, frame, in, wo, key, &rays);
+    float3 share = guide_share(SCENE CACHED_LIGHT, guide, params, p, ng, origin, frame, in, wo, key, &rays);
     glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays);
     return;
   }
@@ -132,9 +174,8 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     if (wi.z <= 0.0f) continue;
     float3 dir = to_world(frame, wi);
     if (dot(dir, ng) <= 0.0f) continue;
-    float r;
-    float3 l = bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u), random01(key, s, 4u),
-                               path_continuation(key, s, params.bounces), &r, &rays);
+    float3 l = sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
+                               random01(key, s, 4u), path_continuation(key, s, params.bounces), &rays);
     if (!cone_count) {
       sum += brdf_specular_weight(in, wo, wi) * l;
       continue;
@@ -145,4 +186,14 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     if (combined > 0.0f) sum += brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)lobe_samples / combined);
   }
   glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays);
+}
+
+// world_cached_irradiance at query points (xyz) with their shading normals, for tests: (E, sum of weights).
+__kernel void cached_irradiance_at(WORLD_RECORD_ARGS, __global const float4* points, __global const float4* normals,
+                                   uint point_count, __global float4* irradiance) {
+  uint i = get_global_id(0);
+  if (i >= point_count) return;
+  float weight;
+  float3 e = world_cached_irradiance(WORLD_RECORDS, points[i].xyz, normals[i].xyz, &weight);
+  irradiance[i] = (float4)(e, weight);
 }

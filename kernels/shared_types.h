@@ -370,6 +370,19 @@ typedef struct {
   rc_uint pad[3];
 } PathParams;
 
+// The splat's records found by position in the world (kernels/world_records.h; host/cache/world_record_grid.h): a
+// hashed grid (kernels/photon_grid.h's hash) of cubes of side cell_size, bucket h listing, once each, the records
+// whose reach (a sphere of accuracy x radius about the record: beyond it Ward's weight is below 1/a) meets a cell
+// hashed to h: lists[starts[h] .. starts[h + 1]).
+typedef struct {
+  float grid_origin[3];
+  float cell_size;
+  rc_uint bucket_count;
+  rc_uint record_count;    // 0: no index; every lookup finds no record
+  float accuracy;          // the splat's a
+  float irradiance_scale;  // the splat's bound on a record's extrapolated irradiance (fixed_point_irradiance_scale)
+} WorldRecordParams;
+
 // The glossy pass's constants (kernels/glossy.cl).
 typedef struct {
   rc_uint sample_count;    // samples per glossy pixel
@@ -510,6 +523,7 @@ static_assert(sizeof(PhotonHit) == 64);
 static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 48);
+static_assert(sizeof(WorldRecordParams) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);

@@ -13,6 +13,7 @@
 #include "passes/ray_cast_pass.h"
 #include "passes/splat_pass.h"
 #include "passes/caustic_map_pass.h"
+#include "passes/glossy_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
@@ -93,6 +94,17 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   EXPECT_GT(caustics.irradiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);
+  CacheRecord record{};
+  record.normal[1] = 1.0f;
+  record.radius = 1.0f;
+  record.irradiance[0] = 1.0f;
+  for (float& h : record.horizon) h = 1e30f;
+  const std::vector<CacheRecord> one_record{record};
+  const WorldRecordGrid record_grid = build_world_record_grid(one_record, 0.5f, 10.0f);
+  GlossyPass glossy(gpu, device, false);
+  EXPECT_GT(glossy.cached_irradiance_at(one_record, record_grid, {{{0.0f, 0.0f, 0.0f, 0.0f}}},
+                                        {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0],
+            0.0f);
   RayCastPass caster(gpu, device);
   glm::vec3 centre = 0.5f * (scene.bounds_min() + scene.bounds_max());  // inside the closed box: every ray hits
   RayDesc ray{{centre.x, centre.y, centre.z}, 0.0f, {0.0f, -1.0f, 0.0f}, 1e30f};

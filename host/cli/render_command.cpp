@@ -129,9 +129,10 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
       std::printf(
           "specular     %llu rough pixels from the irradiance; %llu glossy pixels, %u lobe samples each; per "
           "pixel (lobes, and the light guide's share of radiance-cached pixels): %llu rays, %.3f s (%.2f "
-          "Mrays/s)\n",
+          "Mrays/s)%s\n",
           (unsigned long long)s.primary.rough_pixels, (unsigned long long)s.primary.glossy_pixels, s.glossy.samples,
-          (unsigned long long)s.glossy.rays, s.glossy.seconds, mrays_per_second(s.glossy.rays, s.glossy.seconds));
+          (unsigned long long)s.glossy.rays, s.glossy.seconds, mrays_per_second(s.glossy.rays, s.glossy.seconds),
+          s.glossy.reads_records ? "; the samples read the records where they land" : "");
     if (s.radiance.order)
       std::printf(
           "radiance     %llu radiance-cached pixels: HSH order %u (%u coefficients a channel, holds %.0f%% of the "
@@ -246,6 +247,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                      {"glossy_pixels", s.primary.glossy_pixels},
                      {"glossy_samples", s.glossy.samples},
                      {"glossy_rays", s.glossy.rays},
+                     {"glossy_reads_records", s.glossy.reads_records},
+                     {"record_grid_seconds", s.glossy.record_grid_s},
                      {"seconds", s.glossy.seconds}};
     if (s.radiance.order)
       j["radiance_cache"] = {{"pixels", s.primary.hsh_pixels},

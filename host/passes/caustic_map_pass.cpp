@@ -76,12 +76,16 @@ CausticMapPass::CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& ph
 void CausticMapPass::add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance) {
   if (params_.photon_count == 0) return;
   gbuffer.bind(add_);
-  add_.set_buffer<PhotonHit>("photons", photons_)
-      .set_buffer<cl_uint>("buckets", buckets_)
-      .set("grid", params_)
-      .set_buffer<cl_float4>("irradiance", irradiance);
+  bind(add_);
+  add_.set_buffer<cl_float4>("irradiance", irradiance);
   add_.launch(gbuffer.pixel_count(), gpu_.groups().traversal);
   gpu_.queue().finish();
+}
+
+void CausticMapPass::bind(NamedKernel& kernel) const {
+  kernel.set_buffer<PhotonHit>("caustic_photons", photons_)
+      .set_buffer<cl_uint>("caustic_buckets", buckets_)
+      .set("caustic_grid", params_);
 }
 
 std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
@@ -90,10 +94,8 @@ std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4
   cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "caustic lookups");
   cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("caustic_map.cl", "caustic_irradiance_at", {});
-  look_up.set_buffer<PhotonHit>("photons", photons_)
-      .set_buffer<cl_uint>("buckets", buckets_)
-      .set("grid", params_)
-      .set_buffer<cl_float4>("points", p)
+  bind(look_up);
+  look_up.set_buffer<cl_float4>("points", p)
       .set_buffer<cl_float4>("normals", n)
       .set("point_count", cl_uint(points.size()))
       .set_buffer<cl_float4>("irradiance", out);

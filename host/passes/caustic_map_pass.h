@@ -31,6 +31,8 @@ class CausticMapPass {
   void add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance);
   // The caustic irradiance at these points (xyz) on surfaces facing these normals, for tests.
   std::vector<cl_float4> irradiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
+  // Sets a kernel's CAUSTIC_MAP_ARGS (kernels/caustic_map.h).
+  void bind(NamedKernel& kernel) const;
   const PhotonMapParams& params() const { return params_; }
 
  private:

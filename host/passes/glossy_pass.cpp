@@ -11,10 +11,13 @@ namespace rcsplat {
 GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable)
     : gpu_(gpu),
       scene_(scene),
-      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable))) {}
+      defines_(scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)),
+      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", defines_)),
+      no_caustics_(gpu, {}, 0.0f) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
-                     unsigned record_strata, unsigned record_guide_rays, unsigned bounces) {
+                     unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
+                     const GlossyCacheReads& reads) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
     radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
@@ -37,11 +40,48 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
                    CL_MEM_READ_ONLY, "light guide");
   scene_.bind(kernel_);
   gbuffer.bind(kernel_);
-  kernel_.set("params", params)
-      .set_buffer<GuideCluster>("guide", guide_)
-      .set_buffer<cl_float4>("glossy_out", radiance_);
+  kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
+  bind_records(kernel_, reads);
+  (reads.caustics ? *reads.caustics : no_caustics_).bind(kernel_);
+  kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
   kernel_.launch(pixels_, gpu_.groups().traversal);
   gpu_.queue().finish();
+}
+
+void GlossyPass::bind_records(NamedKernel& kernel, const GlossyCacheReads& reads) {
+  // No records: an empty grid (record_count 0), which the kernel never reads past its parameters.
+  const bool read_records = reads.records && reads.grid && reads.grid->params.record_count > 0 &&
+                            reads.grid->params.record_count == reads.records->size();
+  gpu_.upload_into(records_, records_capacity_, read_records ? *reads.records : std::vector<CacheRecord>(1),
+                   CL_MEM_READ_ONLY, "glossy: records");
+  gpu_.upload_into(record_starts_, starts_capacity_,
+                   read_records ? reads.grid->bucket_starts : std::vector<uint32_t>{0, 0}, CL_MEM_READ_ONLY,
+                   "glossy: record grid");
+  gpu_.upload_into(record_lists_, lists_capacity_,
+                   read_records && !reads.grid->record_lists.empty() ? reads.grid->record_lists
+                                                                     : std::vector<uint32_t>{0},
+                   CL_MEM_READ_ONLY, "glossy: record grid");
+  kernel.set_buffer<CacheRecord>("world_records", records_)
+      .set_buffer<cl_uint>("world_record_starts", record_starts_)
+      .set_buffer<cl_uint>("world_record_lists", record_lists_)
+      .set("world_grid", read_records ? reads.grid->params : WorldRecordParams{});
+}
+
+std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheRecord>& records,
+                                                        const WorldRecordGrid& grid,
+                                                        const std::vector<cl_float4>& points,
+                                                        const std::vector<cl_float4>& normals) {
+  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "record lookups");
+  cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "record lookups");
+  cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
+  NamedKernel look_up = gpu_.kernel("glossy.cl", "cached_irradiance_at", defines_);
+  bind_records(look_up, {&records, &grid, nullptr});
+  look_up.set_buffer<cl_float4>("points", p)
+      .set_buffer<cl_float4>("normals", n)
+      .set("point_count", cl_uint(points.size()))
+      .set_buffer<cl_float4>("irradiance", out);
+  look_up.launch(points.size(), gpu_.groups().traversal);
+  return gpu_.download<cl_float4>(out, points.size());
 }
 
 std::vector<float> GlossyPass::download_rgba() { return gpu_.download<float>(radiance_, pixels_ * 4); }

@@ -6,10 +6,21 @@
 
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
+#include "cache/world_record_grid.h"
 #include "kernels/shared_types.h"
+#include "passes/caustic_map_pass.h"
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
+
+// What the samples' rays read where they land on a Lambertian or rough surface (kernels/glossy.cl sample_radiance):
+// the cache's records by position (uploaded with their grid) and the caustic map the records leave those paths to
+// (null: none). No records: every sample continues its path.
+struct GlossyCacheReads {
+  const std::vector<CacheRecord>* records = nullptr;
+  const WorldRecordGrid* grid = nullptr;
+  const CausticMapPass* caustics = nullptr;
+};
 
 class GlossyPass {
  public:
@@ -20,16 +31,28 @@ class GlossyPass {
   // guide's share to the pixels (record_guide_rays guided rays beside record_strata strata, both > 0), the
   // radiance-cached pixels get that share from as many samples. Blocks until done.
   void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {},
-           unsigned record_strata = 0, unsigned record_guide_rays = 0, unsigned bounces = 1);
+           unsigned record_strata = 0, unsigned record_guide_rays = 0, unsigned bounces = 1,
+           const GlossyCacheReads& reads = {});
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
+  // What a sample reads of the records at these points (xyz) with these shading normals, for tests: float4 (E, the
+  // sum of the weights; 0 where no record reaches).
+  std::vector<cl_float4> cached_irradiance_at(const std::vector<CacheRecord>& records, const WorldRecordGrid& grid,
+                                              const std::vector<cl_float4>& points,
+                                              const std::vector<cl_float4>& normals);
   std::vector<float> download_rgba();
 
  private:
+  // Uploads the records and their grid (an empty grid without them) and sets the kernel's WORLD_RECORD_ARGS.
+  void bind_records(NamedKernel& kernel, const GlossyCacheReads& reads);
+
   GpuContext& gpu_;
   const DeviceScene& scene_;
+  KernelDefines defines_;
   NamedKernel kernel_;
   cl::Buffer radiance_, guide_;
-  size_t pixels_ = 0, guide_capacity_ = 0;
+  cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records
+  CausticMapPass no_caustics_;                            // an empty map, bound where there is none
+  size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0;
 };
 
 }  // namespace rcsplat

@@ -81,6 +81,10 @@ struct GlossyStats {
   unsigned samples = 0;
   uint64_t rays = 0;
   double seconds = 0;
+  // Whether the samples read the records where they landed (RenderSettings::glossy_reads_records), and the host's
+  // time building the records' grid (within seconds).
+  bool reads_records = false;
+  double record_grid_s = 0;
 };
 
 // The light guide (cache/light_guide.h): its clusters (0: records took no guided rays) and the photons behind them.

@@ -182,9 +182,10 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& frame);
 // The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
 // a glossy material; also the LOBE_HSH pixels when radiance_cached is null), then composition (ComposePass) of the
 // cached irradiance (float4 per pixel: E, weight) and the radiance-cached lobes into the image's indirect and colour
-// layers.
+// layers. records: the irradiance records the cached irradiance came from; with RenderSettings::glossy_reads_records
+// the glossy samples read them where they land (kernels/glossy.cl sample_radiance; null: they continue paths).
 void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance,
-                             const RadianceSplatPass* radiance_cached = nullptr);
+                             const RadianceSplatPass* radiance_cached, const std::vector<CacheRecord>* records);
 // The cache methods' own layers at output resolution: irradiance, coverage, records reaching and sitting in each
 // pixel, and the uncovered sub-pixels counted. irradiance: float4 (E.rgb, weight, 0 where uncovered);
 // records_per_pixel: uint; record_at_pixel: int, -1 where no record sits.

@@ -1,6 +1,10 @@
 // The cache methods' composition: glossy pixels' specular light, then each pixel's BRDF applied to the cached
 // irradiance (kernels/glossy.cl, kernels/compose.cl).
+#include <algorithm>
 #include <atomic>
+
+#include "cache/world_record_grid.h"
+#include "kernels/cache_math.h"
 
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
@@ -9,7 +13,8 @@
 
 namespace rcsplat {
 
-void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached) {
+void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached,
+                             const std::vector<CacheRecord>* records) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
@@ -28,16 +33,29 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   });
   builds.stop();
 
-  if (CausticMapPass* caustics = attach_caustic_map(f)) {
+  CausticMapPass* caustics = attach_caustic_map(f);
+  if (caustics) {
     StageTimer timing(st.caustics.seconds, f.gpu);
     caustics->add_to(gbuffer, irradiance);
   }
   if (glossy) {
     {
       StageTimer timing(st.glossy.seconds);
+      // The records by position, for the samples' rays to read where they land (the bounces after a hit).
+      WorldRecordGrid grid;
+      GlossyCacheReads reads;
+      if (records && f.settings.glossy_reads_records && f.settings.bounces > 1) {
+        StageTimer grid_timing(st.glossy.record_grid_s);
+        float largest = 0.0f;
+        for (const CacheRecord& r : *records)
+          largest = std::max({largest, r.irradiance[0], r.irradiance[1], r.irradiance[2]});
+        grid = build_world_record_grid(*records, cs.accuracy, fixed_point_irradiance_scale(largest, cs.accuracy));
+        reads = {records, &grid, caustics};
+        st.glossy.reads_records = true;
+      }
       glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
                   guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
-                  f.settings.bounces);
+                  f.settings.bounces, reads);
     }
     st.glossy.samples = f.settings.glossy_samples;
     const std::vector<float> rays = f.layers.sum_rgba(glossy->radiance());

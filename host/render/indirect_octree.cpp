@@ -138,7 +138,7 @@ void octree_indirect(IndirectFrame& f) {
   timing.stop();
   st.irradiance.filled_sub_pixels = filled;
   const cl::Buffer irradiance_buffer = f.gpu.upload(irradiance, CL_MEM_READ_WRITE, "octree irradiance");
-  compose_cached_indirect(f, irradiance_buffer);
+  compose_cached_indirect(f, irradiance_buffer, nullptr, &index.records());
   fill_cache_layers(f, irradiance_buffer, f.gpu.upload(reaching, CL_MEM_READ_ONLY, "octree records per pixel"),
                     f.gpu.upload(index.record_at_pixel(), CL_MEM_READ_ONLY, "octree record map"));
   img.records = std::move(index.records());

@@ -52,13 +52,13 @@ void splat_indirect(IndirectFrame& f) {
       st.irradiance.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
                                                   int(std::ceil(cs.max_reach_pixels)));
   }
-  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
-  compose_cached_indirect(f, splat.irradiance(), radiance);
   {
     StageTimer timing(st.primary.layers_s);
-    img.records = records.download(0, total);  // once per frame, for the summary and the tests
+    img.records = records.download(0, total);  // once per frame, for the summary, the glossy pass and the tests
     count_clamped_radii(img.records, cs, st.irradiance);
   }
+  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
+  compose_cached_indirect(f, splat.irradiance(), radiance, &img.records);
   fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }
 

@@ -69,6 +69,10 @@ struct RenderSettings {
   // photon_neighbours of them on average. 0: no caustic map, the records count those paths through their rays (one
   // stratum on a highlight can then make a record a bright disc).
   unsigned caustic_photons = 1u << 19;
+  // Cache methods, --bounces 2 or more: a glossy pixel's sample whose ray lands on a Lambertian or rough surface that a
+  // record reaches takes the bounces after that hit from the records (found by position: kernels/world_records.h)
+  // instead of continuing its path (kernels/glossy.cl). false (--glossy-paths): every sample continues its path.
+  bool glossy_reads_records = true;
   GiMethod gi = GiMethod::splat;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are

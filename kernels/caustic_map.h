@@ -1,0 +1,33 @@
+// The caustic map's lookup (kernels/caustic_map.cl), for the kernels that read it: the pixels' and the glossy pass's.
+#ifndef RCSPLAT_CAUSTIC_MAP_H
+#define RCSPLAT_CAUSTIC_MAP_H
+#include "photon_map.h"
+#include "sampling.h"
+
+// The map as the kernels take it: its photons sorted by bucket, the buckets' first photons, the grid (photon_count 0:
+// no map, nothing to add).
+#define CAUSTIC_MAP_ARGS \
+  __global const PhotonHit *caustic_photons, __global const uint *caustic_buckets, PhotonMapParams caustic_grid
+#define CAUSTIC_MAP caustic_photons, caustic_buckets, caustic_grid
+
+// The caustic irradiance at x on a surface facing ng's way: the photons of the 3 x 3 x 3 cells about x (cells are at
+// least a radius wide) that lie in the disc of radius caustic_grid.radius about x, their incident flux over pi r^2.
+inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
+  if (caustic_grid.photon_count == 0u) return (float3)(0.0f);
+  float r2 = caustic_grid.radius * caustic_grid.radius, half_thickness = PHOTON_DISC_HALF_THICKNESS * caustic_grid.radius;
+  float3 o = vload3(0, caustic_grid.grid_origin), sum = (float3)(0.0f);
+  int cx = photon_cell(x.x, o.x, caustic_grid.cell_size), cy = photon_cell(x.y, o.y, caustic_grid.cell_size),
+      cz = photon_cell(x.z, o.z, caustic_grid.cell_size);
+  uint visited[27];
+  uint visited_count = 0;
+  for (int c = 0; c < 27; ++c) {
+    uint bucket = photon_bucket(cx + c % 3 - 1, cy + (c / 3) % 3 - 1, cz + c / 9 - 1, caustic_grid.bucket_count);
+    if (!first_visit(bucket, visited, &visited_count)) continue;
+    for (uint j = caustic_buckets[bucket]; j < caustic_buckets[bucket + 1u]; ++j)
+      if (in_disc(vload3(0, caustic_photons[j].position) - x, vload3(0, caustic_photons[j].normal), ng, r2, half_thickness))
+        sum += vload3(0, caustic_photons[j].incident);
+  }
+  return finite_or_zero(sum / (RC_PI * r2));
+}
+
+#endif
