@@ -13,13 +13,14 @@
 #include "light_guide.h"
 #include "world_records.h"
 
-// Where a sample's ray lands on a Lambertian or rough surface that a record of the splat reaches (world_records.h),
-// the bounces after that hit are read from the records (their irradiance, and the caustic map's where the records
-// leave caustics to it), reflected toward the ray as composition reflects a pixel's (kernels/compose.cl), instead of
-// continuing the path: one ray and its light sample instead of a path of `bounces` hits. Elsewhere (a sharper lobe,
-// a surface no record reaches: off screen, hidden from the camera) the path goes on as before. What it trades
-// (docs/ALGORITHM.md section 8): the records' interpolation error, seen blurred through the lobe, for the paths'
-// noise; and the records hold the light of `bounces` bounces after the hit, one more than the path would gather.
+// A sample's path ends at its first hit on a Lambertian or rough surface that a record of the splat reaches
+// (world_records.h): the bounces after that hit are read from the records (their irradiance, and the caustic map's
+// where the records leave caustics to it), reflected toward the path as composition reflects a pixel's
+// (kernels/compose.cl). Elsewhere (a sharper lobe, a surface no record reaches: off screen, hidden from the camera)
+// the path goes on as before and asks again at its next hit. What it trades (docs/ALGORITHM.md section 8): the
+// records' interpolation error, seen blurred through the lobe, for the paths' noise; and a path read at its hit k
+// (0: the first) gathers k + 1 bounces more than the `bounces` it would have, the records' own (they carry `bounces`
+// after their point), which only brings it nearer the light of every bounce.
 #define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS
 #define CACHED_LIGHT , WORLD_RECORDS, CAUSTIC_MAP
 
@@ -32,24 +33,36 @@ inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e)
   return brdf_eval_diffuse(in, wo.z) * e + specular_albedo(in, wo) * RC_INV_PI * e;
 }
 
-// The radiance a sample's ray along dir brings back (bounce_radiance, or the records where they reach its hit).
+// Whether the records reach *h (a Lambertian or rough surface, reached along dir): if so, *l is the light of the
+// bounces after it that h reflects back along -dir.
+inline bool cached_light(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3 dir, float3* l) {
+  int lobe = hit_lobe_kind(materials, textures, texels, h);
+  if (lobe != LOBE_NONE && lobe != LOBE_ROUGH) return false;
+  float weight;
+  float3 e = world_cached_irradiance(WORLD_RECORDS, h->s.position, h->ns, &weight);
+  if (!(weight > 0.0f)) return false;
+  e += caustic_irradiance(CAUSTIC_MAP, h->s.position, h->ng);
+  *l = cached_reflection(SCENE, h, dir, e);
+  return true;
+}
+
+// The radiance a sample's ray along dir brings back: as bounce_radiance, but a path that lands where the records
+// reach reads them there and ends.
 inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
                               PathContinuation more, uint* rays) {
   HitSurface h;
   float distance;
   if (!trace_surface(SCENE, origin, dir, &h, &distance, rays)) return miss_radiance(SCENE, dir);
-  if (more.bounces && world_grid.record_count) {
-    int lobe = hit_lobe_kind(materials, textures, texels, &h);
-    if (lobe == LOBE_NONE || lobe == LOBE_ROUGH) {
-      float weight;
-      float3 e = world_cached_irradiance(WORLD_RECORDS, h.s.position, h.ns, &weight);
-      if (weight > 0.0f) {
-        e += caustic_irradiance(CAUSTIC_MAP, h.s.position, h.ng);
-        return hit_direct(SCENE, &h, dir, u, v, u_lobe, rays) + finite_or_zero(cached_reflection(SCENE, &h, dir, e));
-      }
+  if (!world_grid.record_count) return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays);
+  float3 sum = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays), throughput = (float3)(1.0f), cached;
+  for (uint k = 0; k < more.bounces; ++k) {
+    if (cached_light(SCENE CACHED_LIGHT, &h, dir, &cached)) {
+      sum += throughput * cached;
+      break;
     }
+    if (!path_step(SCENE, &h, &dir, &throughput, more, k, &sum, rays)) break;
   }
-  return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays);
+  return finite_or_zero(sum);
 }
 
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
