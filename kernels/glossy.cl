@@ -8,21 +8,21 @@
 // pixels get the share of their light that their radiance records leave to the guide (guide_share).
 #include "bounce.h"
 #include "brdf_frame.h"
-#include "caustic_map.h"
 #include "counter_random.h"
 #include "light_guide.h"
 #include "world_records.h"
 
 // A sample's path ends at its first hit on a Lambertian or rough surface that a record of the splat reaches
-// (world_records.h): the bounces after that hit are read from the records (their irradiance, and the caustic map's
-// where the records leave caustics to it), reflected toward the path as composition reflects a pixel's
+// (world_records.h): the bounces after that hit are read from the records (their irradiance, with the caustic map's
+// at each record added by the host where the records leave caustics to it), reflected toward the path as composition
+// reflects a pixel's
 // (kernels/compose.cl). Elsewhere (a sharper lobe, a surface no record reaches: off screen, hidden from the camera)
 // the path goes on as before and asks again at its next hit. What it trades (docs/ALGORITHM.md section 8): the
 // records' interpolation error, seen blurred through the lobe, for the paths' noise; and a path read at its hit k
 // (0: the first) gathers k + 1 bounces more than the `bounces` it would have, the records' own (they carry `bounces`
 // after their point), which only brings it nearer the light of every bounce.
-#define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS
-#define CACHED_LIGHT , WORLD_RECORDS, CAUSTIC_MAP
+#define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS
+#define CACHED_LIGHT , WORLD_RECORDS
 
 inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e) {
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
@@ -41,7 +41,6 @@ inline bool cached_light(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3 dir
   float weight;
   float3 e = world_cached_irradiance(WORLD_RECORDS, h->s.position, h->ns, &weight);
   if (!(weight > 0.0f)) return false;
-  e += caustic_irradiance(CAUSTIC_MAP, h->s.position, h->ng);
   *l = cached_reflection(SCENE, h, dir, e);
   return true;
 }
@@ -134,7 +133,7 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
 }
 
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                              WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global float4* glossy_out) {
+                              WORLD_RECORD_ARGS, __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[pixel];

@@ -88,6 +88,19 @@ void CausticMapPass::bind(NamedKernel& kernel) const {
       .set("caustic_grid", params_);
 }
 
+void CausticMapPass::add_to_records(std::vector<CacheRecord>& records) {
+  if (params_.photon_count == 0 || records.empty()) return;
+  std::vector<cl_float4> points(records.size()), normals(records.size());
+  for (size_t i = 0; i < records.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      points[i].s[a] = records[i].position[a];
+      normals[i].s[a] = records[i].normal[a];
+    }
+  const std::vector<cl_float4> caustic = irradiance_at(points, normals);
+  for (size_t i = 0; i < records.size(); ++i)
+    for (int c = 0; c < 3; ++c) records[i].irradiance[c] += caustic[i].s[c];
+}
+
 std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
                                                      const std::vector<cl_float4>& normals) {
   cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "caustic lookups");

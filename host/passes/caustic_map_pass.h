@@ -29,7 +29,10 @@ class CausticMapPass {
 
   // irradiance[i] += the caustic irradiance at G-buffer sample i (float4 per sample, as the splat resolves it).
   void add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance);
-  // The caustic irradiance at these points (xyz) on surfaces facing these normals, for tests.
+  // Adds the caustic irradiance at each record's point to its irradiance: the records a glossy sample reads then
+  // stand for all the light there (kernels/glossy.cl), which costs one lookup per record, not one per sample.
+  void add_to_records(std::vector<CacheRecord>& records);
+  // The caustic irradiance at these points (xyz) on surfaces facing these normals (the records' lookups, and tests).
   std::vector<cl_float4> irradiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
   // Sets a kernel's CAUSTIC_MAP_ARGS (kernels/caustic_map.h).
   void bind(NamedKernel& kernel) const;

@@ -12,8 +12,7 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
     : gpu_(gpu),
       scene_(scene),
       defines_(scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)),
-      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", defines_)),
-      no_caustics_(gpu, {}, 0.0f) {}
+      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", defines_)) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
                      unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
@@ -42,7 +41,6 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
   gbuffer.bind(kernel_);
   kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
   bind_records(kernel_, reads);
-  (reads.caustics ? *reads.caustics : no_caustics_).bind(kernel_);
   kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
   kernel_.launch(pixels_, gpu_.groups().traversal);
   gpu_.queue().finish();
@@ -75,7 +73,7 @@ std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheR
   cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "record lookups");
   cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("glossy.cl", "cached_irradiance_at", defines_);
-  bind_records(look_up, {&records, &grid, nullptr});
+  bind_records(look_up, {&records, &grid});
   look_up.set_buffer<cl_float4>("points", p)
       .set_buffer<cl_float4>("normals", n)
       .set("point_count", cl_uint(points.size()))

@@ -8,18 +8,16 @@
 #include "cl/gpu_context.h"
 #include "cache/world_record_grid.h"
 #include "kernels/shared_types.h"
-#include "passes/caustic_map_pass.h"
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
 
 // What the samples' rays read where they land on a Lambertian or rough surface (kernels/glossy.cl sample_radiance):
-// the cache's records by position (uploaded with their grid) and the caustic map the records leave those paths to
-// (null: none). No records: every sample continues its path.
+// the cache's records by position, uploaded with their grid (with a caustic map, their irradiance holds the map's at
+// each record too: CausticMapPass::add_to_records). No records: every sample continues its path.
 struct GlossyCacheReads {
   const std::vector<CacheRecord>* records = nullptr;
   const WorldRecordGrid* grid = nullptr;
-  const CausticMapPass* caustics = nullptr;
 };
 
 class GlossyPass {
@@ -51,7 +49,6 @@ class GlossyPass {
   NamedKernel kernel_;
   cl::Buffer radiance_, guide_;
   cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records
-  CausticMapPass no_caustics_;                            // an empty map, bound where there is none
   size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0;
 };
 

@@ -43,14 +43,20 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
       StageTimer timing(st.glossy.seconds);
       // The records by position, for the samples' rays to read where they land (the bounces after a hit).
       WorldRecordGrid grid;
+      std::vector<CacheRecord> lit_records;
       GlossyCacheReads reads;
       if (records && f.settings.glossy_reads_records && f.settings.bounces > 1) {
         StageTimer grid_timing(st.glossy.record_grid_s);
-        float largest = 0.0f;
-        for (const CacheRecord& r : *records)
+        if (caustics) {  // the light the records leave to the caustic map, added at each record for the samples
+          lit_records = *records;
+          caustics->add_to_records(lit_records);
+        }
+        const std::vector<CacheRecord>& read = caustics ? lit_records : *records;
+        float largest = 0.0f;  // the splat's bound on extrapolation, from the records read
+        for (const CacheRecord& r : read)
           largest = std::max({largest, r.irradiance[0], r.irradiance[1], r.irradiance[2]});
-        grid = build_world_record_grid(*records, cs.accuracy, fixed_point_irradiance_scale(largest, cs.accuracy));
-        reads = {records, &grid, caustics};
+        grid = build_world_record_grid(read, cs.accuracy, fixed_point_irradiance_scale(largest, cs.accuracy));
+        reads = {&read, &grid};
         st.glossy.reads_records = true;
       }
       glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
