@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cl/point_lookup.h"
 #include "kernels/photon_grid.h"
 #include "passes/light_guide_pass.h"
 
@@ -103,17 +104,9 @@ void CausticMapPass::add_to_records(std::vector<CacheRecord>& records) {
 
 std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
                                                      const std::vector<cl_float4>& normals) {
-  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "caustic lookups");
-  cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "caustic lookups");
-  cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("caustic_map.cl", "caustic_irradiance_at", {});
   bind(look_up);
-  look_up.set_buffer<cl_float4>("points", p)
-      .set_buffer<cl_float4>("normals", n)
-      .set("point_count", cl_uint(points.size()))
-      .set_buffer<cl_float4>("irradiance", out);
-  look_up.launch(points.size(), gpu_.groups().traversal);
-  return gpu_.download<cl_float4>(out, points.size());
+  return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }
 
 }  // namespace rcsplat

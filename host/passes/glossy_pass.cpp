@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "cl/point_lookup.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -69,17 +70,9 @@ std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheR
                                                         const WorldRecordGrid& grid,
                                                         const std::vector<cl_float4>& points,
                                                         const std::vector<cl_float4>& normals) {
-  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "record lookups");
-  cl::Buffer n = gpu_.upload(normals, CL_MEM_READ_ONLY, "record lookups");
-  cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("glossy.cl", "cached_irradiance_at", defines_);
   bind_records(look_up, {&records, &grid});
-  look_up.set_buffer<cl_float4>("points", p)
-      .set_buffer<cl_float4>("normals", n)
-      .set("point_count", cl_uint(points.size()))
-      .set_buffer<cl_float4>("irradiance", out);
-  look_up.launch(points.size(), gpu_.groups().traversal);
-  return gpu_.download<cl_float4>(out, points.size());
+  return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }
 
 std::vector<float> GlossyPass::download_rgba() { return gpu_.download<float>(radiance_, pixels_ * 4); }

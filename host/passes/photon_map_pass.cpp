@@ -1,5 +1,6 @@
 #include "passes/photon_map_pass.h"
 
+#include "cl/point_lookup.h"
 #include "passes/light_guide_pass.h"
 
 namespace rcsplat {
@@ -66,16 +67,9 @@ std::vector<cl_float4> PhotonMapPass::shallow_estimates() {
 
 std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,
                                                   const std::vector<cl_float4>& normals) {
-  cl::Buffer p = gpu_.upload(points, CL_MEM_READ_ONLY, "photon lookups"), n = gpu_.upload(normals, CL_MEM_READ_ONLY, "photon lookups");
-  cl::Buffer out = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(points.size(), 1) * sizeof(cl_float4), "lookups");
   NamedKernel look_up = gpu_.kernel("photon_map.cl", "look_up_photon_radiance", {});
   bind(look_up);
-  look_up.set_buffer<cl_float4>("points", p)
-      .set_buffer<cl_float4>("normals", n)
-      .set("point_count", cl_uint(points.size()))
-      .set_buffer<cl_float4>("radiance", out);
-  look_up.launch(points.size(), gpu_.groups().traversal);
-  return gpu_.download<cl_float4>(out, points.size());
+  return run_point_lookup(gpu_, look_up, points, normals, "radiance");
 }
 
 }  // namespace rcsplat
