@@ -88,13 +88,16 @@ double mean_of(const std::vector<float>& rgb) {
 // at the floor. A path lost (the map not read) or counted twice (the records keeping it too) moves the mean by the
 // caustic's share of the indirect light, which the test prints (about 20%). Tolerance: four standard deviations of the
 // reference's mean (from its per-pixel variance) plus 3% for the cache's own error at 96 x 72 (interpolation and the
-// map's blur, seeds averaged).
+// map's blur, seeds averaged). The glossy floor's samples continue their paths (--glossy-paths), as the path tracer
+// does: reading the records where they land adds a bounce the reference leaves out (docs/ALGORITHM.md section 8;
+// printed below, about +1.5% here), which is item 2's trade, not this split's.
 TEST(CausticMap, GlossyFloorRoomMatchesThePathTracer) {
   const Scene room = test::caustic_room();
   Renderer renderer(test::gpu(), room);
   RenderSettings cache;
   cache.width = 96;
   cache.height = 72;
+  cache.glossy_reads_records = false;
   const FramePlan plan = renderer.plan(cache);
   RenderSettings path = cache;
   path.bounces = plan.settings.bounces;
@@ -106,12 +109,13 @@ TEST(CausticMap, GlossyFloorRoomMatchesThePathTracer) {
   double variance_of_mean = 0.0;
   for (float v : reference.indirect_variance) variance_of_mean += v;
   variance_of_mean /= double(reference.indirect_variance.size()) * double(reference.indirect_variance.size());
-  auto cache_mean = [&](unsigned caustic_photons) {
+  auto cache_mean = [&](unsigned caustic_photons, bool glossy_reads_records = false) {
     double sum = 0.0;
     for (unsigned seed : {1u, 2u}) {
       RenderSettings s = cache;
       s.seed = seed;
       s.caustic_photons = caustic_photons;
+      s.glossy_reads_records = glossy_reads_records;
       const RenderedImage image = renderer.render(s);
       if (caustic_photons) EXPECT_GT(image.stats.caustics.photons, 10000u);
       sum += mean_of(image.indirect);
@@ -120,8 +124,10 @@ TEST(CausticMap, GlossyFloorRoomMatchesThePathTracer) {
   };
   const double with_map = cache_mean(cache.caustic_photons), without_map = cache_mean(0);
   const double tolerance = 4.0 * std::sqrt(variance_of_mean) / reference_mean + 0.03;
-  std::printf("indirect over the path tracer's: caustic map %.4f, records alone %.4f (tolerance %.4f)\n",
-              with_map / reference_mean, without_map / reference_mean, tolerance);
+  std::printf("indirect over the path tracer's: caustic map %.4f, records alone %.4f (tolerance %.4f); the render "
+              "defaults (glossy samples read the records) %.4f\n",
+              with_map / reference_mean, without_map / reference_mean, tolerance,
+              cache_mean(cache.caustic_photons, true) / reference_mean);
   EXPECT_NEAR(with_map / reference_mean, 1.0, tolerance);
   EXPECT_NEAR(without_map / reference_mean, 1.0, tolerance);
 }

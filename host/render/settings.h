@@ -67,8 +67,9 @@ struct RenderSettings {
   // Cache methods, scenes with a sharp lobe (LOBE_GLOSSY): photons shot for the caustic map, which carries light ->
   // glossy -> rough paths to the pixels instead of the records' rays (kernels/caustic_map.cl); its radius holds
   // photon_neighbours of them on average. 0: no caustic map, the records count those paths through their rays (one
-  // stratum on a highlight can then make a record a bright disc).
-  unsigned caustic_photons = 1u << 19;
+  // stratum on a highlight can then make a record a bright disc). 2^20: on textured Sibenik 0.99x the block error
+  // of 2^19 for 0.12 s more (benchmarks/RESULTS.md "Issue 41, items 1 and 2").
+  unsigned caustic_photons = 1u << 20;
   // Cache methods, --bounces 2 or more: a glossy pixel's sample whose ray lands on a Lambertian or rough surface that a
   // record reaches takes the bounces after that hit from the records (found by position: kernels/world_records.h)
   // instead of continuing its path (kernels/glossy.cl). false (--glossy-paths): every sample continues its path.
