@@ -14,7 +14,7 @@
 # wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
 # in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
 # budget (Sponza's frame at the defaults and at cheaper settings), issue41 (Sponza and textured Sibenik on the GPU
-# against PoCL, and repeated), heap (freed host memory reused, against
+# against PoCL, and repeated; textured Sibenik before items 1 and 2, glossy paths without a caustic map), heap (freed host memory reused, against
 # .gpu/rcsplat_old), pieces (image layers downloaded in pieces, against .gpu/rcsplat_old).
 # (CPU_DEVICE: a substring of PoCL's device name, as `rcsplat devices` lists it).
 set -u
@@ -221,6 +221,12 @@ if [[ $parts == *issue41* ]]; then
       --json $R/i41_${n}_pocl.json > /dev/null || echo "FAILED: $n PoCL"
     $rc compare $work/${n}_gpu1.exr $work/${n}_pocl.exr --json $R/i41_${n}_gpu_vs_pocl.json | sed "s/^/$n GPU vs PoCL: /"
   done
+  # Items 1 and 2 on the GPU: textured Sibenik as before them (glossy paths, no caustic map) against the defaults.
+  n=$(basename $B .gltf)
+  timeout 90 $rc -q render $B --device NVIDIA --width 1024 --height 768 --glossy-paths --caustic-photons 0 \
+    -o $work/${n}_gpu_before.exr --json $R/i41_${n}_gpu_before.json > /dev/null || echo "FAILED: $n GPU before"
+  $rc compare $work/${n}_gpu_before.exr $work/${n}_gpu1.exr --json $R/i41_${n}_before_vs_now.json |
+    sed "s/^/$n before items 1-2 vs now: /"
   rm -f $work/*.exr
 fi
 
