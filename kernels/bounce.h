@@ -73,7 +73,8 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
 // records, the glossy pass and the path tracer count every path themselves.
 inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe,
                                           uint* rays) {
-  if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY) return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
+  if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY)
+    return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
   BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h));
   ShadingFrame frame = shading_frame(h->ns);
   float3 wo = view_local(frame, -dir);

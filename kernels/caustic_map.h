@@ -14,7 +14,7 @@
 // least a radius wide) that lie in the disc of radius caustic_grid.radius about x, their incident flux over pi r^2.
 inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
   if (caustic_grid.photon_count == 0u) return (float3)(0.0f);
-  float r2 = caustic_grid.radius * caustic_grid.radius, half_thickness = PHOTON_DISC_HALF_THICKNESS * caustic_grid.radius;
+  float r = caustic_grid.radius, r2 = r * r, half_thickness = PHOTON_DISC_HALF_THICKNESS * r;
   float3 o = vload3(0, caustic_grid.grid_origin), sum = (float3)(0.0f);
   int cx = photon_cell(x.x, o.x, caustic_grid.cell_size), cy = photon_cell(x.y, o.y, caustic_grid.cell_size),
       cz = photon_cell(x.z, o.z, caustic_grid.cell_size);
@@ -23,9 +23,11 @@ inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
   for (int c = 0; c < 27; ++c) {
     uint bucket = photon_bucket(cx + c % 3 - 1, cy + (c / 3) % 3 - 1, cz + c / 9 - 1, caustic_grid.bucket_count);
     if (!first_visit(bucket, visited, &visited_count)) continue;
-    for (uint j = caustic_buckets[bucket]; j < caustic_buckets[bucket + 1u]; ++j)
-      if (in_disc(vload3(0, caustic_photons[j].position) - x, vload3(0, caustic_photons[j].normal), ng, r2, half_thickness))
+    for (uint j = caustic_buckets[bucket]; j < caustic_buckets[bucket + 1u]; ++j) {
+      float3 d = vload3(0, caustic_photons[j].position) - x;
+      if (in_disc(d, vload3(0, caustic_photons[j].normal), ng, r2, half_thickness))
         sum += vload3(0, caustic_photons[j].incident);
+    }
   }
   return finite_or_zero(sum / (RC_PI * r2));
 }
