@@ -85,8 +85,7 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
   float2 lobe_u = environment_extra_randoms(u, v, 2u);
-  float3 m = ggx_sample_visible_normal(wo, in.alpha, lobe_u.x, lobe_u.y);
-  float3 wi = 2.0f * dot(wo, m) * m - wo, toward = to_world(frame, wi);
+  float3 wi = ggx_sample_reflection(wo, in.alpha, lobe_u.x, lobe_u.y), toward = to_world(frame, wi);
   float3 origin = offset_ray_origin(h->s.position, h->ng);
   if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f && escapes(BVH, origin, toward, rays))
     l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward);

@@ -180,14 +180,20 @@ inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float 
   return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
 }
 
+// The reflection of wo about a normal drawn from the lobe's visible normals (ggx_sample_visible_normal), for uniform
+// (u1, u2): its weight f_specular cos / pdf is brdf_specular_weight.
+inline float3 ggx_sample_reflection(float3 wo, float alpha, float u1, float u2) {
+  float3 h = ggx_sample_visible_normal(wo, alpha, u1, u2);
+  return 2.0f * dot(wo, h) * h - wo;
+}
+
 // Draws wi for wo from (u_lobe, u1, u2). Returns f cos(wi) / pdf, or zero when the direction falls below the surface;
 // *pdf is brdf_pdf(wo, wi).
 inline float3 brdf_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, float u2, float3* wi, float* pdf) {
   *pdf = 0.0f;
   if (wo.z <= 0.0f) return (float3)(0.0f);
   if (u_lobe < brdf_specular_probability(in, wo)) {
-    float3 h = ggx_sample_visible_normal(wo, in.alpha, u1, u2);
-    *wi = 2.0f * dot(wo, h) * h - wo;
+    *wi = ggx_sample_reflection(wo, in.alpha, u1, u2);
   } else {
     float sin_t = sqrt(u1), phi = 2.0f * RC_PI * u2;
     *wi = (float3)(cos(phi) * sin_t, sin(phi) * sin_t, sqrt(fmax(1.0f - u1, 0.0f)));

@@ -58,8 +58,7 @@ inline float3 scatter_caustic_photon(SCENE_ARGS, HitSurface* h, float3 dir, uint
   ShadingFrame frame = shading_frame(h->ns);
   BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
   float3 toward_light = view_local(frame, -dir);
-  float3 m = ggx_sample_visible_normal(toward_light, in.alpha, random01(key, 0u, 6u), random01(key, 0u, 7u));
-  float3 next = 2.0f * dot(toward_light, m) * m - toward_light;
+  float3 next = ggx_sample_reflection(toward_light, in.alpha, random01(key, 0u, 6u), random01(key, 0u, 7u));
   *power *= brdf_specular_weight(in, toward_light, next);
   return to_world(frame, next);
 }

@@ -100,7 +100,7 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   record.irradiance[0] = 1.0f;
   for (float& h : record.horizon) h = 1e30f;
   const std::vector<CacheRecord> one_record{record};
-  const WorldRecordGrid record_grid = build_world_record_grid(one_record, 0.5f, 10.0f);
+  const WorldRecordGrid record_grid = build_world_record_grid(one_record, 0.5f);
   GlossyPass glossy(gpu, device, false);
   EXPECT_GT(glossy.cached_irradiance_at(one_record, record_grid, {{{0.0f, 0.0f, 0.0f, 0.0f}}},
                                         {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0],

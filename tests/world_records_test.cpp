@@ -6,7 +6,6 @@
 #include <cstdio>
 
 #include "cache/world_record_grid.h"
-#include "kernels/cache_math.h"
 #include "kernels/photon_grid.h"
 #include "passes/glossy_pass.h"
 #include "render/renderer.h"
@@ -44,12 +43,7 @@ TEST(WorldRecords, ALookupByPositionGivesWhatTheSplatGivesThePixel) {
   settings.caustic_photons = 0;  // the splat's irradiance alone, without the caustic map's added
   const RenderedImage img = renderer.render(settings);
   ASSERT_GT(img.records.size(), 100u);
-  const float accuracy = settings.cache.accuracy;
-  float largest = 0.0f;
-  for (const CacheRecord& r : img.records)
-    largest = std::max({largest, r.irradiance[0], r.irradiance[1], r.irradiance[2]});
-  const WorldRecordGrid grid =
-      build_world_record_grid(img.records, accuracy, fixed_point_irradiance_scale(largest, accuracy));
+  const WorldRecordGrid grid = build_world_record_grid(img.records, settings.cache.accuracy);
   std::vector<cl_float4> points, normals;
   std::vector<size_t> pixels;
   for (size_t i = 0; i < img.triangle.size(); ++i) {
@@ -88,7 +82,7 @@ TEST(WorldRecords, EveryPointWithinAReachFindsItsRecordInItsCell) {
     r.radius = 0.01f + 0.2f * next() * next();
   }
   const float accuracy = 0.3f;
-  const WorldRecordGrid grid = build_world_record_grid(records, accuracy, 1.0f);
+  const WorldRecordGrid grid = build_world_record_grid(records, accuracy);
   ASSERT_EQ(grid.bucket_starts.size(), size_t(grid.params.bucket_count) + 1);
   const WorldRecordParams& g = grid.params;
   for (uint32_t k = 0; k < records.size(); ++k) {

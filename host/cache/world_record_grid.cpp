@@ -6,15 +6,18 @@
 #include <cmath>
 #include <utility>
 
+#include "kernels/cache_math.h"
 #include "kernels/photon_grid.h"
 
 namespace rcsplat {
 
-WorldRecordGrid build_world_record_grid(const std::vector<CacheRecord>& records, float accuracy,
-                                        float irradiance_scale) {
+WorldRecordGrid build_world_record_grid(const std::vector<CacheRecord>& records, float accuracy) {
   WorldRecordGrid grid;
   grid.params.accuracy = accuracy;
-  grid.params.irradiance_scale = irradiance_scale;
+  float largest = 0.0f;  // as the splat's max_record_irradiance (kernels/splat.cl)
+  for (const CacheRecord& r : records)
+    largest = std::max({largest, r.irradiance[0], r.irradiance[1], r.irradiance[2]});
+  grid.params.irradiance_scale = fixed_point_irradiance_scale(largest, accuracy);
   grid.params.bucket_count = 1;
   grid.bucket_starts = {0, 0};
   std::vector<uint32_t> kept;

@@ -14,11 +14,11 @@ struct WorldRecordGrid {
   std::vector<uint32_t> record_lists;   // record indices, each once per bucket, ascending within it
 };
 
-// The grid of these records at the splat's accuracy and irradiance bound. Its cell is as wide as the median reach
+// The grid of these records at the splat's accuracy, with the splat's bound on extrapolated irradiance derived from
+// them as the splat derives it (fixed_point_irradiance_scale of the largest component). Its cell is as wide as the median reach
 // sphere (so that most spheres meet at most 8 cells), and at least an eighth of the widest (so that none meets more
 // than 10^3). Records with a non-finite or non-positive radius are left out. Deterministic: the same records give the
 // same grid.
-WorldRecordGrid build_world_record_grid(const std::vector<CacheRecord>& records, float accuracy,
-                                        float irradiance_scale);
+WorldRecordGrid build_world_record_grid(const std::vector<CacheRecord>& records, float accuracy);
 
 }  // namespace rcsplat

@@ -1,10 +1,8 @@
 // The cache methods' composition: glossy pixels' specular light, then each pixel's BRDF applied to the cached
 // irradiance (kernels/glossy.cl, kernels/compose.cl).
-#include <algorithm>
 #include <atomic>
 
 #include "cache/world_record_grid.h"
-#include "kernels/cache_math.h"
 
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
@@ -52,10 +50,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
           caustics->add_to_records(lit_records);
         }
         const std::vector<CacheRecord>& read = caustics ? lit_records : *records;
-        float largest = 0.0f;  // the splat's bound on extrapolation, from the records read
-        for (const CacheRecord& r : read)
-          largest = std::max({largest, r.irradiance[0], r.irradiance[1], r.irradiance[2]});
-        grid = build_world_record_grid(read, cs.accuracy, fixed_point_irradiance_scale(largest, cs.accuracy));
+        grid = build_world_record_grid(read, cs.accuracy);
         reads = {&read, &grid};
         st.glossy.reads_records = true;
       }
