@@ -116,6 +116,108 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
   cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
 }
 
+// How `render` and `animate` compute a frame: the quality preset, the indirect-light method and the cache's options.
+struct RenderMethodFlags {
+  std::string gi = "splat", hemisphere, spacing, fine_hemisphere, bounce_method;
+  bool glossy_paths = false;
+
+  void add(CLI::App* cmd, RenderOptions& o, const std::string& lab) {
+    cmd->add_option("--quality", o.quality,
+                           "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
+                           "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
+                           "where the frame allows, 64 light samples); options given on the command line win")
+        ->check(CLI::IsMember({"draft", "standard", "final"}));
+    cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
+                                       "irradiance cache on the host), path (path tracing), none")
+        ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
+    const CacheSettings cache_defaults;
+    cmd->add_option("--accuracy", o.settings.cache.accuracy,
+                           "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer (" +
+                               shortest(kMinAccuracy) + " to " + shortest(kMaxAccuracy) + ", default " +
+                               shortest(cache_defaults.accuracy) + ")");
+    cmd->add_option("--hemisphere", hemisphere,
+                           "Rays per record as MxN strata (theta x phi), default " +
+                               std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
+    cmd->add_option("--fine-hemisphere", fine_hemisphere,
+                           "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
+                           "few pixels each, as MxN; default: as --hemisphere")
+        ->group(lab);
+    cmd->add_option("--spacing", spacing,
+                           "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
+                               shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
+        ->group(lab);
+    cmd->add_option("--hessian-error", o.settings.cache.hessian_error,
+                           "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
+                           "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
+                               shortest(cache_defaults.hessian_error))
+        ->group(lab);
+    cmd->add_option("--adaptive-rays", o.settings.cache.adaptive_error,
+                           "Adaptive rays: trace each record with half the strata each way first, and again with all "
+                           "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
+                               shortest(cache_defaults.adaptive_error))
+        ->group(lab);
+    cmd->add_option("--guide-rays", o.settings.cache.guide_rays,
+                           "Rays per record aimed at the brightest directly lit places (photons from the lights find "
+                           "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
+                               std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
+        ->group(lab);
+    cmd->add_option("--spp", o.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
+    cmd->add_option("--glossy-samples", o.settings.glossy_samples,
+                           "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
+                           "(stratified; default 16, at most 65536)")
+        ->group(lab);
+    cmd->add_option("--hsh-order", o.settings.hsh_order,
+                           "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
+                           "channel, 1.." + std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
+        ->group(lab);
+    cmd->add_flag("--stratified", o.settings.path.stratified,
+                         "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
+    cmd->add_option("--bounce-method", bounce_method,
+                           "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
+                           "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
+                           "unless the scene has a sky or an environment map")
+        ->group(lab);
+    cmd->add_option("--photons", o.settings.photon_paths,
+                           "Photons shot for --bounce-method photons; default: rounds of " +
+                               std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
+                               std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
+                               " rounds; 0 too; at most 67108864)")
+        ->group(lab);
+    cmd->add_flag("--glossy-paths", glossy_paths,
+                         "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
+                         "records where they land on a rough surface a record reaches (the default)")
+        ->group(lab);
+    cmd->add_option("--caustic-photons", o.settings.caustic_photons,
+                           "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
+                           "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
+                           "records' rays count it; at most 67108864); default " +
+                               std::to_string(o.settings.caustic_photons))
+        ->group(lab);
+    cmd->add_option("--photon-min-support", o.settings.photon_min_support,
+                           "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
+                           "this continue their path instead of reading the map (0: never); default " +
+                               shortest(o.settings.photon_min_support))
+        ->group(lab);
+    cmd->add_option("--short-ray-paths", o.settings.short_ray_paths,
+                           "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
+                           "continue their path one bounce and read the map there (0: every ray reads it where it "
+                           "lands); default " +
+                               shortest(o.settings.short_ray_paths))
+        ->group(lab);
+  }
+
+  // After parsing: the strings parsed into the settings, then the quality preset under the options given.
+  void apply(CLI::App* cmd, RenderOptions& o) const {
+    o.settings.gi = parse_gi_method(gi);
+    if (!bounce_method.empty()) o.settings.bounce_method = parse_bounce_method(bounce_method);
+    if (!hemisphere.empty()) parse_hemisphere(hemisphere, o.settings.cache);
+    if (!spacing.empty()) parse_spacing(spacing, o.settings.cache);
+    if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, o.settings.cache, true);
+    o.settings.glossy_reads_records = !glossy_paths;
+    apply_quality(o.quality, o.settings, [&](const char* option) { return cmd->count(option) > 0; });
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -149,93 +251,39 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
   add_frame_options(render_cmd, render, render_camera, render_environment, lab);
   if (!help_all) render_cmd->footer("--help-all also lists the experiment options.");
-  render_cmd->add_option("--quality", render.quality,
-                         "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
-                         "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
-                         "where the frame allows, 64 light samples); options given on the command line win")
-      ->check(CLI::IsMember({"draft", "standard", "final"}));
-  std::string gi = "splat", hemisphere, spacing;
-  render_cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
-                                     "irradiance cache on the host), path (path tracing), none")
-      ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
-  const CacheSettings cache_defaults;
-  render_cmd->add_option("--accuracy", render.settings.cache.accuracy,
-                         "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer (" +
-                             shortest(kMinAccuracy) + " to " + shortest(kMaxAccuracy) + ", default " +
-                             shortest(cache_defaults.accuracy) + ")");
-  render_cmd->add_option("--hemisphere", hemisphere,
-                         "Rays per record as MxN strata (theta x phi), default " +
-                             std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
-  std::string fine_hemisphere;
-  render_cmd->add_option("--fine-hemisphere", fine_hemisphere,
-                         "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
-                         "few pixels each, as MxN; default: as --hemisphere")
-      ->group(lab);
-  render_cmd->add_option("--spacing", spacing,
-                         "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
-                             shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
-      ->group(lab);
-  render_cmd->add_option("--hessian-error", render.settings.cache.hessian_error,
-                         "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
-                         "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
-                             shortest(cache_defaults.hessian_error))
-      ->group(lab);
-  render_cmd->add_option("--adaptive-rays", render.settings.cache.adaptive_error,
-                         "Adaptive rays: trace each record with half the strata each way first, and again with all "
-                         "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
-                             shortest(cache_defaults.adaptive_error))
-      ->group(lab);
-  render_cmd->add_option("--guide-rays", render.settings.cache.guide_rays,
-                         "Rays per record aimed at the brightest directly lit places (photons from the lights find "
-                         "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
-                             std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
-      ->group(lab);
-  render_cmd->add_option("--spp", render.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
-  render_cmd->add_option("--glossy-samples", render.settings.glossy_samples,
-                         "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
-                         "(stratified; default 16, at most 65536)")
-      ->group(lab);
-  render_cmd->add_option("--hsh-order", render.settings.hsh_order,
-                         "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
-                         "channel, 1.." + std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
-      ->group(lab);
-  render_cmd->add_flag("--stratified", render.settings.path.stratified,
-                       "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
-  std::string bounce_method;
-  render_cmd->add_option("--bounce-method", bounce_method,
-                         "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
-                         "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
-                         "unless the scene has a sky or an environment map")
-      ->group(lab);
-  render_cmd->add_option("--photons", render.settings.photon_paths,
-                         "Photons shot for --bounce-method photons; default: rounds of " +
-                             std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
-                             std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
-                             " rounds; 0 too; at most 67108864)")
-      ->group(lab);
-  bool glossy_paths = false;
-  render_cmd->add_flag("--glossy-paths", glossy_paths,
-                       "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
-                       "records where they land on a rough surface a record reaches (the default)")
-      ->group(lab);
-  render_cmd->add_option("--caustic-photons", render.settings.caustic_photons,
-                         "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
-                         "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
-                         "records' rays count it; at most 67108864); default " +
-                             std::to_string(render.settings.caustic_photons))
-      ->group(lab);
-  render_cmd->add_option("--photon-min-support", render.settings.photon_min_support,
-                         "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
-                         "this continue their path instead of reading the map (0: never); default " +
-                             shortest(render.settings.photon_min_support))
-      ->group(lab);
-  render_cmd->add_option("--short-ray-paths", render.settings.short_ray_paths,
-                         "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
-                         "continue their path one bounce and read the map there (0: every ray reads it where it "
-                         "lands); default " +
-                             shortest(render.settings.short_ray_paths))
-      ->group(lab)
-      ->group(lab);
+  RenderMethodFlags render_method;
+  render_method.add(render_cmd, render, lab);
+
+  AnimateOptions animate;
+  CameraFlags animate_camera;
+  EnvironmentFlags animate_environment;
+  RenderMethodFlags animate_method;
+  CLI::App* animate_cmd = app.add_subcommand(
+      "animate", "Render a camera path to a frame sequence: the scene's glTF camera animation, a keyframe file or an "
+                 "orbit (default scene: the built-in Cornell box, which needs --orbit or --keyframes)");
+  add_frame_options(animate_cmd, animate.render, animate_camera, animate_environment, lab);
+  animate_method.add(animate_cmd, animate.render, lab);
+  animate_cmd->add_option("--keyframes", animate.keyframes,
+                          "Camera path from a keyframe file: a line a key, \"time ex ey ez tx ty tz ux uy uz fov\" "
+                          "(docs/USAGE.md)");
+  animate_cmd->add_option("--orbit", animate.orbit_seconds,
+                          "Camera path: one turn around the camera's target in this many seconds (--eye, --target "
+                          "and --up set where it starts)");
+  animate_cmd->add_option("--orbit-degrees", animate.orbit_degrees,
+                          "--orbit: the arc swept in its seconds, in degrees (default 360: a whole turn; negative: "
+                          "clockwise seen from above)");
+  animate_cmd->add_option("--animation", animate.animation,
+                          "Without --keyframes or --orbit: the scene's glTF animation that moves --camera (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  animate_cmd->add_option("--fps", animate.fps, "Frames a second of the path's time (default 24)");
+  animate_cmd->add_option("--first-frame", animate.first_frame, "First frame rendered (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  animate_cmd->add_option("--last-frame", animate.last_frame, "Last frame rendered (default: the path's end)")
+      ->check(CLI::NonNegativeNumber);
+  animate_cmd->add_option("--stats", animate.stats_path,
+                          "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
+  animate_cmd->add_option("--mp4", animate.mp4_path,
+                          "Also write an MP4 preview of the PNG frames with ffmpeg (H.264; needs ffmpeg installed)");
 
   RenderOptions reference;
   CameraFlags reference_camera;
@@ -347,14 +395,14 @@ int main(int argc, char** argv) {
     if (*render_cmd) {
       render_camera.apply(render.settings);
       render_environment.apply(render.environment);
-      render.settings.gi = parse_gi_method(gi);
-      if (!bounce_method.empty()) render.settings.bounce_method = parse_bounce_method(bounce_method);
-      if (!hemisphere.empty()) parse_hemisphere(hemisphere, render.settings.cache);
-      if (!spacing.empty()) parse_spacing(spacing, render.settings.cache);
-      if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, render.settings.cache, true);
-      render.settings.glossy_reads_records = !glossy_paths;
-      apply_quality(render.quality, render.settings, [&](const char* option) { return render_cmd->count(option) > 0; });
+      render_method.apply(render_cmd, render);
       return run_render(render);
+    }
+    if (*animate_cmd) {
+      animate_camera.apply(animate.render.settings);
+      animate_environment.apply(animate.render.environment);
+      animate_method.apply(animate_cmd, animate.render);
+      return run_animate(animate);
     }
     if (*reference_cmd) {
       reference_camera.apply(reference.settings);

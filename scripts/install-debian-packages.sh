@@ -7,6 +7,7 @@ packages=(
   libembree-dev libopenimageio-dev libtinygltf-dev libstb-dev libglm-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
+  ffmpeg  # rcsplat animate --mp4: the walkthrough's preview
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -58,3 +58,12 @@ expect_refused("spp not a multiple of the pixel samples" "--spp 6 must be a mult
 expect_refused("device memory budget" "needs [0-9.]+ MiB; [0-9.]+ MiB are held already, and the budget is 1.0 MiB \\(--max-device-memory\\)"
                render -o out.exr --max-device-memory 0.0009765625)
 expect_refused("asset root that is no folder" "--asset-root: Directory does not exist" render -o out.exr --asset-root nowhere)
+expect_refused("animate without a frame number" "-o frames.exr: a frame sequence's name holds one frame number"
+               animate --orbit 1 -o frames.exr)
+expect_refused("animate the Cornell box without a path" "the built-in Cornell box has no animation"
+               animate -o "f%d.exr")
+expect_refused("animate to an MP4 without PNG frames" "--mp4: the preview is made from PNG frames"
+               animate --orbit 1 -o "f%d.exr" --mp4 out.mp4)
+file(WRITE "${WORK}/walk.txt" "0 0 1 5 0 1 0 0 1 0 40\n0.5 0 1 5 0 1 5 0 1 0 40\n")
+expect_refused("a keyframe that looks nowhere" "walk.txt: line 2: the eye, target and up do not define a view"
+               animate --keyframes walk.txt -o "f%d.exr")

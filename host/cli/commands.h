@@ -46,6 +46,20 @@ int run_render(const RenderOptions& options);
 bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& options, const std::string& path,
                       RenderedImage& image);
 
+// `rcsplat animate`: a camera path (render/camera_path.h) rendered to a numbered frame sequence.
+struct AnimateOptions {
+  RenderOptions render;  // outputs are frame patterns (util/frame_pattern.h); --eye and the like start an --orbit
+  std::string keyframes;     // a keyframe file; else
+  double orbit_seconds = 0;  // an orbit of this many seconds, sweeping orbit_degrees; else the scene's glTF animation:
+  double orbit_degrees = 360.0;
+  int animation = 0;
+  double fps = 24.0;
+  long long first_frame = 0, last_frame = -1;  // -1: the path's last frame
+  std::string stats_path;  // a CSV row a frame
+  std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
+};
+int run_animate(const AnimateOptions& options);
+
 struct InfoOptions {
   std::string scene_path;  // empty: the built-in Cornell box
   std::string json_path;

@@ -25,10 +25,12 @@ Scene load_scene(const std::string& path, int camera, const CameraOverrides& ove
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings) {
   // The view, so that another renderer can render the same picture (benchmarks/mitsuba_peer.py reads it).
   const SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
-  char view[320];
-  std::snprintf(view, sizeof view, "%s eye %.9g,%.9g,%.9g target %.9g,%.9g,%.9g up %.9g,%.9g,%.9g yfov_degrees %.9g",
+  char view[360];
+  std::snprintf(view, sizeof view,
+                "%s eye %.9g,%.9g,%.9g target %.9g,%.9g,%.9g up %.9g,%.9g,%.9g yfov_degrees %.9g ymag %.9g",
                 cam.orthographic ? "orthographic" : "perspective", cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x,
-                cam.target.y, cam.target.z, cam.up.x, cam.up.y, cam.up.z, double(glm::degrees(cam.yfov)));
+                cam.target.y, cam.target.z, cam.up.x, cam.up.y, cam.up.z, double(glm::degrees(cam.yfov)),
+                double(cam.ymag));
   // What a later --resume needs to know, what compare checks, and what anyone reading the file may want.
   return {{"rcsplat:scene", scene.source},
           {"rcsplat:camera", view},

@@ -48,7 +48,8 @@ class GltfReader {
     }
     if (!model_.animations.empty())
       note_unsupported(std::to_string(model_.animations.size()) + " animation(s)",
-                       "a still image of the nodes' own transforms and weights (no animation is sampled)");
+                       "render draws the nodes' rest transforms and weights; `rcsplat animate` plays a camera's "
+                       "animation, with meshes and lights still");
     read_textures();
     read_materials();
     std::vector<int> roots;
@@ -76,6 +77,7 @@ class GltfReader {
       for (auto c = children.rbegin(); c != children.rend(); ++c) stack.emplace_back(*c, world);
     }
     if (scene_.triangle_count() == 0) fail("the scene has no triangles to render");
+    read_animations();
   }
 
  private:
@@ -297,7 +299,10 @@ class GltfReader {
     for (int i = 0; i < 16; ++i)
       if (!std::isfinite(glm::value_ptr(world)[i])) fail("nodes[" + std::to_string(index) + "] has a non-finite transform");
     if (node.mesh >= 0) add_mesh(index, world);
-    if (node.camera >= 0) add_camera(node.camera, world);
+    if (node.camera >= 0) {
+      add_camera(node.camera, world);
+      camera_nodes_.push_back(index);
+    }
     auto ext = node.extensions.find("KHR_lights_punctual");
     if (ext != node.extensions.end() && ext->second.Has("light")) add_light(index_value(ext->second.Get("light")), world);
     return world;
@@ -783,6 +788,107 @@ class GltfReader {
     scene_.lights.push_back(l);
   }
 
+  static std::string node_label(const tinygltf::Model& model, int index) {
+    return "nodes[" + std::to_string(index) + "] '" + printable(model.nodes[size_t(index)].name) + "'";
+  }
+
+  // One channel's keys, checked as glTF requires: times finite and strictly increasing, one value per time (three
+  // for a cubic spline), every value finite.
+  AnimationTrack read_track(int animation, const tinygltf::AnimationSampler& sampler, AnimatedProperty property,
+                            const std::string& where) {
+    AnimationTrack track;
+    track.animation = animation;
+    track.property = property;
+    if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") track.interpolation = AnimationInterpolation::linear;
+    else if (sampler.interpolation == "STEP") track.interpolation = AnimationInterpolation::step;
+    else if (sampler.interpolation == "CUBICSPLINE") track.interpolation = AnimationInterpolation::cubic_spline;
+    else fail(where + " has unknown interpolation '" + printable(sampler.interpolation) + "'");
+    track.times = read_floats(sampler.input, 1, where + ".input");
+    if (track.times.empty()) fail(where + ".input has no keys");
+    for (size_t k = 0; k < track.times.size(); ++k)
+      if (!std::isfinite(track.times[k]) || track.times[k] < 0.0f || (k && !(track.times[k] > track.times[k - 1])))
+        fail(where + ".input: key " + std::to_string(k) + "'s time is not finite, not positive or not after the one "
+             "before it");
+    const int components = property == AnimatedProperty::rotation ? 4 : 3;
+    const size_t per_key = track.interpolation == AnimationInterpolation::cubic_spline ? 3 : 1;
+    track.values = read_floats(sampler.output, components, where + ".output");
+    if (track.values.size() != track.times.size() * per_key * size_t(components))
+      fail(where + ".output holds " + std::to_string(track.values.size() / size_t(components)) + " elements for " +
+           std::to_string(track.times.size()) + " keys (" + std::to_string(per_key) + " a key expected)");
+    for (float v : track.values)
+      if (!std::isfinite(v)) fail(where + ".output holds a value that is not finite");
+    return track;
+  }
+
+  // The cameras' rigs (scene/animation.h) and what each animation moves besides them.
+  void read_animations() {
+    const size_t nodes = model_.nodes.size();
+    std::vector<int> parent(nodes, -1);
+    for (size_t n = 0; n < nodes; ++n)
+      for (int c : model_.nodes[n].children) parent[size_t(c)] = int(n);
+    // A node above a mesh or a light carries it: moving that node moves the scene.
+    std::vector<char> carries(nodes, 0);
+    for (size_t n = 0; n < nodes; ++n) {
+      const tinygltf::Node& node = model_.nodes[n];
+      if (node.mesh < 0 && !node.extensions.count("KHR_lights_punctual")) continue;
+      for (int a = int(n); a >= 0 && !carries[size_t(a)]; a = parent[size_t(a)]) carries[size_t(a)] = 1;
+    }
+    // Where each node sits in the cameras' chains.
+    std::vector<std::vector<std::pair<size_t, size_t>>> in_rigs(nodes);
+    scene_.camera_rigs.clear();
+    for (int camera_node : camera_nodes_) {
+      std::vector<int> chain;
+      for (int n = camera_node; n >= 0; n = parent[size_t(n)]) chain.push_back(n);
+      std::reverse(chain.begin(), chain.end());
+      CameraRig rig;
+      for (int n : chain) {
+        const tinygltf::Node& node = model_.nodes[size_t(n)];
+        RigNode r;
+        r.label = node_label(model_, n);
+        r.has_matrix = node.matrix.size() == 16;
+        r.matrix = local_matrix(node);
+        if (node.translation.size() == 3) r.translation = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+        if (node.rotation.size() == 4)
+          r.rotation = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                                float(node.rotation[2])));
+        if (node.scale.size() == 3) r.scale = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+        in_rigs[size_t(n)].push_back({scene_.camera_rigs.size(), rig.chain.size()});
+        rig.chain.push_back(r);
+      }
+      scene_.camera_rigs.push_back(std::move(rig));
+    }
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tinygltf::Animation& anim = model_.animations[a];
+      const std::string name = "animations[" + std::to_string(a) + "] '" + printable(anim.name) + "'";
+      scene_.animation_names.push_back(anim.name.empty() ? "animation " + std::to_string(a) : printable(anim.name));
+      for (size_t c = 0; c < anim.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& channel = anim.channels[c];
+        const int n = channel.target_node;
+        if (n < 0 || size_t(n) >= nodes) continue;  // a pointer target (KHR_animation_pointer): not sampled
+        const std::string& path = channel.target_path;
+        if (carries[size_t(n)]) {
+          scene_.animated_content.push_back({int(a), name + " moves " + node_label(model_, n) + (path == "weights"
+                                                         ? "'s morph weights" : ", which holds or carries a mesh or a light")});
+          continue;
+        }
+        if (in_rigs[size_t(n)].empty() || path == "weights") continue;
+        AnimatedProperty property;
+        if (path == "translation") property = AnimatedProperty::translation;
+        else if (path == "rotation") property = AnimatedProperty::rotation;
+        else if (path == "scale") property = AnimatedProperty::scale;
+        else continue;
+        const std::string where = name + ".channels[" + std::to_string(c) + "]";
+        if (model_.nodes[size_t(n)].matrix.size() == 16)
+          fail(where + " animates " + node_label(model_, n) + ", which has a matrix (glTF animates nodes given by "
+               "translation, rotation and scale only)");
+        const AnimationTrack track = read_track(int(a), anim.samplers[size_t(channel.sampler)], property,
+                                                where + " (sampler " + std::to_string(channel.sampler) + ")");
+        for (const auto& [rig, position] : in_rigs[size_t(n)])
+          scene_.camera_rigs[rig].chain[position].tracks.push_back(track);
+      }
+    }
+  }
+
   std::string path_;
   const tinygltf::Model& model_;
   Scene& scene_;
@@ -793,6 +899,7 @@ class GltfReader {
   int default_material_ = -1;
   std::vector<std::optional<glm::mat4>> node_world_;
   std::vector<int> parent_;
+  std::vector<int> camera_nodes_;  // the node of each camera added, in the order of scene_.cameras
 };
 
 }  // namespace

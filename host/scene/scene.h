@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/animation.h"
 #include "scene/environment.h"
 
 namespace rcsplat {
@@ -66,6 +67,16 @@ struct Scene {
   std::vector<SceneTexture> textures;
   std::vector<SceneLight> lights;
   std::vector<SceneCamera> cameras;
+  // glTF animation (scene/animation.h): the rig of each glTF camera (same order as `cameras`; a camera added for a
+  // scene without one has none), the animations' names, and what each animation moves that is not a camera: a node
+  // that holds or carries a mesh or a light, or a mesh's morph weights ("animations[0] 'Open' moves nodes[4] 'Door'").
+  std::vector<CameraRig> camera_rigs;
+  std::vector<std::string> animation_names;
+  struct AnimatedContent {
+    int animation = 0;
+    std::string what;
+  };
+  std::vector<AnimatedContent> animated_content;
   // Light from outside (--sky, --environment); none by default: rays that leave the scene see black.
   Environment environment;
   // What the file asks for that rcsplat does not simulate, once each, as "feature: what rcsplat does instead".

@@ -1,0 +1,245 @@
+// `rcsplat animate`: a camera path rendered frame by frame by one Renderer (the BVH, programs, photon map and light
+// guide are made once; each frame places its own records), each frame written as soon as it is done, with a row of
+// statistics a frame and, where ffmpeg is installed, an MP4 preview.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cl/device_info.h"
+#include "cli/commands.h"
+#include "render/camera_path.h"
+#include "render/render_output.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/frame_pattern.h"
+#include "util/log.h"
+#include "util/memory_use.h"
+#include "util/paths.h"
+
+extern char** environ;
+
+namespace rcsplat {
+namespace {
+
+constexpr long long kMaxFrames = 1000000;
+
+// The path of `program` found on PATH, or "".
+std::string find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) continue;
+    const std::string candidate = dir + "/" + program;
+    if (access(candidate.c_str(), X_OK) == 0 && std::filesystem::is_regular_file(candidate)) return candidate;
+  }
+  return "";
+}
+
+// Runs a program with these arguments (no shell: the names are the user's), waits; its exit status, -1 if not run.
+int run_program(const std::string& program, const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+CameraPath choose_path(const AnimateOptions& o, const Scene& scene) {
+  const bool overrides = o.render.settings.camera_overrides.eye || o.render.settings.camera_overrides.target ||
+                         o.render.settings.camera_overrides.up || o.render.settings.camera_overrides.fov_degrees;
+  if (!o.keyframes.empty() && o.orbit_seconds > 0.0) throw Error("animate: give --keyframes or --orbit, not both");
+  if (o.orbit_seconds > 0.0)
+    return orbit_camera_path(choose_camera(scene, o.render.settings.camera, o.render.settings.camera_overrides),
+                             o.orbit_seconds, o.orbit_degrees);
+  if (overrides)
+    throw Error("animate: --eye, --target, --up and --fov set where an --orbit starts; a keyframe file or the scene's "
+                "animation places the camera itself");
+  if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
+  if (o.render.scene_path.empty())
+    throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
+  return gltf_camera_path(scene, o.render.settings.camera, o.animation);
+}
+
+struct FrameRow {
+  long long frame = 0;
+  double time = 0.0;
+  RenderStats stats;
+  size_t host_peak_bytes = 0;
+};
+
+const char* kCsvHeader =
+    "frame,time_s,seconds,kernel_build_s,bvh_s,upload_s,probe_s,gbuffer_s,direct_s,photons_s,caustics_s,guide_s,"
+    "records_s,placement_s,splat_s,radiance_s,resolve_s,glossy_s,path_s,layers_s,records,records_reused,"
+    "records_added,records_evicted,radiance_records,primary_rays,shadow_rays,record_rays,radiance_rays,glossy_rays,"
+    "path_rays,device_peak_bytes,host_peak_bytes\n";
+
+std::string csv_row(const FrameRow& r) {
+  const RenderStats& s = r.stats;
+  std::ostringstream out;
+  out.precision(6);
+  out << r.frame << ',' << r.time << ',' << s.total_s << ',' << s.program_s;
+  for (const RenderStats::StageTime& stage : s.stage_times()) out << ',' << stage.seconds;
+  // A cache per frame: every record is new and none is kept for the next frame.
+  out << ',' << s.irradiance.records << ',' << 0 << ',' << s.irradiance.records << ',' << 0 << ','
+      << s.radiance.records << ',' << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
+      << s.irradiance.rays << ',' << s.radiance.rays << ',' << s.glossy.rays << ',' << s.path.rays << ','
+      << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << '\n';
+  return out.str();
+}
+
+nlohmann::json frame_json(const FrameRow& r) {
+  const RenderStats& s = r.stats;
+  nlohmann::json seconds = {{"total", s.total_s}, {"kernel_build", s.program_s}};
+  for (const RenderStats::StageTime& stage : s.stage_times()) seconds[stage.name] = stage.seconds;
+  return {{"frame", r.frame},
+          {"time", r.time},
+          {"seconds", seconds},
+          {"records", {{"irradiance", s.irradiance.records}, {"radiance", s.radiance.records},
+                       {"reused", 0}, {"added", s.irradiance.records + s.radiance.records}, {"evicted", 0}}},
+          {"rays", {{"primary", s.primary.primary_rays}, {"shadow", s.primary.shadow_rays},
+                    {"records", s.irradiance.rays}, {"radiance", s.radiance.rays}, {"glossy", s.glossy.rays},
+                    {"path", s.path.rays}}},
+          {"memory", {{"device_peak_bytes", s.device_memory.peak_bytes}, {"host_peak_bytes", r.host_peak_bytes}}}};
+}
+
+}  // namespace
+
+int run_animate(const AnimateOptions& o) {
+  const RenderSettings& request = o.render.settings;
+  check_request(request);
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw Error("--fps must be above 0 and at most 1000");
+  if (o.render.outputs.empty()) throw Error("animate: give at least one output with -o frames/%04d.exr");
+  std::vector<FramePattern> outputs;
+  for (const std::string& out : o.render.outputs) {
+    outputs.emplace_back(out, "-o");
+    if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
+  }
+  std::string ffmpeg, png_pattern;
+  if (!o.mp4_path.empty()) {
+    for (const FramePattern& p : outputs)
+      if (png_pattern.empty() && lower_extension(p.pattern()) == ".png") png_pattern = p.pattern();
+    if (png_pattern.empty()) throw Error("--mp4: the preview is made from PNG frames; add -o frames/%04d.png");
+    ffmpeg = find_on_path("ffmpeg");
+    if (ffmpeg.empty())
+      throw Error("--mp4: ffmpeg is not installed (on Debian: apt-get install ffmpeg); the frames need no ffmpeg, "
+                  "leave --mp4 out to render them alone");
+    check_writable_destination(o.mp4_path);
+  }
+  for (const std::string& path : {o.stats_path, o.render.json_path})
+    if (!path.empty()) check_writable_destination(path);
+
+  Scene scene = load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment,
+                           o.render.limits);
+  const CameraPath path = choose_path(o, scene);
+  const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
+  const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
+  if (first < 0 || last < first) throw Error("--first-frame and --last-frame: an empty or negative range");
+  if (last - first + 1 > kMaxFrames) throw Error("animate: at most 1000000 frames a run");
+  for (const FramePattern& p : outputs) check_writable_destination(p.path(first));
+  const bool orthographic = scene.cameras[size_t(request.camera)].orthographic;
+
+  DeviceInfo device = select_device(o.render.device);
+  log_info("device: " + device.name + " (" + device.platform_name + ")");
+  log_info("camera path: " + path.description + ", " + std::to_string(path.duration) + " s; frames " +
+           std::to_string(first) + " to " + std::to_string(last) + " at " + std::to_string(o.fps) + " frames/s");
+  GpuContext gpu(device);
+  gpu.set_memory_budget(o.render.limits.device_memory_bytes);
+  Renderer renderer(gpu, scene, request.forced_switches);
+
+  std::vector<FrameRow> rows;
+  int width = 0, height = 0;
+  std::string csv = kCsvHeader;
+  const auto start = std::chrono::steady_clock::now();
+  for (long long frame = first; frame <= last; ++frame) {
+    FrameRow row;
+    row.frame = frame;
+    row.time = double(frame) / o.fps;
+    RenderSettings settings = request;
+    CameraPose pose = path.at(row.time);
+    if (orthographic) pose.fov_degrees.reset();
+    settings.camera_overrides = pose.overrides();
+    const RenderedImage image = renderer.render(renderer.plan(settings));
+    ExrAttributes attributes = render_attributes(scene, image, settings);
+    attributes["rcsplat:frame"] = std::to_string(frame);
+    attributes["rcsplat:time"] = std::to_string(row.time);
+    for (const FramePattern& p : outputs) write_render(p.path(frame), image, o.render.exposure, attributes);
+    row.stats = image.stats;
+    width = image.width;
+    height = image.height;
+    row.host_peak_bytes = peak_host_bytes();
+    rows.push_back(row);
+    csv += csv_row(row);
+    if (!o.stats_path.empty()) write_text_file(o.stats_path, csv);  // after each frame: a stopped run keeps its rows
+    char line[200];
+    std::snprintf(line, sizeof line, "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records", frame,
+                  frame - first + 1, last - first + 1, row.time, image.stats.total_s,
+                  (unsigned long long)(image.stats.irradiance.records + image.stats.radiance.records));
+    log_info(line);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  bool mp4_written = false;
+  if (!ffmpeg.empty()) {
+    // Written beside the target and renamed, as every output is (util/atomic_file.h).
+    write_file_atomically(o.mp4_path, [&](const std::string& temp) -> std::string {
+      char rate[32];
+      std::snprintf(rate, sizeof rate, "%.9g", o.fps);
+      const int status = run_program(
+          ffmpeg, {"-y", "-loglevel", "error", "-framerate", rate, "-start_number", std::to_string(first), "-i",
+                   png_pattern, "-frames:v", std::to_string(last - first + 1), "-c:v", "libx264", "-pix_fmt",
+                   "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", "mp4", temp});
+      return status == 0 ? "" : "ffmpeg failed (exit status " + std::to_string(status) + ")";
+    });
+    mp4_written = true;
+  }
+
+  // The summary: the first frame pays for the setup (BVH, upload, kernel builds); later frames show the steady cost.
+  double later = 0.0;
+  for (size_t i = 1; i < rows.size(); ++i) later += rows[i].stats.total_s;
+  const double later_mean = rows.size() > 1 ? later / double(rows.size() - 1) : 0.0;
+  std::printf("scene        %s\n", scene.source.c_str());
+  std::printf("camera path  %s, %.3f s\n", path.description.c_str(), path.duration);
+  std::printf("device       %s\n", gpu.device_info().name.c_str());
+  std::printf("frames       %lld to %lld at %g frames/s, %d x %d, indirect light: %s\n", first, last, o.fps,
+              width, height,
+              gi_method_name(rows.front().stats.gi));
+  std::printf("cache        a new cache each frame (records are not kept across frames yet)\n");
+  std::printf("time         %.2f s in all; first frame %.2f s (with the setup), later frames %.2f s each on average\n",
+              wall, rows.front().stats.total_s, later_mean);
+  for (const FramePattern& p : outputs) std::printf("wrote        %s\n", p.pattern().c_str());
+  if (mp4_written) std::printf("wrote        %s\n", o.mp4_path.c_str());
+  if (!o.stats_path.empty()) std::printf("wrote        %s\n", o.stats_path.c_str());
+  if (!o.render.json_path.empty()) {
+    nlohmann::json frames = nlohmann::json::array();
+    for (const FrameRow& r : rows) frames.push_back(frame_json(r));
+    nlohmann::json outputs_json = o.render.outputs;
+    if (mp4_written) outputs_json.push_back(o.mp4_path);
+    const nlohmann::json j = {{"scene", scene.source},
+                              {"camera_path", {{"source", path.description}, {"duration", path.duration}}},
+                              {"device", gpu.device_info().name},
+                              {"fps", o.fps},
+                              {"first_frame", first},
+                              {"last_frame", last},
+                              {"cache", "per_frame"},
+                              {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s},
+                                           {"later_frames_mean", later_mean}}},
+                              {"frames", frames},
+                              {"outputs", outputs_json}};
+    write_text_file(o.render.json_path, j.dump(2) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace rcsplat

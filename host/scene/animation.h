@@ -1,0 +1,49 @@
+// glTF animation of a camera: the chain of nodes from a scene root down to a camera's node, each with its rest
+// transform and the animation channels that move it, sampled at any time as glTF 2.0 section 3.11 says (STEP, LINEAR
+// with spherical interpolation of rotations, CUBICSPLINE as a Hermite spline). Only cameras are animated: `animate`
+// refuses an animation that moves a mesh or a light (Scene::animated_content), since one cache serves the whole path.
+#pragma once
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <string>
+#include <vector>
+
+namespace rcsplat {
+
+enum class AnimatedProperty { translation, rotation, scale };
+enum class AnimationInterpolation { step, linear, cubic_spline };
+
+// One channel's keys: `times` strictly increasing, seconds; `values` 3 (translation, scale) or 4 (rotation, x y z w)
+// floats a key, or for a cubic spline three such elements a key: in-tangent, value, out-tangent.
+struct AnimationTrack {
+  int animation = 0;  // index into the glTF's animations
+  AnimatedProperty property = AnimatedProperty::translation;
+  AnimationInterpolation interpolation = AnimationInterpolation::linear;
+  std::vector<float> times;
+  std::vector<float> values;
+};
+
+struct RigNode {
+  std::string label;  // "nodes[3] 'CameraBoom'", for messages
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  bool has_matrix = false;  // a node given by a matrix (never animated: glTF animates TRS nodes only)
+  glm::mat4 matrix{1.0f};
+  std::vector<AnimationTrack> tracks;
+};
+
+// From a scene root (first) down to the camera's node (last).
+struct CameraRig {
+  std::vector<RigNode> chain;
+};
+
+// The keys of `track` at time t (clamped to its first and last key), 3 or 4 components.
+glm::vec4 sample_track(const AnimationTrack& track, double t);
+// The camera node's world transform at time t with the channels of `animation` applied (others: the rest transform).
+glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t);
+// Whether any node of the rig is moved by `animation`, and the last key time of its channels there.
+bool rig_is_animated(const CameraRig& rig, int animation);
+double rig_duration(const CameraRig& rig, int animation);
+
+}  // namespace rcsplat
