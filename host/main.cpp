@@ -302,6 +302,21 @@ int main(int argc, char** argv) {
                           "Add samples to the .exr output an earlier run wrote, up to --spp in all");
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
 
+  FlickerOptions flicker;
+  CLI::App* flicker_cmd = app.add_subcommand(
+      "flicker", "How much a frame sequence's light changes between consecutive frames where both see the same "
+                 "surface (temporal relMSE after reprojection by the position layer), less a reference's");
+  flicker_cmd->add_option("frames", flicker.frames, "The frames, as animate wrote them (.exr pattern: frames/%04d.exr)")
+      ->required();
+  flicker_cmd->add_option("--reference", flicker.reference,
+                          "A reference sequence of the same path (pattern): its own flicker is subtracted");
+  flicker_cmd->add_option("--first-frame", flicker.first_frame, "First frame (default 0)")->check(CLI::NonNegativeNumber);
+  flicker_cmd->add_option("--last-frame", flicker.last_frame, "Last frame (default: up to the first missing one)")
+      ->check(CLI::NonNegativeNumber);
+  flicker_cmd->add_option("--layer", flicker.layer, "Layer judged: indirect (default) or full")
+      ->check(CLI::IsMember({"indirect", "full"}));
+  flicker_cmd->add_option("--json", flicker.json_path, "Also write the numbers, a pair of frames each, as JSON");
+
   InfoOptions info;
   CLI::App* info_cmd = app.add_subcommand(
       "info", "What a scene contains and what rcsplat will simulate for it, with the kernel switches it compiles");
@@ -411,6 +426,7 @@ int main(int argc, char** argv) {
       return run_render(reference);
     }
     if (*compare_cmd) return run_compare(compare);
+    if (*flicker_cmd) return run_flicker(flicker);
     if (*info_cmd) {
       info_environment.apply(info.environment);
       return run_info(info);

@@ -60,6 +60,15 @@ struct AnimateOptions {
 };
 int run_animate(const AnimateOptions& options);
 
+// `rcsplat flicker`: a sequence's temporal relMSE (image/flicker.h), less a reference sequence's.
+struct FlickerOptions {
+  std::string frames, reference;  // frame patterns (util/frame_pattern.h)
+  long long first_frame = 0, last_frame = -1;  // -1: up to the first frame missing
+  std::string layer = "indirect";              // or "full"
+  std::string json_path;
+};
+int run_flicker(const FlickerOptions& options);
+
 struct InfoOptions {
   std::string scene_path;  // empty: the built-in Cornell box
   std::string json_path;

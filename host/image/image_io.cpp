@@ -52,22 +52,31 @@ void write_exr(const std::string& path, int width, int height, const std::vector
   write_exr_file(path, image);
 }
 
-std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height) {
+std::vector<float> read_exr_channels(const std::string& path, const std::string& layer,
+                                     const std::vector<std::string>& names, int& width, int& height) {
   ExrPixels image = read_exr_file(path);
   width = image.width;
   height = image.height;
-  std::string prefix = layer.empty() ? "" : layer + ".";
-  size_t stride = image.channels.size();
-  size_t channel[3] = {stride, stride, stride};
+  const std::string prefix = layer.empty() ? "" : layer + ".";
+  const size_t stride = image.channels.size(), n = names.size();
+  std::vector<size_t> channel(n, stride);
   for (size_t c = 0; c < stride; ++c)
-    for (size_t k = 0; k < 3; ++k)
-      if (image.channels[c] == prefix + std::string(1, "RGB"[k])) channel[k] = c;
-  if (channel[0] == stride || channel[1] == stride || channel[2] == stride)
-    throw Error(path + ": has no " + prefix + "R, " + prefix + "G, " + prefix + "B channels");
-  std::vector<float> rgb(size_t(width) * size_t(height) * 3);
+    for (size_t k = 0; k < n; ++k)
+      if (image.channels[c] == prefix + names[k]) channel[k] = c;
+  for (size_t k = 0; k < n; ++k)
+    if (channel[k] == stride) {
+      std::string list;
+      for (const std::string& name : names) list += (list.empty() ? "" : ", ") + prefix + name;
+      throw Error(path + ": has no " + list + " channels");
+    }
+  std::vector<float> out(size_t(width) * size_t(height) * n);
   for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-    for (size_t k = 0; k < 3; ++k) rgb[i * 3 + k] = image.values[i * stride + channel[k]];
-  return rgb;
+    for (size_t k = 0; k < n; ++k) out[i * n + k] = image.values[i * stride + channel[k]];
+  return out;
+}
+
+std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height) {
+  return read_exr_channels(path, layer, {"R", "G", "B"}, width, height);
 }
 
 std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height) {

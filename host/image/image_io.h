@@ -38,6 +38,9 @@ ExrAttributes read_exr_attributes(const std::string& path);
 std::vector<float> read_exr_rgb(const std::string& path, int& width, int& height);
 // The same for a layer's R, G, B channels ("indirect" reads indirect.R, indirect.G, indirect.B).
 std::vector<float> read_exr_layer(const std::string& path, const std::string& layer, int& width, int& height);
+// Any channels of a layer, in the order named: {"X", "Y", "Z"} of "position" reads position.X, .Y, .Z.
+std::vector<float> read_exr_channels(const std::string& path, const std::string& layer,
+                                     const std::vector<std::string>& names, int& width, int& height);
 bool exr_has_layer(const std::string& path, const std::string& layer);
 
 }  // namespace rcsplat
