@@ -280,6 +280,13 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   animate_cmd->add_option("--last-frame", animate.last_frame, "Last frame rendered (default: the path's end)")
       ->check(CLI::NonNegativeNumber);
+  animate_cmd->add_flag("--cache-per-frame", animate.cache_per_frame,
+                        "Place every frame's records anew, as `render` does (the default keeps the irradiance records "
+                        "across frames and places new ones only where none reaches)");
+  animate_cmd->add_option("--kept-records", animate.kept_records,
+                          "Most irradiance records kept across frames; the least recently used go first (default "
+                          "1048576, 160 bytes each)")
+      ->check(CLI::Range(size_t(1), size_t(1) << 28));
   animate_cmd->add_option("--stats", animate.stats_path,
                           "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
   animate_cmd->add_option("--mp4", animate.mp4_path,

@@ -51,7 +51,9 @@ __kernel void mark_records(GBUFFER_ARGS, __global const CacheRecord* records, Pl
   if (i >= params.record_count) return;
   const int width = camera->width;
   int pixel = records[params.first_record + i].pixel;
-  record_at_pixel[pixel] = (int)(params.first_record + i);
+  if (pixel < 0) return;  // a kept record this view does not see at its place (fit_kept_records)
+  // Kept records may project to one pixel: the latest one sits there, whatever order work-items run in.
+  atomic_max(record_at_pixel + pixel, (int)(params.first_record + i));
   int tiles_x = (width + PLACEMENT_TILE_SIZE - 1) / PLACEMENT_TILE_SIZE;
   new_in_tile[(pixel / width) / PLACEMENT_TILE_SIZE * tiles_x + (pixel % width) / PLACEMENT_TILE_SIZE] = 1;
 }
@@ -100,4 +102,39 @@ __kernel void apply_radii(__global CacheRecord* records, PlacementParams params,
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
   records[i].radius = clamped_radius[i];
+}
+
+// The pixel a kept record projects to in this view, where the G-buffer sees a point within a few pixel footprints of
+// it (else -1: hidden or off screen, so it sits nowhere and blocks no placement), as the G-buffer's rays are made
+// (kernels/gbuffer.cl).
+inline int kept_record_pixel(GBUFFER_ARGS, float3 p, float pixel_size) {
+  float3 d = p - vload3(0, camera->eye);
+  float half_y = camera->orthographic ? camera->half_height : dot(d, vload3(0, camera->forward)) * camera->tan_half_fov_y;
+  if (!(half_y > 0.0f)) return -1;
+  float sx = dot(d, vload3(0, camera->right)) / (half_y * camera->aspect), sy = dot(d, vload3(0, camera->up)) / half_y;
+  float fx = (sx + 1.0f) * 0.5f * (float)camera->width, fy = (1.0f - sy) * 0.5f * (float)camera->height;
+  if (!(fx >= 0.0f && fx < (float)camera->width && fy >= 0.0f && fy < (float)camera->height)) return -1;
+  int pixel = (int)fy * camera->width + (int)fx;
+  __global const GBufferSample* g = gbuffer + pixel;
+  if (g->triangle < 0 || distance(vload3(0, g->position), p) > 4.0f * pixel_size) return -1;
+  return pixel;
+}
+
+// Records kept from earlier frames (render/kept_records.h), fitted to this view before placement: the reach clamps in
+// pixel footprints (kernels/records.cl) apply again at this view's footprint, only where the radius has left them by
+// more than 0.1% (a camera that barely moves leaves the radii as they are), and each record sits on the pixel it
+// projects to.
+__kernel void fit_kept_records(GBUFFER_ARGS, __global CacheRecord* records, PlacementParams params) {
+  uint i = get_global_id(0);
+  if (i >= params.record_count) return;
+  __global CacheRecord* rec = records + params.first_record + i;
+  float3 p = vload3(0, rec->position);
+  float pixel_size = pixel_world_size(camera, p);
+  float radius = rec->radius, smallest = params.min_radius_pixels * pixel_size;
+  float largest = params.max_radius_pixels * pixel_size;
+  if (radius > 1.001f * largest) radius = largest;
+  else if (radius < 0.999f * smallest) radius = smallest;
+  rec->radius = radius > 0.0f ? radius : fmax(smallest, 1e-30f);
+  rec->pixel_size = pixel_size;
+  rec->pixel = kept_record_pixel(gbuffer, camera, p, pixel_size);
 }

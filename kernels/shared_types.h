@@ -487,7 +487,7 @@ typedef struct {
   rc_uint first_new;  // neighbour clamping: records first_new and up are the newest batch
   rc_int clamp_older;  // neighbour clamping: older records may shrink too (first round of a level)
   float min_radius_pixels;  // the radius clamp's minimum, in pixel footprints at the record
-  rc_uint pad;
+  float max_radius_pixels;  // fitting kept records to a view: the radius clamp's maximum
 } PlacementParams;
 
 // The splat's constants for one frame.

@@ -67,6 +67,15 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     settings.gi = gi;
     render(gpu, scene, settings);
   }
+  // Records kept across frames: a second frame fits the first one's to its view (kernels/placement.cl).
+  {
+    RenderSettings kept = settings;
+    kept.gi = GiMethod::splat;
+    kept.keep_records = true;
+    Renderer renderer(gpu, scene);
+    renderer.render(kept);
+    renderer.render(kept);
+  }
   // The photon map (two bounces) and the sub-pixels' fill (four pixel samples) run only when asked for.
   settings.gi = GiMethod::splat;
   settings.bounces = 2;

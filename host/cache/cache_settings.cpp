@@ -57,6 +57,7 @@ HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int sp
 }
 
 float min_radius_pixels(const CacheSettings& c) { return c.min_reach_pixels / c.accuracy; }
+float max_radius_pixels(const CacheSettings& c) { return c.max_reach_pixels / c.accuracy; }
 
 unsigned largest_theta_strata(const CacheSettings& c) { return std::max(c.theta_strata, c.fine_theta_strata); }
 

@@ -39,6 +39,7 @@ struct CacheSettings {
   // M x N strata (0: no guide), and the photons that find those places. The command line's --guide-rays.
   unsigned guide_rays = 64;
   unsigned guide_photons = 1u << 16;  // record placement starts on this pixel grid and halves it down to 1
+  bool operator==(const CacheSettings&) const = default;
 };
 
 constexpr float kMinAccuracy = MIN_ACCURACY;
@@ -53,6 +54,7 @@ void validate_cache_settings(const CacheSettings& cache);
 HemisphereParams hemisphere_params(const CacheSettings& cache, unsigned seed, int spacing);
 // The radius clamp's minimum in pixel footprints (the minimum reach over a).
 float min_radius_pixels(const CacheSettings& cache);
+float max_radius_pixels(const CacheSettings& cache);
 // The largest M any level uses (the record kernel is compiled for it).
 unsigned largest_theta_strata(const CacheSettings& cache);
 // Placement starts at the largest power of two not above the coarsest spacing.

@@ -91,9 +91,10 @@ std::string csv_row(const FrameRow& r) {
   out.precision(6);
   out << r.frame << ',' << r.time << ',' << s.total_s << ',' << s.program_s;
   for (const RenderStats::StageTime& stage : s.stage_times()) out << ',' << stage.seconds;
-  // A cache per frame: every record is new and none is kept for the next frame.
-  out << ',' << s.irradiance.records << ',' << 0 << ',' << s.irradiance.records << ',' << 0 << ','
-      << s.radiance.records << ',' << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
+  const KeptRecordsStats& k = s.kept_records;
+  const bool kept = k.capacity > 0;  // else a cache per frame: every record is new, none is kept
+  out << ',' << s.irradiance.records << ',' << k.reused << ',' << (kept ? k.added : s.irradiance.records) << ','
+      << k.evicted << ',' << s.radiance.records << ',' << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
       << s.irradiance.rays << ',' << s.radiance.rays << ',' << s.glossy.rays << ',' << s.path.rays << ','
       << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << '\n';
   return out.str();
@@ -107,7 +108,10 @@ nlohmann::json frame_json(const FrameRow& r) {
           {"time", r.time},
           {"seconds", seconds},
           {"records", {{"irradiance", s.irradiance.records}, {"radiance", s.radiance.records},
-                       {"reused", 0}, {"added", s.irradiance.records + s.radiance.records}, {"evicted", 0}}},
+                       {"reused", s.kept_records.reused},
+                       {"added", (s.kept_records.capacity ? s.kept_records.added : s.irradiance.records) +
+                                     s.radiance.records},
+                       {"evicted", s.kept_records.evicted}, {"kept", s.kept_records.kept}}},
           {"rays", {{"primary", s.primary.primary_rays}, {"shadow", s.primary.shadow_rays},
                     {"records", s.irradiance.rays}, {"radiance", s.radiance.rays}, {"glossy", s.glossy.rays},
                     {"path", s.path.rays}}},
@@ -154,19 +158,25 @@ int run_animate(const AnimateOptions& o) {
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   log_info("camera path: " + path.description + ", " + std::to_string(path.duration) + " s; frames " +
            std::to_string(first) + " to " + std::to_string(last) + " at " + std::to_string(o.fps) + " frames/s");
+  const auto start = std::chrono::steady_clock::now();
   GpuContext gpu(device);
   gpu.set_memory_budget(o.render.limits.device_memory_bytes);
   Renderer renderer(gpu, scene, request.forced_switches);
+  set_progress_shown(false);  // a line a frame instead of each pass's progress
+  struct ShowProgressAgain {
+    ~ShowProgressAgain() { set_progress_shown(true); }
+  } show_progress_again;
 
   std::vector<FrameRow> rows;
   int width = 0, height = 0;
   std::string csv = kCsvHeader;
-  const auto start = std::chrono::steady_clock::now();
   for (long long frame = first; frame <= last; ++frame) {
     FrameRow row;
     row.frame = frame;
     row.time = double(frame) / o.fps;
     RenderSettings settings = request;
+    settings.keep_records = !o.cache_per_frame;
+    settings.kept_records_capacity = o.kept_records;
     CameraPose pose = path.at(row.time);
     if (orthographic) pose.fov_degrees.reset();
     settings.camera_overrides = pose.overrides();
@@ -183,9 +193,11 @@ int run_animate(const AnimateOptions& o) {
     csv += csv_row(row);
     if (!o.stats_path.empty()) write_text_file(o.stats_path, csv);  // after each frame: a stopped run keeps its rows
     char line[200];
-    std::snprintf(line, sizeof line, "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records", frame,
-                  frame - first + 1, last - first + 1, row.time, image.stats.total_s,
-                  (unsigned long long)(image.stats.irradiance.records + image.stats.radiance.records));
+    std::snprintf(line, sizeof line, "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records (%llu reused, "
+                  "%llu kept)", frame, frame - first + 1, last - first + 1, row.time, image.stats.total_s,
+                  (unsigned long long)(image.stats.irradiance.records + image.stats.radiance.records),
+                  (unsigned long long)image.stats.kept_records.reused,
+                  (unsigned long long)image.stats.kept_records.kept);
     log_info(line);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -215,7 +227,22 @@ int run_animate(const AnimateOptions& o) {
   std::printf("frames       %lld to %lld at %g frames/s, %d x %d, indirect light: %s\n", first, last, o.fps,
               width, height,
               gi_method_name(rows.front().stats.gi));
-  std::printf("cache        a new cache each frame (records are not kept across frames yet)\n");
+  if (o.cache_per_frame || rows.front().stats.gi != GiMethod::splat) {
+    std::printf("cache        a new cache each frame%s\n",
+                o.cache_per_frame ? " (--cache-per-frame)" : " (records are kept by the splat only)");
+  } else {
+    uint64_t reused = 0, added = 0, evicted = 0;
+    for (const FrameRow& r : rows) {
+      reused += r.stats.kept_records.reused;
+      added += r.stats.kept_records.added;
+      evicted += r.stats.kept_records.evicted;
+    }
+    std::printf("cache        irradiance records kept across frames: %llu placed, %llu reused in all (%.0f a frame), "
+                "%llu evicted, %llu kept at the end (at most %zu: --kept-records); radiance records: a new set each "
+                "frame\n",
+                (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
+                (unsigned long long)evicted, (unsigned long long)rows.back().stats.kept_records.kept, o.kept_records);
+  }
   std::printf("time         %.2f s in all; first frame %.2f s (with the setup), later frames %.2f s each on average\n",
               wall, rows.front().stats.total_s, later_mean);
   for (const FramePattern& p : outputs) std::printf("wrote        %s\n", p.pattern().c_str());
@@ -232,7 +259,8 @@ int run_animate(const AnimateOptions& o) {
                               {"fps", o.fps},
                               {"first_frame", first},
                               {"last_frame", last},
-                              {"cache", "per_frame"},
+                              {"cache", o.cache_per_frame ? "per_frame" : "kept_records"},
+                              {"kept_records_capacity", o.kept_records},
                               {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s},
                                            {"later_frames_mean", later_mean}}},
                               {"frames", frames},

@@ -57,6 +57,8 @@ struct AnimateOptions {
   long long first_frame = 0, last_frame = -1;  // -1: the path's last frame
   std::string stats_path;  // a CSV row a frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
+  bool cache_per_frame = false;            // else irradiance records are kept across frames (render/kept_records.h)
+  size_t kept_records = size_t(1) << 20;  // at most this many kept
 };
 int run_animate(const AnimateOptions& options);
 

@@ -13,7 +13,8 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
       find_(gpu.kernel("placement.cl", "find_uncovered")),
       mark_(gpu.kernel("placement.cl", "mark_records")),
       clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
-      apply_(gpu.kernel("placement.cl", "apply_radii")) {
+      apply_(gpu.kernel("placement.cl", "apply_radii")),
+      fit_(gpu.kernel("placement.cl", "fit_kept_records")) {
   begin(gbuffer);
 }
 
@@ -60,6 +61,18 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
   size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing, grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing;
   find_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
   return gpu_.download<cl_uint>(count_, 1)[0];
+}
+
+void PlacementPass::fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels,
+                             float max_radius_pixels) {
+  if (!count) return;
+  PlacementParams params{};
+  params.record_count = count;
+  params.min_radius_pixels = min_radius_pixels;
+  params.max_radius_pixels = max_radius_pixels;
+  gbuffer_.bind(fit_);
+  fit_.set_buffer<CacheRecord>("records", records).set("params", params);
+  fit_.launch(count, gpu_.groups().per_item);
 }
 
 void PlacementPass::mark(const cl::Buffer& records, uint32_t first, uint32_t count) {

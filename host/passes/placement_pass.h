@@ -24,7 +24,11 @@ class PlacementPass {
                           uint32_t unchanged_before);
   const cl::Buffer& candidates() const { return candidates_; }
 
-  // Records first .. first + count - 1 now sit on their pixels.
+  // Records 0 .. count - 1, kept from earlier frames, fitted to this frame's view (kernels/placement.cl
+  // fit_kept_records): radii clamped again to [min, max] footprints here, each on the pixel it projects to, or on
+  // none. Then mark(records, 0, count) seats them.
+  void fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels, float max_radius_pixels);
+  // Records first .. first + count - 1 now sit on their pixels (those whose pixel is -1 sit nowhere).
   void mark(const cl::Buffer& records, uint32_t first, uint32_t count);
   // R_i <= R_j + |P_i - P_j| over records 0 .. count - 1, for pairs that involve a record first_new or later; older
   // records keep their radii unless clamp_older. Radii stay at least min_radius_pixels footprints.
@@ -37,7 +41,7 @@ class PlacementPass {
  private:
   GpuContext& gpu_;
   GBufferView gbuffer_;
-  NamedKernel covered_kernel_, find_, mark_, clamp_, apply_;
+  NamedKernel covered_kernel_, find_, mark_, clamp_, apply_, fit_;
   cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;

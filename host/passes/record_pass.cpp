@@ -77,6 +77,12 @@ void RecordPass::reserve(size_t count) {
   capacity_ = grown;
 }
 
+void RecordPass::load(const std::vector<CacheRecord>& records) {
+  if (records.empty()) return;
+  reserve(records.size());
+  gpu_.queue().enqueueWriteBuffer(records_, CL_TRUE, 0, records.size() * sizeof(CacheRecord), records.data());
+}
+
 void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size_t batch) {
   // Doubling spares a reallocation per placement level, but never past what one launch can hold: launches are
   // capped (record_samples_per_launch), so that cap bounds the samples' memory.

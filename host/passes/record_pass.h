@@ -54,6 +54,8 @@ class RecordPass {
   const cl::Buffer& strata() const { return samples_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
   std::vector<CacheRecord> download(size_t first, size_t count);
+  // Records 0 .. records.size() - 1 become these (records kept from earlier frames: render/kept_records.h).
+  void load(const std::vector<CacheRecord>& records);
 
  private:
   void reserve(size_t count);  // grows the array, keeping what it holds

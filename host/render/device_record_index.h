@@ -29,6 +29,12 @@ class DeviceRecordIndex final : public RecordIndex {
   void clamp_neighbours(RecordPass& records, uint32_t count, uint32_t first_new, bool clamp_older) override {
     pass_.clamp_neighbours(records.records(), count, first_new, clamp_older, min_radius_pixels_);
   }
+  // Records 0 .. count - 1 of `records`, kept from earlier frames, fitted to this view and seated where it sees them
+  // (PlacementPass::fit_kept), before placement adds any.
+  void seat_kept(RecordPass& records, uint32_t count, const CacheSettings& cache) {
+    pass_.fit_kept(records.records(), count, min_radius_pixels(cache), max_radius_pixels(cache));
+    pass_.mark(records.records(), 0, count);
+  }
   std::vector<int32_t> record_at_pixel() { return pass_.record_at_pixel(); }
   const cl::Buffer& record_at_pixel_buffer() const { return pass_.record_at_pixel_buffer(); }
 

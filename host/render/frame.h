@@ -118,6 +118,15 @@ struct PathStats {
   double seconds = 0;
 };
 
+// Irradiance records kept across frames (render/kept_records.h): what this frame took, added and evicted.
+struct KeptRecordsStats {
+  uint64_t reused = 0;   // kept records this frame's view took
+  uint64_t added = 0;    // placed by this frame
+  uint64_t evicted = 0;  // dropped after this frame (the capacity)
+  uint64_t kept = 0;     // held after this frame
+  uint64_t capacity = 0;
+};
+
 struct RenderStats {
   std::string device;
   GiMethod gi = GiMethod::none;
@@ -134,6 +143,7 @@ struct RenderStats {
   GuideStats guide;
   PhotonMapStats photon_map;
   CausticMapStats caustics;
+  KeptRecordsStats kept_records;  // all 0 unless the renderer keeps records across frames
   PathStats path;
 
   // The stages' times in the order a frame runs them (bench's columns); kernel builds are in none of them.

@@ -22,6 +22,7 @@
 #include "passes/splat_pass.h"
 #include "render/device_record_index.h"
 #include "render/frame.h"
+#include "render/kept_records.h"
 #include "render/timing.h"
 #include "util/log.h"
 
@@ -141,6 +142,10 @@ struct IndirectFrame {
   const RadianceLobeTable* lobe_table = nullptr;
   unsigned lobe_table_seed = 0;  // the seed it was sampled with
   float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
+  // The frame's camera (the G-buffer's, in device coordinates) and the irradiance records kept across frames (null: a
+  // cache of this frame's own; render/kept_records.h).
+  const CameraParams* camera = nullptr;
+  KeptRecords* kept_records = nullptr;
   // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
   Progress* progress = nullptr;
   size_t progress_done_before = 0;

@@ -39,7 +39,17 @@ void splat_indirect(IndirectFrame& f) {
   SplatPass& splat = f.passes.splat.get({}, [&] { return std::make_unique<SplatPass>(f.gpu); });
   builds.stop();
 
-  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance);
+  // Records kept from earlier frames (a walkthrough): those this view may see, fitted to it and seated first.
+  uint32_t kept = 0;
+  if (f.kept_records) {
+    StageTimer timing(st.irradiance.placement_s);
+    f.kept_records->begin_frame(kept_records_key(f.settings));
+    const std::vector<CacheRecord> reused = f.kept_records->for_view(*f.camera, cs);
+    kept = uint32_t(reused.size());
+    records.load(reused);
+    index.seat_kept(records, kept, cs);
+  }
+  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance, {}, "irradiance cache", kept);
   {
     // One splat of every record with its final radius, at the frame's fixed-point scale.
     StageTimer timing(st.irradiance.splat_s);
@@ -56,6 +66,10 @@ void splat_indirect(IndirectFrame& f) {
     StageTimer timing(st.primary.layers_s);
     img.records = records.download(0, total);  // once per frame, for the summary, the glossy pass and the tests
     count_clamped_radii(img.records, cs, st.irradiance);
+    if (f.kept_records) {
+      f.kept_records->add(img.records.data() + kept, total - kept);
+      st.kept_records = f.kept_records->stats();
+    }
   }
   const RadianceSplatPass* radiance = radiance_cached_lobes(f);
   compose_cached_indirect(f, splat.irradiance(), radiance, &img.records);

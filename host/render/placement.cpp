@@ -17,10 +17,11 @@ void count_placed(RecordStats& st, int spacing, uint32_t records) {
 }  // namespace
 
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
-                       unsigned seed, RecordStats& st, const RecordBatchHook& after_batch, const char* progress_label) {
+                       unsigned seed, RecordStats& st, const RecordBatchHook& after_batch, const char* progress_label,
+                       uint32_t first_record) {
   int coarsest = coarsest_placement_spacing(cache);
   Progress progress(progress_label, size_t(std::log2(coarsest)) + 1);
-  uint32_t total = 0;
+  uint32_t total = first_record;
   const int finest = std::min(cache.finest_spacing_pixels, coarsest);
   // Radiance records project each batch's strata onto HSH (after_batch), which needs one hemisphere per batch.
   const bool adaptive = cache.adaptive_error > 0.0f && !after_batch;

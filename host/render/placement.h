@@ -42,10 +42,11 @@ using RecordBatchHook = std::function<void(uint32_t first, uint32_t count, const
 
 // Places records level after level: find the grid's uncovered pixels, compute them as one batch, let them cover,
 // clamp radii against neighbours. Fills the statistics' per-level counts and times (the hook's time counts as the
-// records'); returns the number of records.
+// records'); returns the number of records. Records 0 .. first_record - 1 are already there and seated (records kept
+// from earlier frames: render/kept_records.h): they count in the coverage and the total.
 uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferView& gbuffer, const CacheSettings& cache,
                        unsigned seed, RecordStats& stats, const RecordBatchHook& after_batch = {},
-                       const char* progress_label = "irradiance cache");
+                       const char* progress_label = "irradiance cache", uint32_t first_record = 0);
 
 // Counts the records whose reach sits at a screen-space clamp, for the summary.
 void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RecordStats& stats);

@@ -284,6 +284,13 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   layers_timing.stop();
 
   IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
+  frame.camera = &camera;
+  if (settings.keep_records && settings.gi == GiMethod::splat) {
+    if (!kept_records_) kept_records_ = std::make_unique<KeptRecords>(settings.kept_records_capacity);
+    frame.kept_records = kept_records_.get();
+  } else {
+    kept_records_.reset();
+  }
   frame.lobe_table = lobe_table_.get();
   frame.lobe_table_seed = lobe_table_seed_;
   frame.radiance_accuracy = plan.radiance_accuracy;

@@ -28,6 +28,7 @@ class LayerPass;
 struct RadianceLobeTable;
 struct ViewIndependentLight;
 struct MethodPasses;
+class KeptRecords;
 
 class Renderer {
  public:
@@ -68,6 +69,7 @@ class Renderer {
   std::unique_ptr<LayerPass> layers_;
   std::unique_ptr<ViewIndependentLight> light_;
   std::unique_ptr<MethodPasses> passes_;  // the last frame's method's
+  std::unique_ptr<KeptRecords> kept_records_;  // RenderSettings::keep_records
   std::optional<double> kept_per_bounce_;
   unsigned lobe_table_seed_ = 0;
   std::unique_ptr<RadianceLobeTable> lobe_table_;

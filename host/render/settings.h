@@ -75,6 +75,11 @@ struct RenderSettings {
   // instead of continuing its path (kernels/glossy.cl). false (--glossy-paths): every sample continues its path.
   bool glossy_reads_records = true;
   GiMethod gi = GiMethod::splat;
+  // The splat: irradiance records kept by the Renderer from frame to frame (render/kept_records.h; `animate` without
+  // --cache-per-frame): each frame splats the kept records its view takes and places new ones only where none
+  // reaches. At most kept_records_capacity are kept; the least recently used go first.
+  bool keep_records = false;
+  size_t kept_records_capacity = size_t(1) << 20;
   // Primary samples per pixel (render/pixel_samples.h): a square number; each pixel is an s x s grid of sub-pixels
   // rendered as pixels of an s-times larger frame and averaged. Light samples, path samples and record spacing are
   // per output pixel. 0 (the command line's default too): chosen by the plan (4 unless --spp does not divide by 4:

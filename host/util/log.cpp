@@ -7,6 +7,7 @@
 namespace rcsplat {
 namespace {
 bool g_quiet = false;
+bool g_progress = true;
 }
 
 std::string printable(const std::string& text) {
@@ -48,6 +49,7 @@ std::string printable(const std::string& text) {
 }
 
 void set_quiet(bool quiet) { g_quiet = quiet; }
+void set_progress_shown(bool shown) { g_progress = shown; }
 bool is_quiet() { return g_quiet; }
 
 void log_info(const std::string& message) {
@@ -59,7 +61,7 @@ void log_warning(const std::string& message) { std::fprintf(stderr, "warning: %s
 Progress::Progress(std::string label, size_t total) : label_(std::move(label)), total_(total ? total : 1) {}
 
 void Progress::update(size_t done) {
-  if (g_quiet) return;
+  if (g_quiet || !g_progress) return;
   int percent = int(100.0 * double(done) / double(total_));
   if (percent == last_percent_) return;
   bool tty = isatty(fileno(stderr));
@@ -75,7 +77,7 @@ void Progress::finish() {
   if (finished_) return;
   finished_ = true;
   update(total_);
-  if (!g_quiet && isatty(fileno(stderr))) std::fprintf(stderr, "\n");
+  if (!g_quiet && g_progress && isatty(fileno(stderr))) std::fprintf(stderr, "\n");
 }
 
 }  // namespace rcsplat

@@ -12,6 +12,8 @@ std::string printable(const std::string& text);
 void log_info(const std::string& message);
 void log_warning(const std::string& message);
 void set_quiet(bool quiet);
+// Whether Progress lines are drawn (a command that prints its own progress, a line a frame, turns them off).
+void set_progress_shown(bool shown);
 bool is_quiet();
 
 // A one-line progress indicator, redrawn in place on a terminal and printed at each quarter otherwise.

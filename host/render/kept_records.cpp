@@ -1,0 +1,103 @@
+#include "render/kept_records.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+#include <numeric>
+
+namespace rcsplat {
+namespace {
+
+glm::dvec3 load(const float* v) { return {v[0], v[1], v[2]}; }
+
+// Whether a sphere may show in the view: within `reach` of each side of its frustum (the near side at the eye).
+bool sphere_meets_view(const CameraParams& c, const glm::dvec3& centre, double reach) {
+  const glm::dvec3 d = centre - load(c.eye);
+  const double x = glm::dot(d, load(c.right)), y = glm::dot(d, load(c.up)), z = glm::dot(d, load(c.forward));
+  const double aspect = double(c.aspect);
+  if (c.orthographic) {
+    const double h = double(c.half_height);
+    return z > -reach && std::fabs(x) <= h * aspect + reach && std::fabs(y) <= h + reach;
+  }
+  if (z < -reach) return false;
+  // A side plane through the eye, |x| = z t: the signed distance of the centre beyond it is (|x| - z t) / sqrt(1 + t^2).
+  const double ty = double(c.tan_half_fov_y), tx = ty * aspect;
+  return (std::fabs(x) - z * tx) <= reach * std::sqrt(1.0 + tx * tx) &&
+         (std::fabs(y) - z * ty) <= reach * std::sqrt(1.0 + ty * ty);
+}
+
+}  // namespace
+
+KeptRecordsKey kept_records_key(const RenderSettings& s) {
+  KeptRecordsKey k;
+  k.cache = s.cache;
+  k.seed = s.seed;
+  k.bounces = s.bounces;
+  k.photon_paths = s.photon_paths;
+  k.photon_neighbours = s.photon_neighbours;
+  k.caustic_photons = s.caustic_photons;
+  k.sub_pixel_side = s.sub_pixel_side;
+  k.bounce_method = s.bounce_method;
+  k.short_ray_paths = s.short_ray_paths;
+  k.photon_min_support = s.photon_min_support;
+  return k;
+}
+
+void KeptRecords::begin_frame(const KeptRecordsKey& key) {
+  if (!has_key_ || !(key == key_)) {
+    records_.clear();
+    last_used_.clear();
+    key_ = key;
+    has_key_ = true;
+  }
+  ++frame_;
+  stats_ = KeptRecordsStats{};
+  stats_.capacity = capacity_;
+}
+
+std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const CacheSettings& cache) {
+  std::vector<CacheRecord> taken;
+  const double accuracy = double(cache.accuracy), smallest = double(cache.min_reach_pixels);
+  for (size_t i = 0; i < records_.size(); ++i) {
+    const CacheRecord& r = records_[i];
+    const glm::dvec3 p = load(r.position);
+    const double z = std::fabs(glm::dot(p - load(camera.eye), load(camera.forward)));
+    const double footprint = camera.orthographic ? 2.0 * double(camera.half_height) / camera.height
+                                                 : 2.0 * z * double(camera.tan_half_fov_y) / camera.height;
+    // Fitting (kernels/placement.cl) never takes a reach below the view's minimum nor above the kept one.
+    const double reach = std::max(accuracy * double(r.radius), 1.01 * smallest * footprint);
+    if (!sphere_meets_view(camera, p, reach)) continue;
+    taken.push_back(r);
+    last_used_[i] = frame_;
+  }
+  stats_.reused = taken.size();
+  return taken;
+}
+
+void KeptRecords::add(const CacheRecord* records, size_t count) {
+  records_.insert(records_.end(), records, records + count);
+  last_used_.insert(last_used_.end(), count, frame_);
+  stats_.added = count;
+  if (records_.size() > capacity_) {
+    // The least recently used go first; among records last used by the same frame, the earliest kept.
+    std::vector<size_t> order(records_.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return last_used_[a] < last_used_[b]; });
+    std::vector<char> drop(records_.size(), 0);
+    const size_t excess = records_.size() - capacity_;
+    for (size_t k = 0; k < excess; ++k) drop[order[k]] = 1;
+    size_t kept = 0;
+    for (size_t i = 0; i < records_.size(); ++i)
+      if (!drop[i]) {
+        records_[kept] = records_[i];
+        last_used_[kept] = last_used_[i];
+        ++kept;
+      }
+    records_.resize(kept);
+    last_used_.resize(kept);
+    stats_.evicted = excess;
+  }
+  stats_.kept = records_.size();
+}
+
+}  // namespace rcsplat

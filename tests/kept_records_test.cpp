@@ -1,0 +1,174 @@
+// Irradiance records kept across frames (issue 42, item 2; render/kept_records.h): a still camera settles on the same
+// bits, a kept record splats what it splatted when placed, a moved camera places records only where no kept one
+// reaches, and eviction keeps the cap, least recently used first.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kernels/cache_math.h"
+#include "render/kept_records.h"
+#include "render/renderer.h"
+#include "scene/cornell_box.h"
+#include "test_support.h"
+
+namespace rcsplat {
+namespace {
+
+RenderSettings kept_settings() {
+  RenderSettings s = test::one_bounce_one_sample();
+  s.width = s.height = 48;
+  s.light_samples = 4;
+  s.keep_records = true;
+  return s;
+}
+
+TEST(KeptRecords, AStillCameraSettlesOnTheSameBitsAndItsFirstFrameIsAFreshOne) {
+  const Scene scene = make_cornell_box();
+  RenderSettings fresh = kept_settings();
+  fresh.keep_records = false;
+  const RenderedImage alone = render(test::gpu(), scene, fresh);
+  Renderer renderer(test::gpu(), scene);
+  std::vector<RenderedImage> frames;
+  for (int f = 0; f < 4; ++f) frames.push_back(renderer.render(kept_settings()));
+  EXPECT_EQ(frames[0].color, alone.color) << "nothing kept yet: a fresh frame";
+  EXPECT_EQ(frames[0].stats.kept_records.reused, 0u);
+  EXPECT_EQ(frames[1].stats.kept_records.reused, frames[0].stats.irradiance.records);
+  // Placement may leave a few pixels uncovered (its last rounds at spacing 1); a later frame fills them, and once a
+  // frame adds nothing, every frame after it is the same bits.
+  int settled = -1;
+  for (int f = 1; f < 4 && settled < 0; ++f)
+    if (frames[size_t(f)].stats.kept_records.added == 0) settled = f;
+  ASSERT_GE(settled, 1) << "still adding records after 4 frames of one view";
+  for (size_t f = size_t(settled) + 1; f < frames.size(); ++f) EXPECT_EQ(frames[f].color, frames[size_t(settled)].color);
+  EXPECT_LT(frames[1].stats.kept_records.added, frames[0].stats.irradiance.records / 20);
+}
+
+// The records a frame splats are the kept ones, as they were placed (the same view fits them to the same radii), and
+// each pixel's irradiance is theirs: a frame that adds no record shows what the frame that placed them showed, up to
+// the records that frame added to fill its last holes.
+TEST(KeptRecords, AKeptRecordIsSplattedAsWhenItWasPlaced) {
+  const Scene scene = make_cornell_box();
+  Renderer renderer(test::gpu(), scene);
+  const RenderedImage first = renderer.render(kept_settings());
+  const RenderedImage second = renderer.render(kept_settings());
+  ASSERT_GE(second.records.size(), first.records.size());
+  for (size_t k = 0; k < first.records.size(); ++k) {
+    EXPECT_EQ(second.records[k].radius, first.records[k].radius) << k;
+    EXPECT_EQ(second.records[k].pixel, first.records[k].pixel) << k << ": seated where it was placed";
+  }
+  // Pixels no record added by the second frame reaches have the first frame's irradiance.
+  size_t same = 0, compared = 0;
+  for (size_t i = 0; i < size_t(first.width * first.height); ++i) {
+    bool near_new = false;
+    const glm::vec3 p(first.position[3 * i], first.position[3 * i + 1], first.position[3 * i + 2]);
+    for (size_t k = first.records.size(); k < second.records.size() && !near_new; ++k) {
+      const CacheRecord& r = second.records[k];
+      near_new = glm::length(p - glm::vec3(r.position[0], r.position[1], r.position[2])) < 2.0f * r.radius;
+    }
+    if (near_new || first.depth[i] == 0.0f) continue;
+    ++compared;
+    same += first.irradiance[3 * i] == second.irradiance[3 * i] && first.irradiance[3 * i + 1] == second.irradiance[3 * i + 1];
+  }
+  EXPECT_GT(compared, size_t(first.width * first.height) / 2);
+  EXPECT_EQ(same, compared);
+}
+
+// After a small move, new records sit only where no kept record reaches (the splat's test, cache_math.h
+// record_reaches, at the new record's own point and normal, with 2% margin on the weight for the float rounding of
+// world units), and far fewer are placed than a fresh frame places.
+TEST(KeptRecords, AMovedCameraPlacesRecordsOnlyWhereNoKeptRecordReaches) {
+  const Scene scene = make_cornell_box();
+  Renderer renderer(test::gpu(), scene);
+  renderer.render(kept_settings());
+  RenderSettings moved = kept_settings();
+  const SceneCamera& camera = scene.cameras[0];
+  moved.camera_overrides.eye = camera.eye + 0.08f * glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
+  moved.camera_overrides.target = camera.target;
+  const RenderedImage frame = renderer.render(moved);
+  RenderSettings fresh = moved;
+  fresh.keep_records = false;
+  const RenderedImage alone = render(test::gpu(), scene, fresh);
+  const size_t reused = frame.stats.kept_records.reused, added = frame.stats.kept_records.added;
+  EXPECT_GT(reused, 0u);
+  EXPECT_GT(added, 0u) << "the move shows something new";
+  EXPECT_LT(added, alone.stats.irradiance.records / 3);
+  const float accuracy = moved.cache.accuracy;
+  size_t reached = 0;
+  for (size_t k = reused; k < frame.records.size(); ++k) {
+    const CacheRecord& r = frame.records[k];
+    const rc_float3 p = {r.position[0], r.position[1], r.position[2]}, n = {r.normal[0], r.normal[1], r.normal[2]};
+    for (size_t j = 0; j < reused; ++j) {
+      const CacheRecord& old = frame.records[j];
+      const rc_float3 pk = {old.position[0], old.position[1], old.position[2]};
+      const rc_float3 nk = {old.normal[0], old.normal[1], old.normal[2]};
+      rc_float3 tk, bk;
+      tangent_frame(nk, &tk, &bk);
+      const float w = ward_weight(p, n, pk, nk, old.radius);
+      if (w > 1.02f / accuracy && record_reaches(&old, tk, bk, w, accuracy, p, n, pk, nk, old.radius)) ++reached;
+    }
+  }
+  EXPECT_EQ(reached, 0u);
+}
+
+CacheRecord record_at(float x, float y, float z) {
+  CacheRecord r{};
+  r.position[0] = x;
+  r.position[1] = y;
+  r.position[2] = z;
+  r.normal[2] = 1.0f;
+  r.radius = 0.01f;
+  return r;
+}
+
+// A pinhole at the origin looking down -z, 90 degrees wide and high.
+CameraParams look_down_minus_z() {
+  CameraParams c{};
+  c.forward[2] = -1.0f;
+  c.right[0] = 1.0f;
+  c.up[1] = 1.0f;
+  c.tan_half_fov_y = 1.0f;
+  c.aspect = 1.0f;
+  c.width = c.height = 100;
+  return c;
+}
+
+TEST(KeptRecords, AViewTakesTheRecordsItMaySeeAndEvictionDropsTheLeastRecentlyUsed) {
+  KeptRecords kept(100);
+  CacheSettings cache;
+  kept.begin_frame({});
+  std::vector<CacheRecord> first;
+  // Every other record well outside the 90-degree view (|x| = 3 |z|), the rest on its axis.
+  for (int i = 0; i < 80; ++i) first.push_back(record_at(i % 2 ? 3.0f * (1.0f + float(i)) : 0.0f, 0.0f, -1.0f - float(i)));
+  kept.add(first.data(), first.size());
+  EXPECT_EQ(kept.size(), 80u);
+  EXPECT_EQ(kept.stats().evicted, 0u);
+
+  kept.begin_frame({});
+  CameraParams view = look_down_minus_z();
+  const std::vector<CacheRecord> seen = kept.for_view(view, cache);
+  // In view: |x| <= -z (90 degrees), give or take the reach.
+  size_t expected = 0;
+  for (const CacheRecord& r : first) expected += std::fabs(r.position[0]) <= -r.position[2];
+  EXPECT_EQ(seen.size(), expected);
+  EXPECT_EQ(expected, 40u);
+  std::vector<CacheRecord> behind = {record_at(0.0f, 0.0f, 5.0f)};
+  kept.add(behind.data(), 1);
+  kept.begin_frame({});
+  EXPECT_EQ(kept.for_view(view, cache).size(), expected) << "a record behind the camera is not taken";
+
+  std::vector<CacheRecord> more(40, record_at(0.0f, 0.0f, -2.0f));
+  kept.add(more.data(), more.size());  // 121 > 100: 21 go, all from those the last two frames did not see
+  EXPECT_EQ(kept.size(), 100u);
+  EXPECT_EQ(kept.stats().evicted, 21u);
+  kept.begin_frame({});
+  const std::vector<CacheRecord> after = kept.for_view(view, cache);
+  EXPECT_EQ(after.size(), expected + 40) << "every record a recent view used is still kept";
+
+  KeptRecordsKey other;
+  other.seed = 1;
+  kept.begin_frame(other);
+  EXPECT_EQ(kept.size(), 0u) << "other settings: the records are dropped";
+}
+
+}  // namespace
+}  // namespace rcsplat
