@@ -317,11 +317,17 @@ int main(int argc, char** argv) {
       ->required();
   flicker_cmd->add_option("--reference", flicker.reference,
                           "A reference sequence of the same path (pattern): its own flicker is subtracted");
+  flicker_cmd->add_option("--positions", flicker.positions,
+                          "Take each frame's position, depth and camera from this sequence (pattern) of the same "
+                          "frames: for a denoised sequence, whose EXRs hold only colours");
   flicker_cmd->add_option("--first-frame", flicker.first_frame, "First frame (default 0)")->check(CLI::NonNegativeNumber);
   flicker_cmd->add_option("--last-frame", flicker.last_frame, "Last frame (default: up to the first missing one)")
       ->check(CLI::NonNegativeNumber);
   flicker_cmd->add_option("--layer", flicker.layer, "Layer judged: indirect (default) or full")
       ->check(CLI::IsMember({"indirect", "full"}));
+  flicker_cmd->add_flag("--demodulate", flicker.demodulate,
+                        "Judge the layer divided by the albedo layer (pixels of albedo below 0.02 left out): textures "
+                        "do not flicker, but the nearest pixel does not reproject them exactly either");
   flicker_cmd->add_option("--json", flicker.json_path, "Also write the numbers, a pair of frames each, as JSON");
 
   InfoOptions info;

@@ -94,6 +94,23 @@ TEST(Flicker, AMovingCameraOverAStillPatternReadsAlmostNothing) {
   EXPECT_GT(temporal_rel_mse(before, unprojected).rel_mse, 10.0 * moved.rel_mse);
 }
 
+// Light that does not change, seen through a texture: the texture makes the nearest pixel read a little flicker; over
+// the albedo (--demodulate) it reads none, and pixels too dark to divide are left out.
+TEST(Flicker, OverTheAlbedoATextureUnderStillLightReadsNothing) {
+  auto albedo = [](const glm::dvec3& p, int k) { return p.x > 0.5 ? 0.01 : 0.3 + 0.3 * std::sin(7.0 * p.z + k); };
+  auto lit = [&](const glm::dvec3& p, int k) { return 0.7 * albedo(p, k); };
+  const ViewCamera a = look({0.0, 3.0, 5.0}, {0.0, 0.0, 0.0}, 40.0), b = look({0.2, 3.0, 4.9}, {0.05, 0.0, 0.0}, 40.0);
+  SequenceFrame before = frame_of_plane(a, 96, 72, lit), after = frame_of_plane(b, 96, 72, lit);
+  const TemporalError textured = temporal_rel_mse(before, after);
+  EXPECT_GT(textured.rel_mse, 1e-4);
+  divide_by_albedo(before.rgb, frame_of_plane(a, 96, 72, albedo).rgb);
+  divide_by_albedo(after.rgb, frame_of_plane(b, 96, 72, albedo).rgb);
+  const TemporalError light = temporal_rel_mse(before, after);
+  EXPECT_LT(light.rel_mse, 1e-12);
+  EXPECT_LT(light.pixels, textured.pixels) << "the dark part (albedo 0.01) is left out";
+  EXPECT_GT(light.pixels, textured.pixels / 4);
+}
+
 TEST(Flicker, AMalformedCameraAttributeIsRefused) {
   for (const char* bad : {"", "fisheye eye 0,0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",
                           "perspective eye 0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",

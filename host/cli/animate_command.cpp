@@ -227,10 +227,11 @@ int run_animate(const AnimateOptions& o) {
   std::printf("frames       %lld to %lld at %g frames/s, %d x %d, indirect light: %s\n", first, last, o.fps,
               width, height,
               gi_method_name(rows.front().stats.gi));
-  if (o.cache_per_frame || rows.front().stats.gi != GiMethod::splat) {
+  const GiMethod gi = rows.front().stats.gi;
+  if (gi == GiMethod::octree || (gi == GiMethod::splat && o.cache_per_frame)) {
     std::printf("cache        a new cache each frame%s\n",
                 o.cache_per_frame ? " (--cache-per-frame)" : " (records are kept by the splat only)");
-  } else {
+  } else if (gi == GiMethod::splat) {
     uint64_t reused = 0, added = 0, evicted = 0;
     for (const FrameRow& r : rows) {
       reused += r.stats.kept_records.reused;

@@ -65,8 +65,10 @@ int run_animate(const AnimateOptions& options);
 // `rcsplat flicker`: a sequence's temporal relMSE (image/flicker.h), less a reference sequence's.
 struct FlickerOptions {
   std::string frames, reference;  // frame patterns (util/frame_pattern.h)
+  std::string positions;          // the frames' position, depth and camera from this sequence ("": the frames')
   long long first_frame = 0, last_frame = -1;  // -1: up to the first frame missing
   std::string layer = "indirect";              // or "full"
+  bool demodulate = false;                     // the layer over the albedo layer
   std::string json_path;
 };
 int run_flicker(const FlickerOptions& options);

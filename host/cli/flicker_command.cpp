@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/commands.h"
 #include "image/flicker.h"
@@ -19,11 +20,15 @@ struct SequencePairs {
   double mean = 0.0;
 };
 
-SequencePairs sequence_flicker(const FramePattern& pattern, long long first, long long last, const std::string& layer) {
+SequencePairs sequence_flicker(const FramePattern& pattern, const FramePattern* geometry, long long first,
+                               long long last, const std::string& layer, bool demodulate) {
   SequencePairs out;
-  SequenceFrame earlier = read_sequence_frame(pattern.path(first), layer);
+  auto read = [&](long long f) {
+    return read_sequence_frame(pattern.path(f), layer, geometry ? geometry->path(f) : "", demodulate);
+  };
+  SequenceFrame earlier = read(first);
   for (long long f = first + 1; f <= last; ++f) {
-    SequenceFrame later = read_sequence_frame(pattern.path(f), layer);
+    SequenceFrame later = read(f);
     out.pairs.push_back(temporal_rel_mse(earlier, later));
     out.mean += out.pairs.back().rel_mse;
     earlier = std::move(later);
@@ -47,14 +52,19 @@ int run_flicker(const FlickerOptions& o) {
   for (long long f = o.first_frame; f <= last; ++f)
     if (!std::filesystem::exists(frames.path(f))) throw Error("flicker: " + frames.path(f) + " is missing");
   if (!o.json_path.empty()) check_writable_destination(o.json_path);
-  const SequencePairs judged = sequence_flicker(frames, o.first_frame, last, layer);
+  std::optional<FramePattern> positions;
+  if (!o.positions.empty()) positions.emplace(o.positions, "--positions");
+  const SequencePairs judged =
+      sequence_flicker(frames, positions ? &*positions : nullptr, o.first_frame, last, layer, o.demodulate);
   SequencePairs reference;
-  if (!o.reference.empty()) reference = sequence_flicker(FramePattern(o.reference, "--reference"), o.first_frame, last, layer);
+  if (!o.reference.empty())
+    reference =
+        sequence_flicker(FramePattern(o.reference, "--reference"), nullptr, o.first_frame, last, layer, o.demodulate);
   double seen = 0.0;
   for (const TemporalError& p : judged.pairs) seen += p.hits ? double(p.pixels) / double(p.hits) : 0.0;
   seen /= double(judged.pairs.size());
-  std::printf("frames       %s, %lld to %lld (%zu pairs), layer %s\n", o.frames.c_str(), o.first_frame, last,
-              judged.pairs.size(), o.layer.c_str());
+  std::printf("frames       %s, %lld to %lld (%zu pairs), layer %s%s\n", o.frames.c_str(), o.first_frame, last,
+              judged.pairs.size(), o.layer.c_str(), o.demodulate ? " over the albedo" : "");
   std::printf("flicker      temporal relMSE %.4g (mean over the pairs); %.1f%% of the pixels that see a surface saw it "
               "in the frame before too\n", judged.mean, 100.0 * seen);
   if (!o.reference.empty())
@@ -69,7 +79,8 @@ int run_flicker(const FlickerOptions& o) {
       pairs.push_back(p);
     }
     nlohmann::json j = {{"frames", o.frames}, {"first_frame", o.first_frame}, {"last_frame", last},
-                        {"layer", o.layer}, {"temporal_rel_mse", judged.mean}, {"pairs", pairs}};
+                        {"layer", o.layer}, {"demodulated", o.demodulate}, {"temporal_rel_mse", judged.mean},
+                        {"pairs", pairs}};
     if (!o.reference.empty()) {
       j["reference"] = o.reference;
       j["reference_temporal_rel_mse"] = reference.mean;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "image/error_metrics.h"
@@ -57,17 +58,27 @@ ViewCamera parse_view_camera(const std::string& attribute, const std::string& so
   return c;
 }
 
-SequenceFrame read_sequence_frame(const std::string& path, const std::string& layer) {
+SequenceFrame read_sequence_frame(const std::string& path, const std::string& layer, const std::string& geometry_path,
+                                  bool demodulate) {
+  const std::string& geometry = geometry_path.empty() ? path : geometry_path;
   SequenceFrame f;
-  const ExrAttributes attributes = read_exr_attributes(path);
+  const ExrAttributes attributes = read_exr_attributes(geometry);
   auto camera = attributes.find("rcsplat:camera");
-  if (camera == attributes.end()) throw Error(path + ": has no rcsplat:camera attribute (not a frame rcsplat rendered)");
-  f.camera = parse_view_camera(camera->second, path);
+  if (camera == attributes.end())
+    throw Error(geometry + ": has no rcsplat:camera attribute (not a frame rcsplat rendered)");
+  f.camera = parse_view_camera(camera->second, geometry);
   int w = 0, h = 0;
   f.rgb = read_exr_layer(path, layer, f.width, f.height);
-  f.position = read_exr_channels(path, "position", {"X", "Y", "Z"}, w, h);
-  f.depth = read_exr_channels(path, "depth", {"Z"}, w, h);
+  f.position = read_exr_channels(geometry, "position", {"X", "Y", "Z"}, w, h);
+  if (w != f.width || h != f.height) throw Error(geometry + ": not the size of " + path);
+  f.depth = read_exr_channels(geometry, "depth", {"Z"}, w, h);
+  if (demodulate) divide_by_albedo(f.rgb, read_exr_layer(path, "albedo", w, h));
   return f;
+}
+
+void divide_by_albedo(std::vector<float>& rgb, const std::vector<float>& albedo) {
+  for (size_t i = 0; i < rgb.size(); ++i)
+    rgb[i] = albedo[i] >= 0.02f ? rgb[i] / albedo[i] : std::numeric_limits<float>::quiet_NaN();
 }
 
 TemporalError temporal_rel_mse(const SequenceFrame& earlier, const SequenceFrame& later) {
@@ -100,6 +111,10 @@ TemporalError temporal_rel_mse(const SequenceFrame& earlier, const SequenceFrame
       const glm::dvec3 seen(earlier.position[3 * q], earlier.position[3 * q + 1], earlier.position[3 * q + 2]);
       const double footprint = 2.0 * half_y / h;
       if (!(glm::length(seen - point) <= 4.0 * footprint)) continue;
+      bool finite = true;
+      for (int k = 0; k < 3; ++k)
+        finite = finite && std::isfinite(later.rgb[3 * p + size_t(k)]) && std::isfinite(earlier.rgb[3 * q + size_t(k)]);
+      if (!finite) continue;
       for (int k = 0; k < 3; ++k) {
         const double a = later.rgb[3 * p + size_t(k)], b = earlier.rgb[3 * q + size_t(k)], m = 0.5 * (a + b);
         sum += 0.5 * (a - b) * (a - b) / (m * m + kRelMseOffset);

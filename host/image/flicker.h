@@ -30,14 +30,22 @@ struct SequenceFrame {
   std::vector<float> depth;     // 0 where the pixel sees nothing
   ViewCamera camera;
 };
-// Reads frame `path`: its layer `layer` ("indirect", or "" for the full image), position, depth and camera.
-SequenceFrame read_sequence_frame(const std::string& path, const std::string& layer);
+// Reads frame `path`: its layer `layer` ("indirect", or "" for the full image), and the position, depth and camera of
+// `geometry_path` (the same frame; "": `path` itself; a denoised frame holds only colours). demodulate: the layer
+// divided by the frame's albedo layer, channel by channel (not a number where the albedo is below 0.02: such pixels
+// are left out), so that textures, which do not flicker but do not reproject exactly either, drop out.
+SequenceFrame read_sequence_frame(const std::string& path, const std::string& layer,
+                                  const std::string& geometry_path = "", bool demodulate = false);
 
 struct TemporalError {
   double rel_mse = 0.0;
   size_t pixels = 0;  // later-frame pixels also seen in the earlier frame
   size_t hits = 0;    // later-frame pixels that see a surface
 };
+// rgb over albedo, channel by channel; not a number where the albedo is below 0.02 (left out by temporal_rel_mse).
+void divide_by_albedo(std::vector<float>& rgb, const std::vector<float>& albedo);
+
+// Pixels whose values are not finite in either frame are left out.
 TemporalError temporal_rel_mse(const SequenceFrame& earlier, const SequenceFrame& later);
 
 }  // namespace rcsplat
