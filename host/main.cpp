@@ -122,6 +122,12 @@ struct RenderMethodFlags {
   bool glossy_paths = false;
 
   void add(CLI::App* cmd, RenderOptions& o, const std::string& lab) {
+    cmd->add_option("--cache-in", o.cache_in,
+                    "Splat: start from the irradiance records of a cache file that --cache-out wrote for this scene "
+                    "and these settings")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--cache-out", o.cache_out,
+                    "Splat: write the irradiance records kept after the last frame to this cache file");
     cmd->add_option("--quality", o.quality,
                            "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
                            "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "

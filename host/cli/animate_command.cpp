@@ -143,6 +143,9 @@ int run_animate(const AnimateOptions& o) {
   }
   for (const std::string& path : {o.stats_path, o.render.json_path})
     if (!path.empty()) check_writable_destination(path);
+  check_cache_files(o.render);
+  if ((!o.render.cache_in.empty() || !o.render.cache_out.empty()) && o.cache_per_frame)
+    throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
 
   Scene scene = load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment,
                            o.render.limits);
@@ -167,6 +170,19 @@ int run_animate(const AnimateOptions& o) {
     ~ShowProgressAgain() { set_progress_shown(true); }
   } show_progress_again;
 
+  FramePlan last_plan;
+  auto frame_settings = [&](long long frame) {
+    RenderSettings settings = request;
+    settings.keep_records = !o.cache_per_frame;
+    settings.kept_records_capacity = o.kept_records;
+    CameraPose pose = path.at(double(frame) / o.fps);
+    if (orthographic) pose.fov_degrees.reset();
+    settings.camera_overrides = pose.overrides();
+    return settings;
+  };
+  if (!o.render.cache_in.empty())  // before any frame: a file that does not fit is refused with no output
+    load_cache_file(gpu, renderer, scene, renderer.plan(frame_settings(first)), o.render.cache_in);
+
   std::vector<FrameRow> rows;
   int width = 0, height = 0;
   std::string csv = kCsvHeader;
@@ -174,13 +190,9 @@ int run_animate(const AnimateOptions& o) {
     FrameRow row;
     row.frame = frame;
     row.time = double(frame) / o.fps;
-    RenderSettings settings = request;
-    settings.keep_records = !o.cache_per_frame;
-    settings.kept_records_capacity = o.kept_records;
-    CameraPose pose = path.at(row.time);
-    if (orthographic) pose.fov_degrees.reset();
-    settings.camera_overrides = pose.overrides();
-    const RenderedImage image = renderer.render(renderer.plan(settings));
+    const RenderSettings settings = frame_settings(frame);
+    last_plan = renderer.plan(settings);
+    const RenderedImage image = renderer.render(last_plan);
     ExrAttributes attributes = render_attributes(scene, image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);
     attributes["rcsplat:time"] = std::to_string(row.time);
@@ -202,6 +214,7 @@ int run_animate(const AnimateOptions& o) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  if (!o.render.cache_out.empty()) save_cache_file(gpu, renderer, scene, last_plan, o.render.cache_out);
   bool mp4_written = false;
   if (!ffmpeg.empty()) {
     // Written beside the target and renamed, as every output is (util/atomic_file.h).
@@ -248,6 +261,7 @@ int run_animate(const AnimateOptions& o) {
               wall, rows.front().stats.total_s, later_mean);
   for (const FramePattern& p : outputs) std::printf("wrote        %s\n", p.pattern().c_str());
   if (mp4_written) std::printf("wrote        %s\n", o.mp4_path.c_str());
+  if (!o.render.cache_out.empty()) std::printf("wrote        %s\n", o.render.cache_out.c_str());
   if (!o.stats_path.empty()) std::printf("wrote        %s\n", o.stats_path.c_str());
   if (!o.render.json_path.empty()) {
     nlohmann::json frames = nlohmann::json::array();

@@ -31,6 +31,8 @@ struct RenderOptions {
   std::string json_path;
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
   std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
+  // Cache files (render/cache_file.h): the splat's kept records read before the first frame, written after the last.
+  std::string cache_in, cache_out;
 };
 // --quality: draft, standard (the defaults) or final sets accuracy, rays per record, pixel and light samples, except
 // those whose option was given (`given("--accuracy")`). quality_summary says what the request holds after it, for the
@@ -145,6 +147,14 @@ std::string default_bench_scene();
 // A glTF scene reads only what `limits` allows (scene/scene_limits.h, docs/SECURITY.md).
 Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
                  const EnvironmentSettings& environment = {}, const SceneLimits& limits = {});
+
+// --cache-in / --cache-out (render/cache_file.h): checked before any work (the splat only; --cache-out writable);
+// then read into the renderer's kept records for the plan's settings, or written from them.
+void check_cache_files(const RenderOptions& options);
+void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path);
+void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path);
 
 // The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings);

@@ -6,11 +6,13 @@
 
 #include "cli/commands.h"
 #include "util/atomic_file.h"
+#include "render/cache_file.h"
 #include "render/camera.h"
 #include "render/pixel_samples.h"
 #include "scene/cornell_box.h"
 #include "scene/gltf_loader.h"
 #include "util/error.h"
+#include "util/log.h"
 
 namespace rcsplat {
 
@@ -44,6 +46,30 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:environment", scene.environment.describe()},
           {"rcsplat:pixel_samples", std::to_string(image.stats.primary.pixel_samples)},
           {"rcsplat:pixel_points", pixel_points_name(settings)}};
+}
+
+void check_cache_files(const RenderOptions& o) {
+  if ((!o.cache_in.empty() || !o.cache_out.empty()) && o.settings.gi != GiMethod::splat)
+    throw Error("--cache-in and --cache-out: only the splat keeps records (--gi splat)");
+  if (!o.cache_out.empty()) check_writable_destination(o.cache_out);
+}
+
+namespace {
+CacheFileIdentity cache_identity(const GpuContext& gpu, const Scene& scene, const FramePlan& plan) {
+  return {scene_fingerprint(scene), settings_fingerprint(kept_records_key(plan.frame)), gpu.device_info().name};
+}
+}  // namespace
+
+void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path) {
+  read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame),
+                  plan.frame.kept_records_capacity, renderer.kept_records());
+  log_info(path + ": " + std::to_string(renderer.kept_records().size()) + " irradiance records read");
+}
+
+void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path) {
+  write_cache_file(path, renderer.kept_records(), cache_identity(gpu, scene, plan));
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

@@ -272,6 +272,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
 
 int run_render(const RenderOptions& options) {
   check_request(options.settings);  // every range, before the scene is read
+  check_cache_files(options);
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
   for (const std::string& out : options.outputs) {
     if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
@@ -295,6 +296,14 @@ int run_render(const RenderOptions& options) {
       std::printf("%s already has %u or more samples per pixel\n", earlier.c_str(), options.settings.path.samples);
       return 0;
     }
+  } else if (!options.cache_in.empty() || !options.cache_out.empty()) {
+    RenderSettings settings = options.settings;
+    settings.keep_records = true;
+    Renderer renderer(gpu, scene, settings.forced_switches);
+    const FramePlan plan = renderer.plan(settings);
+    if (!options.cache_in.empty()) load_cache_file(gpu, renderer, scene, plan, options.cache_in);
+    image = renderer.render(plan);
+    if (!options.cache_out.empty()) save_cache_file(gpu, renderer, scene, plan, options.cache_out);
   } else {
     image = render(gpu, scene, options.settings);
   }

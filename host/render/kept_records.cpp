@@ -74,6 +74,15 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
   return taken;
 }
 
+void KeptRecords::restore(const KeptRecordsKey& key, std::vector<CacheRecord> records, std::vector<uint64_t> last_used,
+                          uint64_t frames_begun) {
+  key_ = key;
+  has_key_ = true;
+  records_ = std::move(records);
+  last_used_ = std::move(last_used);
+  frame_ = frames_begun;
+}
+
 void KeptRecords::add(const CacheRecord* records, size_t count) {
   records_.insert(records_.end(), records, records + count);
   last_used_.insert(last_used_.end(), count, frame_);

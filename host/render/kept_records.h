@@ -49,6 +49,15 @@ class KeptRecords {
 
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
+  void set_capacity(size_t capacity) { capacity_ = capacity; }
+
+  // For cache files (render/cache_file.h): what is kept, the frame that last used each record, the frames begun.
+  const std::vector<CacheRecord>& records() const { return records_; }
+  const std::vector<uint64_t>& last_used() const { return last_used_; }
+  uint64_t frames_begun() const { return frame_; }
+  // Replaces what is kept with a cache file's records, computed with these settings.
+  void restore(const KeptRecordsKey& key, std::vector<CacheRecord> records, std::vector<uint64_t> last_used,
+               uint64_t frames_begun);
 
  private:
   size_t capacity_;

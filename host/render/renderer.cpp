@@ -286,7 +286,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
   frame.camera = &camera;
   if (settings.keep_records && settings.gi == GiMethod::splat) {
-    if (!kept_records_) kept_records_ = std::make_unique<KeptRecords>(settings.kept_records_capacity);
+    kept_records().set_capacity(settings.kept_records_capacity);
     frame.kept_records = kept_records_.get();
   } else {
     kept_records_.reset();
@@ -409,6 +409,11 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   st.total_s = setup_seconds + seconds_since(start);
   st.device_memory = gpu_.memory_use();
   return img;
+}
+
+KeptRecords& Renderer::kept_records() {
+  if (!kept_records_) kept_records_ = std::make_unique<KeptRecords>(RenderSettings{}.kept_records_capacity);
+  return *kept_records_;
 }
 
 RenderedImage render(GpuContext& gpu, const Scene& scene, const RenderSettings& settings) {

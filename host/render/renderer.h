@@ -48,6 +48,9 @@ class Renderer {
   RenderedImage render(const RenderSettings& request) { return render(plan(request)); }
 
   const DeviceScene& device_scene() const { return *device_scene_; }
+  // The irradiance records kept across frames (RenderSettings::keep_records), made empty on first use: cache files
+  // (render/cache_file.h) read into it before a frame and write it after one.
+  KeptRecords& kept_records();
 
  private:
   double kept_per_bounce();
