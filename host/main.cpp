@@ -129,86 +129,88 @@ struct RenderMethodFlags {
     cmd->add_option("--cache-out", o.cache_out,
                     "Splat: write the irradiance records kept after the last frame to this cache file");
     cmd->add_option("--quality", o.quality,
-                           "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
-                           "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
-                           "where the frame allows, 64 light samples); options given on the command line win")
+                    "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
+                    "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
+                    "where the frame allows, 64 light samples); options given on the command line win")
         ->check(CLI::IsMember({"draft", "standard", "final"}));
-    cmd->add_option("--gi", gi, "Indirect light: splat (radiance cache splatting, default), octree (classic "
-                                       "irradiance cache on the host), path (path tracing), none")
+    cmd->add_option("--gi", gi,
+                    "Indirect light: splat (radiance cache splatting, default), octree (classic "
+                    "irradiance cache on the host), path (path tracing), none")
         ->check(CLI::IsMember({"splat", "octree", "path", "none"}));
     const CacheSettings cache_defaults;
     cmd->add_option("--accuracy", o.settings.cache.accuracy,
-                           "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer (" +
-                               shortest(kMinAccuracy) + " to " + shortest(kMaxAccuracy) + ", default " +
-                               shortest(cache_defaults.accuracy) + ")");
+                    "Cache accuracy a: records reach where Ward's weight exceeds 1/a; smaller is finer (" +
+                        shortest(kMinAccuracy) + " to " + shortest(kMaxAccuracy) + ", default " +
+                        shortest(cache_defaults.accuracy) + ")");
     cmd->add_option("--hemisphere", hemisphere,
-                           "Rays per record as MxN strata (theta x phi), default " +
-                               std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
+                    "Rays per record as MxN strata (theta x phi), default " +
+                        std::to_string(cache_defaults.theta_strata) + "x" + std::to_string(cache_defaults.phi_strata));
     cmd->add_option("--fine-hemisphere", fine_hemisphere,
-                           "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
-                           "few pixels each, as MxN; default: as --hemisphere")
+                    "Rays per record for the records placed at the finest level (spacing 1), which reach only a "
+                    "few pixels each, as MxN; default: as --hemisphere")
         ->group(lab);
     cmd->add_option("--spacing", spacing,
-                           "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
-                               shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
+                    "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
+                        shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
         ->group(lab);
     cmd->add_option("--hessian-error", o.settings.cache.hessian_error,
-                           "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
-                           "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
-                               shortest(cache_defaults.hessian_error))
+                    "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
+                    "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +
+                        shortest(cache_defaults.hessian_error))
         ->group(lab);
     cmd->add_option("--adaptive-rays", o.settings.cache.adaptive_error,
-                           "Adaptive rays: trace each record with half the strata each way first, and again with all "
-                           "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
-                               shortest(cache_defaults.adaptive_error))
+                    "Adaptive rays: trace each record with half the strata each way first, and again with all "
+                    "MxN where its estimated relative error is above this; 0: all MxN at once; default " +
+                        shortest(cache_defaults.adaptive_error))
         ->group(lab);
     cmd->add_option("--guide-rays", o.settings.cache.guide_rays,
-                           "Rays per record aimed at the brightest directly lit places (photons from the lights find "
-                           "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
-                               std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
+                    "Rays per record aimed at the brightest directly lit places (photons from the lights find "
+                    "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
+                        std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
         ->group(lab);
     cmd->add_option("--spp", o.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
     cmd->add_option("--glossy-samples", o.settings.glossy_samples,
-                           "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
-                           "(stratified; default 16, at most 65536)")
+                    "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
+                    "(stratified; default 16, at most 65536)")
         ->group(lab);
     cmd->add_option("--hsh-order", o.settings.hsh_order,
-                           "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
-                           "channel, 1.." + std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
+                    "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
+                    "channel, 1.." +
+                        std::to_string(HSH_MAX_ORDER) + "); default: chosen from their roughness")
         ->group(lab);
     cmd->add_flag("--stratified", o.settings.path.stratified,
-                         "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
+                  "Path tracing: draw each pixel's samples from a stratified grid over the hemisphere");
     cmd->add_option("--bounce-method", bounce_method,
-                           "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
-                           "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
-                           "unless the scene has a sky or an environment map")
+                    "Cache methods, --bounces 2 or more: how a record's ray finds the bounces after the first: "
+                    "path (continue its path) or photons (read a photon map at its hit); default auto: photons "
+                    "unless the scene has a sky or an environment map")
         ->group(lab);
     cmd->add_option("--photons", o.settings.photon_paths,
-                           "Photons shot for --bounce-method photons; default: rounds of " +
-                               std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
-                               std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
-                               " rounds; 0 too; at most 67108864)")
+                    "Photons shot for --bounce-method photons; default: rounds of " +
+                        std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
+                        std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
+                        " rounds; 0 too; at most 67108864)")
         ->group(lab);
     cmd->add_flag("--glossy-paths", glossy_paths,
-                         "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
-                         "records where they land on a rough surface a record reaches (the default)")
+                  "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
+                  "records where they land on a rough surface a record reaches (the default)")
         ->group(lab);
     cmd->add_option("--caustic-photons", o.settings.caustic_photons,
-                           "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
-                           "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
-                           "records' rays count it; at most 67108864); default " +
-                               std::to_string(o.settings.caustic_photons))
+                    "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
+                    "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
+                    "records' rays count it; at most 67108864); default " +
+                        std::to_string(o.settings.caustic_photons))
         ->group(lab);
     cmd->add_option("--photon-min-support", o.settings.photon_min_support,
-                           "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
-                           "this continue their path instead of reading the map (0: never); default " +
-                               shortest(o.settings.photon_min_support))
+                    "--bounce-method photons: record rays whose hit's photon estimate summed fewer photons than "
+                    "this continue their path instead of reading the map (0: never); default " +
+                        shortest(o.settings.photon_min_support))
         ->group(lab);
     cmd->add_option("--short-ray-paths", o.settings.short_ray_paths,
-                           "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
-                           "continue their path one bounce and read the map there (0: every ray reads it where it "
-                           "lands); default " +
-                               shortest(o.settings.short_ray_paths))
+                    "--bounce-method photons: record rays landing closer than this many photon-map gather radii "
+                    "continue their path one bounce and read the map there (0: every ray reads it where it "
+                    "lands); default " +
+                        shortest(o.settings.short_ray_paths))
         ->group(lab);
   }
 
@@ -265,8 +267,9 @@ int main(int argc, char** argv) {
   EnvironmentFlags animate_environment;
   RenderMethodFlags animate_method;
   CLI::App* animate_cmd = app.add_subcommand(
-      "animate", "Render a camera path to a frame sequence: the scene's glTF camera animation, a keyframe file or an "
-                 "orbit (default scene: the built-in Cornell box, which needs --orbit or --keyframes)");
+      "animate",
+      "Render a camera path to a frame sequence: the scene's glTF camera animation, a keyframe file or an "
+      "orbit (default scene: the built-in Cornell box, which needs --orbit or --keyframes)");
   add_frame_options(animate_cmd, animate.render, animate_camera, animate_environment, lab);
   animate_method.add(animate_cmd, animate.render, lab);
   animate_cmd->add_option("--keyframes", animate.keyframes,
@@ -278,8 +281,9 @@ int main(int argc, char** argv) {
   animate_cmd->add_option("--orbit-degrees", animate.orbit_degrees,
                           "--orbit: the arc swept in its seconds, in degrees (default 360: a whole turn; negative: "
                           "clockwise seen from above)");
-  animate_cmd->add_option("--animation", animate.animation,
-                          "Without --keyframes or --orbit: the scene's glTF animation that moves --camera (default 0)")
+  animate_cmd
+      ->add_option("--animation", animate.animation,
+                   "Without --keyframes or --orbit: the scene's glTF animation that moves --camera (default 0)")
       ->check(CLI::NonNegativeNumber);
   animate_cmd->add_option("--fps", animate.fps, "Frames a second of the path's time (default 24)");
   animate_cmd->add_option("--first-frame", animate.first_frame, "First frame rendered (default 0)")
@@ -289,9 +293,10 @@ int main(int argc, char** argv) {
   animate_cmd->add_flag("--cache-per-frame", animate.cache_per_frame,
                         "Place every frame's records anew, as `render` does (the default keeps the irradiance records "
                         "across frames and places new ones only where none reaches)");
-  animate_cmd->add_option("--kept-records", animate.kept_records,
-                          "Most irradiance records kept across frames; the least recently used go first (default "
-                          "1048576, 160 bytes each)")
+  animate_cmd
+      ->add_option("--kept-records", animate.kept_records,
+                   "Most irradiance records kept across frames; the least recently used go first (default "
+                   "1048576, 160 bytes each)")
       ->check(CLI::Range(size_t(1), size_t(1) << 28));
   animate_cmd->add_option("--stats", animate.stats_path,
                           "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
@@ -309,16 +314,18 @@ int main(int argc, char** argv) {
   CLI::App* reference_cmd =
       app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
   add_frame_options(reference_cmd, reference, reference_camera, reference_environment, lab);
-  reference_cmd->add_option("--spp", reference.settings.path.samples, "Samples per pixel (default 1024); the light "
-                                                                      "samples default to the same number");
+  reference_cmd->add_option("--spp", reference.settings.path.samples,
+                            "Samples per pixel (default 1024); the light "
+                            "samples default to the same number");
   reference_cmd->add_flag("--resume", reference.resume,
                           "Add samples to the .exr output an earlier run wrote, up to --spp in all");
   reference_cmd->callback([&] { light_samples_given = reference_cmd->count("--light-samples") > 0; });
 
   FlickerOptions flicker;
-  CLI::App* flicker_cmd = app.add_subcommand(
-      "flicker", "How much a frame sequence's light changes between consecutive frames where both see the same "
-                 "surface (temporal relMSE after reprojection by the position layer), less a reference's");
+  CLI::App* flicker_cmd =
+      app.add_subcommand("flicker",
+                         "How much a frame sequence's light changes between consecutive frames where both see the same "
+                         "surface (temporal relMSE after reprojection by the position layer), less a reference's");
   flicker_cmd->add_option("frames", flicker.frames, "The frames, as animate wrote them (.exr pattern: frames/%04d.exr)")
       ->required();
   flicker_cmd->add_option("--reference", flicker.reference,
@@ -326,7 +333,8 @@ int main(int argc, char** argv) {
   flicker_cmd->add_option("--positions", flicker.positions,
                           "Take each frame's position, depth and camera from this sequence (pattern) of the same "
                           "frames: for a denoised sequence, whose EXRs hold only colours");
-  flicker_cmd->add_option("--first-frame", flicker.first_frame, "First frame (default 0)")->check(CLI::NonNegativeNumber);
+  flicker_cmd->add_option("--first-frame", flicker.first_frame, "First frame (default 0)")
+      ->check(CLI::NonNegativeNumber);
   flicker_cmd->add_option("--last-frame", flicker.last_frame, "Last frame (default: up to the first missing one)")
       ->check(CLI::NonNegativeNumber);
   flicker_cmd->add_option("--layer", flicker.layer, "Layer judged: indirect (default) or full")

@@ -1,6 +1,8 @@
 // Camera paths (issue 42, item 1): glTF samplers against a double-precision reference written another way (Bezier
 // control points for the cubic spline, the quaternion logarithm for slerp), a camera rig loaded from a glTF file,
 // keyframe files, orbits, frame-name patterns, and `animate` itself against `render` at the same pose.
+#include "scene/animation.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 #include "gltf_builder.h"
 #include "image/image_io.h"
 #include "render/camera_path.h"
-#include "scene/animation.h"
 #include "scene/gltf_loader.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -63,7 +64,9 @@ double bezier(double p0, double p1, double p2, double p3, double u) {
 std::vector<double> reference_sample(const AnimationTrack& track, double t) {
   const size_t n = track.property == AnimatedProperty::rotation ? 4 : 3, keys = track.times.size();
   const bool cubic = track.interpolation == AnimationInterpolation::cubic_spline;
-  auto element = [&](size_t k, size_t which, size_t c) { return double(track.values[((cubic ? 3 * k + which : k) * n) + c]); };
+  auto element = [&](size_t k, size_t which, size_t c) {
+    return double(track.values[((cubic ? 3 * k + which : k) * n) + c]);
+  };
   const size_t mid = cubic ? 1 : 0;
   std::vector<double> out(n);
   size_t k = 0;
@@ -77,8 +80,9 @@ std::vector<double> reference_sample(const AnimationTrack& track, double t) {
   if (track.interpolation == AnimationInterpolation::step) {
     for (size_t c = 0; c < n; ++c) out[c] = element(k, 0, c);
   } else if (!cubic && n == 4) {
-    const Quat q = slerp_by_power({element(k, 0, 3), element(k, 0, 0), element(k, 0, 1), element(k, 0, 2)},
-                                  {element(k + 1, 0, 3), element(k + 1, 0, 0), element(k + 1, 0, 1), element(k + 1, 0, 2)}, u);
+    const Quat q =
+        slerp_by_power({element(k, 0, 3), element(k, 0, 0), element(k, 0, 1), element(k, 0, 2)},
+                       {element(k + 1, 0, 3), element(k + 1, 0, 0), element(k + 1, 0, 1), element(k + 1, 0, 2)}, u);
     out = {q.x, q.y, q.z, q.w};
   } else if (!cubic) {
     for (size_t c = 0; c < n; ++c) out[c] = (1 - u) * element(k, 0, c) + u * element(k + 1, 0, c);
@@ -117,8 +121,8 @@ TEST(Animation, SamplersMatchADoublePrecisionReference) {
   std::mt19937 rng(42);
   double worst = 0.0;
   for (AnimatedProperty property : {AnimatedProperty::translation, AnimatedProperty::rotation})
-    for (AnimationInterpolation interpolation : {AnimationInterpolation::step, AnimationInterpolation::linear,
-                                                 AnimationInterpolation::cubic_spline})
+    for (AnimationInterpolation interpolation :
+         {AnimationInterpolation::step, AnimationInterpolation::linear, AnimationInterpolation::cubic_spline})
       for (int trial = 0; trial < 50; ++trial) {
         const AnimationTrack track = random_track(rng, property, interpolation);
         std::uniform_real_distribution<double> when(0.0, double(track.times.back()) + 0.5);
@@ -169,7 +173,8 @@ RigScene rig_scene(const std::string& dir) {
     return b.add_accessor(b.add_view(v.data(), v.size() * sizeof(float)), 5126, count, type);
   };
   const int turn_t = accessor(scene.boom_turn.times, "SCALAR", 3), turn_v = accessor(scene.boom_turn.values, "VEC4", 3);
-  const int move_t = accessor(scene.camera_move.times, "SCALAR", 3), move_v = accessor(scene.camera_move.values, "VEC3", 9);
+  const int move_t = accessor(scene.camera_move.times, "SCALAR", 3),
+            move_v = accessor(scene.camera_move.values, "VEC3", 9);
   const int quad_t = accessor({0.0f, 1.0f}, "SCALAR", 2), quad_v = accessor({0, 0, 0, 0, 1, 0}, "VEC3", 2);
   b.doc["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}}});
   b.doc["nodes"] = json::array({{{"name", "Quad"}, {"mesh", 0}},
@@ -201,8 +206,9 @@ TEST(Animation, AGltfCameraFollowsItsNodeAndItsParent) {
     const glm::dvec3 eye = rig.boom_position + rotate(turn, {m[0], m[1], m[2]});
     const glm::dvec3 forward = rotate(turn, {0, 0, -1}), up = rotate(turn, {0, 1, 0});
     const CameraPose pose = path.at(t);
-    worst = std::max({worst, glm::length(glm::dvec3(pose.eye) - eye),
-                      glm::length(glm::dvec3(pose.target - pose.eye) - forward), glm::length(glm::dvec3(pose.up) - up)});
+    worst =
+        std::max({worst, glm::length(glm::dvec3(pose.eye) - eye),
+                  glm::length(glm::dvec3(pose.target - pose.eye) - forward), glm::length(glm::dvec3(pose.up) - up)});
     EXPECT_FALSE(pose.fov_degrees) << "the camera keeps its own field of view";
   }
   EXPECT_LT(worst, 1e-5);
@@ -218,10 +224,11 @@ TEST(Animation, AGltfCameraFollowsItsNodeAndItsParent) {
 }
 
 TEST(Animation, KeyframeFilesAreReadLineByLineAndRefusedByLine) {
-  const std::string good = "# t  eye       target   up     fov\n"
-                           "0    0 1 5     0 1 0    0 1 0  40\n"
-                           "\n"
-                           "1.5  1 1 5     0 1 0    0 1 0  50  # a comment\n";
+  const std::string good =
+      "# t  eye       target   up     fov\n"
+      "0    0 1 5     0 1 0    0 1 0  40\n"
+      "\n"
+      "1.5  1 1 5     0 1 0    0 1 0  50  # a comment\n";
   const std::vector<CameraKey> keys = parse_camera_keys(good, "walk.txt");
   ASSERT_EQ(keys.size(), 2u);
   EXPECT_EQ(keys[1].time, 1.5);
@@ -247,7 +254,8 @@ TEST(Animation, KeyframeFilesAreReadLineByLineAndRefusedByLine) {
 TEST(Animation, KeyframePathsPassThroughTheKeysAndKeepUniformMotion) {
   // Keys on a line at one speed but unevenly spaced in time: tangents over time make the motion exactly uniform.
   std::vector<CameraKey> keys;
-  for (double t : {0.0, 0.3, 1.0, 1.2, 2.0}) keys.push_back({t, {2.0 * t, 1.0, 5.0}, {2.0 * t, 1.0, 0.0}, {0, 1, 0}, 30 + 10 * t});
+  for (double t : {0.0, 0.3, 1.0, 1.2, 2.0})
+    keys.push_back({t, {2.0 * t, 1.0, 5.0}, {2.0 * t, 1.0, 0.0}, {0, 1, 0}, 30 + 10 * t});
   const CameraPath path = keyframe_camera_path(keys, "line");
   for (double t = 0.0; t <= 2.0; t += 0.05) {
     const CameraPose pose = path.at(t);
@@ -256,8 +264,10 @@ TEST(Animation, KeyframePathsPassThroughTheKeysAndKeepUniformMotion) {
     EXPECT_NEAR(*pose.fov_degrees, 30 + 10 * t, 1e-4) << t;
   }
   // Uneven keys: through every key, and the velocity continuous across an interior key.
-  keys = {{0.0, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40}, {1.0, {3, 1, 4}, {0, 0, 0}, {0, 1, 0}, 40},
-          {1.5, {2, 3, 1}, {0, 0, 0}, {0, 1, 0}, 40}, {3.0, {-1, 0, 2}, {0, 0, 0}, {0, 1, 0}, 40}};
+  keys = {{0.0, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40},
+          {1.0, {3, 1, 4}, {0, 0, 0}, {0, 1, 0}, 40},
+          {1.5, {2, 3, 1}, {0, 0, 0}, {0, 1, 0}, 40},
+          {3.0, {-1, 0, 2}, {0, 0, 0}, {0, 1, 0}, 40}};
   const CameraPath bent = keyframe_camera_path(keys, "bent");
   for (const CameraKey& k : keys) EXPECT_LT(glm::length(glm::dvec3(bent.at(k.time).eye) - k.eye), 1e-5);
   const double h = 1e-3;
@@ -364,8 +374,10 @@ TEST(Animation, AnimateWritesAnMp4PreviewWithFfmpeg) {
   o.mp4_path = (dir / "orbit.mp4").string();
   ASSERT_EQ(run_animate(o), 0) << "is ffmpeg installed (scripts/install-debian-packages.sh)?";
   for (int f = 0; f < 4; ++f) EXPECT_TRUE(fs::exists(dir / ("orbit_00" + std::to_string(f) + ".png")));
-  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                            "stream=nb_read_frames,width,height -of csv=p=0 '" + o.mp4_path + "'";
+  const std::string probe =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height -of csv=p=0 '" +
+      o.mp4_path + "'";
   FILE* pipe = popen(probe.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   char text[128] = {};

@@ -1,5 +1,7 @@
 // Cache files (issue 42, item 3; render/cache_file.h): records round-trip bit for bit, a process that reads the file
 // renders the next frame as the writer would have, and every bad file is refused by name before any frame.
+#include "render/cache_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -9,7 +11,6 @@
 
 #include "cli/commands.h"
 #include "image/image_io.h"
-#include "render/cache_file.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "test_support.h"
@@ -115,7 +116,8 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
     if (sealed) reseal(b);
     return b;
   };
-  cases.push_back({"text", "root:x:0:0:root:/root:/bin/bash\n" + std::string(200, 'x'), "not an rcsplat cache file", {}});
+  cases.push_back(
+      {"text", "root:x:0:0:root:/root:/bin/bash\n" + std::string(200, 'x'), "not an rcsplat cache file", {}});
   cases.push_back({"short", good.substr(0, 60), "too short", {}});
   cases.push_back({"version", patched(16, 9, true), "cache format version 9", {}});
   cases.push_back({"rcsplat version", patched(24, '7', true), "written by rcsplat 7", {}});
@@ -131,9 +133,8 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   }
   cases.push_back({"scene", good, "written for another scene",
                    [](AnimateOptions& o) { o.render.environment.sky = glm::vec3(0.1f); }});
-  cases.push_back({"settings", good, "written with other settings", [](AnimateOptions& o) {
-                     o.render.settings.cache.accuracy = 0.5f;
-                   }});
+  cases.push_back({"settings", good, "written with other settings",
+                   [](AnimateOptions& o) { o.render.settings.cache.accuracy = 0.5f; }});
   cases.push_back({"cap", good, "more than the 10 kept at most", [](AnimateOptions& o) { o.kept_records = 10; }});
   for (const Case& c : cases) {
     const std::string path = (dir / (c.name + ".cache")).string();

@@ -1,13 +1,14 @@
 // The flicker metric (issue 42, item 4) on sequences with a known answer: identical frames read 0, independent noise
 // reads its relative variance, and a smooth world-space pattern seen by a moving camera reads almost nothing once
 // reprojected (and much more if it were not). Frames are made on the host: a plane y = 0 seen by a pinhole camera.
+#include "image/flicker.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "image/error_metrics.h"
-#include "image/flicker.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -15,8 +16,10 @@ namespace {
 
 ViewCamera look(glm::dvec3 eye, glm::dvec3 target, double yfov_degrees) {
   char text[200];
-  std::snprintf(text, sizeof text, "perspective eye %.17g,%.17g,%.17g target %.17g,%.17g,%.17g up 0,1,0 "
-                "yfov_degrees %.17g ymag 0", eye.x, eye.y, eye.z, target.x, target.y, target.z, yfov_degrees);
+  std::snprintf(text, sizeof text,
+                "perspective eye %.17g,%.17g,%.17g target %.17g,%.17g,%.17g up 0,1,0 "
+                "yfov_degrees %.17g ymag 0",
+                eye.x, eye.y, eye.z, target.x, target.y, target.z, yfov_degrees);
   return parse_view_camera(text, "test");
 }
 
@@ -50,7 +53,8 @@ SequenceFrame frame_of_plane(const ViewCamera& c, int w, int h, Shade shade) {
 
 TEST(Flicker, IdenticalFramesReadZero) {
   const ViewCamera c = look({0.5, 3.0, 5.0}, {0.0, 0.0, 0.0}, 40.0);
-  const SequenceFrame f = frame_of_plane(c, 64, 48, [](const glm::dvec3& p, int k) { return 0.3 + 0.1 * k + 0.2 * std::sin(3 * p.x); });
+  const SequenceFrame f =
+      frame_of_plane(c, 64, 48, [](const glm::dvec3& p, int k) { return 0.3 + 0.1 * k + 0.2 * std::sin(3 * p.x); });
   const TemporalError e = temporal_rel_mse(f, f);
   EXPECT_EQ(e.rel_mse, 0.0);
   EXPECT_EQ(e.pixels, e.hits);
@@ -112,10 +116,11 @@ TEST(Flicker, OverTheAlbedoATextureUnderStillLightReadsNothing) {
 }
 
 TEST(Flicker, AMalformedCameraAttributeIsRefused) {
-  for (const char* bad : {"", "fisheye eye 0,0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",
-                          "perspective eye 0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",
-                          "perspective eye 0,0,0 target 0,0,0 up 0,1,0 yfov_degrees 40",
-                          "perspective eye 0,0,0 target 0,0,1 up 0,1,0", "orthographic eye 0,0,0 target 0,0,1 up 0,1,0 ymag 0"})
+  for (const char* bad :
+       {"", "fisheye eye 0,0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",
+        "perspective eye 0,0 target 0,0,1 up 0,1,0 yfov_degrees 40",
+        "perspective eye 0,0,0 target 0,0,0 up 0,1,0 yfov_degrees 40", "perspective eye 0,0,0 target 0,0,1 up 0,1,0",
+        "orthographic eye 0,0,0 target 0,0,1 up 0,1,0 ymag 0"})
     EXPECT_THROW(parse_view_camera(bad, "f.exr"), Error) << bad;
 }
 

@@ -1,12 +1,13 @@
 // Irradiance records kept across frames (issue 42, item 2; render/kept_records.h): a still camera settles on the same
 // bits, a kept record splats what it splatted when placed, a moved camera places records only where no kept one
 // reaches, and eviction keeps the cap, least recently used first.
+#include "render/kept_records.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "kernels/cache_math.h"
-#include "render/kept_records.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "test_support.h"
@@ -39,7 +40,8 @@ TEST(KeptRecords, AStillCameraSettlesOnTheSameBitsAndItsFirstFrameIsAFreshOne) {
   for (int f = 1; f < 4 && settled < 0; ++f)
     if (frames[size_t(f)].stats.kept_records.added == 0) settled = f;
   ASSERT_GE(settled, 1) << "still adding records after 4 frames of one view";
-  for (size_t f = size_t(settled) + 1; f < frames.size(); ++f) EXPECT_EQ(frames[f].color, frames[size_t(settled)].color);
+  for (size_t f = size_t(settled) + 1; f < frames.size(); ++f)
+    EXPECT_EQ(frames[f].color, frames[size_t(settled)].color);
   EXPECT_LT(frames[1].stats.kept_records.added, frames[0].stats.irradiance.records / 20);
 }
 
@@ -67,7 +69,8 @@ TEST(KeptRecords, AKeptRecordIsSplattedAsWhenItWasPlaced) {
     }
     if (near_new || first.depth[i] == 0.0f) continue;
     ++compared;
-    same += first.irradiance[3 * i] == second.irradiance[3 * i] && first.irradiance[3 * i + 1] == second.irradiance[3 * i + 1];
+    same += first.irradiance[3 * i] == second.irradiance[3 * i] &&
+            first.irradiance[3 * i + 1] == second.irradiance[3 * i + 1];
   }
   EXPECT_GT(compared, size_t(first.width * first.height) / 2);
   EXPECT_EQ(same, compared);
@@ -138,7 +141,8 @@ TEST(KeptRecords, AViewTakesTheRecordsItMaySeeAndEvictionDropsTheLeastRecentlyUs
   kept.begin_frame({});
   std::vector<CacheRecord> first;
   // Every other record well outside the 90-degree view (|x| = 3 |z|), the rest on its axis.
-  for (int i = 0; i < 80; ++i) first.push_back(record_at(i % 2 ? 3.0f * (1.0f + float(i)) : 0.0f, 0.0f, -1.0f - float(i)));
+  for (int i = 0; i < 80; ++i)
+    first.push_back(record_at(i % 2 ? 3.0f * (1.0f + float(i)) : 0.0f, 0.0f, -1.0f - float(i)));
   kept.add(first.data(), first.size());
   EXPECT_EQ(kept.size(), 80u);
   EXPECT_EQ(kept.stats().evicted, 0u);

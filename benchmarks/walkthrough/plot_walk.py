@@ -32,7 +32,8 @@ def main():
         denoise[int(os.path.basename(j).split(".")[0])] = json.load(open(j))["seconds"]
     times["path tracing + OIDN"] = {f: s + denoise.get(f, 0.0) for f, s in path.items()}
     flicker = {}
-    for name, key in (("records kept", "kept"), ("cache per frame", "fresh"), ("path tracing + OIDN", "oidn")):
+    for name, key in (("records kept", "kept"), ("cache per frame", "fresh"), ("path tracing + OIDN", "oidn"),
+                      ("frozen cache (the floor)", "frozen")):
         p = os.path.join(out, f"flicker_{key}_demodulated.json")
         if os.path.exists(p):
             flicker[name] = {q["frame"]: q["rel_mse"] for q in json.load(open(p))["pairs"]}

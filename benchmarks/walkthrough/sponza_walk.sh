@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Issue 42's walkthrough measurement: benchmarks/walkthrough/sponza_walk.txt through Sponza (512 x 384, render
 # defaults) rendered with records kept across frames (the default), with a cache per frame (--cache-per-frame), and by
-# stratified path tracing plus OIDN; references at frames 0, 60 and 119; then error per frame against the references,
-# flicker of each sequence (rcsplat flicker), and a plot of time and flicker per frame (walk.png).
+# stratified path tracing plus OIDN; then the walk again from the kept run's final cache file (--cache-in: a frozen
+# cache that places nothing, whose flicker is the floor that reprojection to the nearest pixel leaves: the flicker of
+# a renderer whose light does not change); references at frames 0, 60 and 119; then error per frame against the
+# references, flicker of each sequence (rcsplat flicker), and a plot of time and flicker per frame (walk.png).
 #   benchmarks/walkthrough/sponza_walk.sh OUT_DIR [render|analyse|all]   (needs ../shared/scenes, build/rcsplat and,
 #   for OIDN and the plot, benchmarks/setup_python.sh's environment; RCSPLAT=path/to/binary to use another binary)
 set -euo pipefail
@@ -17,11 +19,12 @@ path_spp="${PATH_SPP:-4}"
 references=(0 60 119)
 common=(animate "$scene" --keyframes "$walk" --width 512 --height 384 --last-frame "$last")
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$here/build/pocl-cache}"
-mkdir -p "$out"/{kept,fresh,path,oidn,ref}
+mkdir -p "$out"/{kept,frozen,fresh,path,oidn,ref}
 
 if [ "$stage" = render ] || [ "$stage" = all ]; then
   "$bin" "${common[@]}" -o "$out/kept/%04d.exr" -o "$out/kept/%04d.png" --stats "$out/kept.csv" \
-    --json "$out/kept.json" --mp4 "$out/kept.mp4"
+    --json "$out/kept.json" --mp4 "$out/kept.mp4" --cache-out "$out/walk.cache"
+  "$bin" "${common[@]}" -o "$out/frozen/%04d.exr" --stats "$out/frozen.csv" --cache-in "$out/walk.cache"
   for f in "${references[@]}"; do
     [ "$f" -le "$last" ] || continue
     "$bin" animate "$scene" --keyframes "$walk" --width 512 --height 384 --first-frame "$f" --last-frame "$f" \
@@ -47,6 +50,7 @@ if [ "$stage" = analyse ] || [ "$stage" = all ]; then
   for over in "" --demodulate; do
     suffix="${over:+_demodulated}"
     "$bin" flicker "$out/kept/%04d.exr" $over --json "$out/flicker_kept$suffix.json"
+    "$bin" flicker "$out/frozen/%04d.exr" $over --json "$out/flicker_frozen$suffix.json"
     "$bin" flicker "$out/fresh/%04d.exr" $over --json "$out/flicker_fresh$suffix.json"
     "$bin" flicker "$out/oidn/%04d.exr" --positions "$out/path/%04d.exr" $over --json "$out/flicker_oidn$suffix.json"
   done

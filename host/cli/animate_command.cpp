@@ -64,8 +64,9 @@ CameraPath choose_path(const AnimateOptions& o, const Scene& scene) {
     return orbit_camera_path(choose_camera(scene, o.render.settings.camera, o.render.settings.camera_overrides),
                              o.orbit_seconds, o.orbit_degrees);
   if (overrides)
-    throw Error("animate: --eye, --target, --up and --fov set where an --orbit starts; a keyframe file or the scene's "
-                "animation places the camera itself");
+    throw Error(
+        "animate: --eye, --target, --up and --fov set where an --orbit starts; a keyframe file or the scene's "
+        "animation places the camera itself");
   if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
   if (o.render.scene_path.empty())
     throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
@@ -107,14 +108,20 @@ nlohmann::json frame_json(const FrameRow& r) {
   return {{"frame", r.frame},
           {"time", r.time},
           {"seconds", seconds},
-          {"records", {{"irradiance", s.irradiance.records}, {"radiance", s.radiance.records},
-                       {"reused", s.kept_records.reused},
-                       {"added", (s.kept_records.capacity ? s.kept_records.added : s.irradiance.records) +
-                                     s.radiance.records},
-                       {"evicted", s.kept_records.evicted}, {"kept", s.kept_records.kept}}},
-          {"rays", {{"primary", s.primary.primary_rays}, {"shadow", s.primary.shadow_rays},
-                    {"records", s.irradiance.rays}, {"radiance", s.radiance.rays}, {"glossy", s.glossy.rays},
-                    {"path", s.path.rays}}},
+          {"records",
+           {{"irradiance", s.irradiance.records},
+            {"radiance", s.radiance.records},
+            {"reused", s.kept_records.reused},
+            {"added", (s.kept_records.capacity ? s.kept_records.added : s.irradiance.records) + s.radiance.records},
+            {"evicted", s.kept_records.evicted},
+            {"kept", s.kept_records.kept}}},
+          {"rays",
+           {{"primary", s.primary.primary_rays},
+            {"shadow", s.primary.shadow_rays},
+            {"records", s.irradiance.rays},
+            {"radiance", s.radiance.rays},
+            {"glossy", s.glossy.rays},
+            {"path", s.path.rays}}},
           {"memory", {{"device_peak_bytes", s.device_memory.peak_bytes}, {"host_peak_bytes", r.host_peak_bytes}}}};
 }
 
@@ -137,8 +144,9 @@ int run_animate(const AnimateOptions& o) {
     if (png_pattern.empty()) throw Error("--mp4: the preview is made from PNG frames; add -o frames/%04d.png");
     ffmpeg = find_on_path("ffmpeg");
     if (ffmpeg.empty())
-      throw Error("--mp4: ffmpeg is not installed (on Debian: apt-get install ffmpeg); the frames need no ffmpeg, "
-                  "leave --mp4 out to render them alone");
+      throw Error(
+          "--mp4: ffmpeg is not installed (on Debian: apt-get install ffmpeg); the frames need no ffmpeg, "
+          "leave --mp4 out to render them alone");
     check_writable_destination(o.mp4_path);
   }
   for (const std::string& path : {o.stats_path, o.render.json_path})
@@ -147,8 +155,8 @@ int run_animate(const AnimateOptions& o) {
   if ((!o.render.cache_in.empty() || !o.render.cache_out.empty()) && o.cache_per_frame)
     throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
 
-  Scene scene = load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment,
-                           o.render.limits);
+  Scene scene =
+      load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment, o.render.limits);
   const CameraPath path = choose_path(o, scene);
   const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
   const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
@@ -205,8 +213,10 @@ int run_animate(const AnimateOptions& o) {
     csv += csv_row(row);
     if (!o.stats_path.empty()) write_text_file(o.stats_path, csv);  // after each frame: a stopped run keeps its rows
     char line[200];
-    std::snprintf(line, sizeof line, "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records (%llu reused, "
-                  "%llu kept)", frame, frame - first + 1, last - first + 1, row.time, image.stats.total_s,
+    std::snprintf(line, sizeof line,
+                  "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records (%llu reused, "
+                  "%llu kept)",
+                  frame, frame - first + 1, last - first + 1, row.time, image.stats.total_s,
                   (unsigned long long)(image.stats.irradiance.records + image.stats.radiance.records),
                   (unsigned long long)image.stats.kept_records.reused,
                   (unsigned long long)image.stats.kept_records.kept);
@@ -221,10 +231,26 @@ int run_animate(const AnimateOptions& o) {
     write_file_atomically(o.mp4_path, [&](const std::string& temp) -> std::string {
       char rate[32];
       std::snprintf(rate, sizeof rate, "%.9g", o.fps);
-      const int status = run_program(
-          ffmpeg, {"-y", "-loglevel", "error", "-framerate", rate, "-start_number", std::to_string(first), "-i",
-                   png_pattern, "-frames:v", std::to_string(last - first + 1), "-c:v", "libx264", "-pix_fmt",
-                   "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", "mp4", temp});
+      const int status = run_program(ffmpeg, {"-y",
+                                              "-loglevel",
+                                              "error",
+                                              "-framerate",
+                                              rate,
+                                              "-start_number",
+                                              std::to_string(first),
+                                              "-i",
+                                              png_pattern,
+                                              "-frames:v",
+                                              std::to_string(last - first + 1),
+                                              "-c:v",
+                                              "libx264",
+                                              "-pix_fmt",
+                                              "yuv420p",
+                                              "-vf",
+                                              "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                              "-f",
+                                              "mp4",
+                                              temp});
       return status == 0 ? "" : "ffmpeg failed (exit status " + std::to_string(status) + ")";
     });
     mp4_written = true;
@@ -237,9 +263,8 @@ int run_animate(const AnimateOptions& o) {
   std::printf("scene        %s\n", scene.source.c_str());
   std::printf("camera path  %s, %.3f s\n", path.description.c_str(), path.duration);
   std::printf("device       %s\n", gpu.device_info().name.c_str());
-  std::printf("frames       %lld to %lld at %g frames/s, %d x %d, indirect light: %s\n", first, last, o.fps,
-              width, height,
-              gi_method_name(rows.front().stats.gi));
+  std::printf("frames       %lld to %lld at %g frames/s, %d x %d, indirect light: %s\n", first, last, o.fps, width,
+              height, gi_method_name(rows.front().stats.gi));
   const GiMethod gi = rows.front().stats.gi;
   if (gi == GiMethod::octree || (gi == GiMethod::splat && o.cache_per_frame)) {
     std::printf("cache        a new cache each frame%s\n",
@@ -251,11 +276,12 @@ int run_animate(const AnimateOptions& o) {
       added += r.stats.kept_records.added;
       evicted += r.stats.kept_records.evicted;
     }
-    std::printf("cache        irradiance records kept across frames: %llu placed, %llu reused in all (%.0f a frame), "
-                "%llu evicted, %llu kept at the end (at most %zu: --kept-records); radiance records: a new set each "
-                "frame\n",
-                (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
-                (unsigned long long)evicted, (unsigned long long)rows.back().stats.kept_records.kept, o.kept_records);
+    std::printf(
+        "cache        irradiance records kept across frames: %llu placed, %llu reused in all (%.0f a frame), "
+        "%llu evicted, %llu kept at the end (at most %zu: --kept-records); radiance records: a new set each "
+        "frame\n",
+        (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
+        (unsigned long long)evicted, (unsigned long long)rows.back().stats.kept_records.kept, o.kept_records);
   }
   std::printf("time         %.2f s in all; first frame %.2f s (with the setup), later frames %.2f s each on average\n",
               wall, rows.front().stats.total_s, later_mean);
@@ -268,18 +294,18 @@ int run_animate(const AnimateOptions& o) {
     for (const FrameRow& r : rows) frames.push_back(frame_json(r));
     nlohmann::json outputs_json = o.render.outputs;
     if (mp4_written) outputs_json.push_back(o.mp4_path);
-    const nlohmann::json j = {{"scene", scene.source},
-                              {"camera_path", {{"source", path.description}, {"duration", path.duration}}},
-                              {"device", gpu.device_info().name},
-                              {"fps", o.fps},
-                              {"first_frame", first},
-                              {"last_frame", last},
-                              {"cache", o.cache_per_frame ? "per_frame" : "kept_records"},
-                              {"kept_records_capacity", o.kept_records},
-                              {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s},
-                                           {"later_frames_mean", later_mean}}},
-                              {"frames", frames},
-                              {"outputs", outputs_json}};
+    const nlohmann::json j = {
+        {"scene", scene.source},
+        {"camera_path", {{"source", path.description}, {"duration", path.duration}}},
+        {"device", gpu.device_info().name},
+        {"fps", o.fps},
+        {"first_frame", first},
+        {"last_frame", last},
+        {"cache", o.cache_per_frame ? "per_frame" : "kept_records"},
+        {"kept_records_capacity", o.kept_records},
+        {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}}},
+        {"frames", frames},
+        {"outputs", outputs_json}};
     write_text_file(o.render.json_path, j.dump(2) + "\n");
   }
   return 0;

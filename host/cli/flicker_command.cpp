@@ -65,21 +65,24 @@ int run_flicker(const FlickerOptions& o) {
   seen /= double(judged.pairs.size());
   std::printf("frames       %s, %lld to %lld (%zu pairs), layer %s%s\n", o.frames.c_str(), o.first_frame, last,
               judged.pairs.size(), o.layer.c_str(), o.demodulate ? " over the albedo" : "");
-  std::printf("flicker      temporal relMSE %.4g (mean over the pairs); %.1f%% of the pixels that see a surface saw it "
-              "in the frame before too\n", judged.mean, 100.0 * seen);
+  std::printf(
+      "flicker      temporal relMSE %.4g (mean over the pairs); %.1f%% of the pixels that see a surface saw it "
+      "in the frame before too\n",
+      judged.mean, 100.0 * seen);
   if (!o.reference.empty())
     std::printf("reference    %s: %.4g; less the reference's: %.4g\n", o.reference.c_str(), reference.mean,
                 judged.mean - reference.mean);
   if (!o.json_path.empty()) {
     nlohmann::json pairs = nlohmann::json::array();
     for (size_t i = 0; i < judged.pairs.size(); ++i) {
-      nlohmann::json p = {{"frame", o.first_frame + (long long)i + 1}, {"rel_mse", judged.pairs[i].rel_mse},
+      nlohmann::json p = {{"frame", o.first_frame + (long long)i + 1},
+                          {"rel_mse", judged.pairs[i].rel_mse},
                           {"pixels", judged.pairs[i].pixels}};
       if (!o.reference.empty()) p["reference_rel_mse"] = reference.pairs[i].rel_mse;
       pairs.push_back(p);
     }
     nlohmann::json j = {{"frames", o.frames}, {"first_frame", o.first_frame}, {"last_frame", last},
-                        {"layer", o.layer}, {"demodulated", o.demodulate}, {"temporal_rel_mse", judged.mean},
+                        {"layer", o.layer},   {"demodulated", o.demodulate},  {"temporal_rel_mse", judged.mean},
                         {"pairs", pairs}};
     if (!o.reference.empty()) {
       j["reference"] = o.reference;

@@ -35,19 +35,26 @@ ViewCamera parse_view_camera(const std::string& attribute, const std::string& so
   bool ok = kind == "perspective" || kind == "orthographic";
   int found = 0;
   while (ok && in >> key >> value) {
-    if (key == "eye") eye = parse_vector(value, &ok), found |= 1;
-    else if (key == "target") target = parse_vector(value, &ok), found |= 2;
-    else if (key == "up") up = parse_vector(value, &ok), found |= 4;
-    else if (key == "yfov_degrees") yfov_degrees = std::strtod(value.c_str(), nullptr), found |= 8;
-    else if (key == "ymag") ymag = std::strtod(value.c_str(), nullptr), found |= 16;
+    if (key == "eye")
+      eye = parse_vector(value, &ok), found |= 1;
+    else if (key == "target")
+      target = parse_vector(value, &ok), found |= 2;
+    else if (key == "up")
+      up = parse_vector(value, &ok), found |= 4;
+    else if (key == "yfov_degrees")
+      yfov_degrees = std::strtod(value.c_str(), nullptr), found |= 8;
+    else if (key == "ymag")
+      ymag = std::strtod(value.c_str(), nullptr), found |= 16;
   }
   ViewCamera c;
   c.orthographic = kind == "orthographic";
-  const bool lens = c.orthographic ? (found & 16) && ymag > 0.0 : (found & 8) && yfov_degrees > 0.0 && yfov_degrees < 180.0;
+  const bool lens =
+      c.orthographic ? (found & 16) && ymag > 0.0 : (found & 8) && yfov_degrees > 0.0 && yfov_degrees < 180.0;
   c.eye = eye;
   c.forward = target - eye;
   if (!ok || (found & 7) != 7 || !lens || !(glm::length(c.forward) > 0.0) || !(glm::length(up) > 0.0))
-    throw Error(source + ": its rcsplat:camera attribute is not a view rcsplat wrote ('" + attribute.substr(0, 80) + "')");
+    throw Error(source + ": its rcsplat:camera attribute is not a view rcsplat wrote ('" + attribute.substr(0, 80) +
+                "')");
   c.forward = glm::normalize(c.forward);
   c.right = glm::cross(c.forward, glm::normalize(up));
   if (!(glm::length(c.right) > 1e-9)) throw Error(source + ": its rcsplat:camera's up is along the view");

@@ -214,7 +214,8 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
     fail("truncated or padded: " + std::to_string(size) + " bytes where its " + std::to_string(count) +
          " records need " + std::to_string(kHeaderBytes + count * kPerRecordBytes + 8));
   if (count > capacity)
-    fail(std::to_string(count) + " records, more than the " + std::to_string(capacity) + " kept at most (--kept-records)");
+    fail(std::to_string(count) + " records, more than the " + std::to_string(capacity) +
+         " kept at most (--kept-records)");
   std::string body(size - kHeaderBytes, '\0');
   if (!file.read(body.data(), std::streamsize(body.size()))) fail("cannot read the cache file");
   Fnv sum;
@@ -226,11 +227,13 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
     fail("written by rcsplat " + written_by + ", this is " + RCSPLAT_VERSION +
          ": records are computed differently from version to version");
   if (scene != expected.scene)
-    fail("written for another scene (or this scene changed since: its geometry, materials, textures, lights or "
-         "environment)");
+    fail(
+        "written for another scene (or this scene changed since: its geometry, materials, textures, lights or "
+        "environment)");
   if (settings != expected.settings)
-    fail("written with other settings than this render's (cache settings, seed, bounces, photons, pixel samples); "
-         "render with the settings that wrote it");
+    fail(
+        "written with other settings than this render's (cache settings, seed, bounces, photons, pixel samples); "
+        "render with the settings that wrote it");
   std::vector<CacheRecord> records(count);
   std::vector<uint64_t> last_used(count);
   std::memcpy(records.data(), body.data(), count * sizeof(CacheRecord));

@@ -37,16 +37,19 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation) {
                 std::to_string(scene.animation_names.size()) + " animation(s)");
   for (const Scene::AnimatedContent& moved : scene.animated_content)
     if (moved.animation == animation)
-      throw Error(scene.source + ": " + moved.what + "; `animate` moves only the camera through a scene that stands "
+      throw Error(scene.source + ": " + moved.what +
+                  "; `animate` moves only the camera through a scene that stands "
                   "still (one cache serves the whole path); walk through it as it stands with --keyframes or --orbit");
   if (camera < 0 || size_t(camera) >= scene.cameras.size())
     throw Error("--camera " + std::to_string(camera) + ": " + scene.source + " has " +
                 std::to_string(scene.cameras.size()) + " camera(s): " + describe_cameras(scene));
-  const std::string name = "animations[" + std::to_string(animation) + "] '" + scene.animation_names[size_t(animation)] + "'";
+  const std::string name =
+      "animations[" + std::to_string(animation) + "] '" + scene.animation_names[size_t(animation)] + "'";
   if (size_t(camera) >= scene.camera_rigs.size() || !rig_is_animated(scene.camera_rigs[size_t(camera)], animation)) {
     std::string animated;
     for (size_t c = 0; c < scene.camera_rigs.size(); ++c)
-      if (rig_is_animated(scene.camera_rigs[c], animation)) animated += (animated.empty() ? "" : ", ") + camera_name(scene, int(c));
+      if (rig_is_animated(scene.camera_rigs[c], animation))
+        animated += (animated.empty() ? "" : ", ") + camera_name(scene, int(c));
     throw Error(scene.source + ": " + name + " does not move " + camera_name(scene, camera) +
                 (animated.empty() ? std::string(" nor any camera") : "; it moves " + animated + " (--camera)"));
   }
@@ -84,7 +87,8 @@ std::vector<CameraKey> parse_camera_keys(const std::string& text, const std::str
     }
     if (v.empty()) continue;
     if (v.size() != 11)
-      throw Error(where + ": " + std::to_string(v.size()) + " numbers where a key has 11 (time, eye x y z, target "
+      throw Error(where + ": " + std::to_string(v.size()) +
+                  " numbers where a key has 11 (time, eye x y z, target "
                   "x y z, up x y z, vertical field of view in degrees)");
     CameraKey k{v[0], {v[1], v[2], v[3]}, {v[4], v[5], v[6]}, {v[7], v[8], v[9]}, v[10]};
     if (!keys.empty() && !(k.time > keys.back().time))
@@ -103,7 +107,8 @@ std::vector<CameraKey> parse_camera_keys(const std::string& text, const std::str
 CameraPath keyframe_camera_path(const std::vector<CameraKey>& keys, const std::string& source) {
   if (keys.empty()) throw Error(source + ": no keys");
   CameraPath path;
-  path.description = "keyframes " + source + " (" + std::to_string(keys.size()) + " key" + (keys.size() == 1 ? "" : "s") + ")";
+  path.description =
+      "keyframes " + source + " (" + std::to_string(keys.size()) + " key" + (keys.size() == 1 ? "" : "s") + ")";
   path.duration = keys.back().time;
   path.at = [keys](double t) {
     const size_t n = keys.size();

@@ -20,7 +20,8 @@ bool sphere_meets_view(const CameraParams& c, const glm::dvec3& centre, double r
     return z > -reach && std::fabs(x) <= h * aspect + reach && std::fabs(y) <= h + reach;
   }
   if (z < -reach) return false;
-  // A side plane through the eye, |x| = z t: the signed distance of the centre beyond it is (|x| - z t) / sqrt(1 + t^2).
+  // A side plane through the eye, |x| = z t: the signed distance of the centre beyond it is (|x| - z t) / sqrt(1 +
+  // t^2).
   const double ty = double(c.tan_half_fov_y), tx = ty * aspect;
   return (std::fabs(x) - z * tx) <= reach * std::sqrt(1.0 + tx * tx) &&
          (std::fabs(y) - z * ty) <= reach * std::sqrt(1.0 + ty * ty);

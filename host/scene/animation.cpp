@@ -79,9 +79,12 @@ glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t) {
     for (const AnimationTrack& track : node.tracks) {
       if (track.animation != animation) continue;
       const glm::vec4 v = sample_track(track, t);
-      if (track.property == AnimatedProperty::translation) translation = glm::vec3(v);
-      else if (track.property == AnimatedProperty::scale) scale = glm::vec3(v);
-      else rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
+      if (track.property == AnimatedProperty::translation)
+        translation = glm::vec3(v);
+      else if (track.property == AnimatedProperty::scale)
+        scale = glm::vec3(v);
+      else
+        rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
     }
     world = world * glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) *
             glm::scale(glm::mat4(1.0f), scale);

@@ -836,9 +836,17 @@ class GltfReader {
     // Where each node sits in the cameras' chains.
     std::vector<std::vector<std::pair<size_t, size_t>>> in_rigs(nodes);
     scene_.camera_rigs.clear();
+    // Every camera keeps its own chain and copies of its channels: bounded, so that many cameras under one deep chain
+    // cannot make the loader hold their product (found by thinking like the fuzzer).
+    constexpr size_t kMaxRigNodes = 1u << 20, kMaxRigKeyFloats = size_t(1) << 26;
+    size_t rig_nodes = 0, rig_key_floats = 0;
     for (int camera_node : camera_nodes_) {
       std::vector<int> chain;
       for (int n = camera_node; n >= 0; n = parent[size_t(n)]) chain.push_back(n);
+      rig_nodes += chain.size();
+      if (rig_nodes > kMaxRigNodes)
+        fail("its cameras sit under more than " + std::to_string(kMaxRigNodes) + " nodes in all (each camera's chain "
+             "of nodes up to its scene root counted)");
       std::reverse(chain.begin(), chain.end());
       CameraRig rig;
       for (int n : chain) {
@@ -883,6 +891,10 @@ class GltfReader {
                "translation, rotation and scale only)");
         const AnimationTrack track = read_track(int(a), anim.samplers[size_t(channel.sampler)], property,
                                                 where + " (sampler " + std::to_string(channel.sampler) + ")");
+        rig_key_floats += (track.times.size() + track.values.size()) * in_rigs[size_t(n)].size();
+        if (rig_key_floats > kMaxRigKeyFloats)
+          fail(where + ": the cameras' animation keys pass " + std::to_string(kMaxRigKeyFloats) +
+               " numbers in all (each camera holds the keys of the nodes above it)");
         for (const auto& [rig, position] : in_rigs[size_t(n)])
           scene_.camera_rigs[rig].chain[position].tracks.push_back(track);
       }

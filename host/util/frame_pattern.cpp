@@ -27,7 +27,8 @@ FramePattern::FramePattern(const std::string& pattern, const std::string& option
       j += 2;
     }
     if (j >= pattern.size() || pattern[j] != 'd' || found)
-      throw Error(option + " " + pattern + ": a frame sequence's name holds one frame number, %d or %0Nd (N at most "
+      throw Error(option + " " + pattern +
+                  ": a frame sequence's name holds one frame number, %d or %0Nd (N at most "
                   "9; %% for a percent sign), as in frames/%04d.exr");
     found = true;
     digits_ = digits;
@@ -35,7 +36,8 @@ FramePattern::FramePattern(const std::string& pattern, const std::string& option
     i = j;
   }
   if (!found)
-    throw Error(option + " " + pattern + ": a frame sequence's name holds one frame number, %d or %0Nd, as in "
+    throw Error(option + " " + pattern +
+                ": a frame sequence's name holds one frame number, %d or %0Nd, as in "
                 "frames/%04d.exr");
 }
 
