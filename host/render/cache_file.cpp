@@ -77,7 +77,7 @@ bool finite_all(const float* v, size_t n) {
 // A record a splat can use without harm: every number finite but the horizons (infinite where nothing hides a
 // sector), a positive radius and pixel size, a unit normal, irradiance and horizons not negative.
 bool record_in_range(const CacheRecord& r) {
-  if (!finite_all(reinterpret_cast<const float*>(&r.position), 4) || !finite_all(r.normal, 3) ||
+  if (!finite_all(r.position, 3) || !finite_all(&r.radius, 1) || !finite_all(r.normal, 3) ||
       !finite_all(r.irradiance, 3) || !finite_all(&r.pixel_size, 1) || !finite_all(r.grad_translation, 9) ||
       !finite_all(r.grad_rotation, 9))
     return false;
