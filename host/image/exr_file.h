@@ -19,6 +19,10 @@ struct ExrPixels {
 // The build's EXR implementation. All throw rcsplat::Error naming the file.
 void write_exr_file(const std::string& path, const ExrPixels& image);
 ExrPixels read_exr_file(const std::string& path);
+// Channels of a layer read already, in the order named ({"X", "Y", "Z"} of "position": position.X, .Y, .Z); path names
+// the file in the error thrown when one is missing (image/image_io.cpp).
+std::vector<float> exr_channels(const ExrPixels& image, const std::string& path, const std::string& layer,
+                                const std::vector<std::string>& names);
 // Size, channel names and attributes without the pixels (values stays empty).
 ExrPixels read_exr_header(const std::string& path);
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "image/error_metrics.h"
-#include "image/image_io.h"
+#include "image/exr_file.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -67,19 +67,24 @@ ViewCamera parse_view_camera(const std::string& attribute, const std::string& so
 
 SequenceFrame read_sequence_frame(const std::string& path, const std::string& layer, const std::string& geometry_path,
                                   bool demodulate) {
-  const std::string& geometry = geometry_path.empty() ? path : geometry_path;
+  // Each file is read once: the colours' (and albedo's), and the geometry's when another file holds it.
+  const ExrPixels image = read_exr_file(path);
+  const std::string& geometry_name = geometry_path.empty() ? path : geometry_path;
+  const ExrPixels other = geometry_path.empty() ? ExrPixels{} : read_exr_file(geometry_path);
+  const ExrPixels& geometry = geometry_path.empty() ? image : other;
   SequenceFrame f;
-  const ExrAttributes attributes = read_exr_attributes(geometry);
-  auto camera = attributes.find("rcsplat:camera");
-  if (camera == attributes.end())
-    throw Error(geometry + ": has no rcsplat:camera attribute (not a frame rcsplat rendered)");
-  f.camera = parse_view_camera(camera->second, geometry);
-  int w = 0, h = 0;
-  f.rgb = read_exr_layer(path, layer, f.width, f.height);
-  f.position = read_exr_channels(geometry, "position", {"X", "Y", "Z"}, w, h);
-  if (w != f.width || h != f.height) throw Error(geometry + ": not the size of " + path);
-  f.depth = read_exr_channels(geometry, "depth", {"Z"}, w, h);
-  if (demodulate) divide_by_albedo(f.rgb, read_exr_layer(path, "albedo", w, h));
+  auto camera = geometry.text.find("rcsplat:camera");
+  if (camera == geometry.text.end())
+    throw Error(geometry_name + ": has no rcsplat:camera attribute (not a frame rcsplat rendered)");
+  f.camera = parse_view_camera(camera->second, geometry_name);
+  f.width = image.width;
+  f.height = image.height;
+  f.rgb = exr_channels(image, path, layer, {"R", "G", "B"});
+  if (geometry.width != f.width || geometry.height != f.height)
+    throw Error(geometry_name + ": not the size of " + path);
+  f.position = exr_channels(geometry, geometry_name, "position", {"X", "Y", "Z"});
+  f.depth = exr_channels(geometry, geometry_name, "depth", {"Z"});
+  if (demodulate) divide_by_albedo(f.rgb, exr_channels(image, path, "albedo", {"R", "G", "B"}));
   return f;
 }
 

@@ -54,9 +54,15 @@ void write_exr(const std::string& path, int width, int height, const std::vector
 
 std::vector<float> read_exr_channels(const std::string& path, const std::string& layer,
                                      const std::vector<std::string>& names, int& width, int& height) {
-  ExrPixels image = read_exr_file(path);
+  const ExrPixels image = read_exr_file(path);
   width = image.width;
   height = image.height;
+  return exr_channels(image, path, layer, names);
+}
+
+std::vector<float> exr_channels(const ExrPixels& image, const std::string& path, const std::string& layer,
+                                const std::vector<std::string>& names) {
+  const int width = image.width, height = image.height;
   const std::string prefix = layer.empty() ? "" : layer + ".";
   const size_t stride = image.channels.size(), n = names.size();
   std::vector<size_t> channel(n, stride);
