@@ -13,6 +13,7 @@
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
+#include "lobed_cornell_box.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -45,28 +46,108 @@ AnimateOptions orbit(const fs::path& dir) {
   return o;
 }
 
-TEST(CacheFile, RecordsRoundTripBitForBit) {
-  const Scene scene = make_cornell_box();
+// The lobed Cornell box (a glossy floor that casts caustics, a radiance-cached box) with two bounces from the photon map
+// and the light guide: every part of a cache file is written.
+RenderSettings everything_kept() {
   RenderSettings s = test::one_bounce_one_sample();
   s.width = s.height = 40;
+  s.light_samples = 4;
+  s.bounces = 2;
+  s.bounce_method = BounceMethod::photons;
+  s.photon_paths = 1u << 14;
+  s.caustic_photons = 1u << 14;
   s.keep_records = true;
+  return s;
+}
+
+RenderSettings at_pose(const Scene& scene, int pose) {
+  RenderSettings s = everything_kept();
+  const SceneCamera& camera = scene.cameras[0];
+  s.camera_overrides.eye =
+      camera.eye + 0.05f * float(pose) * glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
+  s.camera_overrides.target = camera.target;
+  return s;
+}
+
+template <typename T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+TEST(CacheFile, EverythingKeptRoundTripsBitForBit) {
+  const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
   Renderer renderer(test::gpu(), scene);
-  const FramePlan plan = renderer.plan(s);
+  const FramePlan plan = renderer.plan(at_pose(scene, 0));
   renderer.render(plan);
-  renderer.render(plan);
-  const KeptRecords& kept = renderer.kept_records();
-  ASSERT_GT(kept.size(), 100u);
+  renderer.render(renderer.plan(at_pose(scene, 1)));
+  const KeptCache& kept = renderer.kept_records();
+  ASSERT_GT(kept.irradiance.size(), 100u);
+  ASSERT_GT(kept.radiance.size(), 20u);
+  ASSERT_GT(kept.radiance.payload_per_record(), 0u);
+  ASSERT_TRUE(kept.light.has_photon_map && kept.light.has_caustic_map && kept.light.has_guide);
+  ASSERT_FALSE(kept.light.photons.empty() || kept.light.caustic_photons.empty() || kept.light.guide_clusters.empty());
   const KeptRecordsKey key = kept_records_key(plan.frame);
   const CacheFileIdentity identity{scene_fingerprint(scene), settings_fingerprint(key), "test"};
-  const std::string path = test::scratch_dir() + "/cornell.cache";
+  const std::string path = test::scratch_dir() + "/lobed.cache";
   write_cache_file(path, kept, identity);
-  KeptRecords read(1u << 20);
-  read_cache_file(path, identity, key, 1u << 20, read);
-  ASSERT_EQ(read.size(), kept.size());
-  EXPECT_EQ(std::memcmp(read.records().data(), kept.records().data(), kept.size() * sizeof(CacheRecord)), 0);
-  EXPECT_EQ(read.last_used(), kept.last_used());
-  EXPECT_EQ(read.frames_begun(), kept.frames_begun());
-  EXPECT_EQ(read_bytes(path).size(), 152 + kept.size() * 168 + 8);
+  KeptCache read(1u << 20);
+  read_cache_file(path, identity, key, cache_file_limits(plan.frame), read);
+  for (const auto& [a, b] : {std::pair{&read.irradiance, &kept.irradiance}, std::pair{&read.radiance, &kept.radiance}}) {
+    EXPECT_TRUE(same_bytes(a->records(), b->records()));
+    EXPECT_EQ(a->last_used(), b->last_used());
+    EXPECT_TRUE(same_bytes(a->payload(), b->payload()));
+    EXPECT_EQ(a->frames_begun(), b->frames_begun());
+  }
+  EXPECT_EQ(read.radiance.largest_radiance(), kept.radiance.largest_radiance());
+  EXPECT_TRUE(same_bytes(read.light.photons, kept.light.photons));
+  EXPECT_TRUE(same_bytes(read.light.caustic_photons, kept.light.caustic_photons));
+  EXPECT_TRUE(same_bytes(read.light.guide_clusters, kept.light.guide_clusters));
+  EXPECT_EQ(read.light.photon_paths, kept.light.photon_paths);
+  EXPECT_EQ(read.light.guide_hits, kept.light.guide_hits);
+  const size_t records = kept.irradiance.size() + kept.radiance.size();
+  EXPECT_EQ(read_bytes(path).size(), 144 + 8 + 16 + records * 168 + kept.radiance.payload().size() * 4 + 20 +
+                                         kept.light.photons.size() * 64 + 12 + kept.light.caustic_photons.size() * 64 +
+                                         20 + kept.light.guide_clusters.size() * 48 + 8);
+}
+
+// A process that reads the file renders the writer's next frame, bit for bit, with the writer's photons: the same file
+// with every photon map photon's power doubled gives another frame (so the photons are read, not shot again).
+TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
+  const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
+  Renderer writer(test::gpu(), scene);
+  writer.render(writer.plan(at_pose(scene, 0)));
+  writer.render(writer.plan(at_pose(scene, 1)));
+  const FramePlan next = writer.plan(at_pose(scene, 2));
+  const KeptRecordsKey key = kept_records_key(next.frame);
+  const CacheFileIdentity identity{scene_fingerprint(scene), settings_fingerprint(key), "test"};
+  const std::string path = test::scratch_dir() + "/walk.cache";
+  write_cache_file(path, writer.kept_records(), identity);
+  const KeptCache& kept = writer.kept_records();
+  const size_t photons_at = 144 + 8 + kept.irradiance.size() * 168 + 16 + kept.radiance.size() * 168 +
+                            kept.radiance.payload().size() * 4 + 4 + 8 + 8;
+  const size_t photons = kept.light.photons.size();
+  const RenderedImage expected = writer.render(next);
+
+  Renderer reader(test::gpu(), scene);
+  read_cache_file(path, identity, key, cache_file_limits(next.frame), reader.kept_records());
+  const RenderedImage frame = reader.render(reader.plan(at_pose(scene, 2)));
+  EXPECT_EQ(frame.color, expected.color);
+  EXPECT_EQ(frame.stats.photon_map.shoot_s, 0.0) << "photons shot again";
+
+  std::string bytes = read_bytes(path);
+  for (size_t i = 0; i < photons; ++i)
+    for (size_t field : {32u, 48u})  // flux and incident
+      for (size_t c = 0; c < 3; ++c) {
+        float v;
+        std::memcpy(&v, bytes.data() + photons_at + 64 * i + field + 4 * c, 4);
+        v *= 2.0f;
+        std::memcpy(bytes.data() + photons_at + 64 * i + field + 4 * c, &v, 4);
+      }
+  reseal(bytes);
+  test::write_file(path, bytes);
+  Renderer brighter(test::gpu(), scene);
+  read_cache_file(path, identity, key, cache_file_limits(next.frame), brighter.kept_records());
+  EXPECT_NE(brighter.render(brighter.plan(at_pose(scene, 2))).color, expected.color);
 }
 
 // A walk rendered in one process, and the same walk split at frame 2 into two processes joined by a cache file: the
@@ -127,9 +208,27 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   {
     std::string b = good;
     const float negative = -1.0f;
-    std::memcpy(b.data() + 152 + 160 * 3 + 12, &negative, 4);  // record 3's radius
+    std::memcpy(b.data() + 144 + 8 + 160 * 3 + 12, &negative, 4);  // record 3's radius
     reseal(b);
     cases.push_back({"radius", b, "record 3 holds numbers out of range", {}});
+  }
+  {
+    // A count that claims more than the file holds, sealed: refused before anything is allocated for it.
+    std::string b = good;
+    const uint64_t huge = uint64_t(1) << 60;
+    std::memcpy(b.data() + 144, &huge, 8);
+    reseal(b);
+    cases.push_back({"count", b, "truncated or padded", {}});
+  }
+  {
+    // The light guide's first cluster (after the records and the empty maps' sections) with a negative radius.
+    uint64_t records = 0;
+    std::memcpy(&records, good.data() + 144, 8);
+    std::string b = good;
+    const float negative = -1.0f;
+    std::memcpy(b.data() + 144 + 8 + records * 168 + 16 + 20 + 12 + 20 + 12, &negative, 4);
+    reseal(b);
+    cases.push_back({"cluster", b, "light guide cluster 0 holds numbers out of range", {}});
   }
   cases.push_back({"scene", good, "written for another scene",
                    [](AnimateOptions& o) { o.render.environment.sky = glm::vec3(0.1f); }});

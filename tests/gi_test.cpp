@@ -10,6 +10,7 @@
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "scene/procedural.h"
+#include "lobed_cornell_box.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -224,26 +225,6 @@ TEST(GlobalIllumination, BrdfCodeChangesNoBitOfALambertianScene) {
   }
 }
 
-// The built-in Cornell box with glTF's rough dielectric walls (a 4% lobe at roughness 1), a gold metal floor and a
-// dielectric tall box at the given roughnesses.
-Scene cornell_box_with_lobes(float floor_roughness, float box_roughness) {
-  Scene scene = make_cornell_box();
-  for (SceneMaterial& m : scene.materials) m.specular = 1.0f;
-  SceneMaterial floor = scene.materials[0];
-  floor.name = "gold floor";
-  floor.base_color = glm::vec4(0.9f, 0.7f, 0.4f, 1.0f);
-  floor.metallic = 1.0f;
-  floor.roughness = floor_roughness;
-  SceneMaterial box = scene.materials[0];
-  box.name = "glossy box";
-  box.roughness = box_roughness;
-  scene.materials.push_back(floor);
-  scene.materials.push_back(box);
-  scene.triangle_material[0] = scene.triangle_material[1] = uint32_t(scene.materials.size() - 2);
-  for (size_t t = 22; t < 32; ++t) scene.triangle_material[t] = uint32_t(scene.materials.size() - 1);
-  return scene;
-}
-
 // Indirect relMSE over the floor's and the tall box's pixels (cornell_box_with_lobes), less the reference's own
 // noise there.
 double lobe_pixel_error(const RenderedImage& img, const RenderedImage& ref) {
@@ -269,7 +250,7 @@ double lobe_pixel_error(const RenderedImage& img, const RenderedImage& ref) {
 // (bound: twice that), on the glossy pixels alone 7.2e-4 (bound 1.1e-3; composing half the sampled glossy light, a
 // planted bug, gives 1.5e-3 there and only 5.3e-4 over the whole image, hence the separate bound).
 TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
-  Scene scene = cornell_box_with_lobes(0.3f, 0.4f);
+  Scene scene = test::cornell_box_with_lobes(0.3f, 0.4f);
 
   RenderSettings settings = small_frame();
   PathReference reference = path_reference(scene, settings, 4096);
@@ -298,7 +279,7 @@ TEST(GlobalIllumination, GlossyCornellBoxSplatAgreesWithPathTracedReference) {
 // radiance-cached (LOBE_HSH). The indirect relMSE on those pixels against a path-traced reference, for HSH orders 2
 // to 10: it must fall as the order rises, and order 10 must stay within the stated bound.
 TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
-  Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  Scene scene = test::cornell_box_with_lobes(0.6f, 0.5f);
 
   RenderSettings settings = small_frame();
   PathReference reference = path_reference(scene, settings, 4096);
@@ -327,7 +308,7 @@ TEST(GlobalIllumination, RadianceCachedCornellBoxConvergesWithTheHshOrder) {
 // apart; radiance-cached sub-pixels no record reached take the lobe radiance of the record chosen near them), and the
 // cached lobes' pixels converge to the same sub-pixels' path-traced reference as at one sample.
 TEST(GlobalIllumination, AntiAliasedRadianceRecordsAreOneSamplesAndConverge) {
-  Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  Scene scene = test::cornell_box_with_lobes(0.6f, 0.5f);
   RenderSettings settings = small_frame();
   RenderSettings sub_pixels = small_frame(4);
   PathReference reference = path_reference(scene, sub_pixels, 4096);
@@ -378,7 +359,7 @@ bool same_bits(const RenderedImage& a, const RenderedImage& b) {
 // rebuilt for a new seed and kept for a new camera), and only the first pays for the BVH, the upload and the probe.
 // The scene has radiance-cached lobes, so the lobe table and the HSH order come from the renderer too.
 TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
-  const Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  const Scene scene = test::cornell_box_with_lobes(0.6f, 0.5f);
   RenderSettings first;  // the library's defaults: bounces, their method, pixel samples and HSH order chosen
   first.width = first.height = 32;
   first.light_samples = 4;
@@ -420,7 +401,7 @@ TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
 // radiance-cached lobes, so every splat pass runs. (The octree method, the classic baseline, keeps its index on the
 // host and uploads it each frame.)
 TEST(Renderer, ALaterFrameMakesNoBuffer) {
-  const Scene scene = cornell_box_with_lobes(0.6f, 0.5f);
+  const Scene scene = test::cornell_box_with_lobes(0.6f, 0.5f);
   for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
     RenderSettings s;
     s.width = s.height = 24;

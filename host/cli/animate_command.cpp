@@ -83,7 +83,8 @@ struct FrameRow {
 const char* kCsvHeader =
     "frame,time_s,seconds,kernel_build_s,bvh_s,upload_s,probe_s,gbuffer_s,direct_s,photons_s,caustics_s,guide_s,"
     "records_s,placement_s,splat_s,radiance_s,resolve_s,glossy_s,path_s,layers_s,records,records_reused,"
-    "records_added,records_evicted,radiance_records,primary_rays,shadow_rays,record_rays,radiance_rays,glossy_rays,"
+    "records_added,records_evicted,radiance_records,radiance_reused,radiance_added,radiance_evicted,primary_rays,"
+    "shadow_rays,record_rays,radiance_rays,glossy_rays,"
     "path_rays,device_peak_bytes,host_peak_bytes\n";
 
 std::string csv_row(const FrameRow& r) {
@@ -95,10 +96,23 @@ std::string csv_row(const FrameRow& r) {
   const KeptRecordsStats& k = s.kept_records;
   const bool kept = k.capacity > 0;  // else a cache per frame: every record is new, none is kept
   out << ',' << s.irradiance.records << ',' << k.reused << ',' << (kept ? k.added : s.irradiance.records) << ','
-      << k.evicted << ',' << s.radiance.records << ',' << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
+      << k.evicted << ',' << s.radiance.records << ',' << s.kept_radiance_records.reused << ','
+      << (kept ? s.kept_radiance_records.added : s.radiance.records) << ',' << s.kept_radiance_records.evicted << ','
+      << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
       << s.irradiance.rays << ',' << s.radiance.rays << ',' << s.glossy.rays << ',' << s.path.rays << ','
       << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << '\n';
   return out.str();
+}
+
+// One kind of records in a frame: those it splatted, and of them the kept ones it reused and those it added; with a
+// cache per frame (no capacity) every record is added.
+nlohmann::json kept_json(const KeptRecordsStats& k, uint64_t records) {
+  const bool kept = k.capacity > 0;
+  return {{"records", records},
+          {"reused", k.reused},
+          {"added", kept ? k.added : records},
+          {"evicted", k.evicted},
+          {"kept", k.kept}};
 }
 
 nlohmann::json frame_json(const FrameRow& r) {
@@ -109,12 +123,8 @@ nlohmann::json frame_json(const FrameRow& r) {
           {"time", r.time},
           {"seconds", seconds},
           {"records",
-           {{"irradiance", s.irradiance.records},
-            {"radiance", s.radiance.records},
-            {"reused", s.kept_records.reused},
-            {"added", (s.kept_records.capacity ? s.kept_records.added : s.irradiance.records) + s.radiance.records},
-            {"evicted", s.kept_records.evicted},
-            {"kept", s.kept_records.kept}}},
+           {{"irradiance", kept_json(s.kept_records, s.irradiance.records)},
+            {"radiance", kept_json(s.kept_radiance_records, s.radiance.records)}}},
           {"rays",
            {{"primary", s.primary.primary_rays},
             {"shadow", s.primary.shadow_rays},
@@ -270,18 +280,21 @@ int run_animate(const AnimateOptions& o) {
     std::printf("cache        a new cache each frame%s\n",
                 o.cache_per_frame ? " (--cache-per-frame)" : " (records are kept by the splat only)");
   } else if (gi == GiMethod::splat) {
-    uint64_t reused = 0, added = 0, evicted = 0;
-    for (const FrameRow& r : rows) {
-      reused += r.stats.kept_records.reused;
-      added += r.stats.kept_records.added;
-      evicted += r.stats.kept_records.evicted;
-    }
-    std::printf(
-        "cache        irradiance records kept across frames: %llu placed, %llu reused in all (%.0f a frame), "
-        "%llu evicted, %llu kept at the end (at most %zu: --kept-records); radiance records: a new set each "
-        "frame\n",
-        (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
-        (unsigned long long)evicted, (unsigned long long)rows.back().stats.kept_records.kept, o.kept_records);
+    auto summary = [&](const char* kind, KeptRecordsStats RenderStats::*member) {
+      uint64_t reused = 0, added = 0, evicted = 0;
+      for (const FrameRow& r : rows) {
+        reused += (r.stats.*member).reused;
+        added += (r.stats.*member).added;
+        evicted += (r.stats.*member).evicted;
+      }
+      std::printf(
+          "cache        %s records kept across frames: %llu placed, %llu reused in all (%.0f a frame), %llu "
+          "evicted, %llu kept at the end (at most %zu: --kept-records)\n",
+          kind, (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
+          (unsigned long long)evicted, (unsigned long long)(rows.back().stats.*member).kept, o.kept_records);
+    };
+    summary("irradiance", &RenderStats::kept_records);
+    if (rows.front().stats.radiance.records) summary("radiance", &RenderStats::kept_radiance_records);
   }
   std::printf("time         %.2f s in all; first frame %.2f s (with the setup), later frames %.2f s each on average\n",
               wall, rows.front().stats.total_s, later_mean);

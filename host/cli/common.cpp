@@ -62,9 +62,13 @@ CacheFileIdentity cache_identity(const GpuContext& gpu, const Scene& scene, cons
 
 void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
                      const std::string& path) {
-  read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame),
-                  plan.frame.kept_records_capacity, renderer.kept_records());
-  log_info(path + ": " + std::to_string(renderer.kept_records().size()) + " irradiance records read");
+  KeptCache& kept = renderer.kept_records();
+  read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame), cache_file_limits(plan.frame),
+                  kept);
+  log_info(path + ": " + std::to_string(kept.irradiance.size()) + " irradiance records, " +
+           std::to_string(kept.radiance.size()) + " radiance records, " + std::to_string(kept.light.photons.size()) +
+           " photons, " + std::to_string(kept.light.caustic_photons.size()) + " caustic photons and " +
+           std::to_string(kept.light.guide_clusters.size()) + " light guide clusters read");
 }
 
 void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,

@@ -12,7 +12,7 @@
 namespace rcsplat {
 namespace {
 
-size_t floats_per_record(int order) { return size_t(HSH_RECORD_PARTS) * 3 * size_t(order) * size_t(order); }
+size_t floats_per_order(int order) { return size_t(HSH_RECORD_PARTS) * 3 * size_t(order) * size_t(order); }
 
 // The integrals of cos(a phi) and sin(a phi) over [phi0, phi1], for an integer a >= 0.
 double integral_cos(int a, double phi0, double phi1) {
@@ -72,9 +72,9 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
 void HshRecordPass::reserve(size_t records) {
   if (records <= capacity_) return;
   size_t grown = std::max(records, capacity_ * 2);
-  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * floats_per_record(order_) * sizeof(float), "radiance records");
+  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * floats_per_order(order_) * sizeof(float), "radiance records");
   if (capacity_)
-    gpu_.queue().enqueueCopyBuffer(coefficients_, bigger, 0, 0, capacity_ * floats_per_record(order_) * sizeof(float));
+    gpu_.queue().enqueueCopyBuffer(coefficients_, bigger, 0, 0, capacity_ * floats_per_order(order_) * sizeof(float));
   coefficients_ = bigger;
   capacity_ = grown;
 }
@@ -108,8 +108,21 @@ void HshRecordPass::project(const cl::Buffer& strata, const cl::Buffer& records,
   gpu_.queue().finish();
 }
 
-void HshRecordPass::begin_frame() {
-  gpu_.queue().enqueueFillBuffer(largest_bits_, cl_uint(0), 0, sizeof(cl_uint));
+void HshRecordPass::begin_frame(float largest_kept) {
+  // Radiance is not negative, so its bits order as unsigned integers (the kernel's atomic_max).
+  gpu_.queue().enqueueFillBuffer(largest_bits_, std::bit_cast<cl_uint>(std::max(largest_kept, 0.0f)), 0,
+                                 sizeof(cl_uint));
+}
+
+size_t HshRecordPass::floats_per_record() const { return rcsplat::floats_per_order(order_); }
+
+void HshRecordPass::load(const std::vector<float>& coefficients, uint32_t count) {
+  if (coefficients.size() != size_t(count) * floats_per_record())
+    throw Error("radiance records: " + std::to_string(coefficients.size()) + " coefficients for " +
+                std::to_string(count) + " records of order " + std::to_string(order_));
+  if (count == 0) return;
+  reserve(count);
+  gpu_.queue().enqueueWriteBuffer(coefficients_, CL_TRUE, 0, coefficients.size() * sizeof(float), coefficients.data());
 }
 
 float HshRecordPass::largest_radiance() {
@@ -117,7 +130,7 @@ float HshRecordPass::largest_radiance() {
 }
 
 std::vector<float> HshRecordPass::download(uint32_t first, uint32_t count) {
-  size_t per = floats_per_record(order_);
+  size_t per = floats_per_order(order_);
   std::vector<float> out(size_t(count) * per);
   if (count)
     gpu_.queue().enqueueReadBuffer(coefficients_, CL_TRUE, size_t(first) * per * sizeof(float),

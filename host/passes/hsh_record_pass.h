@@ -20,8 +20,12 @@ std::vector<float> hsh_column_table(int order, unsigned columns);
 class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
-  // A new frame's records: the brightest stratum seen starts again from nothing (kept passes, render/indirect.h).
-  void begin_frame();
+  // A new frame's records: the brightest stratum seen starts again from `largest_kept` (0 for a cache of the frame's
+  // own; kept records' brightest for a walkthrough: render/kept_records.h).
+  void begin_frame(float largest_kept = 0.0f);
+  // Records 0 .. count - 1 get kept records' coefficients (floats_per_record() each, as download gives them).
+  void load(const std::vector<float>& coefficients, uint32_t count);
+  size_t floats_per_record() const;
 
   // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each), their
   // gradients bounded by the records' radii (records: the record pass's buffer); blocks.

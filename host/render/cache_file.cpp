@@ -1,9 +1,11 @@
 #include "render/cache_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -12,13 +14,14 @@ namespace rcsplat {
 namespace {
 
 constexpr char kMagic[16] = "rcsplat cache\0\0";
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;
 constexpr size_t kVersionBytes = 32, kDeviceBytes = 64;
-constexpr size_t kHeaderBytes = 16 + 4 + 4 + kVersionBytes + 8 * 4 + kDeviceBytes;
+constexpr size_t kHeaderBytes = 16 + 4 + 4 + kVersionBytes + 8 * 3 + kDeviceBytes;
 constexpr size_t kPerRecordBytes = sizeof(CacheRecord) + sizeof(uint64_t);
 // A new field of CacheSettings must join settings_fingerprint below (and a new field of CacheRecord, the format).
 static_assert(sizeof(CacheSettings) == 52, "a cache setting was added: fingerprint it in settings_fingerprint");
 static_assert(sizeof(CacheRecord) == 160, "the record changed: raise kFormatVersion");
+static_assert(sizeof(PhotonHit) == 64 && sizeof(GuideCluster) == 48, "a photon or cluster changed: raise kFormatVersion");
 
 // FNV-1a, 64 bits.
 class Fnv {
@@ -89,7 +92,65 @@ bool record_in_range(const CacheRecord& r) {
   return ok;
 }
 
+bool photon_in_range(const PhotonHit& p) {
+  if (!finite_all(p.position, 3) || !finite_all(p.normal, 3) || !finite_all(p.flux, 3) || !finite_all(p.incident, 3))
+    return false;
+  bool ok = p.hit != 0 && p.landing >= 0;
+  for (int c = 0; c < 3; ++c) ok = ok && p.flux[c] >= 0.0f && p.incident[c] >= 0.0f;
+  return ok;
+}
+
+bool cluster_in_range(const GuideCluster& c) {
+  if (!finite_all(c.centre, 3) || !finite_all(&c.radius, 1) || !finite_all(c.flux, 3) || !finite_all(c.normal, 3))
+    return false;
+  return c.radius >= 0.0f && c.flux[0] >= 0.0f && c.flux[1] >= 0.0f && c.flux[2] >= 0.0f;
+}
+
+// The file's bytes after the header, read in order; every read is checked against what is left, so a count the file
+// claims is never believed past its size.
+class Body {
+ public:
+  Body(const std::string& bytes, size_t at, std::function<void()> short_file)
+      : bytes_(bytes), at_(at), short_(std::move(short_file)) {}
+  template <typename T>
+  T value() {
+    need(sizeof(T));
+    return take<T>(bytes_, at_);
+  }
+  // n items of T, after checking that the file holds them.
+  template <typename T>
+  std::vector<T> items(uint64_t n) {
+    if (n > (bytes_.size() - at_) / sizeof(T)) short_();
+    std::vector<T> v(static_cast<size_t>(n));
+    std::memcpy(v.data(), bytes_.data() + at_, size_t(n) * sizeof(T));
+    at_ += size_t(n) * sizeof(T);
+    return v;
+  }
+  size_t left() const { return bytes_.size() - at_; }
+
+ private:
+  void need(size_t n) {
+    if (n > bytes_.size() - at_) short_();
+  }
+  const std::string& bytes_;
+  size_t at_;
+  std::function<void()> short_;
+};
+
 }  // namespace
+
+CacheFileLimits cache_file_limits(const RenderSettings& s) {
+  CacheFileLimits l;
+  l.records = s.kept_records_capacity;
+  l.radiance_floats = size_t(HSH_RECORD_PARTS) * 3 * size_t(s.hsh_order) * size_t(s.hsh_order);
+  // Each path lands at most bounces - 1 times after its first reflection (render/indirect_photons.cpp's rounds).
+  const size_t landings = s.bounces > 1 ? s.bounces - 1 : 0;
+  const size_t paths = s.photon_paths ? size_t(s.photon_paths)
+                                      : size_t(kPhotonRounds) * std::max<size_t>(kPhotonMapPhotons / std::max<size_t>(landings, 1), 1024);
+  l.photons = paths * landings;
+  l.caustic_photons = s.caustic_photons;  // one landing a path, after its glossy reflection
+  return l;
+}
 
 uint64_t scene_fingerprint(const Scene& s) {
   Fnv h;
@@ -152,7 +213,8 @@ uint64_t settings_fingerprint(const KeptRecordsKey& k) {
   h.value(c.finest_spacing_pixels);
   h.value(c.guide_rays);
   h.value(c.guide_photons);
-  for (unsigned v : {k.seed, k.bounces, k.photon_paths, k.photon_neighbours, k.caustic_photons, k.sub_pixel_side})
+  for (unsigned v :
+       {k.seed, k.bounces, k.photon_paths, k.photon_neighbours, k.caustic_photons, k.sub_pixel_side, k.hsh_order})
     h.value(v);
   h.value(k.bounce_method);
   h.value(k.short_ray_paths);
@@ -160,21 +222,56 @@ uint64_t settings_fingerprint(const KeptRecordsKey& k) {
   return h.get();
 }
 
-void write_cache_file(const std::string& path, const KeptRecords& kept, const CacheFileIdentity& identity) {
-  std::string out;
+namespace {
+
+void put_records(std::string& out, const KeptRecords& kept) {
   const std::vector<CacheRecord>& records = kept.records();
-  out.reserve(kHeaderBytes + records.size() * kPerRecordBytes + 8);
+  out.append(reinterpret_cast<const char*>(records.data()), records.size() * sizeof(CacheRecord));
+  out.append(reinterpret_cast<const char*>(kept.last_used().data()), records.size() * sizeof(uint64_t));
+}
+
+template <typename T>
+void put_items(std::string& out, const std::vector<T>& items) {
+  put(out, uint64_t(items.size()));
+  out.append(reinterpret_cast<const char*>(items.data()), items.size() * sizeof(T));
+}
+
+}  // namespace
+
+void write_cache_file(const std::string& path, const KeptCache& kept, const CacheFileIdentity& identity) {
+  std::string out;
+  const KeptLight& light = kept.light;
+  out.reserve(kHeaderBytes + (kept.irradiance.size() + kept.radiance.size()) * kPerRecordBytes +
+              kept.radiance.payload().size() * sizeof(float) +
+              (light.photons.size() + light.caustic_photons.size()) * sizeof(PhotonHit) + 256);
   out.append(kMagic, sizeof kMagic);
   put(out, kFormatVersion);
   put(out, uint32_t(sizeof(CacheRecord)));
   put_fixed(out, RCSPLAT_VERSION, kVersionBytes);
   put(out, identity.scene);
   put(out, identity.settings);
-  put(out, uint64_t(kept.frames_begun()));
-  put(out, uint64_t(records.size()));
+  put(out, uint64_t(kept.irradiance.frames_begun()));
   put_fixed(out, identity.device, kDeviceBytes);
-  out.append(reinterpret_cast<const char*>(records.data()), records.size() * sizeof(CacheRecord));
-  out.append(reinterpret_cast<const char*>(kept.last_used().data()), records.size() * sizeof(uint64_t));
+
+  put(out, uint64_t(kept.irradiance.size()));
+  put_records(out, kept.irradiance);
+
+  put(out, uint64_t(kept.radiance.size()));
+  put(out, uint32_t(kept.radiance.payload_per_record()));
+  put(out, kept.radiance.largest_radiance());
+  put_records(out, kept.radiance);
+  out.append(reinterpret_cast<const char*>(kept.radiance.payload().data()),
+             kept.radiance.payload().size() * sizeof(float));
+
+  put(out, uint32_t(light.has_photon_map));
+  put(out, uint64_t(light.photon_paths));
+  put_items(out, light.photons);
+  put(out, uint32_t(light.has_caustic_map));
+  put_items(out, light.caustic_photons);
+  put(out, uint32_t(light.has_guide));
+  put(out, uint64_t(light.guide_hits));
+  put_items(out, light.guide_clusters);
+
   Fnv sum;
   sum.bytes(out.data(), out.size());
   put(out, sum.get());
@@ -186,7 +283,7 @@ void write_cache_file(const std::string& path, const KeptRecords& kept, const Ca
 }
 
 void read_cache_file(const std::string& path, const CacheFileIdentity& expected, const KeptRecordsKey& key,
-                     size_t capacity, KeptRecords& into) {
+                     const CacheFileLimits& limits, KeptCache& into) {
   auto fail = [&](const std::string& problem) { throw Error(path + ": " + problem); };
   std::error_code ec;
   const uintmax_t size = std::filesystem::file_size(path, ec);
@@ -207,22 +304,51 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
          std::to_string(sizeof(CacheRecord)));
   const std::string written_by = take_fixed(head, at, kVersionBytes);
   const uint64_t scene = take<uint64_t>(head, at), settings = take<uint64_t>(head, at);
-  const uint64_t frames = take<uint64_t>(head, at), count = take<uint64_t>(head, at);
+  const uint64_t frames = take<uint64_t>(head, at);
   at += kDeviceBytes;  // the device that computed them: for a person reading the file
-  // The size the count claims, before anything is allocated for it.
-  if (count > (size - kHeaderBytes - 8) / kPerRecordBytes || kHeaderBytes + count * kPerRecordBytes + 8 != size)
-    fail("truncated or padded: " + std::to_string(size) + " bytes where its " + std::to_string(count) +
-         " records need " + std::to_string(kHeaderBytes + count * kPerRecordBytes + 8));
-  if (count > capacity)
-    fail(std::to_string(count) + " records, more than the " + std::to_string(capacity) +
-         " kept at most (--kept-records)");
-  std::string body(size - kHeaderBytes, '\0');
-  if (!file.read(body.data(), std::streamsize(body.size()))) fail("cannot read the cache file");
+
+  // The largest file these settings can have written, before the file is read whole.
+  const uint64_t most = kHeaderBytes + 2 * (8 + uint64_t(limits.records) * kPerRecordBytes) + 16 +
+                        uint64_t(limits.records) * limits.radiance_floats * sizeof(float) +
+                        (uint64_t(limits.photons) + limits.caustic_photons) * sizeof(PhotonHit) +
+                        GUIDE_MAX_CLUSTERS * sizeof(GuideCluster) + 64;
+  if (size > most)
+    fail(std::to_string(size) + " bytes, more than these settings' records and photons can fill (" +
+         std::to_string(most) + " bytes at most with --kept-records " + std::to_string(limits.records) + ")");
+  std::string bytes(size, '\0');
+  file.seekg(0);
+  if (!file.read(bytes.data(), std::streamsize(bytes.size()))) fail("cannot read the cache file");
+  auto truncated = [&] { fail("truncated or padded: its counts do not fit its " + std::to_string(size) + " bytes"); };
+
+  // The structure first: every count against the bytes left, nothing believed yet.
+  Body body(bytes, kHeaderBytes, truncated);
+  KeptRecords::Contents irradiance, radiance;
+  uint64_t n = body.value<uint64_t>();
+  irradiance.records = body.items<CacheRecord>(n);
+  irradiance.last_used = body.items<uint64_t>(n);
+  n = body.value<uint64_t>();
+  const uint32_t floats = body.value<uint32_t>();
+  radiance.payload_per_record = floats;
+  radiance.largest_radiance = body.value<float>();
+  radiance.records = body.items<CacheRecord>(n);
+  radiance.last_used = body.items<uint64_t>(n);
+  if (floats && n > body.left() / (uint64_t(floats) * sizeof(float))) truncated();
+  radiance.payload = body.items<float>(n * floats);
+  KeptLight light;
+  light.has_photon_map = body.value<uint32_t>() != 0;
+  light.photon_paths = body.value<uint64_t>();
+  light.photons = body.items<PhotonHit>(body.value<uint64_t>());
+  light.has_caustic_map = body.value<uint32_t>() != 0;
+  light.caustic_photons = body.items<PhotonHit>(body.value<uint64_t>());
+  light.has_guide = body.value<uint32_t>() != 0;
+  light.guide_hits = body.value<uint64_t>();
+  light.guide_clusters = body.items<GuideCluster>(body.value<uint64_t>());
+  if (body.left() != 8) truncated();
+
   Fnv sum;
-  sum.bytes(head.data(), head.size());
-  sum.bytes(body.data(), body.size() - 8);
-  at = body.size() - 8;
-  if (take<uint64_t>(body, at) != sum.get()) fail("damaged: its checksum does not match its contents");
+  sum.bytes(bytes.data(), bytes.size() - 8);
+  at = bytes.size() - 8;
+  if (take<uint64_t>(bytes, at) != sum.get()) fail("damaged: its checksum does not match its contents");
   if (written_by != RCSPLAT_VERSION)
     fail("written by rcsplat " + written_by + ", this is " + RCSPLAT_VERSION +
          ": records are computed differently from version to version");
@@ -234,15 +360,43 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
     fail(
         "written with other settings than this render's (cache settings, seed, bounces, photons, pixel samples); "
         "render with the settings that wrote it");
-  std::vector<CacheRecord> records(count);
-  std::vector<uint64_t> last_used(count);
-  std::memcpy(records.data(), body.data(), count * sizeof(CacheRecord));
-  std::memcpy(last_used.data(), body.data() + count * sizeof(CacheRecord), count * sizeof(uint64_t));
-  for (uint64_t i = 0; i < count; ++i) {
-    if (!record_in_range(records[i])) fail("record " + std::to_string(i) + " holds numbers out of range");
-    if (last_used[i] > frames) fail("record " + std::to_string(i) + " was used after the file's last frame");
+
+  // What these settings can make, then every number.
+  for (const auto* kind : {&irradiance, &radiance})
+    if (kind->records.size() > limits.records)
+      fail(std::to_string(kind->records.size()) + (kind == &irradiance ? " irradiance" : " radiance") +
+           " records, more than the " + std::to_string(limits.records) + " kept at most (--kept-records)");
+  if (!radiance.records.empty() && floats != limits.radiance_floats)
+    fail("radiance records of " + std::to_string(floats) + " coefficients; these settings' HSH order makes " +
+         std::to_string(limits.radiance_floats));
+  if (light.photons.size() > limits.photons || light.caustic_photons.size() > limits.caustic_photons ||
+      light.guide_clusters.size() > GUIDE_MAX_CLUSTERS)
+    fail("more photons or light guide clusters than these settings make");
+  for (const auto* kind : {&irradiance, &radiance}) {
+    const char* name = kind == &irradiance ? "record " : "radiance record ";
+    for (size_t i = 0; i < kind->records.size(); ++i) {
+      if (!record_in_range(kind->records[i])) fail(name + std::to_string(i) + " holds numbers out of range");
+      if (kind->last_used[i] > frames) fail(name + std::to_string(i) + " was used after the file's last frame");
+    }
   }
-  into.restore(key, std::move(records), std::move(last_used), frames);
+  if (!finite_all(radiance.payload.data(), radiance.payload.size()) || !std::isfinite(radiance.largest_radiance) ||
+      radiance.largest_radiance < 0.0f)
+    fail("radiance records' coefficients hold numbers out of range");
+  for (const std::vector<PhotonHit>* photons : {&light.photons, &light.caustic_photons})
+    for (size_t i = 0; i < photons->size(); ++i)
+      if (!photon_in_range((*photons)[i]))
+        fail(std::string(photons == &light.photons ? "photon " : "caustic photon ") + std::to_string(i) +
+             " holds numbers out of range");
+  for (size_t i = 0; i < light.guide_clusters.size(); ++i)
+    if (!cluster_in_range(light.guide_clusters[i]))
+      fail("light guide cluster " + std::to_string(i) + " holds numbers out of range");
+  if ((!light.has_photon_map && !light.photons.empty()) || (!light.has_caustic_map && !light.caustic_photons.empty()) ||
+      (!light.has_guide && !light.guide_clusters.empty()))
+    fail("photons or clusters of a map it says is absent");
+
+  into.irradiance.restore(key, std::move(irradiance), frames);
+  into.radiance.restore(key, std::move(radiance), frames);
+  into.light = std::move(light);
 }
 
 }  // namespace rcsplat

@@ -118,7 +118,7 @@ struct PathStats {
   double seconds = 0;
 };
 
-// Irradiance records kept across frames (render/kept_records.h): what this frame took, added and evicted.
+// Records kept across frames (render/kept_records.h): what this frame took, added and evicted.
 struct KeptRecordsStats {
   uint64_t reused = 0;   // kept records this frame's view took
   uint64_t added = 0;    // placed by this frame
@@ -143,7 +143,8 @@ struct RenderStats {
   GuideStats guide;
   PhotonMapStats photon_map;
   CausticMapStats caustics;
-  KeptRecordsStats kept_records;  // all 0 unless the renderer keeps records across frames
+  KeptRecordsStats kept_records;           // irradiance records; all 0 unless the renderer keeps records across frames
+  KeptRecordsStats kept_radiance_records;  // radiance records (LOBE_HSH pixels), likewise
   PathStats path;
 
   // The stages' times in the order a frame runs them (bench's columns); kernel builds are in none of them.

@@ -142,10 +142,14 @@ struct IndirectFrame {
   const RadianceLobeTable* lobe_table = nullptr;
   unsigned lobe_table_seed = 0;  // the seed it was sampled with
   float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
-  // The frame's camera (the G-buffer's, in device coordinates) and the irradiance records kept across frames (null: a
-  // cache of this frame's own; render/kept_records.h).
+  // The frame's camera (the G-buffer's, in device coordinates) and the irradiance and radiance records kept across
+  // frames (null: a cache of this frame's own; render/kept_records.h).
   const CameraParams* camera = nullptr;
   KeptRecords* kept_records = nullptr;
+  KeptRecords* kept_radiance_records = nullptr;
+  // The photons and clusters the light was made from, kept with the records for cache files (null with a cache of the
+  // frame's own). A Renderer that has no map yet builds it from the photons here when there are some (a cache file's).
+  KeptLight* kept_light = nullptr;
   // The path tracer's progress when several rounds share it (null: its own), and its samples before this frame's.
   Progress* progress = nullptr;
   size_t progress_done_before = 0;

@@ -18,12 +18,23 @@ CausticMapPass* attach_caustic_map(IndirectFrame& f) {
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::CausticKey key{f.settings.seed, f.settings.caustic_photons, f.settings.photon_neighbours};
   if (!light.caustic_map || light.caustic_key != key) {
+    const bool had_map = light.caustic_map != nullptr;
     light.caustic_map.reset();
     StageTimer timing(st.caustics.seconds, f.gpu, st.program_s);
     const SceneFrame& frame = f.device_scene.frame();
-    // Its own seed stream: the map must not correlate with the photon map's, the guide's or the records'.
-    std::vector<PhotonHit> photons = shoot_caustic_photons(f.gpu, f.device_scene, f.settings.caustic_photons,
-                                                           f.settings.seed ^ STREAM_CAUSTIC_MAP);
+    KeptLight* stored = f.kept_light;  // a cache file's photons for a Renderer that has built no map yet
+    std::vector<PhotonHit> photons;
+    if (stored && stored->has_caustic_map && !had_map) {
+      photons = stored->caustic_photons;
+    } else {
+      // Its own seed stream: the map must not correlate with the photon map's, the guide's or the records'.
+      photons = shoot_caustic_photons(f.gpu, f.device_scene, f.settings.caustic_photons,
+                                      f.settings.seed ^ STREAM_CAUSTIC_MAP);
+      if (stored) {
+        stored->has_caustic_map = true;
+        stored->caustic_photons = photons;
+      }
+    }
     const float start = photon_gather_radius(device_surface_area(f.scene, frame), photons.size(),
                                              f.settings.photon_neighbours);
     const float radius = crowded_gather_radius(photons, start, f.settings.photon_neighbours);

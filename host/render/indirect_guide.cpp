@@ -21,13 +21,23 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   const CacheSettings& cs = f.settings.cache;
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
-  if (!frame_light_guide(f)) {
+  KeptLight* stored = f.kept_light;
+  if (!frame_light_guide(f) && stored && stored->has_guide && !f.light.guide) {
+    // A cache file's clusters, for a Renderer that has built no guide yet.
+    f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons, stored->guide_clusters,
+                                                stored->guide_hits};
+  } else if (!frame_light_guide(f)) {
     StageTimer timing(st.guide.seconds, f.gpu, st.program_s);
     LightGuidePass photons(f.gpu, f.device_scene);
     // Its own seed stream: the photons must not correlate with the records' hemispheres.
     std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ STREAM_LIGHT_GUIDE);
     f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
                                                 cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
+    if (stored) {
+      stored->has_guide = true;
+      stored->guide_hits = f.light.guide->hits;
+      stored->guide_clusters = f.light.guide->clusters;
+    }
   }
   records.set_light_guide(f.light.guide->clusters, cs.guide_rays);
   st.guide.photons = f.light.guide->hits;

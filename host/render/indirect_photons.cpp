@@ -34,6 +34,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   const ViewIndependentLight::PhotonKey key{f.settings.seed, f.settings.bounces, f.settings.photon_paths,
                                             f.settings.photon_neighbours};
   if (!light.photon_map || light.photon_key != key) {
+    const bool had_map = light.photon_map != nullptr;
     light.photon_map.reset();
     StageTimer timing(st.photon_map.seconds, f.gpu, st.program_s);
     const SceneFrame& frame = f.device_scene.frame();
@@ -44,24 +45,37 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
         rounds ? std::max(kPhotonMapPhotons / (f.settings.bounces - 1), 1024u) : f.settings.photon_paths;
     std::vector<PhotonHit> kept;
     uint64_t paths = 0;
-    // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double
-    // them.
-    for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9;
-         ++round) {
-      StageTimer shoot(st.photon_map.shoot_s, f.gpu);
-      // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
-      std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
-                                                            f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
-      kept.insert(kept.end(), more.begin(), more.end());
-      paths += per_round;
-    }
-    // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
-    const float share = float(per_round) / float(paths);
-    for (PhotonHit& p : kept)
-      for (int c = 0; c < 3; ++c) {
-        p.flux[c] *= share;
-        p.incident[c] *= share;
+    // A cache file's photons (render/cache_file.h) for a Renderer that has built no map yet: the same photons, so the
+    // same map on the same device.
+    KeptLight* stored = f.kept_light;
+    if (stored && stored->has_photon_map && !had_map) {
+      kept = stored->photons;
+      paths = stored->photon_paths;
+    } else {
+      // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double
+      // them.
+      for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9;
+           ++round) {
+        StageTimer shoot(st.photon_map.shoot_s, f.gpu);
+        // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
+        std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
+                                                              f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
+        kept.insert(kept.end(), more.begin(), more.end());
+        paths += per_round;
       }
+      // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
+      const float share = float(per_round) / float(paths);
+      for (PhotonHit& p : kept)
+        for (int c = 0; c < 3; ++c) {
+          p.flux[c] *= share;
+          p.incident[c] *= share;
+        }
+      if (stored) {
+        stored->has_photon_map = true;
+        stored->photon_paths = paths;
+        stored->photons = kept;
+      }
+    }
     StageTimer grids_timing(st.photon_map.grids_s);
     PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
                                             kPhotonLookupStride, frame.device_positions(f.scene));

@@ -100,22 +100,37 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   RadianceSplatPass* splat = &passes.radiance_splat.get({order, f.lobe_table_seed}, [&] {
     return std::make_unique<RadianceSplatPass>(f.gpu, truncated(lobes.full, int(order)), lobes.row_of_material);
   });
-  const GBufferView& kept = splat->radiance_cached_pixels(gbuffer);
+  const GBufferView& cached = splat->radiance_cached_pixels(gbuffer);
   HshRecordPass& hsh =
       passes.hsh_records.get(order, [&] { return std::make_unique<HshRecordPass>(f.gpu, int(order)); });
-  hsh.begin_frame();
+  KeptRecords* kept_set = f.kept_radiance_records;  // a walkthrough's (render/kept_records.h), or null
+  if (kept_set) kept_set->begin_frame(kept_records_key(f.settings));
+  hsh.begin_frame(kept_set ? kept_set->largest_radiance() : 0.0f);
   DeviceRecordIndex& index =
-      passes.radiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, kept, cs); });
-  index.begin(kept, cs);
+      passes.radiance_index.get({}, [&] { return std::make_unique<DeviceRecordIndex>(f.gpu, cached, cs); });
+  index.begin(cached, cs);
   table_timing.stop();
   RecordPass& records = frame_record_pass(f, cs, true);  // the irradiance records' photon map and guide
 
+  // Radiance records kept from earlier frames, with their coefficients: fitted to this view and seated first, as the
+  // irradiance records are (indirect_splat.cpp).
+  uint32_t reused = 0;
+  if (kept_set) {
+    StageTimer timing(st.radiance.placement_s);
+    std::vector<float> coefficients;
+    const std::vector<CacheRecord> taken = kept_set->for_view(*f.camera, cs, &coefficients);
+    reused = uint32_t(taken.size());
+    records.load(taken);
+    hsh.load(coefficients, reused);
+    index.seat_kept(records, reused, cs);
+  }
+
   const uint32_t total = place_records(
-      index, records, kept, cs, f.settings.seed ^ STREAM_RADIANCE_RECORDS, st.radiance,
+      index, records, cached, cs, f.settings.seed ^ STREAM_RADIANCE_RECORDS, st.radiance,
       [&](uint32_t first, uint32_t count, const HemisphereParams& hemisphere) {
         hsh.project(records.strata(), records.records(), first, count, hemisphere.theta_strata, hemisphere.phi_strata);
       },
-      "radiance cache");
+      "radiance cache", reused);
 
   StageTimer splat_timing(st.radiance.splat_s);
   splat->splat_all(gbuffer, records.records(), hsh.coefficients(), total, cs.accuracy, hsh.largest_radiance());
@@ -125,6 +140,14 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
                                                           index.record_at_pixel_buffer(),
                                                           int(std::ceil(cs.max_reach_pixels)));
   splat_timing.stop();
+  if (kept_set) {
+    StageTimer timing(st.primary.layers_s);
+    const std::vector<CacheRecord> placed = records.download(reused, total - reused);
+    const std::vector<float> coefficients = hsh.download(reused, total - reused);
+    kept_set->add(placed.data(), placed.size(), coefficients.data(), hsh.floats_per_record());
+    kept_set->raise_largest_radiance(hsh.largest_radiance());
+    st.kept_radiance_records = kept_set->stats();
+  }
   return splat;
 }
 

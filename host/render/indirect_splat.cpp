@@ -31,6 +31,8 @@ void splat_indirect(IndirectFrame& f) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
+  // Kept records computed with other settings go, and the photons kept with them (the maps are made again).
+  if (f.kept_records && f.kept_records->begin_frame(kept_records_key(f.settings))) *f.kept_light = KeptLight{};
   RecordPass& records = frame_record_pass(f, cs, false);
   BuildTimer builds(f.gpu, st.program_s);
   DeviceRecordIndex& index =
@@ -43,7 +45,6 @@ void splat_indirect(IndirectFrame& f) {
   uint32_t kept = 0;
   if (f.kept_records) {
     StageTimer timing(st.irradiance.placement_s);
-    f.kept_records->begin_frame(kept_records_key(f.settings));
     const std::vector<CacheRecord> reused = f.kept_records->for_view(*f.camera, cs);
     kept = uint32_t(reused.size());
     records.load(reused);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numeric>
+#include <stdexcept>
 
 namespace rcsplat {
 namespace {
@@ -41,23 +42,31 @@ KeptRecordsKey kept_records_key(const RenderSettings& s) {
   k.bounce_method = s.bounce_method;
   k.short_ray_paths = s.short_ray_paths;
   k.photon_min_support = s.photon_min_support;
+  k.hsh_order = s.hsh_order;
   return k;
 }
 
-void KeptRecords::begin_frame(const KeptRecordsKey& key) {
-  if (!has_key_ || !(key == key_)) {
+bool KeptRecords::begin_frame(const KeptRecordsKey& key) {
+  const bool dropped = !has_key_ || !(key == key_);
+  if (dropped) {
     records_.clear();
     last_used_.clear();
+    payload_.clear();
+    payload_per_record_ = 0;
+    largest_radiance_ = 0.0f;
     key_ = key;
     has_key_ = true;
   }
   ++frame_;
   stats_ = KeptRecordsStats{};
   stats_.capacity = capacity_;
+  return dropped;
 }
 
-std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const CacheSettings& cache) {
+std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const CacheSettings& cache,
+                                               std::vector<float>* payload) {
   std::vector<CacheRecord> taken;
+  if (payload) payload->clear();
   const double accuracy = double(cache.accuracy), smallest = double(cache.min_reach_pixels);
   for (size_t i = 0; i < records_.size(); ++i) {
     const CacheRecord& r = records_[i];
@@ -69,24 +78,33 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
     const double reach = std::max(accuracy * double(r.radius), 1.01 * smallest * footprint);
     if (!sphere_meets_view(camera, p, reach)) continue;
     taken.push_back(r);
+    if (payload)
+      payload->insert(payload->end(), payload_.begin() + std::ptrdiff_t(i * payload_per_record_),
+                      payload_.begin() + std::ptrdiff_t((i + 1) * payload_per_record_));
     last_used_[i] = frame_;
   }
   stats_.reused = taken.size();
   return taken;
 }
 
-void KeptRecords::restore(const KeptRecordsKey& key, std::vector<CacheRecord> records, std::vector<uint64_t> last_used,
-                          uint64_t frames_begun) {
+void KeptRecords::restore(const KeptRecordsKey& key, Contents contents, uint64_t frames_begun) {
   key_ = key;
   has_key_ = true;
-  records_ = std::move(records);
-  last_used_ = std::move(last_used);
+  records_ = std::move(contents.records);
+  last_used_ = std::move(contents.last_used);
+  payload_ = std::move(contents.payload);
+  payload_per_record_ = contents.payload_per_record;
+  largest_radiance_ = contents.largest_radiance;
   frame_ = frames_begun;
 }
 
-void KeptRecords::add(const CacheRecord* records, size_t count) {
+void KeptRecords::add(const CacheRecord* records, size_t count, const float* payload, size_t payload_per_record) {
+  if (!records_.empty() && payload_per_record != payload_per_record_)
+    throw std::logic_error("kept records: a payload of another size under the same key");
+  payload_per_record_ = payload_per_record;
   records_.insert(records_.end(), records, records + count);
   last_used_.insert(last_used_.end(), count, frame_);
+  if (payload_per_record) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
   stats_.added = count;
   if (records_.size() > capacity_) {
     // The least recently used go first; among records last used by the same frame, the earliest kept.
@@ -101,10 +119,13 @@ void KeptRecords::add(const CacheRecord* records, size_t count) {
       if (!drop[i]) {
         records_[kept] = records_[i];
         last_used_[kept] = last_used_[i];
+        std::copy_n(payload_.begin() + std::ptrdiff_t(i * payload_per_record_), payload_per_record_,
+                    payload_.begin() + std::ptrdiff_t(kept * payload_per_record_));
         ++kept;
       }
     records_.resize(kept);
     last_used_.resize(kept);
+    payload_.resize(kept * payload_per_record_);
     stats_.evicted = excess;
   }
   stats_.kept = records_.size();

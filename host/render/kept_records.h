@@ -15,6 +15,7 @@
 // The light the records read (photon map, light guide, caustic map) is kept by the Renderer already
 // (ViewIndependentLight), so a record placed at frame 90 sees the same photons as one placed at frame 0.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -29,23 +30,32 @@ namespace rcsplat {
 struct KeptRecordsKey {
   CacheSettings cache;
   unsigned seed = 0, bounces = 0, photon_paths = 0, photon_neighbours = 0, caustic_photons = 0, sub_pixel_side = 1;
+  unsigned hsh_order = 0;  // the radiance records' coefficients
   BounceMethod bounce_method = BounceMethod::automatic;
   float short_ray_paths = 0.0f, photon_min_support = 0.0f;
   bool operator==(const KeptRecordsKey&) const = default;
 };
 KeptRecordsKey kept_records_key(const RenderSettings& frame_settings);
 
+// Records of one kind (irradiance or radiance) kept across frames. A radiance record carries its HSH coefficients
+// beside it (`payload` floats a record, kernels/hsh_records.cl's layout), kept, taken and evicted with it.
 class KeptRecords {
  public:
   explicit KeptRecords(size_t capacity) : capacity_(capacity) {}
 
-  // Starts a frame: drops every record when the key changed.
-  void begin_frame(const KeptRecordsKey& key);
+  // Starts a frame: drops every record when the key changed, and then says so.
+  bool begin_frame(const KeptRecordsKey& key);
   // The kept records whose reach (a times the radius, or the view's minimum reach if larger) may meet the view of
-  // `camera` (device coordinates), in the order they were kept; they count as used by this frame.
-  std::vector<CacheRecord> for_view(const CameraParams& camera, const CacheSettings& cache);
-  // Keeps the records this frame placed (device coordinates), then evicts the least recently used past the capacity.
-  void add(const CacheRecord* records, size_t count);
+  // `camera` (device coordinates), in the order they were kept; they count as used by this frame. payload (if not
+  // null) gets their payloads in the same order.
+  std::vector<CacheRecord> for_view(const CameraParams& camera, const CacheSettings& cache,
+                                    std::vector<float>* payload = nullptr);
+  // Keeps the records this frame placed (device coordinates) with their payloads (`payload_per_record` floats each;
+  // the same count every frame while the key stays), then evicts the least recently used past the capacity.
+  void add(const CacheRecord* records, size_t count, const float* payload = nullptr, size_t payload_per_record = 0);
+  // Radiance records: the brightest stratum any kept record saw (the radiance splat's bound), raised by each frame.
+  float largest_radiance() const { return largest_radiance_; }
+  void raise_largest_radiance(float value) { largest_radiance_ = std::max(largest_radiance_, value); }
 
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
@@ -54,10 +64,19 @@ class KeptRecords {
   // For cache files (render/cache_file.h): what is kept, the frame that last used each record, the frames begun.
   const std::vector<CacheRecord>& records() const { return records_; }
   const std::vector<uint64_t>& last_used() const { return last_used_; }
+  const std::vector<float>& payload() const { return payload_; }
+  size_t payload_per_record() const { return payload_per_record_; }
   uint64_t frames_begun() const { return frame_; }
+  // What a cache file holds of one kind of records.
+  struct Contents {
+    std::vector<CacheRecord> records;
+    std::vector<uint64_t> last_used;
+    std::vector<float> payload;
+    size_t payload_per_record = 0;
+    float largest_radiance = 0.0f;
+  };
   // Replaces what is kept with a cache file's records, computed with these settings.
-  void restore(const KeptRecordsKey& key, std::vector<CacheRecord> records, std::vector<uint64_t> last_used,
-               uint64_t frames_begun);
+  void restore(const KeptRecordsKey& key, Contents contents, uint64_t frames_begun);
 
  private:
   size_t capacity_;
@@ -66,7 +85,37 @@ class KeptRecords {
   uint64_t frame_ = 0;
   std::vector<CacheRecord> records_;
   std::vector<uint64_t> last_used_;  // the last frame whose view took each record
+  std::vector<float> payload_;       // payload_per_record_ floats a record
+  size_t payload_per_record_ = 0;
+  float largest_radiance_ = 0.0f;
   KeptRecordsStats stats_;
+};
+
+// The light records read that does not depend on the view, as photons and clusters: what the photon map, the caustic
+// map and the light guide were made from (render/indirect.h ViewIndependentLight). Kept beside the records so that a
+// cache file carries the light its records were computed with, and a process reading it builds the maps from these
+// photons in place of shooting them (on another device its own estimates of the same photons).
+struct KeptLight {
+  bool has_photon_map = false;
+  uint64_t photon_paths = 0;
+  std::vector<PhotonHit> photons;  // the photon map's landings, each round's share of the power applied
+  bool has_caustic_map = false;
+  std::vector<PhotonHit> caustic_photons;
+  bool has_guide = false;
+  uint64_t guide_hits = 0;
+  std::vector<GuideCluster> guide_clusters;
+};
+
+// What a walkthrough keeps (Renderer::kept_records): the irradiance records of the splat and the radiance records of
+// the LOBE_HSH pixels, each with its own cap, and the light they were computed with.
+struct KeptCache {
+  explicit KeptCache(size_t capacity) : irradiance(capacity), radiance(capacity) {}
+  void set_capacity(size_t capacity) {
+    irradiance.set_capacity(capacity);
+    radiance.set_capacity(capacity);
+  }
+  KeptRecords irradiance, radiance;
+  KeptLight light;
 };
 
 }  // namespace rcsplat

@@ -287,7 +287,9 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   frame.camera = &camera;
   if (settings.keep_records && settings.gi == GiMethod::splat) {
     kept_records().set_capacity(settings.kept_records_capacity);
-    frame.kept_records = kept_records_.get();
+    frame.kept_records = &kept_records_->irradiance;
+    frame.kept_radiance_records = &kept_records_->radiance;
+    frame.kept_light = &kept_records_->light;
   } else {
     kept_records_.reset();
   }
@@ -411,8 +413,8 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   return img;
 }
 
-KeptRecords& Renderer::kept_records() {
-  if (!kept_records_) kept_records_ = std::make_unique<KeptRecords>(RenderSettings{}.kept_records_capacity);
+KeptCache& Renderer::kept_records() {
+  if (!kept_records_) kept_records_ = std::make_unique<KeptCache>(RenderSettings{}.kept_records_capacity);
   return *kept_records_;
 }
 

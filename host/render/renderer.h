@@ -28,7 +28,7 @@ class LayerPass;
 struct RadianceLobeTable;
 struct ViewIndependentLight;
 struct MethodPasses;
-class KeptRecords;
+struct KeptCache;
 
 class Renderer {
  public:
@@ -48,9 +48,9 @@ class Renderer {
   RenderedImage render(const RenderSettings& request) { return render(plan(request)); }
 
   const DeviceScene& device_scene() const { return *device_scene_; }
-  // The irradiance records kept across frames (RenderSettings::keep_records), made empty on first use: cache files
-  // (render/cache_file.h) read into it before a frame and write it after one.
-  KeptRecords& kept_records();
+  // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
+  // cache files (render/cache_file.h) read into it before a frame and write it after one.
+  KeptCache& kept_records();
 
  private:
   double kept_per_bounce();
@@ -72,7 +72,7 @@ class Renderer {
   std::unique_ptr<LayerPass> layers_;
   std::unique_ptr<ViewIndependentLight> light_;
   std::unique_ptr<MethodPasses> passes_;  // the last frame's method's
-  std::unique_ptr<KeptRecords> kept_records_;  // RenderSettings::keep_records
+  std::unique_ptr<KeptCache> kept_records_;  // RenderSettings::keep_records
   std::optional<double> kept_per_bounce_;
   unsigned lobe_table_seed_ = 0;
   std::unique_ptr<RadianceLobeTable> lobe_table_;
