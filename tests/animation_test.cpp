@@ -223,6 +223,77 @@ TEST(Animation, AGltfCameraFollowsItsNodeAndItsParent) {
   EXPECT_THROW(gltf_camera_path(scene, 0, 2), Error);
 }
 
+// A quad in front of a still camera, with a floor behind it, and an animation that slides the quad by `slide` along x
+// at t = 1 s (STEP); slide given with `moving` false: the quad stands there, no animation.
+std::string sliding_quad_scene(const std::string& dir, const std::string& name, float slide, bool moving) {
+  GltfBuilder b;
+  float pos[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0,
+                 -3, -3, -1, 3, -3, -1, 3, 3, -1, -3, 3, -1};
+  uint32_t idx[] = {0, 1, 2, 0, 2, 3};
+  const int p = b.add_accessor(b.add_view(pos, sizeof pos), 5126, 4, "VEC3");
+  const int wall = b.add_accessor(b.add_view(pos + 12, 12 * sizeof(float)), 5126, 4, "VEC3");
+  const int i = b.add_accessor(b.add_view(idx, sizeof idx), 5125, 6, "SCALAR");
+  b.doc["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", p}}}, {"indices", i}}})}},
+                                 {{"primitives", json::array({{{"attributes", {{"POSITION", wall}}}, {"indices", i}}})}}});
+  b.doc["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.01}}}}});
+  json quad = {{"name", "Quad"}, {"mesh", 0}};
+  if (!moving) quad["translation"] = {slide, 0.0, 0.0};
+  b.doc["nodes"] = json::array({quad, {{"name", "Wall"}, {"mesh", 1}},
+                                {{"name", "Cam"}, {"camera", 0}, {"translation", {0.0, 0.0, 3.0}}}});
+  b.doc["scenes"] = json::array({{{"nodes", {0, 1, 2}}}});
+  if (moving) {
+    const float times[] = {0.0f, 1.0f}, values[] = {0, 0, 0, slide, 0, 0};
+    const int t = b.add_accessor(b.add_view(times, sizeof times), 5126, 2, "SCALAR");
+    const int v = b.add_accessor(b.add_view(values, sizeof values), 5126, 2, "VEC3");
+    b.doc["animations"] = json::array(
+        {{{"name", "Slide"},
+          {"samplers", json::array({{{"input", t}, {"output", v}, {"interpolation", "STEP"}}})},
+          {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+  }
+  return b.write(dir, name);
+}
+
+// --cache-per-frame plays an animation that moves a mesh: each frame is the scene posed at its time, rendered as
+// `render` renders that pose (the same bits as a file with the quad standing there); with records kept it is refused
+// by name. Planted once: the pose not applied to the nodes (every frame the rest pose) failed the last frame's bits.
+TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
+  const fs::path dir = test::scratch_dir();
+  const std::string moving = sliding_quad_scene(dir.string(), "moving", 0.6f, true);
+  AnimateOptions o;
+  o.render.scene_path = moving;
+  o.render.settings = test::one_bounce_one_sample();
+  o.render.settings.width = o.render.settings.height = 32;
+  o.fps = 2.0;
+  o.cache_per_frame = true;
+  o.render.outputs = {(dir / "slide_%d.exr").string()};
+  ASSERT_EQ(run_animate(o), 0);
+  EXPECT_TRUE(fs::exists(dir / "slide_2.exr")) << "the animation lasts 1 s: frames 0 to 2";
+  EXPECT_FALSE(fs::exists(dir / "slide_3.exr"));
+  int w = 0, h = 0;
+  const std::vector<float> before = read_exr_rgb((dir / "slide_0.exr").string(), w, h);
+  EXPECT_EQ(read_exr_rgb((dir / "slide_1.exr").string(), w, h), before) << "STEP: still at rest at t = 0.5 s";
+  const std::vector<float> after = read_exr_rgb((dir / "slide_2.exr").string(), w, h);
+  EXPECT_NE(after, before);
+  RenderOptions posed;
+  posed.scene_path = sliding_quad_scene(dir.string(), "posed", 0.6f, false);
+  posed.settings = o.render.settings;
+  posed.outputs = {(dir / "posed.exr").string()};
+  ASSERT_EQ(run_render(posed), 0);
+  EXPECT_EQ(read_exr_rgb((dir / "posed.exr").string(), w, h), after);
+
+  o.cache_per_frame = false;
+  o.render.outputs = {(dir / "kept_%d.exr").string()};
+  try {
+    run_animate(o);
+    ADD_FAILURE() << "a moving mesh with records kept was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("animations[0] 'Slide' moves nodes[0] 'Quad'"), std::string::npos) << message;
+    EXPECT_NE(message.find("--cache-per-frame"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(fs::exists(dir / "kept_0.exr"));
+}
+
 TEST(Animation, KeyframeFilesAreReadLineByLineAndRefusedByLine) {
   const std::string good =
       "# t  eye       target   up     fov\n"

@@ -54,7 +54,7 @@ def main():
     b.set_ylabel("temporal relMSE, indirect over albedo")
     b.set_xlabel("frame")
     b.legend()
-    fig.suptitle("Sponza walk, 512 x 384")
+    fig.suptitle(sys.argv[2] if len(sys.argv) > 2 else "Sponza walk, 512 x 384")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "walk.png"), dpi=110)
 

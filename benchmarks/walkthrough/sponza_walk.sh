@@ -6,18 +6,20 @@
 # a renderer whose light does not change); references at frames 0, 60 and 119; then error per frame against the
 # references, flicker of each sequence (rcsplat flicker), and a plot of time and flicker per frame (walk.png).
 #   benchmarks/walkthrough/sponza_walk.sh OUT_DIR [render|analyse|all]   (needs ../shared/scenes, build/rcsplat and,
-#   for OIDN and the plot, benchmarks/setup_python.sh's environment; RCSPLAT=path/to/binary to use another binary)
+#   for OIDN and the plot, benchmarks/setup_python.sh's environment; RCSPLAT=path/to/binary to use another binary;
+#   SCENE, CAMERA_PATH (the path's options) and TITLE walk another scene: benchmarks/walkthrough/glossy_orbit.sh)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/../.." && pwd)"
 out="$1" stage="${2:-all}"
 bin="${RCSPLAT:-$here/build/rcsplat}"
 py="$here/benchmarks/.venv/bin/python"
-scene="$here/../shared/scenes/sponza_dabrovic/sponza.gltf"
-walk="$here/benchmarks/walkthrough/sponza_walk.txt"
+scene="${SCENE:-$here/../shared/scenes/sponza_dabrovic/sponza.gltf}"
+read -r -a camera_path <<<"${CAMERA_PATH:---keyframes $here/benchmarks/walkthrough/sponza_walk.txt}"
+title="${TITLE:-Sponza walk, 512 x 384}"
 last="${LAST_FRAME:-119}"
 path_spp="${PATH_SPP:-4}"
 references=(0 60 119)
-common=(animate "$scene" --keyframes "$walk" --width 512 --height 384 --last-frame "$last")
+common=(animate "$scene" "${camera_path[@]}" --width 512 --height 384 --last-frame "$last")
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$here/build/pocl-cache}"
 mkdir -p "$out"/{kept,frozen,fresh,path,oidn,ref}
 
@@ -27,7 +29,7 @@ if [ "$stage" = render ] || [ "$stage" = all ]; then
   "$bin" "${common[@]}" -o "$out/frozen/%04d.exr" --stats "$out/frozen.csv" --cache-in "$out/walk.cache"
   for f in "${references[@]}"; do
     [ "$f" -le "$last" ] || continue
-    "$bin" animate "$scene" --keyframes "$walk" --width 512 --height 384 --first-frame "$f" --last-frame "$f" \
+    "$bin" animate "$scene" "${camera_path[@]}" --width 512 --height 384 --first-frame "$f" --last-frame "$f" \
       --gi path --spp 256 --stratified --light-samples 256 --pixel-samples 16 -o "$out/ref/%04d.exr"
   done
   "$bin" "${common[@]}" --gi path --spp "$path_spp" --stratified -o "$out/path/%04d.exr" --stats "$out/path.csv"
@@ -54,5 +56,5 @@ if [ "$stage" = analyse ] || [ "$stage" = all ]; then
     "$bin" flicker "$out/fresh/%04d.exr" $over --json "$out/flicker_fresh$suffix.json"
     "$bin" flicker "$out/oidn/%04d.exr" --positions "$out/path/%04d.exr" $over --json "$out/flicker_oidn$suffix.json"
   done
-  "$py" "$here/benchmarks/walkthrough/plot_walk.py" "$out"
+  "$py" "$here/benchmarks/walkthrough/plot_walk.py" "$out" "$title"
 fi

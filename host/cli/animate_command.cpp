@@ -70,7 +70,7 @@ CameraPath choose_path(const AnimateOptions& o, const Scene& scene) {
   if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
   if (o.render.scene_path.empty())
     throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
-  return gltf_camera_path(scene, o.render.settings.camera, o.animation);
+  return gltf_camera_path(scene, o.render.settings.camera, o.animation, o.cache_per_frame);
 }
 
 struct FrameRow {
@@ -182,7 +182,22 @@ int run_animate(const AnimateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   GpuContext gpu(device);
   gpu.set_memory_budget(o.render.limits.device_memory_bytes);
-  Renderer renderer(gpu, scene, request.forced_switches);
+  // A scene the path's animation moves (--cache-per-frame only: choose_path refused it otherwise) is loaded again in
+  // each frame's pose with a renderer of its own, as `render` would render that pose; a still scene has one renderer.
+  const bool scene_moves = o.keyframes.empty() && !(o.orbit_seconds > 0.0) && !o.render.scene_path.empty() &&
+                           animation_moves_content(scene, o.animation);
+  std::unique_ptr<Scene> posed_scene;
+  std::unique_ptr<Renderer> renderer_holder =
+      scene_moves ? nullptr : std::make_unique<Renderer>(gpu, scene, request.forced_switches);
+  auto pose_scene = [&](long long frame) -> Renderer& {
+    if (!scene_moves) return *renderer_holder;
+    renderer_holder.reset();  // before the scene it renders from
+    posed_scene = std::make_unique<Scene>(load_scene(o.render.scene_path, request.camera, request.camera_overrides,
+                                                     o.render.environment, o.render.limits,
+                                                     ScenePose{o.animation, double(frame) / o.fps}));
+    renderer_holder = std::make_unique<Renderer>(gpu, *posed_scene, request.forced_switches);
+    return *renderer_holder;
+  };
   set_progress_shown(false);  // a line a frame instead of each pass's progress
   struct ShowProgressAgain {
     ~ShowProgressAgain() { set_progress_shown(true); }
@@ -199,7 +214,7 @@ int run_animate(const AnimateOptions& o) {
     return settings;
   };
   if (!o.render.cache_in.empty())  // before any frame: a file that does not fit is refused with no output
-    load_cache_file(gpu, renderer, scene, renderer.plan(frame_settings(first)), o.render.cache_in);
+    load_cache_file(gpu, *renderer_holder, scene, renderer_holder->plan(frame_settings(first)), o.render.cache_in);
 
   std::vector<FrameRow> rows;
   int width = 0, height = 0;
@@ -209,9 +224,10 @@ int run_animate(const AnimateOptions& o) {
     row.frame = frame;
     row.time = double(frame) / o.fps;
     const RenderSettings settings = frame_settings(frame);
-    last_plan = renderer.plan(settings);
-    const RenderedImage image = renderer.render(last_plan);
-    ExrAttributes attributes = render_attributes(scene, image, settings);
+    Renderer& frame_renderer = pose_scene(frame);
+    last_plan = frame_renderer.plan(settings);
+    const RenderedImage image = frame_renderer.render(last_plan);
+    ExrAttributes attributes = render_attributes(posed_scene ? *posed_scene : scene, image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);
     attributes["rcsplat:time"] = std::to_string(row.time);
     for (const FramePattern& p : outputs) write_render(p.path(frame), image, o.render.exposure, attributes);
@@ -234,7 +250,7 @@ int run_animate(const AnimateOptions& o) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (!o.render.cache_out.empty()) save_cache_file(gpu, renderer, scene, last_plan, o.render.cache_out);
+  if (!o.render.cache_out.empty()) save_cache_file(gpu, *renderer_holder, scene, last_plan, o.render.cache_out);
   bool mp4_written = false;
   if (!ffmpeg.empty()) {
     // Written beside the target and renamed, as every output is (util/atomic_file.h).

@@ -10,6 +10,7 @@
 #include "cl/gpu_context.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
+#include "scene/gltf_loader.h"
 #include "scene/scene_limits.h"
 #include "scene/scene_plan.h"
 
@@ -144,9 +145,11 @@ std::string default_bench_scene();
 // The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
 // placed for the camera the user chose (render/camera.h add_view_defaults).
 // With the environment the options ask for (--sky, --environment), which also stands in for the default light.
-// A glTF scene reads only what `limits` allows (scene/scene_limits.h, docs/SECURITY.md).
+// A glTF scene reads only what `limits` allows (scene/scene_limits.h, docs/SECURITY.md), placed in `pose` (its rest
+// pose by default; scene/gltf_loader.h).
 Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
-                 const EnvironmentSettings& environment = {}, const SceneLimits& limits = {});
+                 const EnvironmentSettings& environment = {}, const SceneLimits& limits = {},
+                 const ScenePose& pose = {});
 
 // --cache-in / --cache-out (render/cache_file.h): checked before any work (the splat only; --cache-out writable);
 // then read into the renderer's kept records for the plan's settings, or written from them.

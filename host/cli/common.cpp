@@ -17,8 +17,8 @@
 namespace rcsplat {
 
 Scene load_scene(const std::string& path, int camera, const CameraOverrides& overrides,
-                 const EnvironmentSettings& environment, const SceneLimits& limits) {
-  Scene scene = path.empty() ? make_cornell_box() : load_gltf(path, limits);
+                 const EnvironmentSettings& environment, const SceneLimits& limits, const ScenePose& pose) {
+  Scene scene = path.empty() ? make_cornell_box() : load_gltf(path, limits, pose);
   scene.environment = make_environment(environment);
   add_view_defaults(scene, camera, overrides);
   return scene;

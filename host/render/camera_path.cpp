@@ -30,22 +30,47 @@ bool degenerate_view(const glm::dvec3& eye, const glm::dvec3& target, const glm:
 
 }  // namespace
 
-CameraPath gltf_camera_path(const Scene& scene, int camera, int animation) {
+bool animation_moves_content(const Scene& scene, int animation) {
+  for (const Scene::AnimatedContent& moved : scene.animated_content)
+    if (moved.animation == animation) return true;
+  return false;
+}
+
+CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool scene_may_move) {
   if (scene.animation_names.empty()) throw Error(scene.source + ": the scene has no animation to play");
   if (animation < 0 || size_t(animation) >= scene.animation_names.size())
     throw Error("--animation " + std::to_string(animation) + ": " + scene.source + " has " +
                 std::to_string(scene.animation_names.size()) + " animation(s)");
   for (const Scene::AnimatedContent& moved : scene.animated_content)
-    if (moved.animation == animation)
+    if (moved.animation == animation && !scene_may_move)
       throw Error(scene.source + ": " + moved.what +
-                  "; `animate` moves only the camera through a scene that stands "
-                  "still (one cache serves the whole path); walk through it as it stands with --keyframes or --orbit");
+                  "; with records kept across frames `animate` moves only the camera through a scene that stands "
+                  "still (one cache serves the whole path): render it with --cache-per-frame, or walk through it as "
+                  "it stands with --keyframes or --orbit");
   if (camera < 0 || size_t(camera) >= scene.cameras.size())
     throw Error("--camera " + std::to_string(camera) + ": " + scene.source + " has " +
                 std::to_string(scene.cameras.size()) + " camera(s): " + describe_cameras(scene));
   const std::string name =
       "animations[" + std::to_string(animation) + "] '" + scene.animation_names[size_t(animation)] + "'";
-  if (size_t(camera) >= scene.camera_rigs.size() || !rig_is_animated(scene.camera_rigs[size_t(camera)], animation)) {
+  const bool content_moves = scene_may_move && animation_moves_content(scene, animation);
+  const bool camera_moves =
+      size_t(camera) < scene.camera_rigs.size() && rig_is_animated(scene.camera_rigs[size_t(camera)], animation);
+  if (!camera_moves && content_moves) {
+    // A still camera watching the scene move: its rest pose (the scene's own camera, with the user's overrides).
+    const SceneCamera still = scene.cameras[size_t(camera)];
+    CameraPath path;
+    path.description = "glTF " + name + " (moving the scene; " + camera_name(scene, camera) + " stands still)";
+    path.duration = scene.animation_durations[size_t(animation)];
+    path.at = [still](double) {
+      CameraPose pose;
+      pose.eye = still.eye;
+      pose.target = still.target;
+      pose.up = still.up;
+      return pose;
+    };
+    return path;
+  }
+  if (!camera_moves) {
     std::string animated;
     for (size_t c = 0; c < scene.camera_rigs.size(); ++c)
       if (rig_is_animated(scene.camera_rigs[c], animation))
@@ -57,6 +82,7 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation) {
   CameraPath path;
   path.description = "glTF " + name + " of " + camera_name(scene, camera);
   path.duration = rig_duration(rig, animation);
+  if (content_moves) path.duration = std::max(path.duration, scene.animation_durations[size_t(animation)]);
   path.at = [rig, animation](double t) {
     const glm::mat4 world = rig_world_matrix(rig, animation, t);
     CameraPose pose;

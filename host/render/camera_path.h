@@ -26,9 +26,13 @@ struct CameraPath {
 };
 
 // The glTF animation `animation` of the scene's camera `camera` (its node and every node above it). Throws
-// rcsplat::Error when the scene has no such animation, when it does not move that camera, or when it moves a mesh
-// or a light (named: one cache serves the whole path, so the scene must stand still).
-CameraPath gltf_camera_path(const Scene& scene, int camera, int animation);
+// rcsplat::Error when the scene has no such animation, when it moves neither that camera nor (with scene_may_move)
+// anything else, or when it moves a mesh or a light and scene_may_move is false (named: one cache serves the whole
+// path, so the scene must stand still unless each frame has a cache of its own). With scene_may_move the path lasts
+// as long as the animation's last key, and a camera the animation does not move stands at its rest pose.
+CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool scene_may_move = false);
+// Whether `animation` moves a mesh or a light of the scene.
+bool animation_moves_content(const Scene& scene, int animation);
 
 // One key of a keyframe file: at `time` seconds the camera is at eye, looks at target, with up and a vertical field
 // of view in degrees.

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -34,8 +35,14 @@ const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_
 class GltfReader {
  public:
   GltfReader(const std::string& path, const tinygltf::Model& model, Scene& scene, const SceneLimits& limits,
-             HostBudget& budget, const std::set<int>& zero_accessors)
-      : path_(path), model_(model), scene_(scene), limits_(limits), budget_(budget), zero_accessors_(zero_accessors) {}
+             HostBudget& budget, const std::set<int>& zero_accessors, const ScenePose& pose)
+      : path_(path),
+        model_(model),
+        scene_(scene),
+        limits_(limits),
+        budget_(budget),
+        zero_accessors_(zero_accessors),
+        pose_(pose) {}
 
   void read() {
     for (const std::string& ext : model_.extensionsUsed) {
@@ -46,10 +53,10 @@ class GltfReader {
                        ext.rfind("KHR_materials_", 0) == 0 ? "ignored: surfaces are opaque, shaded with the metallic-roughness BRDF"
                                                            : "ignored; the image may differ from the author's");
     }
-    if (!model_.animations.empty())
+    if (!model_.animations.empty() && pose_.animation < 0)
       note_unsupported(std::to_string(model_.animations.size()) + " animation(s)",
                        "render draws the nodes' rest transforms and weights; `rcsplat animate` plays a camera's "
-                       "animation, with meshes and lights still");
+                       "animation, and with --cache-per-frame moves meshes and lights too");
     read_textures();
     read_materials();
     std::vector<int> roots;
@@ -65,6 +72,7 @@ class GltfReader {
         if (!is_child[i]) roots.push_back(int(i));
     }
     check_instanced_triangles(roots);
+    pose_nodes();
     // Depth first with a stack of its own: a chain of 100,000 nodes is as deep as the heap allows, not the call stack.
     // The graph is a forest (check_gltf), so each node is visited once.
     std::vector<std::pair<int, glm::mat4>> stack;
@@ -292,10 +300,68 @@ class GltfReader {
     return m;
   }
 
+  // A node's transform in the pose asked for (ScenePose): the animated TRS where the animation moves it.
+  glm::mat4 posed_matrix(int index) const {
+    const auto posed = posed_.find(index);
+    return posed == posed_.end() ? local_matrix(model_.nodes[size_t(index)]) : posed->second;
+  }
+
+  // The pose's node transforms: each channel of the animation sampled at the pose's time over the node's rest TRS.
+  void pose_nodes() {
+    if (pose_.animation < 0) return;
+    if (size_t(pose_.animation) >= model_.animations.size())
+      fail("animations[" + std::to_string(pose_.animation) + "]: the file has " +
+           std::to_string(model_.animations.size()) + " animation(s)");
+    const tinygltf::Animation& anim = model_.animations[size_t(pose_.animation)];
+    const std::string name = "animations[" + std::to_string(pose_.animation) + "] '" + printable(anim.name) + "'";
+    struct Trs {
+      glm::vec3 t{0.0f};
+      glm::quat r{1.0f, 0.0f, 0.0f, 0.0f};
+      glm::vec3 s{1.0f};
+    };
+    std::map<int, Trs> trs;
+    for (size_t c = 0; c < anim.channels.size(); ++c) {
+      const tinygltf::AnimationChannel& channel = anim.channels[c];
+      const int n = channel.target_node;
+      if (n < 0 || size_t(n) >= model_.nodes.size()) continue;  // a pointer target (KHR_animation_pointer)
+      const std::string where = name + ".channels[" + std::to_string(c) + "]";
+      const tinygltf::Node& node = model_.nodes[size_t(n)];
+      if (channel.target_path == "weights")
+        fail(where + " animates " + node_label(model_, n) + "'s morph weights, which rcsplat does not play (it plays "
+             "translation, rotation and scale)");
+      AnimatedProperty property;
+      if (channel.target_path == "translation") property = AnimatedProperty::translation;
+      else if (channel.target_path == "rotation") property = AnimatedProperty::rotation;
+      else if (channel.target_path == "scale") property = AnimatedProperty::scale;
+      else continue;
+      if (node.matrix.size() == 16)
+        fail(where + " animates " + node_label(model_, n) + ", which has a matrix (glTF animates nodes given by "
+             "translation, rotation and scale only)");
+      auto [at, fresh] = trs.try_emplace(n);
+      if (fresh) {
+        if (node.translation.size() == 3) at->second.t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+        if (node.rotation.size() == 4)
+          at->second.r = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]),
+                                                  float(node.rotation[1]), float(node.rotation[2])));
+        if (node.scale.size() == 3) at->second.s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+      }
+      const AnimationTrack track = read_track(pose_.animation, anim.samplers[size_t(channel.sampler)], property,
+                                              where + " (sampler " + std::to_string(channel.sampler) + ")");
+      const glm::vec4 v = sample_track(track, pose_.time);
+      if (property == AnimatedProperty::translation) at->second.t = glm::vec3(v);
+      else if (property == AnimatedProperty::scale) at->second.s = glm::vec3(v);
+      else at->second.r = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
+    }
+    for (const auto& [n, p] : trs)
+      posed_[n] = glm::translate(glm::mat4(1.0f), p.t) * glm::mat4_cast(p.r) * glm::scale(glm::mat4(1.0f), p.s);
+    scene_.posed_animation = pose_.animation;
+    scene_.posed_time = pose_.time;
+  }
+
   // Adds what node `index` holds under its parent's transform; returns its world transform.
   glm::mat4 visit_node(int index, const glm::mat4& parent) {
     const tinygltf::Node& node = model_.nodes[size_t(index)];
-    glm::mat4 world = parent * local_matrix(node);
+    glm::mat4 world = parent * posed_matrix(index);
     for (int i = 0; i < 16; ++i)
       if (!std::isfinite(glm::value_ptr(world)[i])) fail("nodes[" + std::to_string(index) + "] has a non-finite transform");
     if (node.mesh >= 0) add_mesh(index, world);
@@ -364,7 +430,7 @@ class GltfReader {
       for (size_t k = chain.size(); k-- > 0;) {
         int n = chain[k], up = parent_[size_t(n)];
         glm::mat4 parent = up >= 0 ? *node_world_[size_t(up)] : glm::mat4(1.0f);
-        node_world_[size_t(n)] = parent * local_matrix(model_.nodes[size_t(n)]);
+        node_world_[size_t(n)] = parent * posed_matrix(n);
       }
     }
     return *node_world_[size_t(index)];
@@ -869,14 +935,24 @@ class GltfReader {
       const tinygltf::Animation& anim = model_.animations[a];
       const std::string name = "animations[" + std::to_string(a) + "] '" + printable(anim.name) + "'";
       scene_.animation_names.push_back(anim.name.empty() ? "animation " + std::to_string(a) : printable(anim.name));
+      scene_.animation_durations.push_back(0.0);
       for (size_t c = 0; c < anim.channels.size(); ++c) {
         const tinygltf::AnimationChannel& channel = anim.channels[c];
         const int n = channel.target_node;
         if (n < 0 || size_t(n) >= nodes) continue;  // a pointer target (KHR_animation_pointer): not sampled
         const std::string& path = channel.target_path;
         if (carries[size_t(n)]) {
-          scene_.animated_content.push_back({int(a), name + " moves " + node_label(model_, n) + (path == "weights"
-                                                         ? "'s morph weights" : ", which holds or carries a mesh or a light")});
+          scene_.animated_content.push_back({int(a),
+                                             name + " moves " + node_label(model_, n) +
+                                                 (path == "weights" ? "'s morph weights"
+                                                                    : ", which holds or carries a mesh or a light"),
+                                             path == "weights"});
+          // The scene moves as long as its last key: a pose's time runs to it (ScenePose).
+          const std::vector<float> times =
+              read_floats(anim.samplers[size_t(channel.sampler)].input, 1,
+                          name + ".channels[" + std::to_string(c) + "].input");
+          if (!times.empty() && std::isfinite(times.back()))
+            scene_.animation_durations[a] = std::max(scene_.animation_durations[a], double(times.back()));
           continue;
         }
         if (in_rigs[size_t(n)].empty() || path == "weights") continue;
@@ -897,6 +973,7 @@ class GltfReader {
                " numbers in all (each camera holds the keys of the nodes above it)");
         for (const auto& [rig, position] : in_rigs[size_t(n)])
           scene_.camera_rigs[rig].chain[position].tracks.push_back(track);
+        scene_.animation_durations[a] = std::max(scene_.animation_durations[a], double(track.times.back()));
       }
     }
   }
@@ -907,6 +984,8 @@ class GltfReader {
   const SceneLimits& limits_;
   HostBudget& budget_;
   const std::set<int>& zero_accessors_;  // no buffer view in the file: zeros (CheckedGltf::zero_accessors)
+  ScenePose pose_;
+  std::map<int, glm::mat4> posed_;  // the nodes the pose's animation moves, their local transforms at its time
   std::vector<int> texture_slots_;
   int default_material_ = -1;
   std::vector<std::optional<glm::mat4>> node_world_;
@@ -1012,7 +1091,7 @@ bool decode_image(tinygltf::Image* image, const int index, std::string* err, std
 
 }  // namespace
 
-Scene load_gltf(const std::string& path, const SceneLimits& limits) {
+Scene load_gltf(const std::string& path, const SceneLimits& limits, const ScenePose& pose) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such file");
@@ -1051,7 +1130,7 @@ Scene load_gltf(const std::string& path, const SceneLimits& limits) {
   scene.source = path;
   // Every coordinate is finite, but their spread must be too: cameras, lights and the device frame are derived
   // from the bounding box (found by fuzzing: a misaligned view read floats near 1e38, or 1e-38).
-  GltfReader(path, model, scene, limits, budget, checked.zero_accessors).read();
+  GltfReader(path, model, scene, limits, budget, checked.zero_accessors, pose).read();
   scene.check_extent();
   return scene;
 }

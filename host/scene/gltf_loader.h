@@ -7,6 +7,16 @@
 #include "scene/scene_limits.h"
 
 namespace rcsplat {
+
+// The moment of an animation to place the scene at: each node that `animation` moves takes its channels' values at
+// `time` (seconds, clamped to the keys), every other node its rest transform. animation -1: the rest pose. Morph
+// weight channels are not played: a pose of an animation that has one is refused.
+struct ScenePose {
+  int animation = -1;
+  double time = 0.0;
+};
+
 // Reads only what `limits` allows: files inside the scene's folder, triangles and host memory within bounds.
-Scene load_gltf(const std::string& path, const SceneLimits& limits = {});
-}
+Scene load_gltf(const std::string& path, const SceneLimits& limits = {}, const ScenePose& pose = {});
+
+}  // namespace rcsplat

@@ -75,8 +75,13 @@ struct Scene {
   struct AnimatedContent {
     int animation = 0;
     std::string what;
+    bool morph_weights = false;  // what it animates is morph weights, which no pose plays (ScenePose)
   };
   std::vector<AnimatedContent> animated_content;
+  std::vector<double> animation_durations;  // each animation's last key time over all its channels, seconds
+  // The pose the loader placed the scene in (ScenePose): -1, the rest pose.
+  int posed_animation = -1;
+  double posed_time = 0.0;
   // Light from outside (--sky, --environment); none by default: rays that leave the scene see black.
   Environment environment;
   // What the file asks for that rcsplat does not simulate, once each, as "feature: what rcsplat does instead".
