@@ -122,8 +122,8 @@ inline int kept_record_pixel(GBUFFER_ARGS, float3 p, float pixel_size) {
 
 // Records kept from earlier frames (render/kept_records.h), fitted to this view before placement: the reach clamps in
 // pixel footprints (kernels/records.cl) apply again at this view's footprint, only where the radius has left them by
-// more than 0.1% (a camera that barely moves leaves the radii as they are), and each record sits on the pixel it
-// projects to.
+// more than 0.1% (a camera that barely moves leaves the radii as they are), a radius enlarged by an earlier view's
+// minimum shrinks back toward the record's own, and each record sits on the pixel it projects to.
 __kernel void fit_kept_records(GBUFFER_ARGS, __global CacheRecord* records, PlacementParams params) {
   uint i = get_global_id(0);
   if (i >= params.record_count) return;
@@ -134,7 +134,30 @@ __kernel void fit_kept_records(GBUFFER_ARGS, __global CacheRecord* records, Plac
   float largest = params.max_radius_pixels * pixel_size;
   if (radius > 1.001f * largest) radius = largest;
   else if (radius < 0.999f * smallest) radius = smallest;
-  rec->radius = radius > 0.0f ? radius : fmax(smallest, 1e-30f);
+  // A radius the placing view's minimum reach enlarged past the record's own (Ward's harmonic distance) goes back to
+  // what this view's clamps give it, as a record placed here would have it. (The Hessian's radius is not kept.)
+  if (params.harmonic_radius) {
+    float natural = clamp(rec->harmonic_distance, smallest, largest);
+    if (radius > 1.001f * natural) radius = natural;
+  }
+  radius = radius > 0.0f ? radius : fmax(smallest, 1e-30f);
+  if (radius > rec->radius) {
+    // A reach grown for this view: the translation gradients bounded for it, as a record placed here would have them
+    // (kernels/records.cl: E changes by at most E across the radius).
+    // Rows are the axes, each an RGB triple: each channel's gradient is bounded alone (records.cl bound_gradient).
+    float3 limit = vload3(0, rec->irradiance) / radius;
+    float3 gx = vload3(0, rec->grad_translation), gy = vload3(1, rec->grad_translation),
+           gz = vload3(2, rec->grad_translation);
+    float3 length = sqrt(gx * gx + gy * gy + gz * gz);
+    float3 scale = select((float3)(1.0f), limit / length, length > limit);
+    gx *= scale;
+    gy *= scale;
+    gz *= scale;
+    vstore3(select((float3)(0.0f), gx, isfinite(gx)), 0, rec->grad_translation);
+    vstore3(select((float3)(0.0f), gy, isfinite(gy)), 1, rec->grad_translation);
+    vstore3(select((float3)(0.0f), gz, isfinite(gz)), 2, rec->grad_translation);
+  }
+  rec->radius = radius;
   rec->pixel_size = pixel_size;
   rec->pixel = kept_record_pixel(gbuffer, camera, p, pixel_size);
 }

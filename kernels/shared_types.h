@@ -488,6 +488,7 @@ typedef struct {
   rc_int clamp_older;  // neighbour clamping: older records may shrink too (first round of a level)
   float min_radius_pixels;  // the radius clamp's minimum, in pixel footprints at the record
   float max_radius_pixels;  // fitting kept records to a view: the radius clamp's maximum
+  rc_int harmonic_radius;   // fitting kept records: a record's own radius is its harmonic distance (no Hessian)
 } PlacementParams;
 
 // The splat's constants for one frame.
@@ -535,7 +536,7 @@ static_assert(sizeof(RecordGuideCones) == 32 * GUIDE_MAX_CONES + 32);
 static_assert(sizeof(HshRecordParams) == 32);
 static_assert(sizeof(GlossyParams) == 32);
 static_assert(sizeof(RadianceSplatParams) == 32);
-static_assert(sizeof(PlacementParams) == 32);
+static_assert(sizeof(PlacementParams) == 36);
 static_assert(sizeof(SplatParams) == 16);
 static_assert(sizeof(RayCastParams) == 16);
 #endif

@@ -64,12 +64,13 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
 }
 
 void PlacementPass::fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels,
-                             float max_radius_pixels) {
+                             float max_radius_pixels, bool harmonic_radius) {
   if (!count) return;
   PlacementParams params{};
   params.record_count = count;
   params.min_radius_pixels = min_radius_pixels;
   params.max_radius_pixels = max_radius_pixels;
+  params.harmonic_radius = harmonic_radius ? 1 : 0;
   gbuffer_.bind(fit_);
   fit_.set_buffer<CacheRecord>("records", records).set("params", params);
   fit_.launch(count, gpu_.groups().per_item);

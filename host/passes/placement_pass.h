@@ -27,7 +27,9 @@ class PlacementPass {
   // Records 0 .. count - 1, kept from earlier frames, fitted to this frame's view (kernels/placement.cl
   // fit_kept_records): radii clamped again to [min, max] footprints here, each on the pixel it projects to, or on
   // none. Then mark(records, 0, count) seats them.
-  void fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels, float max_radius_pixels);
+  // harmonic_radius: a record's own radius is its harmonic distance (no --hessian-error).
+  void fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels, float max_radius_pixels,
+                bool harmonic_radius);
   // Records first .. first + count - 1 now sit on their pixels (those whose pixel is -1 sit nowhere).
   void mark(const cl::Buffer& records, uint32_t first, uint32_t count);
   // R_i <= R_j + |P_i - P_j| over records 0 .. count - 1, for pairs that involve a record first_new or later; older

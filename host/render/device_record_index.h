@@ -32,7 +32,8 @@ class DeviceRecordIndex final : public RecordIndex {
   // Records 0 .. count - 1 of `records`, kept from earlier frames, fitted to this view and seated where it sees them
   // (PlacementPass::fit_kept), before placement adds any.
   void seat_kept(RecordPass& records, uint32_t count, const CacheSettings& cache) {
-    pass_.fit_kept(records.records(), count, min_radius_pixels(cache), max_radius_pixels(cache));
+    pass_.fit_kept(records.records(), count, min_radius_pixels(cache), max_radius_pixels(cache),
+                   !(cache.hessian_error > 0.0f));
     pass_.mark(records.records(), 0, count);
   }
   std::vector<int32_t> record_at_pixel() { return pass_.record_at_pixel(); }
