@@ -1,4 +1,4 @@
-// Irradiance records kept across the frames of a camera path (issue 42): a record is a point in the world with its
+// Irradiance and radiance records kept across the frames of a camera path (issue 42): a record is a point in the world with its
 // light, valid for any view that sees it, so a walkthrough's frame splats the records earlier frames placed and places
 // new ones only where none reaches (docs/ALGORITHM.md section 11).
 //
@@ -8,12 +8,14 @@
 // - Each frame takes the kept records whose reach sphere meets its view frustum, in the order they were kept, and
 //   fits them to its view on the device (kernels/placement.cl fit_kept_records): the radius goes back into the
 //   [min, max] reach in this view's pixel footprints where it has left them by more than 0.1%, so a record that was
-//   far away when placed does not cover half of the screen up close, nor shrink below a few pixels far away; and each
-//   record sits on the pixel it projects to where the G-buffer sees it, so that no second record is placed there.
+//   far away when placed does not cover half of the screen up close, nor shrink below a few pixels far away; a radius
+//   an earlier view's minimum enlarged shrinks back toward the record's harmonic distance; and each record sits on
+//   the pixel it projects to where the G-buffer sees it, so that no second record is placed there.
 //   Placement then runs as for a fresh frame, its coverage counting the kept records.
 // - Records never reached by a frame's frustum for the longest are evicted when more than `capacity` are kept.
 // The light the records read (photon map, light guide, caustic map) is kept by the Renderer already
-// (ViewIndependentLight), so a record placed at frame 90 sees the same photons as one placed at frame 0.
+// (ViewIndependentLight), so a record placed at frame 90 sees the same photons as one placed at frame 0; the photons
+// and clusters it was made from are kept beside the records too (KeptLight), for cache files.
 #pragma once
 #include <algorithm>
 #include <cstdint>
