@@ -24,6 +24,15 @@ RenderSettings kept_settings() {
   return s;
 }
 
+// kept_settings with the scene's camera moved 0.08 to its right, still looking at its target.
+RenderSettings moved_aside(const Scene& scene) {
+  RenderSettings moved = kept_settings();
+  const SceneCamera& camera = scene.cameras[0];
+  moved.camera_overrides.eye = camera.eye + 0.08f * glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
+  moved.camera_overrides.target = camera.target;
+  return moved;
+}
+
 TEST(KeptRecords, AStillCameraSettlesOnTheSameBitsAndItsFirstFrameIsAFreshOne) {
   const Scene scene = make_cornell_box();
   RenderSettings fresh = kept_settings();
@@ -84,10 +93,7 @@ TEST(KeptRecords, AMovedCameraPlacesRecordsOnlyWhereNoKeptRecordReaches) {
   const Scene scene = make_cornell_box();
   Renderer renderer(test::gpu(), scene);
   renderer.render(kept_settings());
-  RenderSettings moved = kept_settings();
-  const SceneCamera& camera = scene.cameras[0];
-  moved.camera_overrides.eye = camera.eye + 0.08f * glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
-  moved.camera_overrides.target = camera.target;
+  const RenderSettings moved = moved_aside(scene);
   const RenderedImage frame = renderer.render(moved);
   RenderSettings fresh = moved;
   fresh.keep_records = false;
@@ -141,10 +147,7 @@ TEST(KeptRecords, RadianceRecordsAreKeptWithTheirCoefficients) {
   ASSERT_EQ(settled, 1);
   EXPECT_EQ(frames[1].color, frames[0].color);
 
-  RenderSettings moved = kept_settings();
-  const SceneCamera& camera = scene.cameras[0];
-  moved.camera_overrides.eye = camera.eye + 0.08f * glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
-  moved.camera_overrides.target = camera.target;
+  const RenderSettings moved = moved_aside(scene);
   const RenderedImage turned = renderer.render(moved);
   RenderSettings moved_fresh = moved;
   moved_fresh.keep_records = false;
