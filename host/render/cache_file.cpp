@@ -122,7 +122,7 @@ class Body {
   std::vector<T> items(uint64_t n) {
     if (n > (bytes_.size() - at_) / sizeof(T)) short_();
     std::vector<T> v(static_cast<size_t>(n));
-    std::memcpy(v.data(), bytes_.data() + at_, size_t(n) * sizeof(T));
+    if (n) std::memcpy(v.data(), bytes_.data() + at_, size_t(n) * sizeof(T));
     at_ += size_t(n) * sizeof(T);
     return v;
   }
@@ -224,16 +224,21 @@ uint64_t settings_fingerprint(const KeptRecordsKey& k) {
 
 namespace {
 
+// The bytes of a vector (none for an empty one, whose data() may be null).
+template <typename T>
+void put_bytes(std::string& out, const std::vector<T>& items) {
+  if (!items.empty()) out.append(reinterpret_cast<const char*>(items.data()), items.size() * sizeof(T));
+}
+
 void put_records(std::string& out, const KeptRecords& kept) {
-  const std::vector<CacheRecord>& records = kept.records();
-  out.append(reinterpret_cast<const char*>(records.data()), records.size() * sizeof(CacheRecord));
-  out.append(reinterpret_cast<const char*>(kept.last_used().data()), records.size() * sizeof(uint64_t));
+  put_bytes(out, kept.records());
+  put_bytes(out, kept.last_used());
 }
 
 template <typename T>
 void put_items(std::string& out, const std::vector<T>& items) {
   put(out, uint64_t(items.size()));
-  out.append(reinterpret_cast<const char*>(items.data()), items.size() * sizeof(T));
+  put_bytes(out, items);
 }
 
 }  // namespace
@@ -260,8 +265,7 @@ void write_cache_file(const std::string& path, const KeptCache& kept, const Cach
   put(out, uint32_t(kept.radiance.payload_per_record()));
   put(out, kept.radiance.largest_radiance());
   put_records(out, kept.radiance);
-  out.append(reinterpret_cast<const char*>(kept.radiance.payload().data()),
-             kept.radiance.payload().size() * sizeof(float));
+  put_bytes(out, kept.radiance.payload());
 
   put(out, uint32_t(light.has_photon_map));
   put(out, uint64_t(light.photon_paths));

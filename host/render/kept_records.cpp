@@ -102,9 +102,9 @@ void KeptRecords::add(const CacheRecord* records, size_t count, const float* pay
   if (!records_.empty() && payload_per_record != payload_per_record_)
     throw std::logic_error("kept records: a payload of another size under the same key");
   payload_per_record_ = payload_per_record;
-  records_.insert(records_.end(), records, records + count);
+  if (count) records_.insert(records_.end(), records, records + count);
   last_used_.insert(last_used_.end(), count, frame_);
-  if (payload_per_record) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
+  if (payload_per_record && count) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
   stats_.added = count;
   if (records_.size() > capacity_) {
     // The least recently used go first; among records last used by the same frame, the earliest kept.
