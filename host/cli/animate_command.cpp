@@ -184,8 +184,7 @@ int run_animate(const AnimateOptions& o) {
   gpu.set_memory_budget(o.render.limits.device_memory_bytes);
   // A scene the path's animation moves (--cache-per-frame only: choose_path refused it otherwise) is loaded again in
   // each frame's pose with a renderer of its own, as `render` would render that pose; a still scene has one renderer.
-  const bool scene_moves = o.keyframes.empty() && !(o.orbit_seconds > 0.0) && !o.render.scene_path.empty() &&
-                           animation_moves_content(scene, o.animation);
+  const bool scene_moves = path.moves_scene_animation >= 0;
   std::unique_ptr<Scene> posed_scene;
   std::unique_ptr<Renderer> renderer_holder =
       scene_moves ? nullptr : std::make_unique<Renderer>(gpu, scene, request.forced_switches);
@@ -194,7 +193,7 @@ int run_animate(const AnimateOptions& o) {
     renderer_holder.reset();  // before the scene it renders from
     posed_scene = std::make_unique<Scene>(load_scene(o.render.scene_path, request.camera, request.camera_overrides,
                                                      o.render.environment, o.render.limits,
-                                                     ScenePose{o.animation, double(frame) / o.fps}));
+                                                     ScenePose{path.moves_scene_animation, double(frame) / o.fps}));
     renderer_holder = std::make_unique<Renderer>(gpu, *posed_scene, request.forced_switches);
     return *renderer_holder;
   };

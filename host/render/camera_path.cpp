@@ -28,13 +28,14 @@ bool degenerate_view(const glm::dvec3& eye, const glm::dvec3& target, const glm:
   return !(f > 0.0) || !(u > 0.0) || !(glm::length(glm::cross(forward / f, up / u)) > 1e-6);
 }
 
-}  // namespace
-
+// Whether `animation` moves a mesh or a light of the scene.
 bool animation_moves_content(const Scene& scene, int animation) {
   for (const Scene::AnimatedContent& moved : scene.animated_content)
     if (moved.animation == animation) return true;
   return false;
 }
+
+}  // namespace
 
 CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool scene_may_move) {
   if (scene.animation_names.empty()) throw Error(scene.source + ": the scene has no animation to play");
@@ -61,6 +62,7 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
     CameraPath path;
     path.description = "glTF " + name + " (moving the scene; " + camera_name(scene, camera) + " stands still)";
     path.duration = scene.animation_durations[size_t(animation)];
+    path.moves_scene_animation = animation;
     path.at = [still](double) {
       CameraPose pose;
       pose.eye = still.eye;
@@ -82,7 +84,10 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
   CameraPath path;
   path.description = "glTF " + name + " of " + camera_name(scene, camera);
   path.duration = rig_duration(rig, animation);
-  if (content_moves) path.duration = std::max(path.duration, scene.animation_durations[size_t(animation)]);
+  if (content_moves) {
+    path.duration = std::max(path.duration, scene.animation_durations[size_t(animation)]);
+    path.moves_scene_animation = animation;
+  }
   path.at = [rig, animation](double t) {
     const glm::mat4 world = rig_world_matrix(rig, animation, t);
     CameraPose pose;

@@ -23,6 +23,7 @@ struct CameraPath {
   std::string description;  // "glTF animations[0] 'Walk' of camera 0 'Cam'", "keyframes path.txt (12 keys)", ...
   double duration = 0.0;    // seconds; frames beyond it hold the last pose
   std::function<CameraPose(double seconds)> at;
+  int moves_scene_animation = -1;  // the scene's animation this path plays on meshes and lights too (-1: none)
 };
 
 // The glTF animation `animation` of the scene's camera `camera` (its node and every node above it). Throws
@@ -31,8 +32,6 @@ struct CameraPath {
 // path, so the scene must stand still unless each frame has a cache of its own). With scene_may_move the path lasts
 // as long as the animation's last key, and a camera the animation does not move stands at its rest pose.
 CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool scene_may_move = false);
-// Whether `animation` moves a mesh or a light of the scene.
-bool animation_moves_content(const Scene& scene, int animation);
 
 // One key of a keyframe file: at `time` seconds the camera is at eye, looks at target, with up and a vertical field
 // of view in degrees.

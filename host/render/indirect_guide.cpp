@@ -22,11 +22,13 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
   KeptLight* stored = f.kept_light;
-  if (!frame_light_guide(f) && stored && stored->has_guide && !f.light.guide) {
+  if (frame_light_guide(f)) {
+    // Built by an earlier frame with these settings.
+  } else if (stored && stored->has_guide && !f.light.guide) {
     // A cache file's clusters, for a Renderer that has built no guide yet.
     f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons, stored->guide_clusters,
                                                 stored->guide_hits};
-  } else if (!frame_light_guide(f)) {
+  } else {
     StageTimer timing(st.guide.seconds, f.gpu, st.program_s);
     LightGuidePass photons(f.gpu, f.device_scene);
     // Its own seed stream: the photons must not correlate with the records' hemispheres.

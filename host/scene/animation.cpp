@@ -74,22 +74,27 @@ glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t) {
       world = world * node.matrix;
       continue;
     }
-    glm::vec3 translation = node.translation, scale = node.scale;
-    glm::quat rotation = node.rotation;
-    for (const AnimationTrack& track : node.tracks) {
-      if (track.animation != animation) continue;
-      const glm::vec4 v = sample_track(track, t);
-      if (track.property == AnimatedProperty::translation)
-        translation = glm::vec3(v);
-      else if (track.property == AnimatedProperty::scale)
-        scale = glm::vec3(v);
-      else
-        rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
-    }
-    world = world * glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) *
-            glm::scale(glm::mat4(1.0f), scale);
+    NodeTrs trs = node.rest;
+    for (const AnimationTrack& track : node.tracks)
+      if (track.animation == animation) apply_track(track, t, trs);
+    world = world * trs_matrix(trs);
   }
   return world;
+}
+
+void apply_track(const AnimationTrack& track, double t, NodeTrs& trs) {
+  const glm::vec4 v = sample_track(track, t);
+  if (track.property == AnimatedProperty::translation)
+    trs.translation = glm::vec3(v);
+  else if (track.property == AnimatedProperty::scale)
+    trs.scale = glm::vec3(v);
+  else
+    trs.rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
+}
+
+glm::mat4 trs_matrix(const NodeTrs& trs) {
+  return glm::translate(glm::mat4(1.0f), trs.translation) * glm::mat4_cast(trs.rotation) *
+         glm::scale(glm::mat4(1.0f), trs.scale);
 }
 
 bool rig_is_animated(const CameraRig& rig, int animation) {

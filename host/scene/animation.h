@@ -23,11 +23,16 @@ struct AnimationTrack {
   std::vector<float> values;
 };
 
-struct RigNode {
-  std::string label;  // "nodes[3] 'CameraBoom'", for messages
+// A node's local transform as glTF gives it: translation, rotation, scale.
+struct NodeTrs {
   glm::vec3 translation{0.0f};
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
   glm::vec3 scale{1.0f};
+};
+
+struct RigNode {
+  std::string label;  // "nodes[3] 'CameraBoom'", for messages
+  NodeTrs rest;
   bool has_matrix = false;  // a node given by a matrix (never animated: glTF animates TRS nodes only)
   glm::mat4 matrix{1.0f};
   std::vector<AnimationTrack> tracks;
@@ -40,6 +45,10 @@ struct CameraRig {
 
 // The keys of `track` at time t (clamped to its first and last key), 3 or 4 components.
 glm::vec4 sample_track(const AnimationTrack& track, double t);
+// The property `track` animates, set to its value at time t.
+void apply_track(const AnimationTrack& track, double t, NodeTrs& trs);
+// T * R * S.
+glm::mat4 trs_matrix(const NodeTrs& trs);
 // The camera node's world transform at time t with the channels of `animation` applied (others: the rest transform).
 glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t);
 // Whether any node of the rig is moved by `animation`, and the last key time of its channels there.

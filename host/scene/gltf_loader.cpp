@@ -283,6 +283,17 @@ class GltfReader {
     *data = buffer.data.data() + view.byteOffset + acc.byteOffset;
   }
 
+  // A TRS node's rest translation, rotation and scale (glTF's defaults where one is absent).
+  static NodeTrs rest_trs(const tinygltf::Node& node) {
+    NodeTrs r;
+    if (node.translation.size() == 3) r.translation = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.rotation.size() == 4)
+      r.rotation = glm::normalize(
+          glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2])));
+    if (node.scale.size() == 3) r.scale = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+    return r;
+  }
+
   static glm::mat4 local_matrix(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
       glm::mat4 m;
@@ -314,12 +325,7 @@ class GltfReader {
            std::to_string(model_.animations.size()) + " animation(s)");
     const tinygltf::Animation& anim = model_.animations[size_t(pose_.animation)];
     const std::string name = "animations[" + std::to_string(pose_.animation) + "] '" + printable(anim.name) + "'";
-    struct Trs {
-      glm::vec3 t{0.0f};
-      glm::quat r{1.0f, 0.0f, 0.0f, 0.0f};
-      glm::vec3 s{1.0f};
-    };
-    std::map<int, Trs> trs;
+    std::map<int, NodeTrs> trs;
     for (size_t c = 0; c < anim.channels.size(); ++c) {
       const tinygltf::AnimationChannel& channel = anim.channels[c];
       const int n = channel.target_node;
@@ -338,22 +344,12 @@ class GltfReader {
         fail(where + " animates " + node_label(model_, n) + ", which has a matrix (glTF animates nodes given by "
              "translation, rotation and scale only)");
       auto [at, fresh] = trs.try_emplace(n);
-      if (fresh) {
-        if (node.translation.size() == 3) at->second.t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
-        if (node.rotation.size() == 4)
-          at->second.r = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]),
-                                                  float(node.rotation[1]), float(node.rotation[2])));
-        if (node.scale.size() == 3) at->second.s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
-      }
-      const AnimationTrack track = read_track(pose_.animation, anim.samplers[size_t(channel.sampler)], property,
-                                              where + " (sampler " + std::to_string(channel.sampler) + ")");
-      const glm::vec4 v = sample_track(track, pose_.time);
-      if (property == AnimatedProperty::translation) at->second.t = glm::vec3(v);
-      else if (property == AnimatedProperty::scale) at->second.s = glm::vec3(v);
-      else at->second.r = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
+      if (fresh) at->second = rest_trs(node);
+      apply_track(read_track(pose_.animation, anim.samplers[size_t(channel.sampler)], property,
+                             where + " (sampler " + std::to_string(channel.sampler) + ")"),
+                  pose_.time, at->second);
     }
-    for (const auto& [n, p] : trs)
-      posed_[n] = glm::translate(glm::mat4(1.0f), p.t) * glm::mat4_cast(p.r) * glm::scale(glm::mat4(1.0f), p.s);
+    for (const auto& [n, node_trs] : trs) posed_[n] = trs_matrix(node_trs);
     scene_.posed_animation = pose_.animation;
     scene_.posed_time = pose_.time;
   }
@@ -921,11 +917,7 @@ class GltfReader {
         r.label = node_label(model_, n);
         r.has_matrix = node.matrix.size() == 16;
         r.matrix = local_matrix(node);
-        if (node.translation.size() == 3) r.translation = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
-        if (node.rotation.size() == 4)
-          r.rotation = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
-                                                float(node.rotation[2])));
-        if (node.scale.size() == 3) r.scale = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+        r.rest = rest_trs(node);
         in_rigs[size_t(n)].push_back({scene_.camera_rigs.size(), rig.chain.size()});
         rig.chain.push_back(r);
       }
