@@ -46,8 +46,10 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
     if (moved.animation == animation && !scene_may_move)
       throw Error(scene.source + ": " + moved.what +
                   "; with records kept across frames `animate` moves only the camera through a scene that stands "
-                  "still (one cache serves the whole path): render it with --cache-per-frame, or walk through it as "
-                  "it stands with --keyframes or --orbit");
+                  "still (one cache serves the whole path): " +
+                  (moved.morph_weights ? std::string("morph weights are not played even with --cache-per-frame; ")
+                                       : std::string("render it with --cache-per-frame, or ")) +
+                  "walk through it as it stands with --keyframes or --orbit");
   if (camera < 0 || size_t(camera) >= scene.cameras.size())
     throw Error("--camera " + std::to_string(camera) + ": " + scene.source + " has " +
                 std::to_string(scene.cameras.size()) + " camera(s): " + describe_cameras(scene));
