@@ -135,6 +135,20 @@ __kernel void project_radiance_records(__global const float4* strata, __global c
   if (isfinite(largest)) atomic_max(max_radiance_bits, as_uint(largest));
 }
 
+// Kept records fitted to a new view (kernels/placement.cl fit_kept_records), records 0 .. record_count - 1: a reach grown
+// past the kept one gets its gradients bounded for it, as a record placed here with that radius would have them.
+__kernel void bound_fitted_radiance_gradients(__global const CacheRecord* records, __global const float* kept_radii,
+                                              HshRecordParams params, __global float* coefficients) {
+  uint i = get_global_id(0);
+  if (i >= params.record_count) return;
+  float radius = records[i].radius;
+  if (!(radius > kept_radii[i])) return;
+  const int n2 = (int)(params.order * params.order);
+  __global float* block = coefficients + (size_t)i * (size_t)(HSH_RECORD_PARTS * 3 * n2);
+  bound_hsh_gradients(block + HSH_PART_COEFFICIENTS * 3 * n2, block + HSH_PART_GRADIENT_T * 3 * n2,
+                      block + HSH_PART_GRADIENT_B * 3 * n2, n2, radius);
+}
+
 // D_x lambda and D_y lambda (host/cache/hsh_rotation.h), one work item per (record, coefficient).
 __kernel void tilt_radiance_records(__global const float* tilt_x, __global const float* tilt_y, HshRecordParams params,
                                     __global float* coefficients) {

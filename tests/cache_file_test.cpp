@@ -110,6 +110,25 @@ TEST(CacheFile, EverythingKeptRoundTripsBitForBit) {
                                          20 + kept.light.guide_clusters.size() * 48 + 8);
 }
 
+// A Renderer whose maps and guide were built by a frame that kept nothing shoots them again (the same photons) for its
+// first frame that keeps records, so that a cache file written after it holds them, and renders what a Renderer that
+// kept from the start renders.
+TEST(CacheFile, MapsBuiltBeforeAnyRecordWasKeptAreKeptWithTheRecords) {
+  const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
+  Renderer renderer(test::gpu(), scene);
+  RenderSettings first = at_pose(scene, 0);
+  first.keep_records = false;
+  renderer.render(renderer.plan(first));
+  const RenderedImage keeping = renderer.render(renderer.plan(at_pose(scene, 0)));
+  const KeptLight& light = renderer.kept_records().light;
+  EXPECT_TRUE(light.has_photon_map && !light.photons.empty());
+  EXPECT_TRUE(light.has_caustic_map && !light.caustic_photons.empty());
+  EXPECT_TRUE(light.has_guide && !light.guide_clusters.empty());
+  Renderer from_the_start(test::gpu(), scene);
+  EXPECT_EQ(keeping.color, from_the_start.render(from_the_start.plan(at_pose(scene, 0))).color);
+  EXPECT_TRUE(same_bytes(light.photons, from_the_start.kept_records().light.photons));
+}
+
 // A process that reads the file renders the writer's next frame, bit for bit, with the writer's photons: the same file
 // with every photon map photon's power doubled gives another frame (so the photons are read, not shot again).
 TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "kernels/cache_math.h"
+#include "passes/hsh_record_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "lobed_cornell_box.h"
@@ -161,6 +163,62 @@ TEST(KeptRecords, RadianceRecordsAreKeptWithTheirCoefficients) {
     fresh_sum += turned_alone.indirect[i];
   }
   EXPECT_NEAR(kept_sum / fresh_sum, 1.0, 0.03);
+}
+
+// A kept radiance record whose fit to a new view grew its radius gets its translational gradients bounded for the new
+// radius (kernels/hsh_records.cl bound_fitted_radiance_gradients), per channel |grad| <= |lambda| / R over the n^2
+// coefficients; one whose radius did not grow keeps every float. Random records against a double-precision host
+// reference; tolerance 2e-6 relative to each block's largest float (float sums of n^2 = 16 squares).
+TEST(KeptRecords, AFitThatGrowsARadianceRecordsReachBoundsItsGradientsForIt) {
+  const int order = 4, n2 = order * order;
+  HshRecordPass hsh(test::gpu(), order);
+  const size_t per = hsh.floats_per_record(), count = 64;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), signed_unit(-1.0f, 1.0f);
+  std::vector<float> coefficients(count * per);
+  for (float& c : coefficients) c = signed_unit(rng);
+  std::vector<CacheRecord> records(count);
+  std::vector<float> kept_radii(count);
+  for (size_t i = 0; i < count; ++i) {
+    kept_radii[i] = 1.0f + 3.0f * unit(rng);  // wide: unbounded, every gradient here would exceed the bound
+    // A third grow (some enough to bind the bound, some not), a third shrink, a third stay.
+    records[i].radius = i % 3 == 0 ? kept_radii[i] * (1.0f + 20.0f * unit(rng))
+                        : i % 3 == 1 ? kept_radii[i] * 0.5f : kept_radii[i];
+  }
+  hsh.load(coefficients, uint32_t(count));
+  const cl::Buffer on_device = test::gpu().upload(records, CL_MEM_READ_ONLY, "test records");
+  hsh.bound_fitted_gradients(on_device, kept_radii);
+  const std::vector<float> bounded = hsh.download(0, uint32_t(count));
+  size_t scaled = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const float* before = coefficients.data() + i * per;
+    const float* after = bounded.data() + i * per;
+    if (!(records[i].radius > kept_radii[i])) {
+      for (size_t k = 0; k < per; ++k) ASSERT_EQ(after[k], before[k]) << "record " << i << " float " << k;
+      continue;
+    }
+    double largest = 0.0;
+    for (size_t k = 0; k < per; ++k) largest = std::max(largest, double(std::fabs(before[k])));
+    for (int c = 0; c < 3; ++c) {
+      double light = 0.0, change = 0.0;
+      for (int k = 0; k < n2; ++k) {
+        light += std::pow(double(before[(HSH_PART_COEFFICIENTS * n2 + k) * 3 + c]), 2);
+        change += std::pow(double(before[(HSH_PART_GRADIENT_T * n2 + k) * 3 + c]), 2) +
+                  std::pow(double(before[(HSH_PART_GRADIENT_B * n2 + k) * 3 + c]), 2);
+      }
+      const double limit = std::sqrt(light) / double(records[i].radius), norm = std::sqrt(change);
+      const double scale = norm > limit ? limit / norm : 1.0;
+      scaled += scale < 1.0;
+      for (int part = 0; part < HSH_RECORD_PARTS; ++part)
+        for (int k = 0; k < n2; ++k) {
+          const size_t at = size_t((part * n2 + k) * 3 + c);
+          const bool gradient = part == HSH_PART_GRADIENT_T || part == HSH_PART_GRADIENT_B;
+          EXPECT_NEAR(after[at], double(before[at]) * (gradient ? scale : 1.0), 2e-6 * largest)
+              << "record " << i << " part " << part << " coefficient " << k << " channel " << c;
+        }
+    }
+  }
+  EXPECT_GT(scaled, 10u) << "too few grown radii bound the gradients to test the bound";
 }
 
 CacheRecord record_at(float x, float y, float z) {

@@ -16,6 +16,7 @@
 #include "passes/splat_pass.h"
 #include "render/camera.h"
 #include "scene/scene_frame.h"
+#include "render/placement.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 
@@ -167,6 +168,14 @@ TEST(Splat, SameInputSameBits) {
   EXPECT_EQ(0, std::memcmp(a.irradiance.data(), b.irradiance.data(), a.irradiance.size() * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(float)));
   for (float v : a.color) ASSERT_TRUE(std::isfinite(v));
+  // The same records in the same order: each placement batch's records in pixel order (kernels/placement.cl appends
+  // candidates in whatever order work-items run; passes/placement_pass.cpp sorts them), so they break into no more
+  // ascending runs than there are batches. In the order work-items ran, every work-group's tile starts a run.
+  ASSERT_EQ(a.records.size(), b.records.size());
+  EXPECT_EQ(0, std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(CacheRecord)));
+  size_t runs = a.records.empty() ? 0 : 1;
+  for (size_t i = 1; i < a.records.size(); ++i) runs += a.records[i].pixel < a.records[i - 1].pixel;
+  EXPECT_LE(runs, a.stats.irradiance.levels.size() + size_t(kRoundsAtFinestSpacing) - 1);
 }
 
 // Gautron et al.'s central claim: splatting each record over its footprint and normalising gives, pixel for pixel,

@@ -61,7 +61,8 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
     : gpu_(gpu),
       order_(order),
       project_(gpu.kernel("hsh_records.cl", "project_radiance_records")),
-      tilt_(gpu.kernel("hsh_records.cl", "tilt_radiance_records")) {
+      tilt_(gpu.kernel("hsh_records.cl", "tilt_radiance_records")),
+      bound_fitted_(gpu.kernel("hsh_records.cl", "bound_fitted_radiance_gradients")) {
   const HshRotationDerivatives& d = hsh_rotation_derivatives(order);
   tilt_x_ = gpu_.upload(d.dx, CL_MEM_READ_ONLY, "radiance records");
   tilt_y_ = gpu_.upload(d.dy, CL_MEM_READ_ONLY, "radiance records");
@@ -123,6 +124,21 @@ void HshRecordPass::load(const std::vector<float>& coefficients, uint32_t count)
   if (count == 0) return;
   reserve(count);
   gpu_.queue().enqueueWriteBuffer(coefficients_, CL_TRUE, 0, coefficients.size() * sizeof(float), coefficients.data());
+}
+
+void HshRecordPass::bound_fitted_gradients(const cl::Buffer& records, const std::vector<float>& kept_radii) {
+  if (kept_radii.empty()) return;
+  if (kept_radii.size() > capacity_) throw Error("radiance records: more kept radii than loaded records");
+  HshRecordParams params{};
+  params.record_count = cl_uint(kept_radii.size());
+  params.order = cl_uint(order_);
+  const cl::Buffer radii = gpu_.upload(kept_radii, CL_MEM_READ_ONLY, "radiance records");
+  bound_fitted_.set_buffer<CacheRecord>("records", records)
+      .set_buffer<cl_float>("kept_radii", radii)
+      .set("params", params)
+      .set_buffer<cl_float>("coefficients", coefficients_);
+  bound_fitted_.launch(kept_radii.size(), gpu_.groups().per_record);
+  gpu_.queue().finish();
 }
 
 float HshRecordPass::largest_radiance() {

@@ -26,6 +26,9 @@ class HshRecordPass {
   // Records 0 .. count - 1 get kept records' coefficients (floats_per_record() each, as download gives them).
   void load(const std::vector<float>& coefficients, uint32_t count);
   size_t floats_per_record() const;
+  // After records 0 .. kept_radii.size() - 1 (loaded) are fitted to a view (kernels/placement.cl fit_kept_records):
+  // the gradients of each whose radius grew past its kept radius bounded for the new one, as project bounds them.
+  void bound_fitted_gradients(const cl::Buffer& records, const std::vector<float>& kept_radii);
 
   // Records first .. first + count - 1 from the strata of their batch (theta_strata x phi_strata each), their
   // gradients bounded by the records' radii (records: the record pass's buffer); blocks.
@@ -42,7 +45,7 @@ class HshRecordPass {
 
   GpuContext& gpu_;
   int order_;
-  NamedKernel project_, tilt_;
+  NamedKernel project_, tilt_, bound_fitted_;
   cl::Buffer coefficients_, tilt_x_, tilt_y_, largest_bits_, column_table_;
   size_t capacity_ = 0;
   unsigned table_columns_ = 0;  // the N column_table_ was made for

@@ -60,7 +60,16 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
       .set_buffer<cl_uint>("candidate_count", count_);
   size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing, grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing;
   find_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
-  return gpu_.download<cl_uint>(count_, 1)[0];
+  const uint32_t count = gpu_.download<cl_uint>(count_, 1)[0];
+  // The kernel appends in whatever order work-items run, which differs from run to run on the same device: in pixel
+  // order, the records (and every sum over them in record order) are the same bits each run.
+  if (count > 1) {
+    std::vector<cl_uint> pixels(count);
+    gpu_.queue().enqueueReadBuffer(candidates_, CL_TRUE, 0, count * sizeof(cl_uint), pixels.data());
+    std::sort(pixels.begin(), pixels.end());
+    gpu_.queue().enqueueWriteBuffer(candidates_, CL_TRUE, 0, count * sizeof(cl_uint), pixels.data());
+  }
+  return count;
 }
 
 void PlacementPass::fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels,

@@ -17,12 +17,13 @@ CausticMapPass* attach_caustic_map(IndirectFrame& f) {
   RenderStats& st = f.image.stats;
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::CausticKey key{f.settings.seed, f.settings.caustic_photons, f.settings.photon_neighbours};
-  if (!light.caustic_map || light.caustic_key != key) {
+  KeptLight* stored = f.kept_light;  // a cache file's photons for a Renderer that has built no map yet
+  // Shot again for a frame that keeps records when a frame that kept nothing built the map (attach_photon_map).
+  if (!light.caustic_map || light.caustic_key != key || (stored && !stored->has_caustic_map)) {
     const bool had_map = light.caustic_map != nullptr;
     light.caustic_map.reset();
     StageTimer timing(st.caustics.seconds, f.gpu, st.program_s);
     const SceneFrame& frame = f.device_scene.frame();
-    KeptLight* stored = f.kept_light;  // a cache file's photons for a Renderer that has built no map yet
     std::vector<PhotonHit> photons;
     if (stored && stored->has_caustic_map && !had_map) {
       photons = stored->caustic_photons;

@@ -22,8 +22,9 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   RenderStats& st = f.image.stats;
   if (!cs.guide_rays || !cs.guide_photons) return;
   KeptLight* stored = f.kept_light;
-  if (frame_light_guide(f)) {
-    // Built by an earlier frame with these settings.
+  if (frame_light_guide(f) && (!stored || stored->has_guide)) {
+    // Built by an earlier frame with these settings (and kept with the records when this frame keeps them: otherwise
+    // shot again below, the same photons, so that a cache file holds the guide).
   } else if (stored && stored->has_guide && !f.light.guide) {
     // A cache file's clusters, for a Renderer that has built no guide yet.
     f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons, stored->guide_clusters,

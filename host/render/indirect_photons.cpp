@@ -33,7 +33,11 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::PhotonKey key{f.settings.seed, f.settings.bounces, f.settings.photon_paths,
                                             f.settings.photon_neighbours};
-  if (!light.photon_map || light.photon_key != key) {
+  KeptLight* stored = f.kept_light;
+  // A map built by a frame that kept nothing is shot again (the same photons, so the same map) when a frame keeps
+  // records, so that a cache file written after it holds its photons.
+  const bool unstored = stored && !stored->has_photon_map;
+  if (!light.photon_map || light.photon_key != key || unstored) {
     const bool had_map = light.photon_map != nullptr;
     light.photon_map.reset();
     StageTimer timing(st.photon_map.seconds, f.gpu, st.program_s);
@@ -47,7 +51,6 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     uint64_t paths = 0;
     // A cache file's photons (render/cache_file.h) for a Renderer that has built no map yet: the same photons, so the
     // same map on the same device.
-    KeptLight* stored = f.kept_light;
     if (stored && stored->has_photon_map && !had_map) {
       kept = stored->photons;
       paths = stored->photon_paths;

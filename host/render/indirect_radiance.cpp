@@ -123,6 +123,9 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
     records.load(taken);
     hsh.load(coefficients, reused);
     index.seat_kept(records, reused, cs);
+    std::vector<float> kept_radii(taken.size());
+    std::transform(taken.begin(), taken.end(), kept_radii.begin(), [](const CacheRecord& r) { return r.radius; });
+    hsh.bound_fitted_gradients(records.records(), kept_radii);
   }
 
   const uint32_t total = place_records(
