@@ -2,6 +2,7 @@
 // sub-pixels (--pixel-samples side^2; side 1 copies), so the host downloads and fills output-sized layers only. At
 // 1920x1080 with four sub-pixels the sub-pixel layers were 2.3 GB a frame, half a GPU frame spent by the host
 // (benchmarks/RESULTS.md, issue 13 on the H200). Sums run in a fixed order: same input, same bits.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "shared_types.h"
 
 // The first sub-pixel of output pixel (x, y), in a sub-pixel frame side times as wide.
@@ -78,4 +79,32 @@ __kernel void resolve_record_counts(__global const GBufferSample* gbuffer, __glo
       uncovered += gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f ? 1.0f : 0.0f;
     }
   out[(size_t)y * out_width + x] = (float4)(reaching / (float)(side * side), sitting, uncovered, 0.0f);
+}
+
+// Counts for the summary of a frame whose layers stay on the device (RenderSettings::color_only), one work item per
+// sub-pixel, summed as whole numbers: the same bits whatever order work items run in, and the same numbers the host
+// adds up from the downloaded layers. sums[0 .. LOBE_KINDS - 1]: the sub-pixels with geometry of each lobe
+// (as resolve_surface packs them).
+__kernel void count_lobes(__global const GBufferSample* gbuffer, uint sub_pixels, __global ulong* sums) {
+  const size_t k = get_global_id(0);
+  if (k >= sub_pixels || gbuffer[k].triangle < 0) return;
+  const int lobe = gbuffer[k].lobe;
+  if (lobe_count_shift(lobe) < 32u) atom_inc(sums + lobe);
+}
+
+// sums[0] += the A channel of every sub-pixel, a whole number there (shadow rays, a pass's rays).
+__kernel void sum_alpha(__global const float4* source, uint sub_pixels, __global ulong* sums) {
+  const size_t k = get_global_id(0);
+  if (k >= sub_pixels) return;
+  const ulong a = (ulong)source[k].w;
+  if (a) atom_add(sums, a);
+}
+
+// sums[0] += the sub-pixels with geometry that no record reached (irradiance weight 0), as resolve_record_counts
+// counts them.
+__kernel void count_uncovered(__global const GBufferSample* gbuffer, __global const float4* irradiance,
+                              uint sub_pixels, __global ulong* sums) {
+  const size_t k = get_global_id(0);
+  if (k >= sub_pixels) return;
+  if (gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f) atom_inc(sums);
 }

@@ -83,6 +83,10 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   settings.photon_paths = 1024;
   settings.pixel_samples = 4;
   render(gpu, scene, settings);
+  // A frame that asks for its colour alone sums the summary's counts on the device (passes/layer_pass.h).
+  settings.color_only = true;
+  render(gpu, scene, settings);
+  settings.color_only = false;
   // The record trace the device's other way (GroupSizes::split_record_trace: split into hits and shading on a CPU
   // device, one kernel on a GPU), with the photon map too.
   const GroupSizes device_choice = gpu.groups();

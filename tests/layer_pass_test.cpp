@@ -3,11 +3,14 @@
 // sub-pixel grids of 1 x 1 (a copy), 2 x 2 and 3 x 3 (odd: the centre is the middle one).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "passes/layer_pass.h"
+#include "render/renderer.h"
+#include "lobed_cornell_box.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -172,7 +175,71 @@ TEST_P(LayerPassTest, RecordCountsAreReachingMeanSittingAndUncovered) {
     }
 }
 
+// The counts a colour-only frame sums on the device (RenderSettings::color_only) against the host's sums over the same
+// random sub-pixels: whole numbers, so equal.
+TEST_P(LayerPassTest, DeviceCountsAreTheSubPixelsSums) {
+  GpuContext& gpu = test::gpu();
+  const SubPixelFrame f{GetParam(), 17, 11};
+  std::mt19937 rng(53 + f.side);
+  const size_t count = size_t(f.width()) * f.height();
+  const std::vector<GBufferSample> g = random_gbuffer(count, rng);
+  const std::vector<cl_float4> rays = random_rgba(count, rng, true);
+  std::vector<cl_float4> irradiance = random_rgba(count, rng, false);
+  std::uniform_int_distribution<int> coin(0, 2);
+  for (cl_float4& e : irradiance)
+    if (coin(rng) == 0) e.s[3] = 0.0f;  // no record reached it
+  uint64_t by_lobe[LOBE_KINDS] = {}, ray_sum = 0, uncovered = 0;
+  for (size_t k = 0; k < count; ++k) {
+    if (g[k].triangle >= 0 && g[k].lobe != LOBE_NONE) ++by_lobe[g[k].lobe];
+    ray_sum += uint64_t(rays[k].s[3]);
+    uncovered += g[k].triangle >= 0 && irradiance[k].s[3] == 0.0f;
+  }
+  LayerPass layers(gpu, f.side, f.out_width, f.out_height);
+  const GBufferView view = view_of(gpu, g, f);
+  const std::array<uint64_t, LOBE_KINDS> lobes = layers.count_lobes(view);
+  for (int lobe = 0; lobe < LOBE_KINDS; ++lobe) EXPECT_EQ(lobes[size_t(lobe)], by_lobe[lobe]) << "lobe " << lobe;
+  EXPECT_GT(by_lobe[LOBE_HSH], 0u);
+  EXPECT_EQ(layers.sum_alpha(view, gpu.upload(rays)), ray_sum);
+  EXPECT_EQ(layers.count_uncovered(view, gpu.upload(irradiance)), uncovered);
+}
+
 INSTANTIATE_TEST_SUITE_P(SubPixelSides, LayerPassTest, ::testing::Values(1u, 2u, 3u));
+
+// A frame that asks for its colour alone (PNG outputs, walkthrough frames) gets the same colour, bit for bit, and the
+// same summary counts, with no other layer brought back from the device. The lobed Cornell box at 2 x 2 sub-pixels:
+// rough, glossy and radiance-cached pixels, the glossy pass's rays, the light guide's share.
+TEST(LayerPass, AColourOnlyFrameIsTheFullFramesColourWithNoOtherLayer) {
+  const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
+  RenderSettings s = test::one_bounce_one_sample();
+  s.width = s.height = 40;
+  s.pixel_samples = 4;
+  s.light_samples = 4;
+  s.bounces = 2;
+  s.bounce_method = BounceMethod::photons;
+  s.photon_paths = 1u << 14;
+  s.caustic_photons = 1u << 14;
+  const RenderedImage full = render(test::gpu(), scene, s);
+  s.color_only = true;
+  const RenderedImage colour = render(test::gpu(), scene, s);
+  EXPECT_EQ(colour.color, full.color);
+  for (const std::vector<float>* layer : {&colour.direct, &colour.emission, &colour.albedo, &colour.normal,
+                                          &colour.position, &colour.depth, &colour.indirect, &colour.irradiance,
+                                          &colour.coverage, &colour.records_per_pixel, &colour.record_positions})
+    EXPECT_TRUE(layer->empty());
+  EXPECT_TRUE(colour.triangle.empty());
+  const RenderStats &a = colour.stats, &b = full.stats;
+  EXPECT_GT(b.primary.rough_pixels, 0u);
+  EXPECT_GT(b.primary.glossy_pixels, 0u);
+  EXPECT_GT(b.primary.hsh_pixels, 0u);
+  EXPECT_GT(b.glossy.rays, 0u);
+  EXPECT_EQ(a.primary.rough_pixels, b.primary.rough_pixels);
+  EXPECT_EQ(a.primary.glossy_pixels, b.primary.glossy_pixels);
+  EXPECT_EQ(a.primary.hsh_pixels, b.primary.hsh_pixels);
+  EXPECT_EQ(a.primary.shadow_rays, b.primary.shadow_rays);
+  EXPECT_EQ(a.primary.primary_rays, b.primary.primary_rays);
+  EXPECT_EQ(a.glossy.rays, b.glossy.rays);
+  EXPECT_EQ(a.irradiance.uncovered_pixels, b.irradiance.uncovered_pixels);
+}
 
 TEST(LayerPass, AGBufferOfAnotherSizeIsRefused) {
   GpuContext& gpu = test::gpu();

@@ -207,6 +207,7 @@ int run_animate(const AnimateOptions& o) {
     RenderSettings settings = request;
     settings.keep_records = !o.cache_per_frame;
     settings.kept_records_capacity = o.kept_records;
+    settings.color_only = outputs_need_only_color(o.render.outputs);
     CameraPose pose = path.at(double(frame) / o.fps);
     if (orthographic) pose.fov_degrees.reset();
     settings.camera_overrides = pose.overrides();

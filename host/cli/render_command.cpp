@@ -299,13 +299,16 @@ int run_render(const RenderOptions& options) {
   } else if (!options.cache_in.empty() || !options.cache_out.empty()) {
     RenderSettings settings = options.settings;
     settings.keep_records = true;
+    settings.color_only = outputs_need_only_color(options.outputs);
     Renderer renderer(gpu, scene, settings.forced_switches);
     const FramePlan plan = renderer.plan(settings);
     if (!options.cache_in.empty()) load_cache_file(gpu, renderer, scene, plan, options.cache_in);
     image = renderer.render(plan);
     if (!options.cache_out.empty()) save_cache_file(gpu, renderer, scene, plan, options.cache_out);
   } else {
-    image = render(gpu, scene, options.settings);
+    RenderSettings settings = options.settings;
+    settings.color_only = outputs_need_only_color(options.outputs);
+    image = render(gpu, scene, settings);
   }
   const ExrAttributes attributes = render_attributes(scene, image, options.settings);
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);

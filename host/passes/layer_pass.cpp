@@ -14,7 +14,10 @@ LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_heig
       height_(out_height),
       surface_(gpu.kernel("layers.cl", "resolve_surface")),
       rgba_(gpu.kernel("layers.cl", "resolve_rgba")),
-      counts_(gpu.kernel("layers.cl", "resolve_record_counts")) {}
+      counts_(gpu.kernel("layers.cl", "resolve_record_counts")),
+      count_lobes_(gpu.kernel("layers.cl", "count_lobes")),
+      sum_alpha_(gpu.kernel("layers.cl", "sum_alpha")),
+      count_uncovered_(gpu.kernel("layers.cl", "count_uncovered")) {}
 
 cl::Buffer& LayerPass::rgba_out() {
   // Made on first use, at the frame's end: the passes' own buffers peak before it.
@@ -137,6 +140,39 @@ std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl
   std::vector<float> out(pixel_count() * 4);
   record_counts(gbuffer, irradiance, records_per_pixel, record_at_pixel, into(out, 4));
   return out;
+}
+
+template <typename Bind>
+std::vector<uint64_t> LayerPass::device_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums,
+                                             const Bind& bind) {
+  check_frame(gbuffer);
+  if (!sums_()) sums_ = gpu_.buffer(CL_MEM_READ_WRITE, LOBE_KINDS * sizeof(cl_ulong), "image layers");
+  gpu_.queue().enqueueFillBuffer(sums_, cl_ulong(0), 0, sums * sizeof(cl_ulong));
+  const size_t sub_pixels = gbuffer.pixel_count();
+  bind(kernel);
+  kernel.set("sub_pixels", cl_uint(sub_pixels)).set_buffer<cl_ulong>("sums", sums_);
+  kernel.launch(sub_pixels, 256);
+  const std::vector<cl_ulong> read = gpu_.download<cl_ulong>(sums_, sums);
+  return std::vector<uint64_t>(read.begin(), read.end());
+}
+
+std::array<uint64_t, LOBE_KINDS> LayerPass::count_lobes(const GBufferView& gbuffer) {
+  const std::vector<uint64_t> sums = device_sums(count_lobes_, gbuffer, LOBE_KINDS, [&](NamedKernel& k) {
+    k.set_buffer<GBufferSample>("gbuffer", gbuffer.samples);
+  });
+  std::array<uint64_t, LOBE_KINDS> counts{};
+  std::copy(sums.begin(), sums.end(), counts.begin());
+  return counts;
+}
+
+uint64_t LayerPass::sum_alpha(const GBufferView& gbuffer, const cl::Buffer& source) {
+  return device_sums(sum_alpha_, gbuffer, 1, [&](NamedKernel& k) { k.set_buffer<cl_float4>("source", source); })[0];
+}
+
+uint64_t LayerPass::count_uncovered(const GBufferView& gbuffer, const cl::Buffer& irradiance) {
+  return device_sums(count_uncovered_, gbuffer, 1, [&](NamedKernel& k) {
+    k.set_buffer<GBufferSample>("gbuffer", gbuffer.samples).set_buffer<cl_float4>("irradiance", irradiance);
+  })[0];
 }
 
 }  // namespace rcsplat

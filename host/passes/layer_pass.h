@@ -2,6 +2,8 @@
 // (--pixel-samples side^2; side 1 copies) on the device, so the host downloads and fills output-sized layers only.
 // Owns the output-sized buffer the float4 images are gathered into.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -42,6 +44,15 @@ class LayerPass {
   std::vector<float> record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
                                    const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel);
 
+  // Counts for the summary of a frame whose layers stay on the device (RenderSettings::color_only), summed on the
+  // device from the sub-pixels as the host sums them from the layers, so both give the same numbers.
+  // The sub-pixels with geometry of each lobe kind (LOBE_KINDS counts).
+  std::array<uint64_t, LOBE_KINDS> count_lobes(const GBufferView& gbuffer);
+  // The sum of a sub-pixel float4 image's A channel, whole numbers there (shadow rays, a pass's rays).
+  uint64_t sum_alpha(const GBufferView& gbuffer, const cl::Buffer& source);
+  // The sub-pixels with geometry no record reached (the irradiance's weight, A, is 0).
+  uint64_t count_uncovered(const GBufferView& gbuffer, const cl::Buffer& irradiance);
+
   // Pixels a piece holds (tests make it small, to cross pieces' edges); 0: kDefaultPiecePixels.
   // 20 MB of surface, 4 MB of RGBA: 16 blocks of parallel_ranges.
   static constexpr size_t kDefaultPiecePixels = size_t(1) << 18;
@@ -60,7 +71,12 @@ class LayerPass {
   GpuContext& gpu_;
   unsigned side_;
   int width_, height_;
-  NamedKernel surface_, rgba_, counts_;
+  // A sub-pixel count's sum, read back (count_lobes, sum_alpha, count_uncovered).
+  template <typename Bind>
+  std::vector<uint64_t> device_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums, const Bind& bind);
+
+  NamedKernel surface_, rgba_, counts_, count_lobes_, sum_alpha_, count_uncovered_;
+  cl::Buffer sums_;  // device_sums' counters
   cl::Buffer rgba_out_;  // the float4 images' gathered pixels
   cl::Buffer surface_band_;  // one band of PixelSurfaces (surface())
   size_t surface_band_pixels_ = 0;

@@ -59,8 +59,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
                   f.settings.bounces, reads);
     }
     st.glossy.samples = f.settings.glossy_samples;
-    const std::vector<float> rays = f.layers.sum_rgba(glossy->radiance());
-    for (size_t i = 3; i < rays.size(); i += 4) st.glossy.rays += uint64_t(rays[i]);
+    st.glossy.rays += f.layers.sum_alpha(gbuffer, glossy->radiance());
   }
   {
     StageTimer timing(st.irradiance.resolve_s);
@@ -70,7 +69,6 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 
   StageTimer timing(st.primary.layers_s);
   const size_t pixels = f.layers.pixel_count();
-  img.indirect.resize(pixels * 3);
   // The RGB of a piece of RGBA pixels into a layer.
   auto rgb_into = [](std::vector<float>& layer) {
     return [&layer](size_t first, const float* piece, size_t count) {
@@ -80,7 +78,10 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
       });
     };
   };
-  f.layers.mean_rgba(compose.indirect(), rgb_into(img.indirect));
+  if (!layers_stay_on_device(f.settings)) {
+    img.indirect.resize(pixels * 3);
+    f.layers.mean_rgba(compose.indirect(), rgb_into(img.indirect));
+  }
   f.layers.mean_rgba(compose.color(), rgb_into(img.color));
 }
 
@@ -88,6 +89,10 @@ void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl:
                        const cl::Buffer& record_at_pixel) {
   RenderedImage& img = f.image;
   StageTimer timing(img.stats.primary.layers_s);
+  if (layers_stay_on_device(f.settings)) {
+    img.stats.irradiance.uncovered_pixels += f.layers.count_uncovered(f.gbuffer.view(), irradiance);
+    return;
+  }
   const size_t pixels = f.layers.pixel_count();
   img.irradiance.resize(pixels * 3);
   img.coverage.resize(pixels);

@@ -1,5 +1,7 @@
 #include "render/render_output.h"
 
+#include <algorithm>
+
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -13,17 +15,18 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     write_png(path, image.width, image.height, image.color, exposure_stops);
   } else if (ext == ".exr") {
     std::vector<std::string> rgb = {"R", "G", "B"};
-    std::vector<ImageLayer> layers = {{"", rgb, &image.color},
-                                      {"direct", rgb, &image.direct},
-                                      {"emission", rgb, &image.emission},
-                                      {"albedo", rgb, &image.albedo},
-                                      {"normal", {"X", "Y", "Z"}, &image.normal},
-                                      {"position", {"X", "Y", "Z"}, &image.position},
-                                      {"depth", {"Z"}, &image.depth}};
-    // Global illumination layers, present when the render computed them.
+    std::vector<ImageLayer> layers = {{"", rgb, &image.color}};
+    // The layers the frame brought back from the device (a colour-only frame: none; RenderSettings::color_only), and
+    // the global illumination layers the render computed.
     auto add = [&](const char* name, std::vector<std::string> channels, const std::vector<float>& data) {
       if (!data.empty()) layers.push_back({name, std::move(channels), &data});
     };
+    add("direct", rgb, image.direct);
+    add("emission", rgb, image.emission);
+    add("albedo", rgb, image.albedo);
+    add("normal", {"X", "Y", "Z"}, image.normal);
+    add("position", {"X", "Y", "Z"}, image.position);
+    add("depth", {"Z"}, image.depth);
     add("indirect", rgb, image.indirect);
     add("irradiance", rgb, image.irradiance);
     add("indirect_variance", rgb, image.indirect_variance);
@@ -32,6 +35,11 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     add("record_positions", {"Y"}, image.record_positions);
     write_exr(path, image.width, image.height, layers, attributes);
   }
+}
+
+bool outputs_need_only_color(const std::vector<std::string>& paths) {
+  return !paths.empty() &&
+         std::all_of(paths.begin(), paths.end(), [](const std::string& p) { return lower_extension(p) == ".png"; });
 }
 
 }  // namespace rcsplat

@@ -235,9 +235,52 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   StageTimer layers_timing(st.primary.layers_s);
   const size_t pixels = layers.pixel_count();
   img.color.resize(pixels * 3);
+  st.primary.primary_rays = gbuffer.view().pixel_count();
   // The cache methods' colour comes whole from the device's composition (indirect_compose.cpp); path tracing and
   // direct light alone add up emission, direct and their indirect here.
   const bool colour_on_host = settings.gi == GiMethod::path || settings.gi == GiMethod::none;
+  if (layers_stay_on_device(settings)) {
+    const std::array<uint64_t, LOBE_KINDS> lobes = layers.count_lobes(gbuffer.view());
+    st.primary.rough_pixels += lobes[LOBE_ROUGH];
+    st.primary.glossy_pixels += lobes[LOBE_GLOSSY];
+    st.primary.hsh_pixels += lobes[LOBE_HSH];
+    st.primary.shadow_rays += layers.sum_alpha(gbuffer.view(), direct.radiance());
+  } else {
+    surface_layers(img, colour_on_host);
+  }
+  layers_timing.stop();
+
+  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
+  frame.camera = &camera;
+  if (settings.keep_records && settings.gi == GiMethod::splat) {
+    kept_records().set_capacity(settings.kept_records_capacity);
+    frame.kept_records = &kept_records_->irradiance;
+    frame.kept_radiance_records = &kept_records_->radiance;
+    frame.kept_light = &kept_records_->light;
+  } else {
+    kept_records_.reset();
+  }
+  frame.lobe_table = lobe_table_.get();
+  frame.lobe_table_seed = lobe_table_seed_;
+  frame.radiance_accuracy = plan.radiance_accuracy;
+  frame.hsh_captured_energy = plan.hsh_captured_energy;
+  frame.progress = progress;
+  frame.progress_done_before = progress_done_before;
+  switch (settings.gi) {
+    case GiMethod::none: break;
+    case GiMethod::splat: splat_indirect(frame); break;
+    case GiMethod::octree: octree_indirect(frame); break;
+    case GiMethod::path: path_traced_indirect(frame); break;
+  }
+}
+
+
+// The layers a frame's surface gives (PixelSurface): downloaded in pieces and filled in, with the summary's counts;
+// colour_on_host: the colour starts from emission + direct here (path tracing, direct light alone).
+void Renderer::surface_layers(RenderedImage& img, bool colour_on_host) {
+  LayerPass& layers = *layers_;
+  const SceneFrame& scene_frame = scene_frame_;
+  const size_t pixels = layers.pixel_count();
   img.direct.resize(pixels * 3);
   img.emission.resize(pixels * 3);
   img.albedo.resize(pixels * 3);
@@ -245,9 +288,8 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   img.position.resize(pixels * 3);
   img.depth.resize(pixels);
   img.triangle.resize(pixels);
-  st.primary.primary_rays = gbuffer.view().pixel_count();
   std::atomic<uint64_t> rough{0}, glossy{0}, hsh{0}, shadow_rays{0};
-  layers.surface(gbuffer.view(), direct.radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
+  layers.surface(gbuffer_->view(), direct_->radiance(), [&](size_t first, const PixelSurface* piece, size_t count) {
     parallel_ranges(count, [&](size_t begin, size_t end) {
       uint64_t range_rough = 0, range_glossy = 0, range_hsh = 0, range_shadow_rays = 0;
       for (size_t k = begin; k < end; ++k) {
@@ -277,36 +319,13 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
       shadow_rays += range_shadow_rays;
     });
   });
+  RenderStats& st = img.stats;
   st.primary.rough_pixels += rough;
   st.primary.glossy_pixels += glossy;
   st.primary.hsh_pixels += hsh;
   st.primary.shadow_rays += shadow_rays;
-  layers_timing.stop();
 
-  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
-  frame.camera = &camera;
-  if (settings.keep_records && settings.gi == GiMethod::splat) {
-    kept_records().set_capacity(settings.kept_records_capacity);
-    frame.kept_records = &kept_records_->irradiance;
-    frame.kept_radiance_records = &kept_records_->radiance;
-    frame.kept_light = &kept_records_->light;
-  } else {
-    kept_records_.reset();
-  }
-  frame.lobe_table = lobe_table_.get();
-  frame.lobe_table_seed = lobe_table_seed_;
-  frame.radiance_accuracy = plan.radiance_accuracy;
-  frame.hsh_captured_energy = plan.hsh_captured_energy;
-  frame.progress = progress;
-  frame.progress_done_before = progress_done_before;
-  switch (settings.gi) {
-    case GiMethod::none: break;
-    case GiMethod::splat: splat_indirect(frame); break;
-    case GiMethod::octree: octree_indirect(frame); break;
-    case GiMethod::path: path_traced_indirect(frame); break;
-  }
 }
-
 
 // Path tracing over the pixels' area (PathSettings::pixel_area): plan.rounds = s^2 rounds of the frame, round r's
 // camera rays through a random point of cell r of an s x s grid over each pixel (stratified jitter), each with its

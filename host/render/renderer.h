@@ -57,6 +57,7 @@ class Renderer {
   // Whether a frame with these settings radiance-caches lobes: the splat's, in a scene with a LOBE_HSH material.
   bool radiance_cached(const RenderSettings& settings) const;
   const RadianceLobeTable& lobe_table(unsigned seed);
+  void surface_layers(RenderedImage& img, bool colour_on_host);
   void shade_frame(const FramePlan& plan, const CameraParams& camera, const RenderSettings& settings,
                    RenderedImage& img, Progress* progress = nullptr, size_t progress_done_before = 0);
   void path_trace_pixel_area(const FramePlan& plan, const CameraParams& camera, RenderedImage& img);
