@@ -81,30 +81,47 @@ __kernel void resolve_record_counts(__global const GBufferSample* gbuffer, __glo
   out[(size_t)y * out_width + x] = (float4)(reaching / (float)(side * side), sitting, uncovered, 0.0f);
 }
 
-// Counts for the summary of a frame whose layers stay on the device (RenderSettings::color_only), one work item per
-// sub-pixel, summed as whole numbers: the same bits whatever order work items run in, and the same numbers the host
-// adds up from the downloaded layers. sums[0 .. LOBE_KINDS - 1]: the sub-pixels with geometry of each lobe
-// (as resolve_surface packs them).
+// Counts for the summary of a frame whose layers stay on the device (RenderSettings::color_only), summed as whole
+// numbers: the same bits whatever order work items run in, and the same numbers the host adds up from the downloaded
+// layers. One work item per sub-pixel; a work-group adds its counts in local memory and then once to the frame's
+// (groups of LAYER_COUNT_GROUP): on a GPU, one global atomic per sub-pixel on one address
+// would queue millions of updates a 1080p frame.
+
+// sums[0 .. LOBE_KINDS - 1]: the sub-pixels with geometry of each lobe (as resolve_surface packs them).
 __kernel void count_lobes(__global const GBufferSample* gbuffer, uint sub_pixels, __global ulong* sums) {
+  __local uint counts[LOBE_KINDS];
   const size_t k = get_global_id(0);
-  if (k >= sub_pixels || gbuffer[k].triangle < 0) return;
-  const int lobe = gbuffer[k].lobe;
-  if (lobe_count_shift(lobe) < 32u) atom_inc(sums + lobe);
+  const uint item = get_local_id(0);
+  for (uint lobe = item; lobe < LOBE_KINDS; lobe += get_local_size(0)) counts[lobe] = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (k < sub_pixels && gbuffer[k].triangle >= 0 && lobe_count_shift(gbuffer[k].lobe) < 32u)
+    atomic_inc(counts + gbuffer[k].lobe);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint lobe = item; lobe < LOBE_KINDS; lobe += get_local_size(0))
+    if (counts[lobe]) atom_add(sums + lobe, (ulong)counts[lobe]);
 }
 
 // sums[0] += the A channel of every sub-pixel, a whole number there (shadow rays, a pass's rays).
 __kernel void sum_alpha(__global const float4* source, uint sub_pixels, __global ulong* sums) {
+  __local uint sum;
   const size_t k = get_global_id(0);
-  if (k >= sub_pixels) return;
-  const ulong a = (ulong)source[k].w;
-  if (a) atom_add(sums, a);
+  if (get_local_id(0) == 0) sum = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint a = k < sub_pixels ? (uint)source[k].w : 0u;
+  if (a) atomic_add(&sum, a);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0 && sum) atom_add(sums, (ulong)sum);
 }
 
 // sums[0] += the sub-pixels with geometry that no record reached (irradiance weight 0), as resolve_record_counts
 // counts them.
 __kernel void count_uncovered(__global const GBufferSample* gbuffer, __global const float4* irradiance,
                               uint sub_pixels, __global ulong* sums) {
+  __local uint count;
   const size_t k = get_global_id(0);
-  if (k >= sub_pixels) return;
-  if (gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f) atom_inc(sums);
+  if (get_local_id(0) == 0) count = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (k < sub_pixels && gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f) atomic_inc(&count);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0 && count) atom_add(sums, (ulong)count);
 }

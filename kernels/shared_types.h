@@ -200,6 +200,10 @@ typedef struct {
   rc_uint lobe_counts;
 } PixelSurface;
 
+// The work-group of the counts of a frame whose layers stay on the device (kernels/layers.cl count_lobes, sum_alpha,
+// count_uncovered).
+#define LAYER_COUNT_GROUP 256
+
 // Where PixelSurface::lobe_counts keeps a lobe's count (8 bits each: side^2 <= 64); 32 for a lobe it does not count.
 inline rc_uint lobe_count_shift(rc_int lobe) {
   return lobe == LOBE_ROUGH ? 0u : lobe == LOBE_GLOSSY ? 8u : lobe == LOBE_HSH ? 16u : 32u;

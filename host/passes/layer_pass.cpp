@@ -151,7 +151,7 @@ std::vector<uint64_t> LayerPass::device_sums(NamedKernel& kernel, const GBufferV
   const size_t sub_pixels = gbuffer.pixel_count();
   bind(kernel);
   kernel.set("sub_pixels", cl_uint(sub_pixels)).set_buffer<cl_ulong>("sums", sums_);
-  kernel.launch(sub_pixels, 256);
+  kernel.launch(sub_pixels, LAYER_COUNT_GROUP);
   const std::vector<cl_ulong> read = gpu_.download<cl_ulong>(sums_, sums);
   return std::vector<uint64_t>(read.begin(), read.end());
 }
