@@ -33,15 +33,28 @@ __kernel void mark_covered(GBUFFER_ARGS, __global const CacheRecord* records, Pl
   }
 }
 
-// Pixels on the grid of the given spacing that see geometry and are not covered become candidates.
-// A pixel that already holds a record never gets a second one.
-__kernel void find_uncovered(GBUFFER_ARGS, __global const uchar* covered, __global const int* record_at_pixel,
-                             PlacementParams params, __global uint* candidates, __global uint* candidate_count) {
-  int x = get_global_id(0) * params.spacing, y = get_global_id(1) * params.spacing;
+// Pixels on the grid of the given spacing that see geometry and are not covered become candidates: flags[cell] is 1
+// for them, 0 for the grid's other cells (grid_width cells a row). A pixel that already holds a record never gets a
+// second one.
+__kernel void flag_uncovered(GBUFFER_ARGS, __global const uchar* covered, __global const int* record_at_pixel,
+                             PlacementParams params, uint grid_width, __global uint* flags) {
+  const int gx = get_global_id(0), gy = get_global_id(1);
+  const int x = gx * params.spacing, y = gy * params.spacing;
   if (x >= camera->width || y >= camera->height) return;
-  uint pixel = (uint)(y * camera->width + x);
-  if (gbuffer[pixel].triangle < 0 || covered[pixel] || record_at_pixel[pixel] >= 0) return;
-  candidates[atomic_inc(candidate_count)] = pixel;
+  const uint pixel = (uint)(y * camera->width + x);
+  flags[(size_t)gy * grid_width + gx] = gbuffer[pixel].triangle >= 0 && !covered[pixel] && record_at_pixel[pixel] < 0;
+}
+
+// The flagged cells' pixels, in the grid's order (so in pixel order, the same whatever order work items run in), at
+// the places the flags' exclusive scan gives them; *candidate_count: how many.
+__kernel void compact_uncovered(__global const CameraParams* camera, __global const uint* flags,
+                                __global const uint* places, uint cells, uint grid_width, PlacementParams params,
+                                __global uint* candidates, __global uint* candidate_count) {
+  const uint cell = get_global_id(0);
+  if (cell >= cells) return;
+  if (flags[cell])
+    candidates[places[cell]] = (cell / grid_width) * params.spacing * camera->width + (cell % grid_width) * params.spacing;
+  if (cell == cells - 1) *candidate_count = places[cell] + flags[cell];
 }
 
 // Records first_record .. first_record + record_count - 1 (the newest batch) now sit on their pixels.

@@ -200,6 +200,11 @@ typedef struct {
   rc_uint lobe_counts;
 } PixelSurface;
 
+// The device's exclusive scan (kernels/scan.cl): SCAN_GROUP items a work-group, SCAN_ITEMS elements each.
+#define SCAN_GROUP 256
+#define SCAN_ITEMS 4
+#define SCAN_BLOCK (SCAN_GROUP * SCAN_ITEMS)
+
 // The work-group of the counts of a frame whose layers stay on the device (kernels/layers.cl count_lobes, sum_alpha,
 // count_uncovered).
 #define LAYER_COUNT_GROUP 256

@@ -11,6 +11,7 @@
 #include "cl/device_scene.h"
 #include "cl/embedded_kernels.h"
 #include "passes/ray_cast_pass.h"
+#include "passes/scan_pass.h"
 #include "passes/splat_pass.h"
 #include "passes/caustic_map_pass.h"
 #include "passes/glossy_pass.h"
@@ -125,6 +126,11 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   caster.cast_closest();
   caster.cast_occlusion();
   EXPECT_GE(caster.closest_hits()[0].prim, 0);
+  // A scan of more than one block adds the blocks' offsets (the frames above scan at most one block).
+  ScanPass scan(gpu);
+  const cl::Buffer scanned = gpu.buffer(CL_MEM_READ_WRITE, 2000 * sizeof(cl_uint), "test");
+  scan.exclusive(gpu.upload(std::vector<cl_uint>(2000, 1u)), 2000, scanned);
+  EXPECT_EQ(gpu.download<cl_uint>(scanned, 2000)[1999], 1999u);
 
   std::set<std::string> built = gpu.built_kernel_names();
   const std::set<std::string> every_kernel = every_kernel_in_the_sources();

@@ -88,6 +88,9 @@ class NamedKernel {
   // (fitted_group), or a 2-D grid of tiles; every parameter must have been set since the last launch.
   void launch(size_t items, size_t group);
   void launch_2d(size_t width, size_t height, size_t tile_side);
+  // `wanted` cut to what the kernel can run with on its device, and to a whole number of the device's preferred
+  // multiple where it is at least one: the group launch() runs.
+  size_t fitted_group(size_t wanted) const;
   const std::string& name() const { return name_; }
   // Whether the driver reported the parameters' names and types (else the order of the set() calls binds).
   bool bound_by_name() const { return by_name_; }
@@ -98,9 +101,6 @@ class NamedKernel {
     bool set = false;
   };
   cl_uint index_of(const std::string& name, const std::string& type);
-  // `wanted` cut to what the kernel can run with on its device, and to a whole number of the device's preferred
-  // multiple where it is at least one.
-  size_t fitted_group(size_t wanted) const;
   void enqueue(const cl::NDRange& global, const cl::NDRange& local);
   void forget_arguments();  // each launch sets every parameter anew
 

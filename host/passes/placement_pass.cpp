@@ -10,11 +10,13 @@ PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
     : gpu_(gpu),
       gbuffer_(gbuffer),
       covered_kernel_(gpu.kernel("placement.cl", "mark_covered")),
-      find_(gpu.kernel("placement.cl", "find_uncovered")),
+      flag_(gpu.kernel("placement.cl", "flag_uncovered")),
+      compact_(gpu.kernel("placement.cl", "compact_uncovered")),
       mark_(gpu.kernel("placement.cl", "mark_records")),
       clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
       apply_(gpu.kernel("placement.cl", "apply_radii")),
-      fit_(gpu.kernel("placement.cl", "fit_kept_records")) {
+      fit_(gpu.kernel("placement.cl", "fit_kept_records")),
+      scan_(gpu) {
   begin(gbuffer);
 }
 
@@ -25,6 +27,8 @@ void PlacementPass::begin(const GBufferView& gbuffer) {
   if (!candidates_() || pixels != gbuffer_.pixel_count() || tiles_now != tiles_) {
     const size_t slots = std::max<size_t>(pixels, 1);
     candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
+    flags_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
+    places_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
     record_map_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_int), "placement");
     covered_ = gpu_.buffer(CL_MEM_READ_WRITE, slots, "placement covered");
     tiles_ = tiles_now;
@@ -51,25 +55,30 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
     covered_kernel_.set_buffer<CacheRecord>("records", records).set("params", params).set_buffer<cl_uchar>("covered", covered_);
     covered_kernel_.launch(params.record_count, gpu_.groups().per_record);
   }
-  gpu_.queue().enqueueFillBuffer(count_, cl_uint(0), 0, sizeof(cl_uint));
-  gbuffer_.bind(find_);
-  find_.set_buffer<cl_uchar>("covered", covered_)
+  // Flagged, scanned and compacted rather than appended with an atomic counter: in pixel order, the records (and every
+  // sum over them in record order) are the same bits each run; an atomic hands places out in whatever order the
+  // device runs work items, which differs from run to run on the same device.
+  const size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing;
+  const size_t grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing, cells = grid_x * grid_y;
+  gbuffer_.bind(flag_);
+  flag_.set_buffer<cl_uchar>("covered", covered_)
       .set_buffer<cl_int>("record_at_pixel", record_map_)
+      .set("params", params)
+      .set("grid_width", cl_uint(grid_x))
+      .set_buffer<cl_uint>("flags", flags_);
+  flag_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
+  scan_.exclusive(flags_, uint32_t(cells), places_);
+  compact_.set_buffer<CameraParams>("camera", gbuffer_.camera)
+      .set_buffer<cl_uint>("flags", flags_)
+      .set_buffer<cl_uint>("places", places_)
+      .set("cells", cl_uint(cells))
+      .set("grid_width", cl_uint(grid_x))
       .set("params", params)
       .set_buffer<cl_uint>("candidates", candidates_)
       .set_buffer<cl_uint>("candidate_count", count_);
-  size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing, grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing;
-  find_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
-  const uint32_t count = gpu_.download<cl_uint>(count_, 1)[0];
-  // The kernel appends in whatever order work-items run, which differs from run to run on the same device: in pixel
-  // order, the records (and every sum over them in record order) are the same bits each run.
-  if (count > 1) {
-    std::vector<cl_uint> pixels(count);
-    gpu_.queue().enqueueReadBuffer(candidates_, CL_TRUE, 0, count * sizeof(cl_uint), pixels.data());
-    std::sort(pixels.begin(), pixels.end());
-    gpu_.queue().enqueueWriteBuffer(candidates_, CL_TRUE, 0, count * sizeof(cl_uint), pixels.data());
-  }
-  return count;
+  gpu_.queue().enqueueFillBuffer(count_, cl_uint(0), 0, sizeof(cl_uint));  // an empty grid writes no count
+  compact_.launch(cells, 256);
+  return gpu_.download<cl_uint>(count_, 1)[0];
 }
 
 void PlacementPass::fit_kept(const cl::Buffer& records, uint32_t count, float min_radius_pixels,

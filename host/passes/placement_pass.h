@@ -6,6 +6,7 @@
 
 #include "cl/gpu_context.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/scan_pass.h"
 
 namespace rcsplat {
 
@@ -43,8 +44,9 @@ class PlacementPass {
  private:
   GpuContext& gpu_;
   GBufferView gbuffer_;
-  NamedKernel covered_kernel_, find_, mark_, clamp_, apply_, fit_;
-  cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_;
+  NamedKernel covered_kernel_, flag_, compact_, mark_, clamp_, apply_, fit_;
+  ScanPass scan_;  // the candidates' places, in pixel order
+  cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_, flags_, places_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;
   int record_grid_ = 0;  // the finest placement grid searched so far: every record sits on one of its pixels
