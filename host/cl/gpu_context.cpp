@@ -307,7 +307,9 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
       }
     }
   }
-  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  program_seconds_ += seconds;
+  program_seconds_by_file_[file] += seconds;
   return *programs_.emplace(key, std::move(program)).first->second;
 }
 

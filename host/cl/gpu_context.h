@@ -62,6 +62,9 @@ class GpuContext {
 
   // Seconds spent building (or loading cached) programs so far, for the summary.
   double program_seconds() const { return program_seconds_; }
+  // The same seconds by kernel file ("records.cl"), every set of switches of a file together (`rcsplat bench`'s cold
+  // builds by file).
+  const std::map<std::string, double>& program_seconds_by_file() const { return program_seconds_by_file_; }
 
   const GroupSizes& groups() const { return groups_; }
   // Another device's shapes on this one (tests: a GPU's record trace on PoCL must give the same records).
@@ -135,6 +138,7 @@ class GpuContext {
   std::map<std::string, bool> launched_;
   size_t buffers_made_ = 0;
   double program_seconds_ = 0.0;
+  std::map<std::string, double> program_seconds_by_file_;
   std::string cold_build_nonce_;
   uint64_t memory_budget_ = 0;
   std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)

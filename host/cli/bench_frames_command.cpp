@@ -57,10 +57,12 @@ int run_bench_frames(const BenchOptions& o) {
   for (const DeviceInfo& device : devices) {
     log_info("bench: " + device.name);
     RenderStats cold;
+    std::map<std::string, double> cold_by_file;
     {
       GpuContext gpu(device);
       gpu.use_cold_builds(std::to_string(nonce) + "_" + std::to_string(device.index));
       cold = render(gpu, scene, settings).stats;
+      cold_by_file = gpu.program_seconds_by_file();
     }
     { GpuContext gpu(device); render(gpu, scene, settings); }  // fills the program cache when it was empty
     GpuContext gpu(device);  // a new process's state: programs come from the on-disk cache
@@ -97,8 +99,15 @@ int run_bench_frames(const BenchOptions& o) {
     passes["other"] = other;
     std::printf(" %9.3f %9.3f %9llu %9.2f %9.1f\n", other, frame, (unsigned long long)last.irradiance.records,
                 record_rate, double(last.device_memory.peak_bytes) / double(1 << 20));
+    // The cold builds by file, slowest first: where a first frame's compile time goes.
+    std::vector<std::pair<std::string, double>> by_file(cold_by_file.begin(), cold_by_file.end());
+    std::stable_sort(by_file.begin(), by_file.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::printf("  cold builds by file:");
+    for (const auto& [file, seconds] : by_file) std::printf(" %s %.2f s;", file.c_str(), seconds);
+    std::printf("\n");
     std::fflush(stdout);
     report["devices"].push_back({{"device", device.name}, {"platform", device.platform_name},
+                                 {"kernel_build_cold_by_file_s", cold_by_file},
                                  {"driver", device.driver_version}, {"type", device.type},
                                  {"kernel_build_cold_s", cold.program_s}, {"cold_frame_s", cold.total_s},
                                  {"kernel_build_cached_s", first.program_s},
