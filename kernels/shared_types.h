@@ -200,6 +200,9 @@ typedef struct {
   rc_uint lobe_counts;
 } PixelSurface;
 
+// Placement lists its candidates in tiles of this many grid cells a side (kernels/placement.cl candidate_cell).
+#define CANDIDATE_TILE 8
+
 // The device's exclusive scan (kernels/scan.cl): SCAN_GROUP items a work-group, SCAN_ITEMS elements each.
 #define SCAN_GROUP 256
 #define SCAN_ITEMS 4

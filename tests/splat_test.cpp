@@ -168,14 +168,29 @@ TEST(Splat, SameInputSameBits) {
   EXPECT_EQ(0, std::memcmp(a.irradiance.data(), b.irradiance.data(), a.irradiance.size() * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(float)));
   for (float v : a.color) ASSERT_TRUE(std::isfinite(v));
-  // The same records in the same order: each placement batch's records in pixel order (kernels/placement.cl appends
-  // candidates in whatever order work-items run; passes/placement_pass.cpp sorts them), so they break into no more
-  // ascending runs than there are batches. In the order work-items ran, every work-group's tile starts a run.
+  // The same records in the same order: each placement batch lists its candidates tile by tile (kernels/placement.cl
+  // candidate_cell, written again here), whatever order work items run in (an atomic counter made that order differ
+  // between runs). A level is one batch but the finest, which runs kRoundsAtFinestSpacing rounds at most.
   ASSERT_EQ(a.records.size(), b.records.size());
   EXPECT_EQ(0, std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(CacheRecord)));
-  size_t runs = a.records.empty() ? 0 : 1;
-  for (size_t i = 1; i < a.records.size(); ++i) runs += a.records[i].pixel < a.records[i - 1].pixel;
-  EXPECT_LE(runs, a.stats.irradiance.levels.size() + size_t(kRoundsAtFinestSpacing) - 1);
+  const int width = 64;  // small_splat(64), one sample a pixel
+  size_t first = 0;
+  const std::vector<PlacementLevel>& levels = a.stats.irradiance.levels;
+  for (size_t l = 0; l < levels.size(); ++l) {
+    const int spacing = levels[l].spacing_pixels;
+    const uint32_t tiles_x = uint32_t((width + spacing - 1) / spacing + CANDIDATE_TILE - 1) / CANDIDATE_TILE;
+    auto cell_of = [&](int pixel) {
+      const uint32_t gx = uint32_t(pixel % width / spacing), gy = uint32_t(pixel / width / spacing);
+      const uint32_t tile = (gy / CANDIDATE_TILE) * tiles_x + gx / CANDIDATE_TILE;
+      return (tile * CANDIDATE_TILE + gy % CANDIDATE_TILE) * CANDIDATE_TILE + gx % CANDIDATE_TILE;
+    };
+    size_t descents = 0;
+    for (size_t i = first + 1; i < first + levels[l].records; ++i)
+      descents += cell_of(a.records[i].pixel) < cell_of(a.records[i - 1].pixel);
+    EXPECT_LE(descents, l + 1 == levels.size() ? size_t(kRoundsAtFinestSpacing) - 1 : 0u) << "spacing " << spacing;
+    first += levels[l].records;
+  }
+  EXPECT_EQ(first, a.records.size());
 }
 
 // Gautron et al.'s central claim: splatting each record over its footprint and normalising gives, pixel for pixel,

@@ -115,13 +115,6 @@ std::vector<float> LayerPass::mean_rgba(const cl::Buffer& source) {
   return out;
 }
 
-std::vector<float> LayerPass::sum_rgba(const cl::Buffer& source) {
-  resolve_rgba(source, 1.0f);
-  std::vector<float> out(pixel_count() * 4);
-  in_pieces(rgba_out_, 4, into(out, 4));
-  return out;
-}
-
 void LayerPass::record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance,
                               const cl::Buffer& records_per_pixel, const cl::Buffer& record_at_pixel,
                               const PieceVisit<float>& visit) {

@@ -33,10 +33,9 @@ class LayerPass {
   // triangle of the centre sub-pixel; shadow rays and the lobes' sub-pixels summed (PixelSurface).
   void surface(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<PixelSurface>& visit);
   std::vector<PixelSurface> surface(const GBufferView& gbuffer, const cl::Buffer& direct);
-  // A float4 image's sub-pixel mean (RGBA, four floats a pixel) or sum.
+  // A float4 image's sub-pixel mean (RGBA, four floats a pixel).
   void mean_rgba(const cl::Buffer& source, const PieceVisit<float>& visit);
   std::vector<float> mean_rgba(const cl::Buffer& source);
-  std::vector<float> sum_rgba(const cl::Buffer& source);
   // The cache's counts, four floats a pixel: the mean records reaching a sub-pixel (records_per_pixel), the records
   // sitting in the pixel (record_at_pixel >= 0), the sub-pixels with geometry whose irradiance weight (A) is 0, 0.
   void record_counts(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,

@@ -5,6 +5,11 @@
 #include "kernels/cache_math.h"
 
 namespace rcsplat {
+namespace {
+
+size_t padded_to_tiles(size_t cells) { return (cells + CANDIDATE_TILE - 1) / CANDIDATE_TILE * CANDIDATE_TILE; }
+
+}  // namespace
 
 PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
     : gpu_(gpu),
@@ -27,8 +32,6 @@ void PlacementPass::begin(const GBufferView& gbuffer) {
   if (!candidates_() || pixels != gbuffer_.pixel_count() || tiles_now != tiles_) {
     const size_t slots = std::max<size_t>(pixels, 1);
     candidates_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
-    flags_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
-    places_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_uint), "placement candidates");
     record_map_ = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(cl_int), "placement");
     covered_ = gpu_.buffer(CL_MEM_READ_WRITE, slots, "placement covered");
     tiles_ = tiles_now;
@@ -55,16 +58,22 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
     covered_kernel_.set_buffer<CacheRecord>("records", records).set("params", params).set_buffer<cl_uchar>("covered", covered_);
     covered_kernel_.launch(params.record_count, gpu_.groups().per_record);
   }
-  // Flagged, scanned and compacted rather than appended with an atomic counter: in pixel order, the records (and every
-  // sum over them in record order) are the same bits each run; an atomic hands places out in whatever order the
-  // device runs work items, which differs from run to run on the same device.
-  const size_t grid_x = (size_t(gbuffer_.width) + spacing - 1) / spacing;
-  const size_t grid_y = (size_t(gbuffer_.height) + spacing - 1) / spacing, cells = grid_x * grid_y;
+  // Flagged, scanned and compacted rather than appended with an atomic counter: in a fixed order (tile by tile), the
+  // records (and every sum over them in record order) are the same bits each run; an atomic hands places out in
+  // whatever order the device runs work items, which differs from run to run on the same device.
+  const size_t grid_x = padded_to_tiles((size_t(gbuffer_.width) + spacing - 1) / spacing);
+  const size_t grid_y = padded_to_tiles((size_t(gbuffer_.height) + spacing - 1) / spacing), cells = grid_x * grid_y;
+  if (cells > cells_capacity_) {  // the finest grid's, padded to whole tiles (kernels/placement.cl candidate_cell)
+    flags_ = gpu_.buffer(CL_MEM_READ_WRITE, cells * sizeof(cl_uint), "placement candidates");
+    places_ = gpu_.buffer(CL_MEM_READ_WRITE, cells * sizeof(cl_uint), "placement candidates");
+    cells_capacity_ = cells;
+  }
   gbuffer_.bind(flag_);
   flag_.set_buffer<cl_uchar>("covered", covered_)
       .set_buffer<cl_int>("record_at_pixel", record_map_)
       .set("params", params)
-      .set("grid_width", cl_uint(grid_x))
+      .set("tiles_x", cl_uint(grid_x / CANDIDATE_TILE))
+      .set("tiles_y", cl_uint(grid_y / CANDIDATE_TILE))
       .set_buffer<cl_uint>("flags", flags_);
   flag_.launch_2d(grid_x, grid_y, gpu_.groups().tile_side);
   scan_.exclusive(flags_, uint32_t(cells), places_);
@@ -72,7 +81,7 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
       .set_buffer<cl_uint>("flags", flags_)
       .set_buffer<cl_uint>("places", places_)
       .set("cells", cl_uint(cells))
-      .set("grid_width", cl_uint(grid_x))
+      .set("tiles_x", cl_uint(grid_x / CANDIDATE_TILE))
       .set("params", params)
       .set_buffer<cl_uint>("candidates", candidates_)
       .set_buffer<cl_uint>("candidate_count", count_);

@@ -18,7 +18,8 @@ class PlacementPass {
   void begin(const GBufferView& gbuffer);
 
   // Compacts the pixels with geometry on the grid of this spacing that hold no record and that no record among
-  // 0 .. record_count - 1 reaches (Ward weight above 1/a, not in front) into candidates(); returns their count. With
+  // 0 .. record_count - 1 reaches (Ward weight above 1/a, not in front) into candidates(), tile by tile of
+  // CANDIDATE_TILE cells a side (kernels/placement.cl candidate_cell); returns their count. With
   // unchanged_before = n, records 0 .. n - 1 kept their radii since the last call at this spacing: their coverage is
   // kept.
   uint32_t find_uncovered(const cl::Buffer& records, uint32_t record_count, float accuracy, int spacing,
@@ -49,6 +50,7 @@ class PlacementPass {
   cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_, flags_, places_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;
+  size_t cells_capacity_ = 0;  // flags_ and places_
   int record_grid_ = 0;  // the finest placement grid searched so far: every record sits on one of its pixels
 };
 

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "kernels/cache_math.h"
+
 namespace rcsplat {
 namespace {
 
@@ -71,9 +73,7 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
   for (size_t i = 0; i < records_.size(); ++i) {
     const CacheRecord& r = records_[i];
     const glm::dvec3 p = load(r.position);
-    const double z = std::fabs(glm::dot(p - load(camera.eye), load(camera.forward)));
-    const double footprint = camera.orthographic ? 2.0 * double(camera.half_height) / camera.height
-                                                 : 2.0 * z * double(camera.tan_half_fov_y) / camera.height;
+    const double footprint = pixel_world_size(&camera, glm::vec3(p));  // as the kernel's fit takes it
     // Fitting (kernels/placement.cl) never takes a reach below the view's minimum nor above the kept one.
     const double reach = std::max(accuracy * double(r.radius), 1.01 * smallest * footprint);
     if (!sphere_meets_view(camera, p, reach)) continue;

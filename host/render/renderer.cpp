@@ -274,7 +274,6 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   }
 }
 
-
 // The layers a frame's surface gives (PixelSurface): downloaded in pieces and filled in, with the summary's counts;
 // colour_on_host: the colour starts from emission + direct here (path tracing, direct light alone).
 void Renderer::surface_layers(RenderedImage& img, bool colour_on_host) {
@@ -324,7 +323,6 @@ void Renderer::surface_layers(RenderedImage& img, bool colour_on_host) {
   st.primary.glossy_pixels += glossy;
   st.primary.hsh_pixels += hsh;
   st.primary.shadow_rays += shadow_rays;
-
 }
 
 // Path tracing over the pixels' area (PathSettings::pixel_area): plan.rounds = s^2 rounds of the frame, round r's
