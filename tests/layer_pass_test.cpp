@@ -59,6 +59,15 @@ std::vector<cl_float4> random_rgba(size_t count, std::mt19937& rng, bool whole_a
   return v;
 }
 
+// An irradiance image (RGB, the weight in A) in which about a third of the sub-pixels no record reached (weight 0).
+std::vector<cl_float4> random_irradiance_with_holes(size_t count, std::mt19937& rng) {
+  std::vector<cl_float4> irradiance = random_rgba(count, rng, false);
+  std::uniform_int_distribution<int> coin(0, 2);
+  for (cl_float4& e : irradiance)
+    if (coin(rng) == 0) e.s[3] = 0.0f;
+  return irradiance;
+}
+
 GBufferView view_of(GpuContext& gpu, const std::vector<GBufferSample>& g, const SubPixelFrame& f) {
   GBufferView view;
   view.samples = gpu.upload(g);
@@ -142,12 +151,11 @@ TEST_P(LayerPassTest, RecordCountsAreReachingMeanSittingAndUncovered) {
   std::mt19937 rng(41 + f.side);
   const size_t count = size_t(f.width()) * f.height();
   const std::vector<GBufferSample> g = random_gbuffer(count, rng);
-  std::vector<cl_float4> irradiance = random_rgba(count, rng, false);
+  const std::vector<cl_float4> irradiance = random_irradiance_with_holes(count, rng);
   std::vector<cl_uint> reaching(count);
   std::vector<cl_int> sitting(count);
   std::uniform_int_distribution<int> few(0, 20), coin(0, 2);
   for (size_t k = 0; k < count; ++k) {
-    if (coin(rng) == 0) irradiance[k].s[3] = 0.0f;  // no record reached it
     reaching[k] = cl_uint(few(rng));
     sitting[k] = coin(rng) == 0 ? few(rng) : -1;
   }
@@ -183,10 +191,7 @@ TEST_P(LayerPassTest, DeviceCountsAreTheSubPixelsSums) {
   const size_t count = size_t(f.width()) * f.height();
   const std::vector<GBufferSample> g = random_gbuffer(count, rng);
   const std::vector<cl_float4> rays = random_rgba(count, rng, true);
-  std::vector<cl_float4> irradiance = random_rgba(count, rng, false);
-  std::uniform_int_distribution<int> coin(0, 2);
-  for (cl_float4& e : irradiance)
-    if (coin(rng) == 0) e.s[3] = 0.0f;  // no record reached it
+  const std::vector<cl_float4> irradiance = random_irradiance_with_holes(count, rng);
   uint64_t by_lobe[LOBE_KINDS] = {}, ray_sum = 0, uncovered = 0;
   for (size_t k = 0; k < count; ++k) {
     if (g[k].triangle >= 0 && g[k].lobe != LOBE_NONE) ++by_lobe[g[k].lobe];
