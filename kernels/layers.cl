@@ -83,9 +83,9 @@ __kernel void resolve_record_counts(__global const GBufferSample* gbuffer, __glo
 
 // Counts for the summary of a frame whose layers stay on the device (RenderSettings::color_only), summed as whole
 // numbers: the same bits whatever order work items run in, and the same numbers the host adds up from the downloaded
-// layers. One work item per sub-pixel; a work-group adds its counts in local memory and then once to the frame's
-// (groups of LAYER_COUNT_GROUP): on a GPU, one global atomic per sub-pixel on one address
-// would queue millions of updates a 1080p frame.
+// layers. One work item per sub-pixel; a work-group (LAYER_COUNT_GROUP items) adds its counts in local memory and then
+// once to the frame's: on a GPU, one global atomic per sub-pixel on one address would queue millions of updates a
+// 1080p frame.
 
 // sums[0 .. LOBE_KINDS - 1]: the sub-pixels with geometry of each lobe (as resolve_surface packs them).
 __kernel void count_lobes(__global const GBufferSample* gbuffer, uint sub_pixels, __global ulong* sums) {
