@@ -286,6 +286,8 @@ int run_render(const RenderOptions& options) {
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);
   gpu.set_memory_budget(options.limits.device_memory_bytes);
+  RenderSettings settings = options.settings;
+  settings.color_only = outputs_need_only_color(options.outputs);
   RenderedImage image;
   std::string earlier;  // --resume: the .exr output an earlier run wrote
   for (const std::string& out : options.outputs)
@@ -297,17 +299,13 @@ int run_render(const RenderOptions& options) {
       return 0;
     }
   } else if (!options.cache_in.empty() || !options.cache_out.empty()) {
-    RenderSettings settings = options.settings;
     settings.keep_records = true;
-    settings.color_only = outputs_need_only_color(options.outputs);
     Renderer renderer(gpu, scene, settings.forced_switches);
     const FramePlan plan = renderer.plan(settings);
     if (!options.cache_in.empty()) load_cache_file(gpu, renderer, scene, plan, options.cache_in);
     image = renderer.render(plan);
     if (!options.cache_out.empty()) save_cache_file(gpu, renderer, scene, plan, options.cache_out);
   } else {
-    RenderSettings settings = options.settings;
-    settings.color_only = outputs_need_only_color(options.outputs);
     image = render(gpu, scene, settings);
   }
   const ExrAttributes attributes = render_attributes(scene, image, options.settings);

@@ -300,15 +300,7 @@ class GltfReader {
       for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[size_t(i)]);  // column-major, as glTF
       return m;
     }
-    glm::mat4 m(1.0f);
-    if (node.translation.size() == 3)
-      m = glm::translate(m, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
-    if (node.rotation.size() == 4) {
-      glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
-      m = m * glm::mat4_cast(glm::normalize(q));
-    }
-    if (node.scale.size() == 3) m = glm::scale(m, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
-    return m;
+    return trs_matrix(rest_trs(node));
   }
 
   // A node's transform in the pose asked for (ScenePose): the animated TRS where the animation moves it.
