@@ -1,5 +1,6 @@
 #include "cl/gpu_context.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -8,7 +9,9 @@
 #include <mutex>
 #include <unordered_map>
 #include <regex>
+#include <semaphore>
 #include <set>
+#include <thread>
 #include <sstream>
 #include <unistd.h>
 
@@ -233,28 +236,113 @@ fs::path GpuContext::cache_file(const std::string& identity, const char* extensi
   return dir / (std::string(hex) + extension);
 }
 
+GpuContext::~GpuContext() {
+  std::vector<ProgramFuture> pending;
+  {
+    std::lock_guard<std::mutex> lock(programs_mutex_);
+    for (const auto& [key, future] : programs_) pending.push_back(future);
+  }
+  for (const ProgramFuture& future : pending) future.wait();  // a build ahead uses this context's members
+}
+
+namespace {
+
+// The builds ahead that may run at once in this process: one a core, as each compiler build runs on one thread.
+class BuildSlot {
+ public:
+  BuildSlot() { slots().acquire(); }
+  ~BuildSlot() { slots().release(); }
+  BuildSlot(const BuildSlot&) = delete;
+  BuildSlot& operator=(const BuildSlot&) = delete;
+
+ private:
+  static std::counting_semaphore<1024>& slots() {
+    static std::counting_semaphore<1024> slots(std::clamp<std::ptrdiff_t>(std::thread::hardware_concurrency(), 1, 1024));
+    return slots;
+  }
+};
+
+}  // namespace
+
 cl::Program& GpuContext::program(const std::string& file, const KernelDefines& defines) {
-  std::string options = build_options(defines);
-  std::string key = file + "|" + options;
-  auto found = programs_.find(key);
-  if (found != programs_.end()) return *found->second;
-  return build(key, file, resolve_kernel_source(file), options);
+  const std::string options = build_options(defines);
+  return wait_for(file + "|" + options, file, [&] { return resolve_kernel_source(file); }, options);
+}
+
+void GpuContext::build_ahead(const std::string& file, const KernelDefines& defines) {
+  const std::string options = build_options(defines);
+  const std::string key = file + "|" + options;
+  std::lock_guard<std::mutex> lock(programs_mutex_);
+  if (programs_.count(key)) return;
+  built_ahead_.insert(key);
+  programs_.emplace(key, std::async(std::launch::async, [this, file, options] {
+                           BuildSlot slot;
+                           return build(file, resolve_kernel_source(file), options);
+                         }).share());
 }
 
 cl::Program& GpuContext::program_from_text(const std::string& label, const std::string& text) {
-  std::string key = label + "|" + text;
-  auto found = programs_.find(key);
-  if (found != programs_.end()) return *found->second;
-  return build(key, label, resolve_kernel_text(label, text), kBaseBuildOptions);
+  return wait_for(label + "|" + text, label, [&] { return resolve_kernel_text(label, text); }, kBaseBuildOptions);
+}
+
+cl::Program& GpuContext::wait_for(const std::string& key, const std::string& file,
+                                  const std::function<std::string()>& source, const std::string& options) {
+  const auto start = std::chrono::steady_clock::now();
+  ProgramFuture future;
+  std::promise<std::shared_ptr<cl::Program>> built_here;
+  bool build_here = false;
+  {
+    std::lock_guard<std::mutex> lock(programs_mutex_);
+    asked_for_.insert(key);
+    auto found = programs_.find(key);
+    build_here = found == programs_.end();
+    future = build_here ? programs_.emplace(key, built_here.get_future().share()).first->second : found->second;
+  }
+  if (build_here) {
+    try {
+      built_here.set_value(build(file, source(), options));
+    } catch (...) {
+      built_here.set_exception(std::current_exception());
+    }
+  }
+  cl::Program& program = *future.get();  // a failed build's error, each time the program is asked for
+  program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return program;
 }
 
 NamedKernel GpuContext::kernel(const std::string& file, const std::string& name, const KernelDefines& defines) {
   return NamedKernel(*this, program(file, defines), name);
 }
 
+std::map<std::string, double> GpuContext::program_seconds_by_file() const {
+  std::lock_guard<std::mutex> lock(programs_mutex_);
+  return program_seconds_by_file_;
+}
+
+std::set<std::string> GpuContext::programs_asked_for() const {
+  std::lock_guard<std::mutex> lock(programs_mutex_);
+  return asked_for_;
+}
+
+std::set<std::string> GpuContext::programs_built_ahead() const {
+  std::lock_guard<std::mutex> lock(programs_mutex_);
+  return built_ahead_;
+}
+
 std::set<std::string> GpuContext::built_kernel_names() const {
+  std::vector<ProgramFuture> programs;
+  {
+    std::lock_guard<std::mutex> lock(programs_mutex_);
+    for (const auto& [key, future] : programs_) programs.push_back(future);
+  }
   std::set<std::string> names;
-  for (const auto& [key, program] : programs_) {
+  for (const ProgramFuture& future : programs) {
+    std::shared_ptr<cl::Program> program;
+    try {
+      program = future.get();
+    } catch (const std::exception&) {
+      continue;  // a build that failed has no kernels
+    }
     std::istringstream list(program->getInfo<CL_PROGRAM_KERNEL_NAMES>());
     for (std::string name; std::getline(list, name, ';');) {
       while (!name.empty() && (name.back() == '\0' || name.back() == ' ')) name.pop_back();
@@ -264,25 +352,25 @@ std::set<std::string> GpuContext::built_kernel_names() const {
   return names;
 }
 
-cl::Program& GpuContext::build(const std::string& key, const std::string& file, const std::string& source,
-                               const std::string& options) {
+std::shared_ptr<cl::Program> GpuContext::build(const std::string& file, const std::string& source,
+                                               const std::string& options) {
   auto start = std::chrono::steady_clock::now();
   const fs::path cache_file = this->cache_file(program_identity(source, options), ".bin");
 
-  std::unique_ptr<cl::Program> program;
+  std::shared_ptr<cl::Program> program;
   if (!cache_file.empty() && fs::exists(cache_file)) {
     std::ifstream in(cache_file, std::ios::binary);
     std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     try {
       cl::Program::Binaries binaries{binary};
-      program = std::make_unique<cl::Program>(context_, std::vector<cl::Device>{info_.device}, binaries);
+      program = std::make_shared<cl::Program>(context_, std::vector<cl::Device>{info_.device}, binaries);
       program->build({info_.device}, options.c_str());
     } catch (const cl::Error&) {
       program.reset();  // a stale or foreign binary: rebuild from source
     }
   }
   if (!program) {
-    program = std::make_unique<cl::Program>(context_, source);
+    program = std::make_shared<cl::Program>(context_, source);
     try {
       program->build({info_.device}, options.c_str());
     } catch (const cl::Error&) {
@@ -308,9 +396,9 @@ cl::Program& GpuContext::build(const std::string& key, const std::string& file, 
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  program_seconds_ += seconds;
+  std::lock_guard<std::mutex> lock(programs_mutex_);
   program_seconds_by_file_[file] += seconds;
-  return *programs_.emplace(key, std::move(program)).first->second;
+  return program;
 }
 
 bool is_out_of_memory(cl_int code) {

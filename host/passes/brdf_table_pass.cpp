@@ -6,6 +6,11 @@
 #include "util/error.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "brdf_table.cl";
+}  // namespace
+
+void BrdfTablePass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 float BrdfTable::coefficient(size_t material, int angle, int term, int k) const {
   size_t row = material * size_t(angle_count) + size_t(angle);
@@ -30,7 +35,7 @@ double BrdfTable::worst_captured_energy(size_t material, int order_used) const {
   return worst;
 }
 
-BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel("brdf_table.cl", "project_brdf")) {}
+BrdfTablePass::BrdfTablePass(GpuContext& gpu) : gpu_(gpu), kernel_(gpu.kernel(kProgram, "project_brdf")) {}
 
 BrdfTable BrdfTablePass::compute(const std::vector<BrdfMaterial>& materials, int order, int angle_count,
                                  unsigned samples, unsigned seed) {

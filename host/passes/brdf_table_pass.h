@@ -30,6 +30,8 @@ struct BrdfTable {
 class BrdfTablePass {
  public:
   explicit BrdfTablePass(GpuContext& gpu);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
   // About `samples` reflections per (material, angle), in stratified chunks of 32 x 32; deterministic for a seed.
   BrdfTable compute(const std::vector<BrdfMaterial>& materials, int order, int angle_count, unsigned samples,
                     unsigned seed = 0);

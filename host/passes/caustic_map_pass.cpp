@@ -9,6 +9,11 @@
 
 namespace rcsplat {
 namespace {
+constexpr const char* kProgram = "caustic_map.cl";
+}  // namespace
+
+void CausticMapPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
+namespace {
 
 // Photons the radius is fitted on (every k-th, so the same photons give the same radius) and the fixed-point steps.
 constexpr size_t kRadiusSample = 4096;
@@ -64,7 +69,7 @@ float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, 
 }
 
 CausticMapPass::CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& photons, float radius)
-    : gpu_(gpu), add_(gpu.kernel("caustic_map.cl", "add_caustics", {})) {
+    : gpu_(gpu), add_(gpu.kernel(kProgram, "add_caustics", {})) {
   const PhotonGrid grid = sort_into_grid(photons, radius);
   params_ = grid.params;
   // A kernel reads no photon of an empty map, but buffers must be bound.
@@ -104,7 +109,7 @@ void CausticMapPass::add_to_records(std::vector<CacheRecord>& records) {
 
 std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
                                                      const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel("caustic_map.cl", "caustic_irradiance_at", {});
+  NamedKernel look_up = gpu_.kernel(kProgram, "caustic_irradiance_at", {});
   bind(look_up);
   return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }

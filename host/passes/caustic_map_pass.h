@@ -26,6 +26,8 @@ class CausticMapPass {
  public:
   // Sorts the photons into a grid of `radius` and uploads it.
   CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& photons, float radius);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
 
   // irradiance[i] += the caustic irradiance at G-buffer sample i (float4 per sample, as the splat resolves it).
   void add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance);

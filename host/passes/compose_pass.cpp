@@ -1,10 +1,15 @@
 #include "passes/compose_pass.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "compose.cl";
+}  // namespace
+
+void ComposePass::build_ahead(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached) { gpu.build_ahead(kProgram, scene.defines_with("RADIANCE_CACHED", radiance_cached)); }
 
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)
     : gpu_(gpu),
-      kernel_(gpu.kernel("compose.cl", "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))) {}
+      kernel_(gpu.kernel(kProgram, "compose", scene.defines_with("RADIANCE_CACHED", radiance_cached))) {}
 
 void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, const cl::Buffer& direct,
                       const cl::Buffer* glossy, const cl::Buffer* cached_lobes, bool glossy_holds_guide_share) {

@@ -13,6 +13,8 @@ class ComposePass {
  public:
   // radiance_cached: the LOBE_HSH pixels' lobes come from the radiance cache, not from GlossyPass.
   ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached);
   // irradiance: float4 per pixel (E.rgb, weight; 0 where uncovered); direct: DirectPass's RGBA; glossy: GlossyPass's
   // RGBA, or nullptr where no pixel is sampled; cached_lobes: RadianceSplatPass's lobe radiance, or nullptr without
   // radiance caching; glossy_holds_guide_share: glossy also holds the radiance-cached pixels' light-guide share

@@ -1,9 +1,14 @@
 #include "passes/direct_pass.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "direct.cl";
+}  // namespace
+
+void DirectPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 DirectPass::DirectPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("direct.cl", "direct_light", scene.defines())) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "direct_light", scene.defines())) {}
 
 void DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {

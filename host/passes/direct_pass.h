@@ -9,6 +9,8 @@ namespace rcsplat {
 class DirectPass {
  public:
   DirectPass(GpuContext& gpu, const DeviceScene& scene);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene);
   // strata_per_axis^2 stratified samples on the emissive triangles per pixel; seed varies the sample pattern.
   void run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed);
   // float4 per pixel: reflected direct radiance RGB, A = shadow rays the pixel cast.

@@ -1,13 +1,18 @@
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "gbuffer.cl";
+}  // namespace
+
+void GBufferPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 void GBufferView::bind(NamedKernel& kernel) const {
   kernel.set_buffer<GBufferSample>("gbuffer", samples).set_buffer<CameraParams>("camera", camera);
 }
 
 GBufferPass::GBufferPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("gbuffer.cl", "gbuffer", scene.defines())) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "gbuffer", scene.defines())) {}
 
 void GBufferPass::run(const CameraParams& camera) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);

@@ -21,6 +21,8 @@ struct GBufferView {
 class GBufferPass {
  public:
   GBufferPass(GpuContext& gpu, const DeviceScene& scene);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene);
   void run(const CameraParams& camera);  // blocks until done
   const GBufferView& view() const { return view_; }
   std::vector<GBufferSample> download();

@@ -8,12 +8,17 @@
 #include "util/error.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "glossy.cl";
+}  // namespace
+
+void GlossyPass::build_ahead(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable) { gpu.build_ahead(kProgram, scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)); }
 
 GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable)
     : gpu_(gpu),
       scene_(scene),
       defines_(scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)),
-      kernel_(gpu.kernel("glossy.cl", "glossy_indirect", defines_)) {}
+      kernel_(gpu.kernel(kProgram, "glossy_indirect", defines_)) {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
                      unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
@@ -70,7 +75,7 @@ std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheR
                                                         const WorldRecordGrid& grid,
                                                         const std::vector<cl_float4>& points,
                                                         const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel("glossy.cl", "cached_irradiance_at", defines_);
+  NamedKernel look_up = gpu_.kernel(kProgram, "cached_irradiance_at", defines_);
   bind_records(look_up, {&records, &grid});
   return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }

@@ -24,6 +24,8 @@ class GlossyPass {
  public:
   // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
   GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
   // samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; with a light guide's clusters, half
   // as many again aimed at those a pixel's lobe faces (kernels/glossy.cl). With radiance records that left the
   // guide's share to the pixels (record_guide_rays guided rays beside record_strata strata, both > 0), the

@@ -11,6 +11,11 @@
 
 namespace rcsplat {
 namespace {
+constexpr const char* kProgram = "hsh_records.cl";
+}  // namespace
+
+void HshRecordPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
+namespace {
 
 size_t floats_per_order(int order) { return size_t(HSH_RECORD_PARTS) * 3 * size_t(order) * size_t(order); }
 
@@ -60,9 +65,9 @@ std::vector<float> hsh_column_table(int order, unsigned columns) {
 HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
     : gpu_(gpu),
       order_(order),
-      project_(gpu.kernel("hsh_records.cl", "project_radiance_records")),
-      tilt_(gpu.kernel("hsh_records.cl", "tilt_radiance_records")),
-      bound_fitted_(gpu.kernel("hsh_records.cl", "bound_fitted_radiance_gradients")) {
+      project_(gpu.kernel(kProgram, "project_radiance_records")),
+      tilt_(gpu.kernel(kProgram, "tilt_radiance_records")),
+      bound_fitted_(gpu.kernel(kProgram, "bound_fitted_radiance_gradients")) {
   const HshRotationDerivatives& d = hsh_rotation_derivatives(order);
   tilt_x_ = gpu_.upload(d.dx, CL_MEM_READ_ONLY, "radiance records");
   tilt_y_ = gpu_.upload(d.dy, CL_MEM_READ_ONLY, "radiance records");

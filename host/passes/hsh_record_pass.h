@@ -20,6 +20,8 @@ std::vector<float> hsh_column_table(int order, unsigned columns);
 class HshRecordPass {
  public:
   HshRecordPass(GpuContext& gpu, int order);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
   // A new frame's records: the brightest stratum seen starts again from `largest_kept` (0 for a cache of the frame's
   // own; kept records' brightest for a walkthrough: render/kept_records.h).
   void begin_frame(float largest_kept = 0.0f);

@@ -6,18 +6,23 @@
 #include "util/error.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "layers.cl";
+}  // namespace
+
+void LayerPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height)
     : gpu_(gpu),
       side_(std::max(1u, side)),
       width_(out_width),
       height_(out_height),
-      surface_(gpu.kernel("layers.cl", "resolve_surface")),
-      rgba_(gpu.kernel("layers.cl", "resolve_rgba")),
-      counts_(gpu.kernel("layers.cl", "resolve_record_counts")),
-      count_lobes_(gpu.kernel("layers.cl", "count_lobes")),
-      sum_alpha_(gpu.kernel("layers.cl", "sum_alpha")),
-      count_uncovered_(gpu.kernel("layers.cl", "count_uncovered")) {}
+      surface_(gpu.kernel(kProgram, "resolve_surface")),
+      rgba_(gpu.kernel(kProgram, "resolve_rgba")),
+      counts_(gpu.kernel(kProgram, "resolve_record_counts")),
+      count_lobes_(gpu.kernel(kProgram, "count_lobes")),
+      sum_alpha_(gpu.kernel(kProgram, "sum_alpha")),
+      count_uncovered_(gpu.kernel(kProgram, "count_uncovered")) {}
 
 cl::Buffer& LayerPass::rgba_out() {
   // Made on first use, at the frame's end: the passes' own buffers peak before it.

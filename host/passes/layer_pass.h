@@ -17,6 +17,8 @@ class LayerPass {
  public:
   // A frame of out_width x out_height pixels whose G-buffer is side times as wide and high.
   LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
 
   unsigned side() const { return side_; }
   int out_width() const { return width_; }

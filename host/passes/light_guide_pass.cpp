@@ -7,6 +7,11 @@
 #include "util/colour.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "light_guide.cl";
+}  // namespace
+
+void LightGuidePass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
                                         const std::vector<EmissiveTriangle>& emitters) {
@@ -28,7 +33,7 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
 }
 
 LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("light_guide.cl", "shoot_photons", scene.defines())) {
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "shoot_photons", scene.defines())) {
   std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
   // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
   if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);

@@ -14,6 +14,8 @@ class LightGuidePass {
  public:
   // sky_power > 0: the environment's smooth part is a source too, of that power (the bounce probe's; see PhotonParams).
   LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power = 0.0);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene);
 
   // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
   // diffusely in between), landings first_stored .. landings - 1 returned: photon i's landing k at

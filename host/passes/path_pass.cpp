@@ -4,9 +4,14 @@
 #include <cmath>
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "path.cl";
+}  // namespace
+
+void PathPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel("path.cl", "path_indirect", scene.defines())) {
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "path_indirect", scene.defines())) {
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
 }
 

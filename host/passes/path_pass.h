@@ -12,6 +12,8 @@ namespace rcsplat {
 class PathPass {
  public:
   PathPass(GpuContext& gpu, const DeviceScene& scene);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene);
 
   // Starts over for a frame of total_samples per pixel; stratified draws them from a grid over the hemisphere.
   void begin(const GBufferView& gbuffer, unsigned total_samples, bool stratified, unsigned seed, unsigned bounces = 1);

@@ -4,6 +4,11 @@
 #include "passes/light_guide_pass.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "photon_map.cl";
+}  // namespace
+
+void PhotonMapPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
                                                unsigned bounces, unsigned seed) {
@@ -27,7 +32,7 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
                                                                            : grids.patches.bucket_starts,
                                         CL_MEM_READ_ONLY, "photon map surface patch buckets");
   cl::Buffer order = gpu.upload(cell_order(grids.lookup), CL_MEM_READ_ONLY, "photon map estimate order");
-  NamedKernel estimate = gpu.kernel("photon_map.cl", "estimate_photon_radiance", {});
+  NamedKernel estimate = gpu.kernel(kProgram, "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", all_photons)
       .set_buffer<cl_uint>("all_buckets", all_buckets)
       .set("all_grid", grids.all.params)
@@ -67,7 +72,7 @@ std::vector<cl_float4> PhotonMapPass::shallow_estimates() {
 
 std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,
                                                   const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel("photon_map.cl", "look_up_photon_radiance", {});
+  NamedKernel look_up = gpu_.kernel(kProgram, "look_up_photon_radiance", {});
   bind(look_up);
   return run_point_lookup(gpu_, look_up, points, normals, "radiance");
 }

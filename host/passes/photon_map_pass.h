@@ -19,6 +19,8 @@ class PhotonMapPass {
  public:
   // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done.
   PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
 
   // How the kernels bound later read the map (PhotonMapParams): record rays shorter than short_ray_paths radii
   // continue a bounce first; a lookup whose estimate summed fewer than min_support photons continues its path.

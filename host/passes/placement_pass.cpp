@@ -6,6 +6,11 @@
 
 namespace rcsplat {
 namespace {
+constexpr const char* kProgram = "placement.cl";
+}  // namespace
+
+void PlacementPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); ScanPass::build_ahead(gpu); }
+namespace {
 
 size_t padded_to_tiles(size_t cells) { return (cells + CANDIDATE_TILE - 1) / CANDIDATE_TILE * CANDIDATE_TILE; }
 
@@ -14,13 +19,13 @@ size_t padded_to_tiles(size_t cells) { return (cells + CANDIDATE_TILE - 1) / CAN
 PlacementPass::PlacementPass(GpuContext& gpu, const GBufferView& gbuffer)
     : gpu_(gpu),
       gbuffer_(gbuffer),
-      covered_kernel_(gpu.kernel("placement.cl", "mark_covered")),
-      flag_(gpu.kernel("placement.cl", "flag_uncovered")),
-      compact_(gpu.kernel("placement.cl", "compact_uncovered")),
-      mark_(gpu.kernel("placement.cl", "mark_records")),
-      clamp_(gpu.kernel("placement.cl", "clamp_neighbours")),
-      apply_(gpu.kernel("placement.cl", "apply_radii")),
-      fit_(gpu.kernel("placement.cl", "fit_kept_records")),
+      covered_kernel_(gpu.kernel(kProgram, "mark_covered")),
+      flag_(gpu.kernel(kProgram, "flag_uncovered")),
+      compact_(gpu.kernel(kProgram, "compact_uncovered")),
+      mark_(gpu.kernel(kProgram, "mark_records")),
+      clamp_(gpu.kernel(kProgram, "clamp_neighbours")),
+      apply_(gpu.kernel(kProgram, "apply_radii")),
+      fit_(gpu.kernel(kProgram, "fit_kept_records")),
       scan_(gpu) {
   begin(gbuffer);
 }

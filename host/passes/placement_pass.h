@@ -13,6 +13,8 @@ namespace rcsplat {
 class PlacementPass {
  public:
   PlacementPass(GpuContext& gpu, const GBufferView& gbuffer);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
   // A new frame (a pass kept across frames, render/indirect.h): no record sits anywhere yet; the buffers are kept
   // while the frame's size is.
   void begin(const GBufferView& gbuffer);

@@ -3,15 +3,20 @@
 #include <algorithm>
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "radiance_splat.cl";
+}  // namespace
+
+void RadianceSplatPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,
                                      const std::vector<int>& table_row_of_material)
     : gpu_(gpu),
-      keep_(gpu.kernel("radiance_splat.cl", "keep_radiance_cached_pixels")),
-      clear_(gpu.kernel("radiance_splat.cl", "clear_radiance_sums")),
-      splat_(gpu.kernel("radiance_splat.cl", "splat_radiance")),
-      resolve_(gpu.kernel("radiance_splat.cl", "resolve_radiance")),
-      fill_(gpu.kernel("radiance_splat.cl", "fill_uncovered_radiance")) {
+      keep_(gpu.kernel(kProgram, "keep_radiance_cached_pixels")),
+      clear_(gpu.kernel(kProgram, "clear_radiance_sums")),
+      splat_(gpu.kernel(kProgram, "splat_radiance")),
+      resolve_(gpu.kernel(kProgram, "resolve_radiance")),
+      fill_(gpu.kernel(kProgram, "fill_uncovered_radiance")) {
   std::vector<float> lobe = table.lobe;
   if (lobe.empty()) lobe.push_back(0.0f);
   std::vector<int> rows = table_row_of_material;

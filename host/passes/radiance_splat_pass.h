@@ -17,6 +17,8 @@ class RadianceSplatPass {
   // table: the lobe table of the frame's order; table_row_of_material: its row for each scene material, -1 for
   // materials it does not hold.
   RadianceSplatPass(GpuContext& gpu, const BrdfTable& table, const std::vector<int>& table_row_of_material);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
 
   // The G-buffer with every pixel but the radiance-cached ones marked empty (placement's view of them).
   const GBufferView& radiance_cached_pixels(const GBufferView& gbuffer);

@@ -22,6 +22,11 @@ KernelDefines record_defines(const DeviceScene& scene, unsigned theta_strata, bo
 
 }  // namespace
 
+void RecordPass::build_ahead(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                             bool photon_gather, bool caustics_apart) {
+  gpu.build_ahead("records.cl", record_defines(scene, theta_strata, store_strata, photon_gather, caustics_apart));
+}
+
 RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
                        const PhotonMapPass* photon_map)
     : RecordPass(gpu, scene, theta_strata, store_strata, photon_map != nullptr) {

@@ -29,6 +29,9 @@ class RecordPass {
   // hit_direct_without_caustics; passes/caustic_map_pass.h), whose irradiance the frame adds at the pixels.
   RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata, bool photon_gather,
              bool caustics_apart = false);
+  // Starts building the program the second constructor asks for with these arguments (GpuContext::build_ahead).
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene, unsigned theta_strata, bool store_strata,
+                          bool photon_gather, bool caustics_apart);
   // A new frame (a pass may be kept across frames, render/indirect.h): records start again at 0 (the array and the
   // sample buffers are kept), the ray count at 0, no light guide; bounces: the indirect bounces each record's rays
   // gather (kernels/bounce.h); photon_map: this frame's, null exactly when the pass was compiled without

@@ -6,9 +6,14 @@
 #include "util/error.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "scan.cl";
+}  // namespace
+
+void ScanPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 ScanPass::ScanPass(GpuContext& gpu)
-    : gpu_(gpu), blocks_(gpu.kernel("scan.cl", "scan_blocks")), add_(gpu.kernel("scan.cl", "add_block_offsets")) {}
+    : gpu_(gpu), blocks_(gpu.kernel(kProgram, "scan_blocks")), add_(gpu.kernel(kProgram, "add_block_offsets")) {}
 
 void ScanPass::exclusive(const cl::Buffer& in, uint32_t count, const cl::Buffer& out) {
   if (count) scan_level(in, count, out, 0);

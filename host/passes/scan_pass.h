@@ -11,6 +11,8 @@ namespace rcsplat {
 class ScanPass {
  public:
   explicit ScanPass(GpuContext& gpu);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
   // out[i] = in[0] + ... + in[i - 1] for i < count (out[0] = 0); in and out are different buffers. Sums wrap at 2^32.
   void exclusive(const cl::Buffer& in, uint32_t count, const cl::Buffer& out);
 

@@ -5,14 +5,19 @@
 #include "kernels/cache_math.h"
 
 namespace rcsplat {
+namespace {
+constexpr const char* kProgram = "splat.cl";
+}  // namespace
+
+void SplatPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 SplatPass::SplatPass(GpuContext& gpu)
     : gpu_(gpu),
-      clear_(gpu.kernel("splat.cl", "clear_accumulators")),
-      max_irradiance_(gpu.kernel("splat.cl", "max_record_irradiance")),
-      splat_(gpu.kernel("splat.cl", "splat_records")),
-      resolve_(gpu.kernel("splat.cl", "resolve_indirect")),
-      fill_(gpu.kernel("splat.cl", "fill_uncovered")) {
+      clear_(gpu.kernel(kProgram, "clear_accumulators")),
+      max_irradiance_(gpu.kernel(kProgram, "max_record_irradiance")),
+      splat_(gpu.kernel(kProgram, "splat_records")),
+      resolve_(gpu.kernel(kProgram, "resolve_indirect")),
+      fill_(gpu.kernel(kProgram, "fill_uncovered")) {
   max_bits_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
   filled_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "splat sums");
 }

@@ -13,6 +13,8 @@ namespace rcsplat {
 class SplatPass {
  public:
   explicit SplatPass(GpuContext& gpu);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
 
   // Clears the sums and splats records 0 .. count - 1 at accuracy a, at the frame's fixed-point scale; blocks until
   // done.

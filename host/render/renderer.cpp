@@ -9,12 +9,14 @@
 #include <string>
 
 #include "bvh/bvh8.h"
+#include "cache/cache_settings.h"
 #include "cl/device_scene.h"
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
+#include "passes/light_guide_pass.h"
 #include "render/indirect.h"
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
@@ -131,9 +133,44 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   scene_stats_.glossy_materials = lobes[LOBE_GLOSSY];
   scene_stats_.hsh_materials = lobes[LOBE_HSH];
   scene_stats_.specular_brdf = device_scene_->has_specular_brdf();
-  log_info("compiling kernels for " + gpu_.device_info().name);
-  gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
-  direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
+  // Every frame's first two programs, compiling while the plan's bounce probe and lobe table run; render() makes
+  // their passes.
+  GBufferPass::build_ahead(gpu_, *device_scene_);
+  DirectPass::build_ahead(gpu_, *device_scene_);
+}
+
+void Renderer::build_programs_ahead(const FramePlan& plan) {
+  const RenderSettings& s = plan.frame;
+  const DeviceScene& scene = *device_scene_;
+  LayerPass::build_ahead(gpu_);
+  if (s.gi == GiMethod::path) PathPass::build_ahead(gpu_, scene);
+  if (s.gi != GiMethod::splat && s.gi != GiMethod::octree) return;
+  // What render/indirect_splat.cpp and indirect_octree.cpp ask for: the light they read (attach_photon_map,
+  // attach_caustic_map and attach_light_guide shoot their photons with the light guide's kernel), the records, the
+  // splat's placement, the radiance-cached lobes' passes, the glossy pass and the composition
+  // (indirect_compose.cpp). RendererPrograms tests check this list against what frames build.
+  const bool photon_map = s.bounce_method == BounceMethod::photons && s.bounces >= 2;
+  const bool caustic_map = s.caustic_photons > 0 && scene_casts_caustics(scene);
+  const bool guide = s.cache.guide_rays > 0 && s.cache.guide_photons > 0;
+  const bool radiance = radiance_cached(s);
+  const unsigned theta_strata = largest_theta_strata(s.cache);
+  if (photon_map || caustic_map || guide) LightGuidePass::build_ahead(gpu_, scene);
+  if (photon_map) PhotonMapPass::build_ahead(gpu_);
+  if (caustic_map) CausticMapPass::build_ahead(gpu_);
+  RecordPass::build_ahead(gpu_, scene, theta_strata, false, photon_map, caustic_map);
+  if (s.gi == GiMethod::splat) {
+    PlacementPass::build_ahead(gpu_);
+    SplatPass::build_ahead(gpu_);
+  }
+  if (radiance) {
+    RecordPass::build_ahead(gpu_, scene, theta_strata, true, photon_map, false);
+    HshRecordPass::build_ahead(gpu_);
+    RadianceSplatPass::build_ahead(gpu_);
+  }
+  const bool sample_hsh = !radiance && scene.lobe_counts()[LOBE_HSH] > 0;
+  if (scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || (radiance && guide))
+    GlossyPass::build_ahead(gpu_, scene, sample_hsh);
+  ComposePass::build_ahead(gpu_, scene, radiance);
 }
 
 Renderer::~Renderer() = default;
@@ -210,6 +247,7 @@ FramePlan Renderer::plan(const RenderSettings& request) {
   if (p.side > 1) p.frame.sub_pixel_side = p.side;
   const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
   p.light_strata = light_sample_strata(light_samples);
+  build_programs_ahead(p);
   return p;
 }
 
@@ -220,7 +258,6 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   GBufferPass& gbuffer = *gbuffer_;
   DirectPass& direct = *direct_;
   LayerPass& layers = *layers_;
-  const SceneFrame& scene_frame = scene_frame_;
   const unsigned strata = plan.light_strata;
   RenderStats& st = img.stats;
   {
@@ -407,6 +444,11 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   if (passes_->method != plan.settings.gi) {
     passes_ = std::make_unique<MethodPasses>();
     passes_->method = plan.settings.gi;
+  }
+  if (!gbuffer_) {
+    log_info("compiling kernels for " + gpu_.device_info().name);
+    gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
+    direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
   }
   if (!layers_ || layers_->side() != plan.side || layers_->out_width() != plan.width ||
       layers_->out_height() != plan.height)
