@@ -15,6 +15,7 @@
 #include "passes/splat_pass.h"
 #include "passes/caustic_map_pass.h"
 #include "passes/glossy_pass.h"
+#include "passes/grid_sort_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
@@ -131,6 +132,14 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   const cl::Buffer scanned = gpu.buffer(CL_MEM_READ_WRITE, 2000 * sizeof(cl_uint), "test");
   scan.exclusive(gpu.upload(std::vector<cl_uint>(2000, 1u)), 2000, scanned);
   EXPECT_EQ(gpu.download<cl_uint>(scanned, 2000)[1999], 1999u);
+
+  // The photon map's grid sort (frames above may keep too few photons to sort any).
+  GridSortPass grid_sort(gpu);
+  const PhotonMapParams grid = photon_grid_params(std::vector<PhotonHit>{photon, beside}, 1.0f);
+  const cl::Buffer sorted = gpu.buffer(CL_MEM_READ_WRITE, 2 * sizeof(PhotonHit), "test");
+  const cl::Buffer starts = gpu.buffer(CL_MEM_READ_WRITE, (grid.bucket_count + 1) * sizeof(cl_uint), "test");
+  grid_sort.sort(gpu.upload(std::vector<PhotonHit>{photon, beside}), sizeof(PhotonHit) / 4, 2, grid, sorted, starts);
+  EXPECT_EQ(gpu.download<cl_uint>(starts, grid.bucket_count + 1).back(), 2u);
 
   std::set<std::string> built = gpu.built_kernel_names();
   const std::set<std::string> every_kernel = every_kernel_in_the_sources();

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <set>
@@ -17,6 +18,7 @@
 #include "cache/photon_map.h"
 #include "cl/device_scene.h"
 #include "kernels/photon_grid.h"
+#include "passes/grid_sort_pass.h"
 #include "passes/light_guide_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/bounce_choice.h"
@@ -434,6 +436,69 @@ TEST(PhotonMap, GridIsAStableCountingSortByBucket) {
       ASSERT_EQ(grid.photons[i].landing, expected[i].landing) << count << " photons, " << i;
     ASSERT_EQ(grid.bucket_starts, starts) << count << " photons";
   }
+}
+
+// The device's grid sort (passes/grid_sort_pass.h) against the host's, which the test above checks against a stable
+// sort: the same items in the same order and the same bucket starts, bit for bit. Random photons of several counts,
+// and a crowded spot (3000 photons in one cell, whose bucket is heap-sorted) among 500 others; surface patches once.
+TEST(PhotonMap, TheDeviceSortsTheGridAsTheHostDoesBitForBit) {
+  GpuContext& gpu = test::gpu();
+  GridSortPass sorter(gpu);
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  auto sorted_on_device = [&](const auto& items, const PhotonMapParams& grid, auto& sorted, std::vector<uint32_t>& starts) {
+    using Item = typename std::decay_t<decltype(items)>::value_type;
+    const cl::Buffer given = gpu.upload(items);
+    const cl::Buffer out = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(items.size(), 1) * sizeof(Item), "test");
+    const cl::Buffer out_starts = gpu.buffer(CL_MEM_READ_WRITE, (grid.bucket_count + 1) * sizeof(cl_uint), "test");
+    sorter.sort(given, sizeof(Item) / 4, uint32_t(items.size()), grid, out, out_starts);
+    sorted = gpu.download<Item>(out, items.size());
+    starts = gpu.download<cl_uint>(out_starts, grid.bucket_count + 1);
+  };
+  for (size_t count : {size_t(0), size_t(1), size_t(37), size_t(700), size_t(16000), size_t(3500)}) {
+    std::vector<PhotonHit> photons(count);
+    for (size_t i = 0; i < count; ++i) {
+      for (int a = 0; a < 3; ++a) photons[i].position[a] = count == 3500 && i % 7 ? 0.5f : coordinate(rng);
+      photons[i].landing = int(i);
+      photons[i].flux[0] = coordinate(rng);
+    }
+    const PhotonGrid host = sort_into_grid(photons, 0.2f);
+    std::vector<PhotonHit> sorted;
+    std::vector<uint32_t> starts;
+    sorted_on_device(photons, photon_grid_params(photons, 0.2f), sorted, starts);
+    ASSERT_EQ(starts, host.bucket_starts) << count << " photons";
+    ASSERT_EQ(sorted.size(), host.photons.size());
+    EXPECT_EQ(std::memcmp(sorted.data(), host.photons.data(), sorted.size() * sizeof(PhotonHit)), 0) << count;
+  }
+  std::vector<SurfacePatch> patches(5000);
+  for (SurfacePatch& p : patches)
+    for (int a = 0; a < 3; ++a) p.position[a] = coordinate(rng), p.normal[a] = coordinate(rng);
+  const PatchGrid host = sort_into_grid(patches, 0.1f);
+  std::vector<SurfacePatch> sorted;
+  std::vector<uint32_t> starts;
+  sorted_on_device(patches, photon_grid_params(patches, 0.1f), sorted, starts);
+  ASSERT_EQ(starts, host.bucket_starts);
+  EXPECT_EQ(std::memcmp(sorted.data(), host.patches.data(), sorted.size() * sizeof(SurfacePatch)), 0);
+}
+
+// A frame's photon map, its large grids sorted on the device (sort_photon_grids), estimates what the host's grids give
+// (build_photon_map), bit for bit: the same grids, read by the same kernel. With the scene's surface patches.
+TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
+  const std::vector<glm::vec3> triangles = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0, 0, 0}, {1, 0, 1}, {1, 0, 0},
+                                            {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 0}, {0, 1, 1}, {0, 0, 1}};
+  RandomPhotons given = random_photons(20000, 17);
+  for (size_t i = 0; i < given.photons.size(); ++i) given.photons[i].landing = int(1 + i / 3 % 3);
+  PhotonMapGrids host = build_photon_map(given.photons, 2.0, 64, 4, triangles);
+  host.shallow_landings = 2;
+  PhotonMapPass from_host(test::gpu(), host);
+  PhotonMapPass from_device(test::gpu(), sort_photon_grids(test::gpu(), given.photons, 2.0, 64, 4, triangles, 2));
+  const std::vector<cl_float4> a = from_host.estimates(), b = from_device.estimates();
+  const std::vector<cl_float4> c = from_host.shallow_estimates(), d = from_device.shallow_estimates();
+  ASSERT_EQ(a.size(), 2 * host.lookup.photons.size());
+  ASSERT_EQ(b.size(), a.size());
+  ASSERT_EQ(d.size(), c.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(cl_float4)), 0);
+  EXPECT_EQ(std::memcmp(c.data(), d.data(), c.size() * sizeof(cl_float4)), 0);
 }
 
 // The estimates' order (cell_order) visits every photon once, a cell's photons together, and walks between nearby cells:

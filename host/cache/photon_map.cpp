@@ -39,19 +39,26 @@ constexpr size_t kSortRanges = 64;
 // finally the items gathered in that order. Each step is stable, so the result is the one-pass counting sort's, bit
 // for bit (tests/photon_map_test.cpp).
 template <class Item>
+PhotonMapParams grid_params(const std::vector<Item>& items, float radius) {
+  PhotonMapParams params{};
+  const size_t count = radius > 0.0f && std::isfinite(radius) ? items.size() : 0;
+  params.radius = radius;
+  params.cell_size = radius * 1.001f;
+  params.bucket_count = uint32_t(std::bit_ceil(std::max<size_t>(2 * count, 2)));
+  params.photon_count = uint32_t(count);
+  float lo[3] = {INFINITY, INFINITY, INFINITY};
+  for (size_t i = 0; i < count; ++i)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], items[i].position[a]);
+  for (int a = 0; a < 3; ++a) params.grid_origin[a] = count == 0 ? 0.0f : lo[a] - params.cell_size;
+  return params;
+}
+
+template <class Item>
 void sort_into_buckets(const std::vector<Item>& given, float radius, PhotonMapParams& params,
                        std::vector<Item>& sorted, std::vector<uint32_t>& bucket_starts) {
   const std::vector<Item> none;
   const std::vector<Item>& items = radius > 0.0f && std::isfinite(radius) ? given : none;
-  params.radius = radius;
-  params.cell_size = radius * 1.001f;
-  params.bucket_count = uint32_t(std::bit_ceil(std::max<size_t>(2 * items.size(), 2)));
-  params.photon_count = uint32_t(items.size());
-  float lo[3] = {INFINITY, INFINITY, INFINITY};
-  for (const Item& p : items)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p.position[a]);
-  for (int a = 0; a < 3; ++a) params.grid_origin[a] = items.empty() ? 0.0f : lo[a] - params.cell_size;
-
+  params = grid_params(items, radius);
   const size_t count = items.size();
   std::vector<uint32_t> bucket(count);
   parallel_ranges(count, [&](size_t begin, size_t end) {
@@ -110,6 +117,14 @@ void sort_into_buckets(const std::vector<Item>& given, float radius, PhotonMapPa
 }
 
 }  // namespace
+
+PhotonMapParams photon_grid_params(const std::vector<PhotonHit>& photons, float radius) {
+  return grid_params(photons, radius);
+}
+
+PhotonMapParams photon_grid_params(const std::vector<SurfacePatch>& patches, float radius) {
+  return grid_params(patches, radius);
+}
 
 PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius) {
   PhotonGrid grid;

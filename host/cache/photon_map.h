@@ -40,6 +40,11 @@ struct PhotonMapGrids {
 // `surface_area` (device units).
 float photon_gather_radius(double surface_area, size_t photons, unsigned neighbours);
 
+// The grid sort_into_grid sorts items into: one radius and a hair wide, twice as many buckets as items (a power of
+// two), its origin a cell below the lowest item. No radius (no surface to spread over): no items.
+PhotonMapParams photon_grid_params(const std::vector<PhotonHit>& photons, float radius);
+PhotonMapParams photon_grid_params(const std::vector<SurfacePatch>& patches, float radius);
+
 // photons (patches) sorted into a grid of cells one radius wide (and a hair more, so rounding never hides one within
 // the radius); the order within a cell is the order given.
 PhotonGrid sort_into_grid(const std::vector<PhotonHit>& photons, float radius);

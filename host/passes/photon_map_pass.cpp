@@ -1,6 +1,12 @@
 #include "passes/photon_map_pass.h"
 
+#include <algorithm>
+#include <cstddef>
+#include <numbers>
+
 #include "cl/point_lookup.h"
+#include "kernels/photon_grid.h"
+#include "passes/grid_sort_pass.h"
 #include "passes/light_guide_pass.h"
 
 namespace rcsplat {
@@ -8,14 +14,70 @@ namespace {
 constexpr const char* kProgram = "photon_map.cl";
 }  // namespace
 
-void PhotonMapPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
+void PhotonMapPass::build_ahead(GpuContext& gpu) {
+  gpu.build_ahead(kProgram);
+  GridSortPass::build_ahead(gpu);
+}
 
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
                                                unsigned bounces, unsigned seed) {
   return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
-PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {
+DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids) {
+  DevicePhotonGrids d;
+  d.lookup = grids.lookup;
+  d.all_grid = grids.all.params;
+  d.patch_grid = grids.patches.params;
+  d.shallow_landings = grids.shallow_landings;
+  d.all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
+  d.all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
+  // The kernel reads no patch when there are none, but a buffer must be bound.
+  d.patches = gpu.upload(grids.patches.patches.empty() ? std::vector<SurfacePatch>(1) : grids.patches.patches,
+                         CL_MEM_READ_ONLY, "photon map surface patches");
+  d.patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
+                                                                  : grids.patches.bucket_starts,
+                               CL_MEM_READ_ONLY, "photon map surface patch buckets");
+  return d;
+}
+
+namespace {
+
+// items uploaded and sorted into their grid on the device: the sorted items and the buckets' starts.
+template <class Item>
+void sort_on_device(GpuContext& gpu, GridSortPass& sorter, const std::vector<Item>& items, const PhotonMapParams& grid,
+                    cl::Buffer& sorted, cl::Buffer& bucket_starts, const char* what) {
+  static_assert(sizeof(Item) % sizeof(cl_uint) == 0 && offsetof(Item, position) == 0);
+  const size_t count = grid.photon_count;  // 0 when the grid has no radius
+  sorted = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(count, 1) * sizeof(Item), what);
+  bucket_starts = gpu.buffer(CL_MEM_READ_WRITE, (size_t(grid.bucket_count) + 1) * sizeof(cl_uint), what);
+  const cl::Buffer given = gpu.upload(items, CL_MEM_READ_ONLY, what);
+  sorter.sort(given, uint32_t(sizeof(Item) / sizeof(cl_uint)), uint32_t(count), grid, sorted, bucket_starts);
+}
+
+}  // namespace
+
+DevicePhotonGrids sort_photon_grids(GpuContext& gpu, const std::vector<PhotonHit>& kept, double surface_area,
+                                    unsigned neighbours, unsigned lookup_stride, const std::vector<glm::vec3>& triangles,
+                                    int shallow_landings) {
+  DevicePhotonGrids d;
+  d.shallow_landings = shallow_landings;
+  const float radius = photon_gather_radius(surface_area, kept.size(), neighbours);
+  std::vector<PhotonHit> sparse;
+  for (size_t i = 0; i < kept.size(); i += std::max(lookup_stride, 1u)) sparse.push_back(kept[i]);
+  d.lookup = sort_into_grid(sparse, radius);
+  GridSortPass sorter(gpu);
+  d.all_grid = photon_grid_params(kept, radius);
+  sort_on_device(gpu, sorter, kept, d.all_grid, d.all_photons, d.all_buckets, "photon map");
+  std::vector<SurfacePatch> patches;
+  if (!kept.empty())
+    patches = surface_patches(triangles, float(std::numbers::pi) * radius * radius / float(PHOTON_PATCHES_PER_DISC));
+  d.patch_grid = photon_grid_params(patches, radius);
+  sort_on_device(gpu, sorter, patches, d.patch_grid, d.patches, d.patch_buckets, "photon map surface patches");
+  return d;
+}
+
+PhotonMapPass::PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {
   photons_ = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
   buckets_ = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
   // Two float4 per lookup photon: the reflected light and the irradiance (kernels/photon_map.h).
@@ -23,22 +85,14 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : gpu
   radiance_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map estimates");
   shallow_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map shallow estimates");
   if (grids.lookup.photons.empty()) return;
-  cl::Buffer all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
-  cl::Buffer all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
-  // The kernel reads no patch when there are none, but a buffer must be bound.
-  cl::Buffer patches = gpu.upload(grids.patches.patches.empty() ? std::vector<SurfacePatch>(1) : grids.patches.patches,
-                                  CL_MEM_READ_ONLY, "photon map surface patches");
-  cl::Buffer patch_buckets = gpu.upload(grids.patches.bucket_starts.empty() ? std::vector<cl_uint>(2, 0u)
-                                                                           : grids.patches.bucket_starts,
-                                        CL_MEM_READ_ONLY, "photon map surface patch buckets");
   cl::Buffer order = gpu.upload(cell_order(grids.lookup), CL_MEM_READ_ONLY, "photon map estimate order");
   NamedKernel estimate = gpu.kernel(kProgram, "estimate_photon_radiance", {});
-  estimate.set_buffer<PhotonHit>("all_photons", all_photons)
-      .set_buffer<cl_uint>("all_buckets", all_buckets)
-      .set("all_grid", grids.all.params)
-      .set_buffer<SurfacePatch>("patches", patches)
-      .set_buffer<cl_uint>("patch_buckets", patch_buckets)
-      .set("patch_grid", grids.patches.params)
+  estimate.set_buffer<PhotonHit>("all_photons", grids.all_photons)
+      .set_buffer<cl_uint>("all_buckets", grids.all_buckets)
+      .set("all_grid", grids.all_grid)
+      .set_buffer<SurfacePatch>("patches", grids.patches)
+      .set_buffer<cl_uint>("patch_buckets", grids.patch_buckets)
+      .set("patch_grid", grids.patch_grid)
       .set_buffer<PhotonHit>("map_photons", photons_)
       .set("map", params_)
       .set("shallow_landings", cl_int(grids.shallow_landings))

@@ -15,11 +15,30 @@ namespace rcsplat {
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
                                                unsigned bounces, unsigned seed);
 
+// The photon map's grids on the device: what its estimates read. The lookup grid (every few photons) stays on the host
+// too, for its estimates' order (cell_order).
+struct DevicePhotonGrids {
+  PhotonGrid lookup;
+  PhotonMapParams all_grid{}, patch_grid{};
+  cl::Buffer all_photons, all_buckets, patches, patch_buckets;
+  int shallow_landings = 0;  // PhotonMapGrids::shallow_landings
+};
+
+// The host's grids uploaded.
+DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids);
+// build_photon_map's grids, the large ones (every photon, the surface patches) sorted on the device
+// (passes/grid_sort_pass.h): the same bits as the host's.
+DevicePhotonGrids sort_photon_grids(GpuContext& gpu, const std::vector<PhotonHit>& kept, double surface_area,
+                                    unsigned neighbours, unsigned lookup_stride, const std::vector<glm::vec3>& triangles,
+                                    int shallow_landings);
+
 class PhotonMapPass {
  public:
-  // Uploads the grids and estimates the irradiance at every lookup photon; blocks until done.
-  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids);
-  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  // Estimates the irradiance at every lookup photon; blocks until done.
+  PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids);
+  PhotonMapPass(GpuContext& gpu, const PhotonMapGrids& grids) : PhotonMapPass(gpu, upload_photon_grids(gpu, grids)) {}
+  // Starts building its programs (GpuContext::build_ahead) with the switches the constructor and sort_photon_grids
+  // will ask for.
   static void build_ahead(GpuContext& gpu);
 
   // How the kernels bound later read the map (PhotonMapParams): record rays shorter than short_ray_paths radii

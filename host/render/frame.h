@@ -95,8 +95,8 @@ struct GuideStats {
 };
 
 // The photon map (--bounce-method photons): paths shot, photons kept (landings after a reflection), radius (world
-// units); its parts: shooting (device) with the landings kept (host), the grids built (host), the lookup photons'
-// estimates uploaded and made (device).
+// units); its parts: shooting (device) with the landings kept (host), the grids built (every photon and the surface
+// patches sorted on the device, every few photons for lookups on the host), the lookup photons' estimates (device).
 struct PhotonMapStats {
   uint64_t paths = 0, photons = 0;
   float radius = 0;

@@ -79,17 +79,19 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
         stored->photons = kept;
       }
     }
-    StageTimer grids_timing(st.photon_map.grids_s);
-    PhotonMapGrids grids = build_photon_map(kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
-                                            kPhotonLookupStride, frame.device_positions(f.scene));
-    grids.shallow_landings = int(f.settings.bounces) - 1;  // the landings a path continued one bounce still needs
+    StageTimer grids_timing(st.photon_map.grids_s, f.gpu);
+    // The landings a path continued one bounce still needs: all but the last.
+    const DevicePhotonGrids grids =
+        sort_photon_grids(f.gpu, kept, device_surface_area(f.scene, frame), f.settings.photon_neighbours,
+                          kPhotonLookupStride, frame.device_positions(f.scene), int(f.settings.bounces) - 1);
+    f.gpu.queue().finish();  // the sort's time is the grids'
     grids_timing.stop();
     StageTimer estimate(st.photon_map.estimate_s, f.gpu);
     light.photon_map = std::make_unique<PhotonMapPass>(f.gpu, grids);
     light.photon_key = key;
     light.photon_paths = paths;
-    light.photons = grids.all.photons.size();
-    light.photon_radius = frame.length_to_world(grids.all.params.radius);
+    light.photons = grids.all_grid.photon_count;
+    light.photon_radius = frame.length_to_world(grids.all_grid.radius);
   }
   // How lookups read the map is the frame's to say: a kept map serves other --short-ray-paths and
   // --photon-min-support without being made again.

@@ -1,0 +1,36 @@
+// The photon map's hashed grids sorted on the device (kernels/grid_sort.cl): the same grid as the host's
+// sort_into_grid (cache/photon_map.h), bit for bit, without the items leaving the device. Owns its scratch buffers
+// (each item's bucket, the buckets' counts and fill, the sorted order), kept for the next sort.
+#pragma once
+#include <cstdint>
+
+#include "cl/gpu_context.h"
+#include "passes/scan_pass.h"
+
+namespace rcsplat {
+
+class GridSortPass {
+ public:
+  explicit GridSortPass(GpuContext& gpu);
+  // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
+  static void build_ahead(GpuContext& gpu);
+
+  // `count` items of `words` 32-bit words each in `items`, the first three their position (PhotonHit, SurfacePatch),
+  // into `sorted` (as many items) in the order of grid's buckets, the items' own order within a bucket, and
+  // `bucket_starts` (grid.bucket_count + 1 entries: bucket h holds sorted items [starts[h], starts[h + 1])). The grid's
+  // parameters come from photon_grid_params.
+  void sort(const cl::Buffer& items, uint32_t words, uint32_t count, const PhotonMapParams& grid,
+            const cl::Buffer& sorted, const cl::Buffer& bucket_starts);
+
+ private:
+  // `buffer` holding at least `count` uints (grown by doubling).
+  void reserve(cl::Buffer& buffer, size_t& capacity, size_t count, const char* what);
+
+  GpuContext& gpu_;
+  ScanPass scan_;
+  NamedKernel count_, scatter_, order_, gather_;
+  cl::Buffer item_bucket_, bucket_counts_, bucket_fill_, order_buffer_;
+  size_t item_capacity_ = 0, order_capacity_ = 0, count_capacity_ = 0, fill_capacity_ = 0;
+};
+
+}  // namespace rcsplat
