@@ -72,3 +72,25 @@ __kernel void gather_grid_items(__global const uint* items, uint words, __global
   const size_t k = w / words;
   sorted[w] = items[(size_t)order[k] * words + w % words];
 }
+
+// The lowest coordinate on each axis of each group's LOWEST_GROUP items (xyz; w unused), for the grid's origin: the
+// host's loop of std::min over the items, exactly, as a minimum is in any order. Launched again over its own output
+// (words 4) until one group is left.
+__kernel void lowest_positions(__global const float* items, uint words, uint count, __global float4* lowest) {
+  __local float x[LOWEST_GROUP], y[LOWEST_GROUP], z[LOWEST_GROUP];
+  const size_t i = get_global_id(0);
+  const uint item = get_local_id(0);
+  x[item] = i < count ? items[i * words] : INFINITY;
+  y[item] = i < count ? items[i * words + 1] : INFINITY;
+  z[item] = i < count ? items[i * words + 2] : INFINITY;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint step = LOWEST_GROUP / 2; step > 0; step /= 2) {
+    if (item < step) {
+      x[item] = fmin(x[item], x[item + step]);
+      y[item] = fmin(y[item], y[item + step]);
+      z[item] = fmin(z[item], z[item + step]);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (item == 0) lowest[get_group_id(0)] = (float4)(x[0], y[0], z[0], 0.0f);
+}

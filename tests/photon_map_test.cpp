@@ -20,6 +20,7 @@
 #include "kernels/photon_grid.h"
 #include "passes/grid_sort_pass.h"
 #include "passes/light_guide_pass.h"
+#include "passes/photon_landings_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/bounce_choice.h"
 #include "scene/environment.h"
@@ -465,10 +466,24 @@ TEST(PhotonMap, TheDeviceSortsTheGridAsTheHostDoesBitForBit) {
     const PhotonGrid host = sort_into_grid(photons, 0.2f);
     std::vector<PhotonHit> sorted;
     std::vector<uint32_t> starts;
-    sorted_on_device(photons, photon_grid_params(photons, 0.2f), sorted, starts);
+    const PhotonMapParams params = photon_grid_params(photons, 0.2f);
+    const PhotonMapParams on_device = sorter.grid_params(gpu.upload(photons), sizeof(PhotonHit) / 4, uint32_t(count), 0.2f);
+    ASSERT_EQ(std::memcmp(&params, &on_device, sizeof params), 0) << count << " photons: the grid's corner";
+    sorted_on_device(photons, params, sorted, starts);
     ASSERT_EQ(starts, host.bucket_starts) << count << " photons";
     ASSERT_EQ(sorted.size(), host.photons.size());
     EXPECT_EQ(std::memcmp(sorted.data(), host.photons.data(), sorted.size() * sizeof(PhotonHit)), 0) << count;
+  }
+  // The grid's corner alone, over items all above zero (a group's unused items must not count), in two and three
+  // rounds of groups.
+  std::uniform_real_distribution<float> above_zero(2.0f, 5.0f);
+  for (size_t count : {size_t(300), size_t(70001)}) {
+    std::vector<PhotonHit> photons(count);
+    for (PhotonHit& p : photons)
+      for (int a = 0; a < 3; ++a) p.position[a] = above_zero(rng);
+    const PhotonMapParams params = photon_grid_params(photons, 0.05f);
+    const PhotonMapParams on_device = sorter.grid_params(gpu.upload(photons), sizeof(PhotonHit) / 4, uint32_t(count), 0.05f);
+    ASSERT_EQ(std::memcmp(&params, &on_device, sizeof params), 0) << count << " photons: the grid's corner";
   }
   std::vector<SurfacePatch> patches(5000);
   for (SurfacePatch& p : patches)
@@ -481,6 +496,41 @@ TEST(PhotonMap, TheDeviceSortsTheGridAsTheHostDoesBitForBit) {
   EXPECT_EQ(std::memcmp(sorted.data(), host.patches.data(), sorted.size() * sizeof(SurfacePatch)), 0);
 }
 
+// The photons a frame keeps, gathered on the device (PhotonLandingsPass) as the host does: of two rounds of landings
+// the lit ones in order (a landing that left the scene, or one no flux reached, is dropped), every one's flux times
+// the rounds' share, and every third taken for the lookups. Bit for bit against lit_landings and a host loop.
+TEST(PhotonMap, TheDeviceKeepsTheLitLandingsAsTheHostDoes) {
+  GpuContext& gpu = test::gpu();
+  std::vector<PhotonHit> rounds[2];
+  std::vector<PhotonHit> expected;
+  for (int r = 0; r < 2; ++r) {
+    rounds[r] = random_photons(3001 + 1000 * r, 30 + r).photons;
+    for (size_t i = 0; i < rounds[r].size(); ++i) {
+      rounds[r][i].landing = int(i);
+      if (i % 5 == 1) rounds[r][i].hit = 0;
+      if (i % 7 == 2) rounds[r][i].incident[0] = rounds[r][i].incident[1] = rounds[r][i].incident[2] = 0.0f;
+      if (i % 7 == 3) rounds[r][i].incident[0] = rounds[r][i].incident[2] = 0.0f;  // green alone still counts
+    }
+    const std::vector<PhotonHit> lit = lit_landings(rounds[r]);
+    expected.insert(expected.end(), lit.begin(), lit.end());
+  }
+  const float share = 1.0f / 3.0f;
+  for (PhotonHit& p : expected)
+    for (int c = 0; c < 3; ++c) p.flux[c] *= share, p.incident[c] *= share;
+  PhotonLandingsPass kept(gpu);
+  kept.append_lit(gpu.upload(std::vector<PhotonHit>{}), 0);  // an empty round keeps nothing
+  for (const std::vector<PhotonHit>& round : rounds) kept.append_lit(gpu.upload(round), uint32_t(round.size()));
+  kept.scale_flux(share);
+  ASSERT_EQ(kept.kept(), expected.size());
+  const std::vector<PhotonHit> got = gpu.download<PhotonHit>(kept.photons(), kept.kept());
+  EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(PhotonHit)), 0);
+  uint32_t taken = 0;
+  const std::vector<PhotonHit> every_third = gpu.download<PhotonHit>(kept.take_every(3, taken), (expected.size() + 2) / 3);
+  ASSERT_EQ(taken, (expected.size() + 2) / 3);
+  for (size_t k = 0; k < taken; ++k)
+    ASSERT_EQ(std::memcmp(&every_third[k], &expected[3 * k], sizeof(PhotonHit)), 0) << k;
+}
+
 // A frame's photon map, its large grids sorted on the device (sort_photon_grids), estimates what the host's grids give
 // (build_photon_map), bit for bit: the same grids, read by the same kernel. With the scene's surface patches.
 TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
@@ -491,7 +541,9 @@ TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
   PhotonMapGrids host = build_photon_map(given.photons, 2.0, 64, 4, triangles);
   host.shallow_landings = 2;
   PhotonMapPass from_host(test::gpu(), host);
-  PhotonMapPass from_device(test::gpu(), sort_photon_grids(test::gpu(), given.photons, 2.0, 64, 4, triangles, 2));
+  PhotonLandingsPass kept(test::gpu());
+  kept.load(given.photons);
+  PhotonMapPass from_device(test::gpu(), sort_photon_grids(test::gpu(), kept, 2.0, 64, 4, triangles, 2));
   const std::vector<cl_float4> a = from_host.estimates(), b = from_device.estimates();
   const std::vector<cl_float4> c = from_host.shallow_estimates(), d = from_device.shallow_estimates();
   ASSERT_EQ(a.size(), 2 * host.lookup.photons.size());

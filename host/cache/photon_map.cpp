@@ -40,17 +40,10 @@ constexpr size_t kSortRanges = 64;
 // for bit (tests/photon_map_test.cpp).
 template <class Item>
 PhotonMapParams grid_params(const std::vector<Item>& items, float radius) {
-  PhotonMapParams params{};
-  const size_t count = radius > 0.0f && std::isfinite(radius) ? items.size() : 0;
-  params.radius = radius;
-  params.cell_size = radius * 1.001f;
-  params.bucket_count = uint32_t(std::bit_ceil(std::max<size_t>(2 * count, 2)));
-  params.photon_count = uint32_t(count);
-  float lo[3] = {INFINITY, INFINITY, INFINITY};
-  for (size_t i = 0; i < count; ++i)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], items[i].position[a]);
-  for (int a = 0; a < 3; ++a) params.grid_origin[a] = count == 0 ? 0.0f : lo[a] - params.cell_size;
-  return params;
+  std::array<float, 3> lowest = {INFINITY, INFINITY, INFINITY};
+  for (const Item& item : items)
+    for (int a = 0; a < 3; ++a) lowest[a] = std::min(lowest[a], item.position[a]);
+  return photon_grid_params(items.size(), lowest, radius);
 }
 
 template <class Item>
@@ -117,6 +110,17 @@ void sort_into_buckets(const std::vector<Item>& given, float radius, PhotonMapPa
 }
 
 }  // namespace
+
+PhotonMapParams photon_grid_params(size_t items, const std::array<float, 3>& lowest, float radius) {
+  PhotonMapParams params{};
+  const size_t count = radius > 0.0f && std::isfinite(radius) ? items : 0;
+  params.radius = radius;
+  params.cell_size = radius * 1.001f;
+  params.bucket_count = uint32_t(std::bit_ceil(std::max<size_t>(2 * count, 2)));
+  params.photon_count = uint32_t(count);
+  for (int a = 0; a < 3; ++a) params.grid_origin[a] = count == 0 ? 0.0f : lowest[a] - params.cell_size;
+  return params;
+}
 
 PhotonMapParams photon_grid_params(const std::vector<PhotonHit>& photons, float radius) {
   return grid_params(photons, radius);

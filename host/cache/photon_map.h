@@ -3,6 +3,7 @@
 // grid (kernels/photon_grid.h), and a sparser grid of every few of them, which carry the radiance estimates that
 // lookups return (Christensen 1999: the estimate uses every photon, the lookup searches few).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -43,6 +44,8 @@ float photon_gather_radius(double surface_area, size_t photons, unsigned neighbo
 // The grid sort_into_grid sorts items into: one radius and a hair wide, twice as many buckets as items (a power of
 // two), its origin a cell below the lowest item. No radius (no surface to spread over): no items.
 PhotonMapParams photon_grid_params(const std::vector<PhotonHit>& photons, float radius);
+// The same from the items' count and their lowest coordinate on each axis.
+PhotonMapParams photon_grid_params(size_t items, const std::array<float, 3>& lowest, float radius);
 PhotonMapParams photon_grid_params(const std::vector<SurfacePatch>& patches, float radius);
 
 // photons (patches) sorted into a grid of cells one radius wide (and a hair more, so rounding never hides one within

@@ -118,7 +118,9 @@ int run_bench_frames(const BenchOptions& o) {
                                  {"device_peak_bytes", last.device_memory.peak_bytes},
                                  {"device_at_peak_by_use", last.device_memory.at_peak_by_use}});
   }
-  std::printf("cold_s, cached_s: kernel builds (clBuildProgram; cached_s: a new process's, from the on-disk cache); "
+  std::printf("cold_s, cached_s: what the frame waited for kernel builds (clBuildProgram, side by side ahead of the "
+              "passes; cached_s: a new process's, from the on-disk cache); cold builds by file: each build's own "
+              "time, overlapping; "
               "cold_fr: the whole cold frame, which holds what a driver compiles at first launch (PoCL does); first_s: "
               "a new renderer's first frame without builds (BVH, upload, probe, photon map included); passes and "
               "frame_s: medians of the frames the same renderer renders next, which keep the BVH, programs, probe, "

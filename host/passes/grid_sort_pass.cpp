@@ -1,6 +1,11 @@
 #include "passes/grid_sort_pass.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "util/error.h"
 
 namespace rcsplat {
 namespace {
@@ -18,7 +23,8 @@ GridSortPass::GridSortPass(GpuContext& gpu)
       count_(gpu.kernel(kProgram, "count_grid_buckets")),
       scatter_(gpu.kernel(kProgram, "scatter_into_buckets")),
       order_(gpu.kernel(kProgram, "order_within_buckets")),
-      gather_(gpu.kernel(kProgram, "gather_grid_items")) {}
+      gather_(gpu.kernel(kProgram, "gather_grid_items")),
+      lowest_(gpu.kernel(kProgram, "lowest_positions")) {}
 
 void GridSortPass::reserve(cl::Buffer& buffer, size_t& capacity, size_t count, const char* what) {
   if (buffer() && capacity >= count) return;
@@ -62,6 +68,40 @@ void GridSortPass::sort(const cl::Buffer& items, uint32_t words, uint32_t count,
       .set("count", cl_uint(count))
       .set_buffer<cl_uint>("sorted", sorted);
   gather_.launch(size_t(count) * words, group);
+}
+
+PhotonMapParams GridSortPass::grid_params(const cl::Buffer& items, uint32_t words, uint32_t count, float radius) {
+  std::array<float, 3> lowest = {INFINITY, INFINITY, INFINITY};
+  if (count) {
+    if (lowest_.fitted_group(LOWEST_GROUP) != LOWEST_GROUP)
+      throw Error("grid_sort.cl: the device runs at most " + std::to_string(lowest_.fitted_group(LOWEST_GROUP)) +
+                  " work items a group; the grid's corner needs " + std::to_string(LOWEST_GROUP));
+    // Each launch leaves one float4 a group: the first reads the items, the next the last one's output.
+    const size_t first_groups = (size_t(count) + LOWEST_GROUP - 1) / LOWEST_GROUP;
+    if (lowest_capacity_ < first_groups) {
+      lowest_capacity_ = first_groups;
+      lowest_a_ = gpu_.buffer(CL_MEM_READ_WRITE, first_groups * sizeof(cl_float4), "photon grid sort");
+      lowest_b_ = gpu_.buffer(CL_MEM_READ_WRITE, first_groups * sizeof(cl_float4), "photon grid sort");
+    }
+    cl::Buffer in = items, out = lowest_a_, spare = lowest_b_;
+    uint32_t in_words = words;
+    for (size_t n = count;;) {
+      const size_t groups = (n + LOWEST_GROUP - 1) / LOWEST_GROUP;
+      lowest_.set_buffer<cl_float>("items", in)
+          .set("words", cl_uint(in_words))
+          .set("count", cl_uint(n))
+          .set_buffer<cl_float4>("lowest", out);
+      lowest_.launch(groups * LOWEST_GROUP, LOWEST_GROUP);
+      if (groups == 1) break;
+      in = out;
+      std::swap(out, spare);
+      in_words = 4;
+      n = groups;
+    }
+    const cl_float4 corner = gpu_.download<cl_float4>(out, 1)[0];
+    for (int a = 0; a < 3; ++a) lowest[a] = corner.s[a];
+  }
+  return photon_grid_params(count, lowest, radius);
 }
 
 }  // namespace rcsplat

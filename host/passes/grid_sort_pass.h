@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "cl/gpu_context.h"
+#include "cache/photon_map.h"
 #include "passes/scan_pass.h"
 
 namespace rcsplat {
@@ -21,6 +22,8 @@ class GridSortPass {
   // parameters come from photon_grid_params.
   void sort(const cl::Buffer& items, uint32_t words, uint32_t count, const PhotonMapParams& grid,
             const cl::Buffer& sorted, const cl::Buffer& bucket_starts);
+  // photon_grid_params of the items in `items` (as sort's), their lowest corner found on the device: 12 bytes read.
+  PhotonMapParams grid_params(const cl::Buffer& items, uint32_t words, uint32_t count, float radius);
 
  private:
   // `buffer` holding at least `count` uints (grown by doubling).
@@ -28,9 +31,9 @@ class GridSortPass {
 
   GpuContext& gpu_;
   ScanPass scan_;
-  NamedKernel count_, scatter_, order_, gather_;
-  cl::Buffer item_bucket_, bucket_counts_, bucket_fill_, order_buffer_;
-  size_t item_capacity_ = 0, order_capacity_ = 0, count_capacity_ = 0, fill_capacity_ = 0;
+  NamedKernel count_, scatter_, order_, gather_, lowest_;
+  cl::Buffer item_bucket_, bucket_counts_, bucket_fill_, order_buffer_, lowest_a_, lowest_b_;
+  size_t item_capacity_ = 0, order_capacity_ = 0, count_capacity_ = 0, fill_capacity_ = 0, lowest_capacity_ = 0;
 };
 
 }  // namespace rcsplat

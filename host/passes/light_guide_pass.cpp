@@ -53,8 +53,16 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double
 
 std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings,
                                              unsigned first_stored, bool caustic) {
+  size_t slots = 0;
+  const cl::Buffer photons = shoot_on_device(photon_count, seed, landings, first_stored, caustic, slots);
+  return gpu_.download<PhotonHit>(photons, slots);
+}
+
+cl::Buffer LightGuidePass::shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings,
+                                           unsigned first_stored, bool caustic, size_t& slots) {
+  slots = 0;
   if (!source_count_ || !photon_count || first_stored >= landings) return {};
-  size_t slots = size_t(photon_count) * (landings - first_stored);
+  slots = size_t(photon_count) * (landings - first_stored);
   cl::Buffer photons = gpu_.buffer(CL_MEM_READ_WRITE, slots * sizeof(PhotonHit), "photons");
   PhotonParams params{};
   params.photon_count = photon_count;
@@ -67,8 +75,7 @@ std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned see
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);
-  gpu_.queue().finish();
-  return gpu_.download<PhotonHit>(photons, slots);
+  return photons;
 }
 
 }  // namespace rcsplat

@@ -23,6 +23,9 @@ class LightGuidePass {
   // sharp lobe (PhotonParams::caustic).
   std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0,
                                bool caustic = false);
+  // The same landings left on the device, `slots` of them (0 and no buffer: none); does not block.
+  cl::Buffer shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings, unsigned first_stored,
+                             bool caustic, size_t& slots);
 
  private:
   GpuContext& gpu_;

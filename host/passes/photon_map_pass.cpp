@@ -17,6 +17,7 @@ constexpr const char* kProgram = "photon_map.cl";
 void PhotonMapPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   GridSortPass::build_ahead(gpu);
+  PhotonLandingsPass::build_ahead(gpu);
 }
 
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
@@ -26,10 +27,13 @@ std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScen
 
 DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids) {
   DevicePhotonGrids d;
-  d.lookup = grids.lookup;
+  d.lookup_grid = grids.lookup.params;
   d.all_grid = grids.all.params;
   d.patch_grid = grids.patches.params;
   d.shallow_landings = grids.shallow_landings;
+  d.lookup_photons = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
+  d.lookup_buckets = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
+  d.estimate_order = cell_order(grids.lookup);
   d.all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
   d.all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
   // The kernel reads no patch when there are none, but a buffer must be bound.
@@ -43,49 +47,59 @@ DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& gri
 
 namespace {
 
-// items uploaded and sorted into their grid on the device: the sorted items and the buckets' starts.
+// `count` items (Item) in `items` sorted into `grid` on the device: the sorted items and the buckets' starts.
 template <class Item>
-void sort_on_device(GpuContext& gpu, GridSortPass& sorter, const std::vector<Item>& items, const PhotonMapParams& grid,
+void sort_on_device(GpuContext& gpu, GridSortPass& sorter, const cl::Buffer& items, const PhotonMapParams& grid,
                     cl::Buffer& sorted, cl::Buffer& bucket_starts, const char* what) {
   static_assert(sizeof(Item) % sizeof(cl_uint) == 0 && offsetof(Item, position) == 0);
   const size_t count = grid.photon_count;  // 0 when the grid has no radius
   sorted = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(count, 1) * sizeof(Item), what);
   bucket_starts = gpu.buffer(CL_MEM_READ_WRITE, (size_t(grid.bucket_count) + 1) * sizeof(cl_uint), what);
-  const cl::Buffer given = gpu.upload(items, CL_MEM_READ_ONLY, what);
-  sorter.sort(given, uint32_t(sizeof(Item) / sizeof(cl_uint)), uint32_t(count), grid, sorted, bucket_starts);
+  sorter.sort(items, uint32_t(sizeof(Item) / sizeof(cl_uint)), uint32_t(count), grid, sorted, bucket_starts);
 }
 
 }  // namespace
 
-DevicePhotonGrids sort_photon_grids(GpuContext& gpu, const std::vector<PhotonHit>& kept, double surface_area,
+DevicePhotonGrids sort_photon_grids(GpuContext& gpu, PhotonLandingsPass& landings, double surface_area,
                                     unsigned neighbours, unsigned lookup_stride, const std::vector<glm::vec3>& triangles,
                                     int shallow_landings) {
   DevicePhotonGrids d;
   d.shallow_landings = shallow_landings;
-  const float radius = photon_gather_radius(surface_area, kept.size(), neighbours);
-  std::vector<PhotonHit> sparse;
-  for (size_t i = 0; i < kept.size(); i += std::max(lookup_stride, 1u)) sparse.push_back(kept[i]);
-  d.lookup = sort_into_grid(sparse, radius);
+  const uint32_t kept = landings.kept();
+  const float radius = photon_gather_radius(surface_area, kept, neighbours);
   GridSortPass sorter(gpu);
-  d.all_grid = photon_grid_params(kept, radius);
-  sort_on_device(gpu, sorter, kept, d.all_grid, d.all_photons, d.all_buckets, "photon map");
+  constexpr uint32_t kPhotonWords = sizeof(PhotonHit) / sizeof(cl_uint);
+  d.all_grid = sorter.grid_params(landings.photons(), kPhotonWords, kept, radius);
+  sort_on_device<PhotonHit>(gpu, sorter, landings.photons(), d.all_grid, d.all_photons, d.all_buckets, "photon map");
+
+  uint32_t sparse_count = 0;
+  const cl::Buffer sparse = landings.take_every(lookup_stride, sparse_count);
+  d.lookup_grid = sorter.grid_params(sparse, kPhotonWords, sparse_count, radius);
+  sort_on_device<PhotonHit>(gpu, sorter, sparse, d.lookup_grid, d.lookup_photons, d.lookup_buckets, "photon map");
+  if (d.lookup_grid.photon_count) {
+    PhotonGrid lookup;  // its photons, for the Morton order of their cells
+    lookup.params = d.lookup_grid;
+    lookup.photons = gpu.download<PhotonHit>(d.lookup_photons, d.lookup_grid.photon_count);
+    d.estimate_order = cell_order(lookup);
+  }
+
   std::vector<SurfacePatch> patches;
-  if (!kept.empty())
-    patches = surface_patches(triangles, float(std::numbers::pi) * radius * radius / float(PHOTON_PATCHES_PER_DISC));
+  if (kept) patches = surface_patches(triangles, float(std::numbers::pi) * radius * radius / PHOTON_PATCHES_PER_DISC);
   d.patch_grid = photon_grid_params(patches, radius);
-  sort_on_device(gpu, sorter, patches, d.patch_grid, d.patches, d.patch_buckets, "photon map surface patches");
+  const cl::Buffer given = gpu.upload(patches, CL_MEM_READ_ONLY, "photon map surface patches");
+  sort_on_device<SurfacePatch>(gpu, sorter, given, d.patch_grid, d.patches, d.patch_buckets,
+                               "photon map surface patches");
   return d;
 }
 
-PhotonMapPass::PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids) : gpu_(gpu), params_(grids.lookup.params) {
-  photons_ = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
-  buckets_ = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
+PhotonMapPass::PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids)
+    : gpu_(gpu), params_(grids.lookup_grid), photons_(grids.lookup_photons), buckets_(grids.lookup_buckets) {
   // Two float4 per lookup photon: the reflected light and the irradiance (kernels/photon_map.h).
-  const size_t estimate_bytes = std::max<size_t>(grids.lookup.photons.size(), 1) * 2 * sizeof(cl_float4);
+  const size_t estimate_bytes = std::max<size_t>(params_.photon_count, 1) * 2 * sizeof(cl_float4);
   radiance_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map estimates");
   shallow_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map shallow estimates");
-  if (grids.lookup.photons.empty()) return;
-  cl::Buffer order = gpu.upload(cell_order(grids.lookup), CL_MEM_READ_ONLY, "photon map estimate order");
+  if (!params_.photon_count) return;
+  cl::Buffer order = gpu.upload(grids.estimate_order, CL_MEM_READ_ONLY, "photon map estimate order");
   NamedKernel estimate = gpu.kernel(kProgram, "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", grids.all_photons)
       .set_buffer<cl_uint>("all_buckets", grids.all_buckets)

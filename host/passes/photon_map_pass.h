@@ -7,6 +7,7 @@
 #include "cache/photon_map.h"
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
+#include "passes/photon_landings_pass.h"
 
 namespace rcsplat {
 
@@ -15,20 +16,21 @@ namespace rcsplat {
 std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
                                                unsigned bounces, unsigned seed);
 
-// The photon map's grids on the device: what its estimates read. The lookup grid (every few photons) stays on the host
-// too, for its estimates' order (cell_order).
+// The photon map's grids on the device: the lookup photons' grid (every few photons, which carry the estimates), every
+// photon's and the surface patches', and the order the estimates are made in (cell_order, on the host from the
+// lookup photons).
 struct DevicePhotonGrids {
-  PhotonGrid lookup;
-  PhotonMapParams all_grid{}, patch_grid{};
-  cl::Buffer all_photons, all_buckets, patches, patch_buckets;
+  PhotonMapParams lookup_grid{}, all_grid{}, patch_grid{};
+  cl::Buffer lookup_photons, lookup_buckets, all_photons, all_buckets, patches, patch_buckets;
+  std::vector<uint32_t> estimate_order;
   int shallow_landings = 0;  // PhotonMapGrids::shallow_landings
 };
 
 // The host's grids uploaded.
 DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids);
-// build_photon_map's grids, the large ones (every photon, the surface patches) sorted on the device
-// (passes/grid_sort_pass.h): the same bits as the host's.
-DevicePhotonGrids sort_photon_grids(GpuContext& gpu, const std::vector<PhotonHit>& kept, double surface_area,
+// build_photon_map's grids over the photons `landings` keeps, built on the device (passes/grid_sort_pass.h): the same
+// bits as the host's. Only the lookup photons (every lookup_stride-th) come back, for the estimates' order.
+DevicePhotonGrids sort_photon_grids(GpuContext& gpu, PhotonLandingsPass& landings, double surface_area,
                                     unsigned neighbours, unsigned lookup_stride, const std::vector<glm::vec3>& triangles,
                                     int shallow_landings);
 

@@ -4,6 +4,8 @@
 
 #include <glm/glm.hpp>
 
+#include "passes/light_guide_pass.h"
+#include "passes/photon_landings_pass.h"
 #include "passes/photon_map_pass.h"
 #include "render/indirect.h"
 #include "kernels/counter_random.h"
@@ -47,36 +49,35 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     // fills a closed scene's map.
     const unsigned per_round =
         rounds ? std::max(kPhotonMapPhotons / (f.settings.bounces - 1), 1024u) : f.settings.photon_paths;
-    std::vector<PhotonHit> kept;
+    // The photons stay on the device from their shooting to the grids (passes/photon_landings_pass.h).
+    PhotonLandingsPass kept(f.gpu);
     uint64_t paths = 0;
     // A cache file's photons (render/cache_file.h) for a Renderer that has built no map yet: the same photons, so the
     // same map on the same device.
     if (stored && stored->has_photon_map && !had_map) {
-      kept = stored->photons;
+      kept.load(stored->photons);
       paths = stored->photon_paths;
     } else {
+      LightGuidePass lights(f.gpu, f.device_scene);
       // Within a tenth of the goal is enough: a closed scene keeps nearly every photon, and another round would double
       // them.
-      for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.size() < kPhotonMapPhotons / 10 * 9;
+      for (unsigned round = 0; round < (rounds ? kPhotonRounds : 1u) && kept.kept() < kPhotonMapPhotons / 10 * 9;
            ++round) {
         StageTimer shoot(st.photon_map.shoot_s, f.gpu);
-        // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres.
-        std::vector<PhotonHit> more = shoot_reflected_photons(f.gpu, f.device_scene, per_round, f.settings.bounces,
-                                                              f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round));
-        kept.insert(kept.end(), more.begin(), more.end());
+        // Its own seed stream, as the light guide's: the map must not correlate with the records' hemispheres. The
+        // landings after the first reflection, the lit ones kept.
+        size_t slots = 0;
+        const cl::Buffer landings = lights.shoot_on_device(
+            per_round, f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round), f.settings.bounces, 1, false, slots);
+        kept.append_lit(landings, uint32_t(slots));
         paths += per_round;
       }
       // Each round's photons carry the lights' whole power between them: R rounds, each 1 / R of it.
-      const float share = float(per_round) / float(paths);
-      for (PhotonHit& p : kept)
-        for (int c = 0; c < 3; ++c) {
-          p.flux[c] *= share;
-          p.incident[c] *= share;
-        }
-      if (stored) {
+      kept.scale_flux(float(per_round) / float(paths));
+      if (stored) {  // kept with the records for a cache file
         stored->has_photon_map = true;
         stored->photon_paths = paths;
-        stored->photons = kept;
+        stored->photons = f.gpu.download<PhotonHit>(kept.photons(), kept.kept());
       }
     }
     StageTimer grids_timing(st.photon_map.grids_s, f.gpu);
