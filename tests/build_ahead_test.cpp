@@ -3,6 +3,8 @@
 // (a cold frame pays for it serially), while one listed in vain costs a build's time on a core.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "lobed_cornell_box.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
@@ -59,6 +61,24 @@ TEST(BuildAhead, PathTracingAndDirectLightOnlyBuildNoCachePrograms) {
   expect_programs_built_ahead(make_cornell_box(), s, "path");
   s.gi = GiMethod::none;
   expect_programs_built_ahead(make_cornell_box(), s, "none");
+}
+
+// RCSPLAT_BUILD_AHEAD=0: a program built ahead waits for the pass that asks for it, and one never asked for is never
+// built (not even when its context goes).
+TEST(BuildAhead, DeferredBuildsRunOnlyWhenAskedFor) {
+  ::setenv("RCSPLAT_BUILD_AHEAD", "0", 1);
+  std::unique_ptr<GpuContext> gpu = test::fresh_gpu();
+  ::unsetenv("RCSPLAT_BUILD_AHEAD");
+  gpu->build_ahead("scan.cl");
+  gpu->build_ahead("splat.cl");
+  EXPECT_TRUE(gpu->program_seconds_by_file().empty()) << "a deferred build ran before it was asked for";
+  gpu->program("scan.cl");
+  const std::map<std::string, double> built = gpu->program_seconds_by_file();
+  EXPECT_TRUE(built.count("scan.cl"));
+  EXPECT_FALSE(built.count("splat.cl"));
+  EXPECT_TRUE(gpu->built_kernel_names().count("scan_blocks"));
+  EXPECT_FALSE(gpu->built_kernel_names().count("splat_records"));
+  gpu.reset();  // must not build splat.cl on the way out (nor hang)
 }
 
 }  // namespace

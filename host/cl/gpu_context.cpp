@@ -208,6 +208,15 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
       throw Error(std::string("RCSPLAT_RECORD_TRACE_SPLIT: expected 0 or 1, got \"") + env + "\"");
     groups_.split_record_trace = std::string(env) == "1";
   }
+  // Builds ahead run side by side on worker threads unless RCSPLAT_BUILD_AHEAD=0, which defers each to the program()
+  // that asks for it (one build at a time, in the asking thread). On PoCL's CPU device (2-core VM) the cold frame took
+  // the same time either way, its wait for builds halved (docs/NOTES.md "2026-11-29, second session"): the device's
+  // kernels and its first-launch compiles need the same cores. A GPU leaves them idle.
+  if (const char* env = std::getenv("RCSPLAT_BUILD_AHEAD")) {
+    if (std::string(env) != "0" && std::string(env) != "1")
+      throw Error(std::string("RCSPLAT_BUILD_AHEAD: expected 0 or 1, got \"") + env + "\"");
+    parallel_builds_ = std::string(env) == "1";
+  }
   // For looking inside a device's compiler (NVIDIA's -cl-nv-verbose prints registers and spills): extra options, and
   // each build's log printed.
   if (const char* extra = std::getenv("RCSPLAT_BUILD_OPTIONS")) extra_build_options_ = extra;
@@ -242,7 +251,9 @@ GpuContext::~GpuContext() {
     std::lock_guard<std::mutex> lock(programs_mutex_);
     for (const auto& [key, future] : programs_) pending.push_back(future);
   }
-  for (const ProgramFuture& future : pending) future.wait();  // a build ahead uses this context's members
+  // A build ahead on a worker uses this context's members; one deferred (never asked for) is not started.
+  for (const ProgramFuture& future : pending)
+    if (future.wait_for(std::chrono::seconds(0)) != std::future_status::deferred) future.wait();
 }
 
 namespace {
@@ -275,7 +286,9 @@ void GpuContext::build_ahead(const std::string& file, const KernelDefines& defin
   std::lock_guard<std::mutex> lock(programs_mutex_);
   if (programs_.count(key)) return;
   built_ahead_.insert(key);
-  programs_.emplace(key, std::async(std::launch::async, [this, file, options] {
+  // Deferred: built by program() in the asking thread, as without build_ahead.
+  const auto policy = parallel_builds_ ? std::launch::async : std::launch::deferred;
+  programs_.emplace(key, std::async(policy, [this, file, options] {
                            BuildSlot slot;
                            return build(file, resolve_kernel_source(file), options);
                          }).share());
@@ -337,6 +350,7 @@ std::set<std::string> GpuContext::built_kernel_names() const {
   }
   std::set<std::string> names;
   for (const ProgramFuture& future : programs) {
+    if (future.wait_for(std::chrono::seconds(0)) == std::future_status::deferred) continue;  // never asked for
     std::shared_ptr<cl::Program> program;
     try {
       program = future.get();

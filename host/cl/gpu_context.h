@@ -60,7 +60,7 @@ class GpuContext {
   // Starts building that program on a worker thread (at most as many at once as the host has cores) unless it is
   // built or building: the programs a frame will use compile side by side, and beside the frame's first passes, where
   // one after another they took a cold frame's 2.0 s on PoCL and 6-17 s on NVIDIA's compiler. A build that fails
-  // reports its error where program() asks for it.
+  // reports its error where program() asks for it. RCSPLAT_BUILD_AHEAD=0: each build waits for program() instead.
   void build_ahead(const std::string& file, const KernelDefines& defines = {});
 
   // Kernel `name` of kernels/<file>, its arguments set by name.
@@ -166,6 +166,7 @@ class GpuContext {
   std::string cold_build_nonce_;
   uint64_t memory_budget_ = 0;
   std::string extra_build_options_;  // RCSPLAT_BUILD_OPTIONS (docs/GPU.md)
+  bool parallel_builds_ = true;      // build_ahead on worker threads, else deferred to program()
   std::shared_ptr<MemoryLedger> memory_;  // shared with buffers' destructor callbacks, which may outlive the context
 };
 
