@@ -439,6 +439,12 @@ TEST(PhotonMap, GridIsAStableCountingSortByBucket) {
   }
 }
 
+// Whether two arrays hold the same bytes (memcmp, which must not be given an empty vector's null data).
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
 // The device's grid sort (passes/grid_sort_pass.h) against the host's, which the test above checks against a stable
 // sort: the same items in the same order and the same bucket starts, bit for bit. Random photons of several counts,
 // and a crowded spot (3000 photons in one cell, whose bucket is heap-sorted) among 500 others; surface patches once.
@@ -472,7 +478,7 @@ TEST(PhotonMap, TheDeviceSortsTheGridAsTheHostDoesBitForBit) {
     sorted_on_device(photons, params, sorted, starts);
     ASSERT_EQ(starts, host.bucket_starts) << count << " photons";
     ASSERT_EQ(sorted.size(), host.photons.size());
-    EXPECT_EQ(std::memcmp(sorted.data(), host.photons.data(), sorted.size() * sizeof(PhotonHit)), 0) << count;
+    EXPECT_TRUE(same_bytes(sorted, host.photons)) << count;
   }
   // The grid's corner alone, over items all above zero (a group's unused items must not count), in two and three
   // rounds of groups.
@@ -493,7 +499,7 @@ TEST(PhotonMap, TheDeviceSortsTheGridAsTheHostDoesBitForBit) {
   std::vector<uint32_t> starts;
   sorted_on_device(patches, photon_grid_params(patches, 0.1f), sorted, starts);
   ASSERT_EQ(starts, host.bucket_starts);
-  EXPECT_EQ(std::memcmp(sorted.data(), host.patches.data(), sorted.size() * sizeof(SurfacePatch)), 0);
+  EXPECT_TRUE(same_bytes(sorted, host.patches));
 }
 
 // The photons a frame keeps, gathered on the device (PhotonLandingsPass) as the host does: of two rounds of landings
@@ -523,7 +529,7 @@ TEST(PhotonMap, TheDeviceKeepsTheLitLandingsAsTheHostDoes) {
   kept.scale_flux(share);
   ASSERT_EQ(kept.kept(), expected.size());
   const std::vector<PhotonHit> got = gpu.download<PhotonHit>(kept.photons(), kept.kept());
-  EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(PhotonHit)), 0);
+  EXPECT_TRUE(same_bytes(got, expected));
   uint32_t taken = 0;
   const std::vector<PhotonHit> every_third = gpu.download<PhotonHit>(kept.take_every(3, taken), (expected.size() + 2) / 3);
   ASSERT_EQ(taken, (expected.size() + 2) / 3);
@@ -549,8 +555,8 @@ TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
   ASSERT_EQ(a.size(), 2 * host.lookup.photons.size());
   ASSERT_EQ(b.size(), a.size());
   ASSERT_EQ(d.size(), c.size());
-  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(cl_float4)), 0);
-  EXPECT_EQ(std::memcmp(c.data(), d.data(), c.size() * sizeof(cl_float4)), 0);
+  EXPECT_TRUE(same_bytes(a, b));
+  EXPECT_TRUE(same_bytes(c, d));
 }
 
 // The estimates' order (cell_order) visits every photon once, a cell's photons together, and walks between nearby cells:

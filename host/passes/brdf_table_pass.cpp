@@ -6,10 +6,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "brdf_table.cl";
-}  // namespace
-
 void BrdfTablePass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 float BrdfTable::coefficient(size_t material, int angle, int term, int k) const {

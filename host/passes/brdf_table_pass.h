@@ -37,6 +37,7 @@ class BrdfTablePass {
                     unsigned seed = 0);
 
  private:
+  static constexpr const char* kProgram = "brdf_table.cl";  // its kernels' file
   GpuContext& gpu_;
   NamedKernel kernel_;
 };

@@ -8,10 +8,6 @@
 #include "passes/light_guide_pass.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "caustic_map.cl";
-}  // namespace
-
 void CausticMapPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 namespace {
 

@@ -41,6 +41,7 @@ class CausticMapPass {
   const PhotonMapParams& params() const { return params_; }
 
  private:
+  static constexpr const char* kProgram = "caustic_map.cl";  // its kernels' file
   GpuContext& gpu_;
   PhotonMapParams params_;
   cl::Buffer photons_, buckets_;

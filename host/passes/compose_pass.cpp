@@ -1,10 +1,6 @@
 #include "passes/compose_pass.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "compose.cl";
-}  // namespace
-
 void ComposePass::build_ahead(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached) { gpu.build_ahead(kProgram, scene.defines_with("RADIANCE_CACHED", radiance_cached)); }
 
 ComposePass::ComposePass(GpuContext& gpu, const DeviceScene& scene, bool radiance_cached)

@@ -26,6 +26,7 @@ class ComposePass {
   const cl::Buffer& color() const { return color_; }        // float4: emission + direct + indirect, A = 1
 
  private:
+  static constexpr const char* kProgram = "compose.cl";  // its kernels' file
   GpuContext& gpu_;
   NamedKernel kernel_;
   cl::Buffer indirect_, color_;

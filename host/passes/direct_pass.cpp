@@ -1,10 +1,6 @@
 #include "passes/direct_pass.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "direct.cl";
-}  // namespace
-
 void DirectPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 DirectPass::DirectPass(GpuContext& gpu, const DeviceScene& scene)

@@ -17,6 +17,7 @@ class DirectPass {
   const cl::Buffer& radiance() const { return radiance_; }
 
  private:
+  static constexpr const char* kProgram = "direct.cl";  // its kernels' file
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;

@@ -1,10 +1,6 @@
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "gbuffer.cl";
-}  // namespace
-
 void GBufferPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 void GBufferView::bind(NamedKernel& kernel) const {

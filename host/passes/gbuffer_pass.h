@@ -28,6 +28,7 @@ class GBufferPass {
   std::vector<GBufferSample> download();
 
  private:
+  static constexpr const char* kProgram = "gbuffer.cl";  // its kernels' file
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;

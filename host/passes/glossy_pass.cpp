@@ -8,10 +8,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "glossy.cl";
-}  // namespace
-
 void GlossyPass::build_ahead(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable) { gpu.build_ahead(kProgram, scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)); }
 
 GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable)

@@ -42,6 +42,7 @@ class GlossyPass {
   std::vector<float> download_rgba();
 
  private:
+  static constexpr const char* kProgram = "glossy.cl";  // its kernels' file
   // Uploads the records and their grid (an empty grid without them) and sets the kernel's WORLD_RECORD_ARGS.
   void bind_records(NamedKernel& kernel, const GlossyCacheReads& reads);
 

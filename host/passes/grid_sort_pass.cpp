@@ -8,10 +8,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "grid_sort.cl";
-}  // namespace
-
 void GridSortPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   ScanPass::build_ahead(gpu);

@@ -26,6 +26,7 @@ class GridSortPass {
   PhotonMapParams grid_params(const cl::Buffer& items, uint32_t words, uint32_t count, float radius);
 
  private:
+  static constexpr const char* kProgram = "grid_sort.cl";  // its kernels' file
   // `buffer` holding at least `count` uints (grown by doubling).
   void reserve(cl::Buffer& buffer, size_t& capacity, size_t count, const char* what);
 

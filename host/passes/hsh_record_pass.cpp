@@ -10,10 +10,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "hsh_records.cl";
-}  // namespace
-
 void HshRecordPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 namespace {
 

@@ -43,6 +43,7 @@ class HshRecordPass {
   std::vector<float> download(uint32_t first, uint32_t count);
 
  private:
+  static constexpr const char* kProgram = "hsh_records.cl";  // its kernels' file
   void reserve(size_t records);
 
   GpuContext& gpu_;

@@ -6,10 +6,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "layers.cl";
-}  // namespace
-
 void LayerPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_height)

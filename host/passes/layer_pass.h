@@ -60,6 +60,7 @@ class LayerPass {
   void set_piece_pixels(size_t pixels) { piece_pixels_ = pixels ? pixels : kDefaultPiecePixels; }
 
  private:
+  static constexpr const char* kProgram = "layers.cl";  // its kernels' file
   void resolve_rgba(const cl::Buffer& source, float scale);
   // Over the output frame's pixels, or its first `rows` rows (a band: the kernel offsets them).
   void launch(NamedKernel& kernel, int rows = -1);

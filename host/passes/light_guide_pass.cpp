@@ -7,10 +7,6 @@
 #include "util/colour.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "light_guide.cl";
-}  // namespace
-
 void LightGuidePass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,

@@ -28,6 +28,7 @@ class LightGuidePass {
                              bool caustic, size_t& slots);
 
  private:
+  static constexpr const char* kProgram = "light_guide.cl";  // its kernels' file
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;

@@ -4,10 +4,6 @@
 #include <cmath>
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "path.cl";
-}  // namespace
-
 void PathPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 PathPass::PathPass(GpuContext& gpu, const DeviceScene& scene)

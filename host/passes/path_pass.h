@@ -26,6 +26,7 @@ class PathPass {
   uint64_t rays_cast();
 
  private:
+  static constexpr const char* kProgram = "path.cl";  // its kernels' file
   GpuContext& gpu_;
   const DeviceScene& scene_;
   GBufferView gbuffer_;

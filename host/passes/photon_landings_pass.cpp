@@ -5,10 +5,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "photon_landings.cl";
-}  // namespace
-
 void PhotonLandingsPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   ScanPass::build_ahead(gpu);

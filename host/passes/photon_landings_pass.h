@@ -30,6 +30,7 @@ class PhotonLandingsPass {
   uint32_t kept() const { return kept_count_; }
 
  private:
+  static constexpr const char* kProgram = "photon_landings.cl";  // its kernels' file
   GpuContext& gpu_;
   ScanPass scan_;
   NamedKernel flag_, append_, scale_, take_;

@@ -10,10 +10,6 @@
 #include "passes/light_guide_pass.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "photon_map.cl";
-}  // namespace
-
 void PhotonMapPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   GridSortPass::build_ahead(gpu);

@@ -58,6 +58,7 @@ class PhotonMapPass {
   std::vector<cl_float4> radiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
 
  private:
+  static constexpr const char* kProgram = "photon_map.cl";  // its kernels' file
   GpuContext& gpu_;
   PhotonMapParams params_;
   cl::Buffer photons_, radiance_, shallow_, buckets_;

@@ -5,10 +5,6 @@
 #include "kernels/cache_math.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "placement.cl";
-}  // namespace
-
 void PlacementPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); ScanPass::build_ahead(gpu); }
 namespace {
 

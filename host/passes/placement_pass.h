@@ -45,6 +45,7 @@ class PlacementPass {
   const cl::Buffer& record_at_pixel_buffer() const { return record_map_; }
 
  private:
+  static constexpr const char* kProgram = "placement.cl";  // its kernels' file
   GpuContext& gpu_;
   GBufferView gbuffer_;
   NamedKernel covered_kernel_, flag_, compact_, mark_, clamp_, apply_, fit_;

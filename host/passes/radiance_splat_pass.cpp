@@ -3,10 +3,6 @@
 #include <algorithm>
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "radiance_splat.cl";
-}  // namespace
-
 void RadianceSplatPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 RadianceSplatPass::RadianceSplatPass(GpuContext& gpu, const BrdfTable& table,

@@ -36,6 +36,7 @@ class RadianceSplatPass {
   std::vector<float> lobe_radiance_rgbw();
 
  private:
+  static constexpr const char* kProgram = "radiance_splat.cl";  // its kernels' file
   void size_for(const GBufferView& gbuffer);
 
   GpuContext& gpu_;

@@ -6,10 +6,6 @@
 #include "util/error.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "scan.cl";
-}  // namespace
-
 void ScanPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 ScanPass::ScanPass(GpuContext& gpu)

@@ -17,6 +17,7 @@ class ScanPass {
   void exclusive(const cl::Buffer& in, uint32_t count, const cl::Buffer& out);
 
  private:
+  static constexpr const char* kProgram = "scan.cl";  // its kernels' file
   // One level: count elements in blocks of SCAN_BLOCK, then the blocks' sums scanned by the next level.
   void scan_level(const cl::Buffer& in, uint32_t count, const cl::Buffer& out, size_t level);
 

@@ -5,10 +5,6 @@
 #include "kernels/cache_math.h"
 
 namespace rcsplat {
-namespace {
-constexpr const char* kProgram = "splat.cl";
-}  // namespace
-
 void SplatPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
 
 SplatPass::SplatPass(GpuContext& gpu)

@@ -32,6 +32,7 @@ class SplatPass {
   const cl::Buffer& records_per_pixel_buffer() const { return counts_; }  // uint: records reaching each pixel
 
  private:
+  static constexpr const char* kProgram = "splat.cl";  // its kernels' file
   GpuContext& gpu_;
   NamedKernel clear_, max_irradiance_, splat_, resolve_, fill_;
   cl::Buffer sums_, counts_, max_bits_, filled_, irradiance_;

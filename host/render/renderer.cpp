@@ -148,7 +148,7 @@ void Renderer::build_programs_ahead(const FramePlan& plan) {
   // What render/indirect_splat.cpp and indirect_octree.cpp ask for: the light they read (attach_photon_map,
   // attach_caustic_map and attach_light_guide shoot their photons with the light guide's kernel), the records, the
   // splat's placement, the radiance-cached lobes' passes, the glossy pass and the composition
-  // (indirect_compose.cpp). RendererPrograms tests check this list against what frames build.
+  // (indirect_compose.cpp). tests/build_ahead_test.cpp checks this list against what frames ask for.
   const bool photon_map = s.bounce_method == BounceMethod::photons && s.bounces >= 2;
   const bool caustic_map = s.caustic_photons > 0 && scene_casts_caustics(scene);
   const bool guide = s.cache.guide_rays > 0 && s.cache.guide_photons > 0;
