@@ -247,7 +247,6 @@ FramePlan Renderer::plan(const RenderSettings& request) {
   if (p.side > 1) p.frame.sub_pixel_side = p.side;
   const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
   p.light_strata = light_sample_strata(light_samples);
-  build_programs_ahead(p);
   return p;
 }
 
@@ -445,6 +444,8 @@ RenderedImage Renderer::render(const FramePlan& plan) {
     passes_ = std::make_unique<MethodPasses>();
     passes_->method = plan.settings.gi;
   }
+  // Not in plan(): a plan may be made only to be read (`rcsplat info`, tests), and would pay for every build.
+  build_programs_ahead(plan);
   if (!gbuffer_) {
     log_info("compiling kernels for " + gpu_.device_info().name);
     gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
