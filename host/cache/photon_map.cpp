@@ -12,6 +12,10 @@
 
 namespace rcsplat {
 
+float photon_patch_area(float radius) {
+  return float(std::numbers::pi) * radius * radius / float(PHOTON_PATCHES_PER_DISC);
+}
+
 float photon_gather_radius(double surface_area, size_t photons, unsigned neighbours) {
   if (!(surface_area > 0.0) || !photons) return 0.0f;
   return float(std::sqrt(double(neighbours) * surface_area / (std::numbers::pi * double(photons))));
@@ -242,8 +246,7 @@ PhotonMapGrids build_photon_map(const std::vector<PhotonHit>& kept, double surfa
   grids.all = sort_into_grid(kept, radius);
   grids.lookup = sort_into_grid(sparse, radius);
   if (!kept.empty()) {
-    const float patch_area = float(std::numbers::pi) * radius * radius / float(PHOTON_PATCHES_PER_DISC);
-    grids.patches = sort_into_grid(surface_patches(triangles, patch_area), radius);
+    grids.patches = sort_into_grid(surface_patches(triangles, photon_patch_area(radius)), radius);
   }
   return grids;
 }

@@ -58,6 +58,9 @@ PatchGrid sort_into_grid(const std::vector<SurfacePatch>& patches, float radius)
 // (hashed) scatters them over the whole map.
 std::vector<uint32_t> cell_order(const PhotonGrid& grid);
 
+// The area of a surface patch for a density estimate of this radius: PHOTON_PATCHES_PER_DISC to a full disc.
+float photon_patch_area(float radius);
+
 // Every triangle (positions, three per triangle) cut into n x n equal sub-triangles of area at most patch_area (n at
 // most 256), each a patch at its centroid, once per side (the normal and its opposite).
 std::vector<SurfacePatch> surface_patches(const std::vector<glm::vec3>& positions, float patch_area);

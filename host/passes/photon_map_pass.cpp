@@ -2,23 +2,15 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <numbers>
 
 #include "cl/point_lookup.h"
-#include "kernels/photon_grid.h"
 #include "passes/grid_sort_pass.h"
-#include "passes/light_guide_pass.h"
 
 namespace rcsplat {
 void PhotonMapPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   GridSortPass::build_ahead(gpu);
   PhotonLandingsPass::build_ahead(gpu);
-}
-
-std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
-                                               unsigned bounces, unsigned seed) {
-  return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, bounces, 1));
 }
 
 DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids) {
@@ -80,7 +72,7 @@ DevicePhotonGrids sort_photon_grids(GpuContext& gpu, PhotonLandingsPass& landing
   }
 
   std::vector<SurfacePatch> patches;
-  if (kept) patches = surface_patches(triangles, float(std::numbers::pi) * radius * radius / PHOTON_PATCHES_PER_DISC);
+  if (kept) patches = surface_patches(triangles, photon_patch_area(radius));
   d.patch_grid = photon_grid_params(patches, radius);
   const cl::Buffer given = gpu.upload(patches, CL_MEM_READ_ONLY, "photon map surface patches");
   sort_on_device<SurfacePatch>(gpu, sorter, given, d.patch_grid, d.patches, d.patch_buckets,

@@ -11,11 +11,6 @@
 
 namespace rcsplat {
 
-// The landings after the first reflection of `paths` photons from the scene's lights (passes/light_guide_pass.h), each
-// landing up to `bounces` times.
-std::vector<PhotonHit> shoot_reflected_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths,
-                                               unsigned bounces, unsigned seed);
-
 // The photon map's grids on the device: the lookup photons' grid (every few photons, which carry the estimates), every
 // photon's and the surface patches', and the order the estimates are made in (cell_order, on the host from the
 // lookup photons).
