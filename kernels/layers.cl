@@ -50,6 +50,26 @@ __kernel void resolve_surface(__global const GBufferSample* gbuffer, __global co
   out[(size_t)(y - first_row) * out_width + x] = s;
 }
 
+// The colour before indirect light (emission + direct, RGB; A 0) of a frame that brings back its colour alone
+// (RenderSettings::color_only with path tracing or direct light alone): the same float operations as resolve_surface's
+// means and the host's sum of them, so the same bits as a frame with every layer.
+__kernel void resolve_direct_colour(__global const GBufferSample* gbuffer, __global const float4* direct,
+                                    __global float4* out, uint side, int out_width, int out_height) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= out_width || y >= out_height) return;
+  const size_t first = first_sub_pixel(x, y, side, out_width), row = (size_t)out_width * side;
+  float3 emission = 0.0f, light = 0.0f;
+  for (uint j = 0; j < side; ++j)
+    for (uint i = 0; i < side; ++i) {
+      const size_t k = first + j * row + i;
+      emission += vload3(0, gbuffer[k].emission);
+      light += direct[k].xyz;
+    }
+  const float inv = 1.0f / (float)(side * side);
+  const float3 emission_mean = emission * inv, direct_mean = light * inv;
+  out[(size_t)y * out_width + x] = (float4)(emission_mean + direct_mean, 0.0f);
+}
+
 // scale 1 / side^2: the sub-pixels' mean; 1: their sum.
 __kernel void resolve_rgba(__global const float4* source, float scale, __global float4* out, uint side,
                            int out_width, int out_height) {
@@ -124,4 +144,25 @@ __kernel void count_uncovered(__global const GBufferSample* gbuffer, __global co
   if (k < sub_pixels && gbuffer[k].triangle >= 0 && irradiance[k].w == 0.0f) atomic_inc(&count);
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0 && count) atom_add(sums, (ulong)count);
+}
+
+// sums[0] += the records whose reach sits at the lower screen-space clamp, sums[1] += those at the upper one, as the
+// host's count_clamped_radii (host/render/placement.cpp) counts them, in the same float operations: so that a frame
+// whose records stay on the device still reports them. One work item per record.
+__kernel void count_clamped_reaches(__global const CacheRecord* records, uint record_count, float accuracy,
+                                    float min_reach_pixels, float max_reach_pixels, __global ulong* sums) {
+  __local uint at_min, at_max;
+  const size_t k = get_global_id(0);
+  if (get_local_id(0) == 0) at_min = at_max = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (k < record_count) {
+    const float reach_pixels = accuracy * records[k].radius / records[k].pixel_size;
+    if (reach_pixels <= min_reach_pixels * 1.0001f) atomic_inc(&at_min);
+    else if (reach_pixels >= max_reach_pixels * 0.9999f) atomic_inc(&at_max);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0) {
+    if (at_min) atom_add(sums, (ulong)at_min);
+    if (at_max) atom_add(sums + 1, (ulong)at_max);
+  }
 }

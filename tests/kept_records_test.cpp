@@ -57,6 +57,38 @@ TEST(KeptRecords, AStillCameraSettlesOnTheSameBitsAndItsFirstFrameIsAFreshOne) {
   EXPECT_LT(frames[1].stats.kept_records.added, frames[0].stats.irradiance.records / 20);
 }
 
+// A walkthrough whose frames ask for their colour alone (PNG frames: RenderSettings::color_only) keeps its records on
+// the device but for the ones each frame adds: the same colour, the same kept records and the same summary counts as
+// frames with every layer, with no record brought back for the image. Planted once: keeping the frame's first `added`
+// records instead of its last failed the colour and the reuse of the frame that returns to the first view.
+TEST(KeptRecords, AColourOnlyWalkthroughKeepsWhatAFullOneKeeps) {
+  const Scene scene = make_cornell_box();
+  Renderer full_frames(test::gpu(), scene), colour_frames(test::gpu(), scene);
+  RenderSettings colour_only = kept_settings();
+  colour_only.color_only = true;
+  RenderSettings moved_colour_only = moved_aside(scene);
+  moved_colour_only.color_only = true;
+  const std::vector<std::pair<RenderSettings, RenderSettings>> frames = {
+      {kept_settings(), colour_only}, {moved_aside(scene), moved_colour_only}, {kept_settings(), colour_only}};
+  uint64_t clamped = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const RenderedImage full = full_frames.render(frames[k].first);
+    const RenderedImage colour = colour_frames.render(frames[k].second);
+    EXPECT_EQ(colour.color, full.color) << "frame " << k;
+    EXPECT_TRUE(colour.records.empty()) << "frame " << k;
+    EXPECT_FALSE(full.records.empty()) << "frame " << k;
+    const RenderStats &a = colour.stats, &b = full.stats;
+    EXPECT_EQ(a.irradiance.records, b.irradiance.records) << "frame " << k;
+    EXPECT_EQ(a.irradiance.at_min_radius, b.irradiance.at_min_radius) << "frame " << k;
+    EXPECT_EQ(a.irradiance.at_max_radius, b.irradiance.at_max_radius) << "frame " << k;
+    EXPECT_EQ(a.kept_records.reused, b.kept_records.reused) << "frame " << k;
+    EXPECT_EQ(a.kept_records.added, b.kept_records.added) << "frame " << k;
+    if (k == 1) EXPECT_GT(a.kept_records.added, 0u) << "the move shows something new";
+    clamped += b.irradiance.at_min_radius + b.irradiance.at_max_radius;
+  }
+  EXPECT_GT(clamped, 0u) << "no reach at a clamp: the counts' comparison would prove nothing";
+}
+
 // The records a frame splats are the kept ones, as they were placed (the same view fits them to the same radii), and
 // each pixel's irradiance is theirs: a frame that adds no record shows what the frame that placed them showed, up to
 // the records that frame added to fill its last holes.

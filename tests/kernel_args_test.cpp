@@ -69,6 +69,11 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     settings.gi = gi;
     render(gpu, scene, settings);
   }
+  {
+    RenderSettings direct_only = settings;  // a colour-only frame of direct light: its colour summed on the device
+    direct_only.color_only = true;
+    render(gpu, scene, direct_only);
+  }
   // Records kept across frames: a second frame fits the first one's to its view (kernels/placement.cl).
   {
     RenderSettings kept = settings;
@@ -85,9 +90,13 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   settings.photon_paths = 1024;
   settings.pixel_samples = 4;
   render(gpu, scene, settings);
-  // A frame that asks for its colour alone sums the summary's counts on the device (passes/layer_pass.h).
+  // A frame that asks for its colour alone sums the summary's counts on the device (passes/layer_pass.h); with one
+  // bounce the glossy pass reads no record, so the records stay there too and their clamps are counted there.
   settings.color_only = true;
   render(gpu, scene, settings);
+  RenderSettings one_bounce = settings;
+  one_bounce.bounces = 1;
+  render(gpu, scene, one_bounce);
   settings.color_only = false;
   // The record trace the device's other way (GroupSizes::split_record_trace: split into hits and shading on a CPU
   // device, one kernel on a GPU), with the photon map too.

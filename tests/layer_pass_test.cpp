@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "passes/layer_pass.h"
+#include "render/placement.h"
 #include "render/renderer.h"
 #include "lobed_cornell_box.h"
 #include "test_support.h"
@@ -207,6 +208,45 @@ TEST_P(LayerPassTest, DeviceCountsAreTheSubPixelsSums) {
   EXPECT_EQ(layers.count_uncovered(view, gpu.upload(irradiance)), uncovered);
 }
 
+// The clamped reaches a colour-only frame counts on the device (its records stay there) against the count made by
+// construction: random records, a third at the lower clamp (radius = min_reach / accuracy pixels, as reduce_records
+// clamps it), a third at the upper, a third strictly between; and against the host's count_clamped_radii, which the
+// summary of a full frame uses. Whole numbers: equal. Several work-groups and a partial last one.
+TEST(LayerPass, DeviceCountsTheRecordsAtEachReachClamp) {
+  GpuContext& gpu = test::gpu();
+  CacheSettings cache;
+  std::mt19937 rng(71);
+  std::uniform_real_distribution<float> size(1e-3f, 1.0f), between(1.01f, 0.99f * cache.max_reach_pixels /
+                                                                                   cache.min_reach_pixels);
+  std::vector<CacheRecord> records(3 * LAYER_COUNT_GROUP + 37);
+  uint64_t at_min = 0, at_max = 0;
+  for (size_t k = 0; k < records.size(); ++k) {
+    CacheRecord& r = records[k];
+    r = CacheRecord{};
+    r.pixel_size = size(rng);
+    const float min_radius_pixels = cache.min_reach_pixels / cache.accuracy;
+    const float max_radius_pixels = cache.max_reach_pixels / cache.accuracy;
+    switch (k % 3) {
+      case 0: r.radius = min_radius_pixels * r.pixel_size; ++at_min; break;
+      case 1: r.radius = max_radius_pixels * r.pixel_size; ++at_max; break;
+      default: r.radius = between(rng) * min_radius_pixels * r.pixel_size; break;
+    }
+  }
+  RecordStats host;
+  count_clamped_radii(records, cache, host);
+  EXPECT_EQ(host.at_min_radius, at_min);
+  EXPECT_EQ(host.at_max_radius, at_max);
+  LayerPass layers(gpu, 1, 4, 4);
+  const cl::Buffer on_device = gpu.upload(records);
+  const std::array<uint64_t, 2> counted = layers.count_clamped_reaches(on_device, uint32_t(records.size()), cache);
+  EXPECT_EQ(counted[0], at_min);
+  EXPECT_EQ(counted[1], at_max);
+  // The first records only: the launch stops at the count.
+  const std::array<uint64_t, 2> first = layers.count_clamped_reaches(on_device, 5, cache);
+  EXPECT_EQ(first[0], 2u);
+  EXPECT_EQ(first[1], 2u);
+}
+
 INSTANTIATE_TEST_SUITE_P(SubPixelSides, LayerPassTest, ::testing::Values(1u, 2u, 3u));
 
 // A frame that asks for its colour alone (PNG outputs, walkthrough frames) gets the same colour, bit for bit, and the
@@ -243,6 +283,43 @@ TEST(LayerPass, AColourOnlyFrameIsTheFullFramesColourWithNoOtherLayer) {
   EXPECT_EQ(a.primary.primary_rays, b.primary.primary_rays);
   EXPECT_EQ(a.glossy.rays, b.glossy.rays);
   EXPECT_EQ(a.irradiance.uncovered_pixels, b.irradiance.uncovered_pixels);
+}
+
+// Direct light alone and path tracing (one frame, and rounds over the pixels' area) ask for their colour alone too:
+// the same colour, bit for bit, and the same counts, with no surface layer brought back. Planted once: the device's
+// colour without the emission failed the bits in all three.
+TEST(LayerPass, ColourOnlyFramesOfDirectLightAndPathTracingAreTheFullFramesColour) {
+  const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
+  for (const GiMethod gi : {GiMethod::none, GiMethod::path}) {
+    for (const bool pixel_area : {false, true}) {
+      if (pixel_area && gi != GiMethod::path) continue;
+      RenderSettings s = test::one_bounce_one_sample();
+      s.width = s.height = 24;
+      s.pixel_samples = 9;
+      s.light_samples = 4;
+      s.gi = gi;
+      s.path.samples = 9;  // a multiple of the pixel samples
+      s.path.pixel_area = pixel_area;
+      const RenderedImage full = render(test::gpu(), scene, s);
+      s.color_only = true;
+      const RenderedImage colour = render(test::gpu(), scene, s);
+      const std::string what = std::string(gi == GiMethod::none ? "direct light" : "path tracing") +
+                               (pixel_area ? " over the pixels' area" : "");
+      EXPECT_EQ(colour.color, full.color) << what;
+      for (const std::vector<float>* layer :
+           {&colour.direct, &colour.emission, &colour.albedo, &colour.normal, &colour.position, &colour.depth})
+        EXPECT_TRUE(layer->empty()) << what;
+      EXPECT_TRUE(colour.triangle.empty()) << what;
+      EXPECT_FALSE(full.direct.empty()) << what;
+      const RenderStats &a = colour.stats, &b = full.stats;
+      EXPECT_GT(b.primary.glossy_pixels, 0u) << what;
+      EXPECT_EQ(a.primary.rough_pixels, b.primary.rough_pixels) << what;
+      EXPECT_EQ(a.primary.glossy_pixels, b.primary.glossy_pixels) << what;
+      EXPECT_EQ(a.primary.hsh_pixels, b.primary.hsh_pixels) << what;
+      EXPECT_EQ(a.primary.shadow_rays, b.primary.shadow_rays) << what;
+      EXPECT_EQ(a.path.rays, b.path.rays) << what;
+    }
+  }
 }
 
 TEST(LayerPass, AGBufferOfAnotherSizeIsRefused) {

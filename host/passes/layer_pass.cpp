@@ -14,11 +14,13 @@ LayerPass::LayerPass(GpuContext& gpu, unsigned side, int out_width, int out_heig
       width_(out_width),
       height_(out_height),
       surface_(gpu.kernel(kProgram, "resolve_surface")),
+      direct_colour_(gpu.kernel(kProgram, "resolve_direct_colour")),
       rgba_(gpu.kernel(kProgram, "resolve_rgba")),
       counts_(gpu.kernel(kProgram, "resolve_record_counts")),
       count_lobes_(gpu.kernel(kProgram, "count_lobes")),
       sum_alpha_(gpu.kernel(kProgram, "sum_alpha")),
-      count_uncovered_(gpu.kernel(kProgram, "count_uncovered")) {}
+      count_uncovered_(gpu.kernel(kProgram, "count_uncovered")),
+      count_clamped_(gpu.kernel(kProgram, "count_clamped_reaches")) {}
 
 cl::Buffer& LayerPass::rgba_out() {
   // Made on first use, at the frame's end: the passes' own buffers peak before it.
@@ -98,6 +100,15 @@ std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const c
   return out;
 }
 
+void LayerPass::direct_colour(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<float>& visit) {
+  check_frame(gbuffer);
+  direct_colour_.set_buffer<GBufferSample>("gbuffer", gbuffer.samples)
+      .set_buffer<cl_float4>("direct", direct)
+      .set_buffer<cl_float4>("out", rgba_out());
+  launch(direct_colour_);
+  in_pieces<float>(rgba_out_, 4, visit);
+}
+
 void LayerPass::resolve_rgba(const cl::Buffer& source, float scale) {
   rgba_.set_buffer<cl_float4>("source", source)
       .set("scale", cl_float(scale))
@@ -137,21 +148,30 @@ std::vector<float> LayerPass::record_counts(const GBufferView& gbuffer, const cl
 }
 
 template <typename Bind>
-std::vector<uint64_t> LayerPass::device_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums,
-                                             const Bind& bind) {
-  check_frame(gbuffer);
+std::vector<uint64_t> LayerPass::device_sums(NamedKernel& kernel, size_t items, size_t sums, const Bind& bind) {
+  static_assert(LOBE_KINDS >= 2, "sums_ holds LOBE_KINDS counters");
   if (!sums_()) sums_ = gpu_.buffer(CL_MEM_READ_WRITE, LOBE_KINDS * sizeof(cl_ulong), "image layers");
   gpu_.queue().enqueueFillBuffer(sums_, cl_ulong(0), 0, sums * sizeof(cl_ulong));
-  const size_t sub_pixels = gbuffer.pixel_count();
   bind(kernel);
-  kernel.set("sub_pixels", cl_uint(sub_pixels)).set_buffer<cl_ulong>("sums", sums_);
-  kernel.launch(sub_pixels, LAYER_COUNT_GROUP);
+  kernel.set_buffer<cl_ulong>("sums", sums_);
+  kernel.launch(items, LAYER_COUNT_GROUP);
   const std::vector<cl_ulong> read = gpu_.download<cl_ulong>(sums_, sums);
   return std::vector<uint64_t>(read.begin(), read.end());
 }
 
+template <typename Bind>
+std::vector<uint64_t> LayerPass::sub_pixel_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums,
+                                                const Bind& bind) {
+  check_frame(gbuffer);
+  const size_t sub_pixels = gbuffer.pixel_count();
+  return device_sums(kernel, sub_pixels, sums, [&](NamedKernel& k) {
+    bind(k);
+    k.set("sub_pixels", cl_uint(sub_pixels));
+  });
+}
+
 std::array<uint64_t, LOBE_KINDS> LayerPass::count_lobes(const GBufferView& gbuffer) {
-  const std::vector<uint64_t> sums = device_sums(count_lobes_, gbuffer, LOBE_KINDS, [&](NamedKernel& k) {
+  const std::vector<uint64_t> sums = sub_pixel_sums(count_lobes_, gbuffer, LOBE_KINDS, [&](NamedKernel& k) {
     k.set_buffer<GBufferSample>("gbuffer", gbuffer.samples);
   });
   std::array<uint64_t, LOBE_KINDS> counts{};
@@ -160,13 +180,26 @@ std::array<uint64_t, LOBE_KINDS> LayerPass::count_lobes(const GBufferView& gbuff
 }
 
 uint64_t LayerPass::sum_alpha(const GBufferView& gbuffer, const cl::Buffer& source) {
-  return device_sums(sum_alpha_, gbuffer, 1, [&](NamedKernel& k) { k.set_buffer<cl_float4>("source", source); })[0];
+  return sub_pixel_sums(sum_alpha_, gbuffer, 1, [&](NamedKernel& k) { k.set_buffer<cl_float4>("source", source); })[0];
 }
 
 uint64_t LayerPass::count_uncovered(const GBufferView& gbuffer, const cl::Buffer& irradiance) {
-  return device_sums(count_uncovered_, gbuffer, 1, [&](NamedKernel& k) {
+  return sub_pixel_sums(count_uncovered_, gbuffer, 1, [&](NamedKernel& k) {
     k.set_buffer<GBufferSample>("gbuffer", gbuffer.samples).set_buffer<cl_float4>("irradiance", irradiance);
   })[0];
+}
+
+std::array<uint64_t, 2> LayerPass::count_clamped_reaches(const cl::Buffer& records, uint32_t record_count,
+                                                        const CacheSettings& cache) {
+  if (record_count == 0) return {0, 0};
+  const std::vector<uint64_t> sums = device_sums(count_clamped_, record_count, 2, [&](NamedKernel& k) {
+    k.set_buffer<CacheRecord>("records", records)
+        .set("record_count", cl_uint(record_count))
+        .set("accuracy", cl_float(cache.accuracy))
+        .set("min_reach_pixels", cl_float(cache.min_reach_pixels))
+        .set("max_reach_pixels", cl_float(cache.max_reach_pixels));
+  });
+  return {sums[0], sums[1]};
 }
 
 }  // namespace rcsplat

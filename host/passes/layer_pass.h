@@ -9,6 +9,7 @@
 
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
+#include "cache/cache_settings.h"
 #include "passes/gbuffer_pass.h"
 
 namespace rcsplat {
@@ -35,6 +36,9 @@ class LayerPass {
   // triangle of the centre sub-pixel; shadow rays and the lobes' sub-pixels summed (PixelSurface).
   void surface(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<PixelSurface>& visit);
   std::vector<PixelSurface> surface(const GBufferView& gbuffer, const cl::Buffer& direct);
+  // Emission + direct light, the sub-pixels' means as surface() gives them, summed (RGBA, A 0): the colour before
+  // indirect light of a frame that brings back nothing else (RenderSettings::color_only).
+  void direct_colour(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<float>& visit);
   // A float4 image's sub-pixel mean (RGBA, four floats a pixel).
   void mean_rgba(const cl::Buffer& source, const PieceVisit<float>& visit);
   std::vector<float> mean_rgba(const cl::Buffer& source);
@@ -53,6 +57,10 @@ class LayerPass {
   uint64_t sum_alpha(const GBufferView& gbuffer, const cl::Buffer& source);
   // The sub-pixels with geometry no record reached (the irradiance's weight, A, is 0).
   uint64_t count_uncovered(const GBufferView& gbuffer, const cl::Buffer& irradiance);
+  // The first record_count records whose reach sits at the lower and at the upper screen-space clamp, counted as the
+  // host's count_clamped_radii counts them (render/placement.h): the records need not come back for the summary.
+  std::array<uint64_t, 2> count_clamped_reaches(const cl::Buffer& records, uint32_t record_count,
+                                                const CacheSettings& cache);
 
   // Pixels a piece holds (tests make it small, to cross pieces' edges); 0: kDefaultPiecePixels.
   // 20 MB of surface, 4 MB of RGBA: 16 blocks of parallel_ranges.
@@ -73,11 +81,14 @@ class LayerPass {
   GpuContext& gpu_;
   unsigned side_;
   int width_, height_;
-  // A sub-pixel count's sum, read back (count_lobes, sum_alpha, count_uncovered).
+  // A count's sums over `items` work items (sub-pixels, records), read back (count_lobes, sum_alpha, count_uncovered,
+  // count_clamped_reaches).
   template <typename Bind>
-  std::vector<uint64_t> device_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums, const Bind& bind);
+  std::vector<uint64_t> device_sums(NamedKernel& kernel, size_t items, size_t sums, const Bind& bind);
+  template <typename Bind>
+  std::vector<uint64_t> sub_pixel_sums(NamedKernel& kernel, const GBufferView& gbuffer, size_t sums, const Bind& bind);
 
-  NamedKernel surface_, rgba_, counts_, count_lobes_, sum_alpha_, count_uncovered_;
+  NamedKernel surface_, direct_colour_, rgba_, counts_, count_lobes_, sum_alpha_, count_uncovered_, count_clamped_;
   cl::Buffer sums_;  // device_sums' counters
   cl::Buffer rgba_out_;  // the float4 images' gathered pixels
   cl::Buffer surface_band_;  // one band of PixelSurfaces (surface())

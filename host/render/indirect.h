@@ -195,6 +195,9 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& frame);
 // the glossy samples read them where they land (kernels/glossy.cl sample_radiance; null: they continue paths).
 void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance,
                              const RadianceSplatPass* radiance_cached, const std::vector<CacheRecord>* records);
+// Whether this frame's glossy pass will read the irradiance records where its samples land (compose_cached_indirect
+// builds their world grid on the host, so they must come back); radiance_cached: radiance_cached_lobes gave a pass.
+bool glossy_reads_records(const IndirectFrame& frame, bool radiance_cached);
 // The cache methods' own layers at output resolution: irradiance, coverage, records reaching and sitting in each
 // pixel, and the uncovered sub-pixels counted. irradiance: float4 (E.rgb, weight, 0 where uncovered);
 // records_per_pixel: uint; record_at_pixel: int, -1 where no record sits.

@@ -11,6 +11,29 @@
 
 namespace rcsplat {
 
+namespace {
+
+// What the glossy pass samples in a frame: the LOBE_HSH pixels' lobes (when no radiance records hold them), the light
+// guide's share the radiance records left to the pixels (kernels/glossy.cl guide_share), and whether it runs at all.
+struct GlossyWork {
+  bool sample_hsh = false, guide_share = false, runs = false;
+};
+
+GlossyWork glossy_work(const IndirectFrame& f, bool radiance_cached) {
+  GlossyWork w;
+  w.sample_hsh = !radiance_cached && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
+  const std::vector<GuideCluster>* guide = frame_light_guide(f);
+  w.guide_share = radiance_cached && f.settings.cache.guide_rays > 0 && guide && !guide->empty();
+  w.runs = f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || w.sample_hsh || w.guide_share;
+  return w;
+}
+
+}  // namespace
+
+bool glossy_reads_records(const IndirectFrame& f, bool radiance_cached) {
+  return f.settings.glossy_reads_records && f.settings.bounces > 1 && glossy_work(f, radiance_cached).runs;
+}
+
 void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached,
                              const std::vector<CacheRecord>* records) {
   RenderedImage& img = f.image;
@@ -18,12 +41,11 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   const GBufferView& gbuffer = f.gbuffer.view();
   BuildTimer builds(f.gpu, st.program_s);
   GlossyPass* glossy = nullptr;
-  bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
-  // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
   const CacheSettings& cs = f.settings.cache;
   const std::vector<GuideCluster>* guide = frame_light_guide(f);
-  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && guide && !guide->empty();
-  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
+  const GlossyWork work = glossy_work(f, radiance_cached != nullptr);
+  const bool sample_hsh = work.sample_hsh, guide_share = work.guide_share;
+  if (work.runs)
     glossy = &f.passes.glossy.get(
         sample_hsh, [&] { return std::make_unique<GlossyPass>(f.gpu, f.device_scene, sample_hsh); });
   ComposePass& compose = f.passes.compose.get(radiance_cached != nullptr, [&] {

@@ -63,17 +63,30 @@ void splat_indirect(IndirectFrame& f) {
       st.irradiance.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
                                                   int(std::ceil(cs.max_reach_pixels)));
   }
+  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
+  bool records_on_host = false;
   {
     StageTimer timing(st.primary.layers_s);
-    img.records = records.download(0, total);  // once per frame, for the summary, the glossy pass and the tests
-    count_clamped_radii(img.records, cs, st.irradiance);
-    if (f.kept_records) {
-      f.kept_records->add(img.records.data() + kept, total - kept);
-      st.kept_records = f.kept_records->stats();
+    // The records come back only where the host needs them: a frame with every layer (the tests read them), and the
+    // glossy pass's grid of them. A colour-only frame counts its clamped reaches on the device and brings back only
+    // the records a walkthrough keeps.
+    records_on_host = !layers_stay_on_device(f.settings) || glossy_reads_records(f, radiance != nullptr);
+    if (records_on_host) {
+      img.records = records.download(0, total);
+      count_clamped_radii(img.records, cs, st.irradiance);
+      if (f.kept_records) f.kept_records->add(img.records.data() + kept, total - kept);
+    } else {
+      const std::array<uint64_t, 2> clamped = f.layers.count_clamped_reaches(records.records(), total, cs);
+      st.irradiance.at_min_radius += clamped[0];
+      st.irradiance.at_max_radius += clamped[1];
+      if (f.kept_records) {
+        const std::vector<CacheRecord> added = records.download(kept, total - kept);
+        f.kept_records->add(added.data(), added.size());
+      }
     }
+    if (f.kept_records) st.kept_records = f.kept_records->stats();
   }
-  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
-  compose_cached_indirect(f, splat.irradiance(), radiance, &img.records);
+  compose_cached_indirect(f, splat.irradiance(), radiance, records_on_host ? &img.records : nullptr);
   fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }
 

@@ -93,9 +93,9 @@ struct RenderSettings {
   unsigned sub_pixel_side = 1;
   // Tests: scene switches (HAS_SPECULAR_BRDF, HAS_TEXTURES, ...) compiled on even where the scene does not need them.
   std::set<std::string> forced_switches;
-  // The caller needs only the frame's colour (PNG outputs, walkthrough frames): with a cache method, whose colour the
-  // device composes, no other layer comes back from the device and the summary's counts are summed there
-  // (passes/layer_pass.h). Path tracing and direct light alone add their colour up on the host from the layers.
+  // The caller needs only the frame's colour (PNG outputs, walkthrough frames): no other layer comes back from the
+  // device and the summary's counts are summed there (passes/layer_pass.h); a cache method's records stay there too,
+  // but for those a walkthrough keeps and those the glossy pass's grid is built from (indirect_splat.cpp).
   bool color_only = false;
   // Pixels a piece of the image layers comes down in (passes/layer_pass.h); 0: LayerPass's own. Tests make it small.
   size_t layer_piece_pixels = 0;
@@ -103,9 +103,8 @@ struct RenderSettings {
   PathSettings path;
 };
 
-// A frame whose layers other than the colour stay on the device (RenderSettings::color_only, a cache method).
-inline bool layers_stay_on_device(const RenderSettings& s) {
-  return s.color_only && (s.gi == GiMethod::splat || s.gi == GiMethod::octree);
-}
+// A frame whose layers other than the colour stay on the device (RenderSettings::color_only). Path tracing still
+// brings back its sub-pixels' indirect light (indirect_path.cpp combines its two halves in double on the host).
+inline bool layers_stay_on_device(const RenderSettings& s) { return s.color_only; }
 
 }  // namespace rcsplat
