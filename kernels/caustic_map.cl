@@ -27,3 +27,17 @@ __kernel void caustic_irradiance_at(CAUSTIC_MAP_ARGS, __global const float4* poi
   if (i >= point_count) return;
   irradiance[i] = (float4)(caustic_irradiance(CAUSTIC_MAP, points[i].xyz, normals[i].xyz), 0.0f);
 }
+
+// Each record with the caustic irradiance at its point added to its own: the records a glossy sample reads then stand
+// for all the light there (kernels/glossy.cl), which costs one lookup per record, not one per sample.
+__kernel void add_caustics_to_records(CAUSTIC_MAP_ARGS, __global const CacheRecord* records, uint record_count,
+                                      __global CacheRecord* lit) {
+  uint i = get_global_id(0);
+  if (i >= record_count) return;
+  CacheRecord r = records[i];
+  float3 e = caustic_irradiance(CAUSTIC_MAP, vload3(0, r.position), vload3(0, r.normal));
+  r.irradiance[0] += e.x;
+  r.irradiance[1] += e.y;
+  r.irradiance[2] += e.z;
+  lit[i] = r;
+}

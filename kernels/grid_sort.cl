@@ -18,6 +18,13 @@ __kernel void count_grid_buckets(__global const float* items, uint words, uint c
   atomic_inc(&bucket_counts[bucket]);
 }
 
+// The buckets' counts of items whose buckets are given (the world-record grid's entries: kernels/world_record_grid.cl).
+__kernel void count_item_buckets(__global const uint* item_bucket, uint count, __global uint* bucket_counts) {
+  const size_t i = get_global_id(0);
+  if (i >= count) return;
+  atomic_inc(&bucket_counts[item_bucket[i]]);
+}
+
 // Places within a bucket are handed out in whatever order work-items run: order_within_buckets restores the items'.
 __kernel void scatter_into_buckets(__global const uint* item_bucket, uint count, __global const uint* bucket_starts,
                                    __global uint* bucket_fill, __global uint* order) {

@@ -398,6 +398,20 @@ typedef struct {
   float irradiance_scale;  // the splat's bound on a record's extrapolated irradiance (fixed_point_irradiance_scale)
 } WorldRecordParams;
 
+// What the device's world-record grid build (kernels/world_record_grid.cl) gathers from the records before it lays
+// out the grid: the lowest corner of their reach spheres, the widest and the median sphere, the brightest record.
+typedef struct {
+  rc_uint lowest[3];      // the lowest corner, each coordinate as ordered bits (a float's order as a uint's)
+  rc_uint widest_bits;    // the widest reach sphere's diameter (a positive float's bits order as uints)
+  rc_uint largest_bits;   // the largest irradiance component of any record
+  rc_uint kept;           // records with a finite, positive reach and a finite position
+  rc_uint median_bits;    // the median diameter (the kept / 2-th smallest), found a byte at a time from the top
+  rc_uint median_rank;    // its rank among the diameters that share the bytes found so far
+} WorldRecordExtent;
+
+// Bins of one byte of the median's radix selection.
+#define WORLD_RECORD_DIGIT_BINS 256
+
 // The glossy pass's constants (kernels/glossy.cl).
 typedef struct {
   rc_uint sample_count;    // samples per glossy pixel
@@ -540,6 +554,7 @@ static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 48);
 static_assert(sizeof(WorldRecordParams) == 32);
+static_assert(sizeof(WorldRecordExtent) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 #include <random>
 
@@ -73,6 +74,51 @@ TEST(CausticMap, IrradianceMatchesADoublePrecisionSumOverTheDisc) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[i].s[c], sum[c], 1e-4 * sum[c] + 1e-9) << "point " << i;
   }
   EXPECT_GT(lit, points.size() * 9 / 10);
+}
+
+// The records the glossy pass reads carry the caustic irradiance at their points (CausticMapPass::lit_records, on the
+// device): each record's own irradiance plus the map's lookup at its position and normal, as the host adds them,
+// bit for bit; the rest of each record unchanged; an empty map gives the records themselves.
+TEST(CausticMap, LitRecordsAddTheMapsIrradianceAtEachRecord) {
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float radius = 0.05f;
+  std::vector<PhotonHit> photons;
+  for (int i = 0; i < 20000; ++i)
+    photons.push_back(caustic_photon({u(rng), 0.0f, u(rng)}, {0, 1, 0}, 1e-4f * glm::vec3(u(rng), u(rng), u(rng))));
+  CausticMapPass map(test::gpu(), photons, radius);
+  std::vector<CacheRecord> records(600);
+  std::vector<cl_float4> points, normals;
+  for (CacheRecord& r : records) {
+    r = CacheRecord{};
+    const bool floor = points.size() % 3 != 0;  // a third on a wall the floor's photons do not face
+    const glm::vec3 p = floor ? glm::vec3(u(rng), 0.0f, u(rng)) : glm::vec3(u(rng), u(rng), 0.0f);
+    const glm::vec3 n = floor ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    for (int a = 0; a < 3; ++a) {
+      r.position[a] = p[a];
+      r.normal[a] = n[a];
+      r.irradiance[a] = u(rng);
+    }
+    r.radius = 0.1f * u(rng);
+    r.pixel = int(points.size());
+    points.push_back({{p.x, p.y, p.z, 0.0f}});
+    normals.push_back({{n.x, n.y, n.z, 0.0f}});
+  }
+  const std::vector<cl_float4> caustic = map.irradiance_at(points, normals);
+  const cl::Buffer on_device = test::gpu().upload(records);
+  const cl::Buffer& lit_buffer = map.lit_records(on_device, uint32_t(records.size()));
+  const std::vector<CacheRecord> lit = test::gpu().download<CacheRecord>(lit_buffer, records.size());
+  size_t brightened = 0;
+  for (size_t i = 0; i < records.size(); ++i) {
+    CacheRecord expected = records[i];
+    for (int c = 0; c < 3; ++c) expected.irradiance[c] += caustic[i].s[c];
+    brightened += caustic[i].s[0] > 0.0f;
+    EXPECT_EQ(std::memcmp(&lit[i], &expected, sizeof(CacheRecord)), 0) << "record " << i;
+  }
+  EXPECT_GT(brightened, records.size() / 2);
+  EXPECT_LT(brightened, records.size());
+  CausticMapPass empty(test::gpu(), {}, radius);
+  EXPECT_EQ(&empty.lit_records(on_device, uint32_t(records.size())), &on_device);
 }
 
 // Mean of an RGB layer.

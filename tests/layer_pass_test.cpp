@@ -250,7 +250,7 @@ TEST(LayerPass, DeviceCountsTheRecordsAtEachReachClamp) {
 INSTANTIATE_TEST_SUITE_P(SubPixelSides, LayerPassTest, ::testing::Values(1u, 2u, 3u));
 
 // A frame that asks for its colour alone (PNG outputs, walkthrough frames) gets the same colour, bit for bit, and the
-// same summary counts, with no other layer brought back from the device. The lobed Cornell box at 2 x 2 sub-pixels:
+// same summary counts, with no other layer and no record brought back from the device. The lobed Cornell box at 2 x 2 sub-pixels:
 // rough, glossy and radiance-cached pixels, the glossy pass's rays, the light guide's share.
 TEST(LayerPass, AColourOnlyFrameIsTheFullFramesColourWithNoOtherLayer) {
   const Scene scene = test::cornell_box_with_lobes(0.1f, 0.5f);
@@ -271,7 +271,11 @@ TEST(LayerPass, AColourOnlyFrameIsTheFullFramesColourWithNoOtherLayer) {
                                           &colour.coverage, &colour.records_per_pixel, &colour.record_positions})
     EXPECT_TRUE(layer->empty());
   EXPECT_TRUE(colour.triangle.empty());
+  EXPECT_TRUE(colour.records.empty()) << "the glossy pass reads the records where they are";
   const RenderStats &a = colour.stats, &b = full.stats;
+  EXPECT_TRUE(a.glossy.reads_records);
+  EXPECT_EQ(a.irradiance.at_min_radius, b.irradiance.at_min_radius);
+  EXPECT_EQ(a.irradiance.at_max_radius, b.irradiance.at_max_radius);
   EXPECT_GT(b.primary.rough_pixels, 0u);
   EXPECT_GT(b.primary.glossy_pixels, 0u);
   EXPECT_GT(b.primary.hsh_pixels, 0u);

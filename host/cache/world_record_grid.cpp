@@ -8,6 +8,7 @@
 
 #include "kernels/cache_math.h"
 #include "kernels/photon_grid.h"
+#include "kernels/world_record_cells.h"
 
 namespace rcsplat {
 
@@ -45,28 +46,19 @@ WorldRecordGrid build_world_record_grid(const std::vector<CacheRecord>& records,
   // Each cell a reach sphere meets (not only its bounding cube), with the record.
   std::vector<std::array<int, 3>> cells;
   std::vector<uint32_t> owners;
+  const float* o = params.grid_origin;
   for (uint32_t i : kept) {
     const CacheRecord& r = records[i];
     const float reach = accuracy * r.radius;
     int c0[3], c1[3];
-    for (int a = 0; a < 3; ++a) {
-      c0[a] = photon_cell(r.position[a] - reach, params.grid_origin[a], cell);
-      c1[a] = photon_cell(r.position[a] + reach, params.grid_origin[a], cell);
-    }
+    for (int a = 0; a < 3; ++a) reach_cell_span(r.position[a], reach, o[a], cell, &c0[a], &c1[a]);
     for (int z = c0[2]; z <= c1[2]; ++z)
       for (int y = c0[1]; y <= c1[1]; ++y)
-        for (int x = c0[0]; x <= c1[0]; ++x) {
-          const int c[3] = {x, y, z};
-          float d2 = 0.0f;  // from the sphere's centre to the cell's box
-          for (int a = 0; a < 3; ++a) {
-            const float b0 = params.grid_origin[a] + float(c[a]) * cell, b1 = b0 + cell;
-            const float d = std::max({b0 - r.position[a], 0.0f, r.position[a] - b1});
-            d2 += d * d;
+        for (int x = c0[0]; x <= c1[0]; ++x)
+          if (reach_meets_cell(r.position[0], r.position[1], r.position[2], reach, o[0], o[1], o[2], cell, x, y, z)) {
+            cells.push_back({x, y, z});
+            owners.push_back(i);
           }
-          if (d2 > 1.002f * reach * reach) continue;  // a hair more: the kernel rounds its cells its own way
-          cells.push_back({x, y, z});
-          owners.push_back(i);
-        }
   }
   params.bucket_count = uint32_t(std::bit_ceil(std::max<size_t>(2 * cells.size(), 2)));
   std::vector<std::pair<uint32_t, uint32_t>> entries(cells.size());

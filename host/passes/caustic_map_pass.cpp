@@ -65,7 +65,9 @@ float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, 
 }
 
 CausticMapPass::CausticMapPass(GpuContext& gpu, const std::vector<PhotonHit>& photons, float radius)
-    : gpu_(gpu), add_(gpu.kernel(kProgram, "add_caustics", {})) {
+    : gpu_(gpu),
+      add_(gpu.kernel(kProgram, "add_caustics", {})),
+      add_to_records_(gpu.kernel(kProgram, "add_caustics_to_records", {})) {
   const PhotonGrid grid = sort_into_grid(photons, radius);
   params_ = grid.params;
   // A kernel reads no photon of an empty map, but buffers must be bound.
@@ -90,17 +92,19 @@ void CausticMapPass::bind(NamedKernel& kernel) const {
       .set("caustic_grid", params_);
 }
 
-void CausticMapPass::add_to_records(std::vector<CacheRecord>& records) {
-  if (params_.photon_count == 0 || records.empty()) return;
-  std::vector<cl_float4> points(records.size()), normals(records.size());
-  for (size_t i = 0; i < records.size(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      points[i].s[a] = records[i].position[a];
-      normals[i].s[a] = records[i].normal[a];
-    }
-  const std::vector<cl_float4> caustic = irradiance_at(points, normals);
-  for (size_t i = 0; i < records.size(); ++i)
-    for (int c = 0; c < 3; ++c) records[i].irradiance[c] += caustic[i].s[c];
+const cl::Buffer& CausticMapPass::lit_records(const cl::Buffer& records, uint32_t record_count) {
+  if (params_.photon_count == 0 || record_count == 0) return records;
+  if (!lit_records_() || lit_capacity_ < record_count) {
+    lit_capacity_ = std::max<size_t>(record_count, 2 * lit_capacity_);
+    lit_records_ = cl::Buffer();  // freed before its successor is made
+    lit_records_ = gpu_.buffer(CL_MEM_READ_WRITE, lit_capacity_ * sizeof(CacheRecord), "caustic map: lit records");
+  }
+  bind(add_to_records_);
+  add_to_records_.set_buffer<CacheRecord>("records", records)
+      .set("record_count", cl_uint(record_count))
+      .set_buffer<CacheRecord>("lit", lit_records_);
+  add_to_records_.launch(record_count, gpu_.groups().per_item);
+  return lit_records_;
 }
 
 std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,

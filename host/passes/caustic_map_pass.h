@@ -31,9 +31,10 @@ class CausticMapPass {
 
   // irradiance[i] += the caustic irradiance at G-buffer sample i (float4 per sample, as the splat resolves it).
   void add_to(const GBufferView& gbuffer, const cl::Buffer& irradiance);
-  // Adds the caustic irradiance at each record's point to its irradiance: the records a glossy sample reads then
-  // stand for all the light there (kernels/glossy.cl), which costs one lookup per record, not one per sample.
-  void add_to_records(std::vector<CacheRecord>& records);
+  // Records 0 .. record_count - 1 of `records` with the caustic irradiance at each one's point added to its own: the
+  // records a glossy sample reads then stand for all the light there (kernels/glossy.cl), which costs one lookup per
+  // record, not one per sample. A buffer this pass owns until the next call, or `records` itself for an empty map.
+  const cl::Buffer& lit_records(const cl::Buffer& records, uint32_t record_count);
   // The caustic irradiance at these points (xyz) on surfaces facing these normals (the records' lookups, and tests).
   std::vector<cl_float4> irradiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
   // Sets a kernel's CAUSTIC_MAP_ARGS (kernels/caustic_map.h).
@@ -45,7 +46,9 @@ class CausticMapPass {
   GpuContext& gpu_;
   PhotonMapParams params_;
   cl::Buffer photons_, buckets_;
-  NamedKernel add_;
+  NamedKernel add_, add_to_records_;
+  cl::Buffer lit_records_;
+  size_t lit_capacity_ = 0;  // records lit_records_ holds
 };
 
 }  // namespace rcsplat

@@ -49,6 +49,13 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
 }
 
 void GlossyPass::bind_records(NamedKernel& kernel, const GlossyCacheReads& reads) {
+  if (reads.device) {
+    kernel.set_buffer<CacheRecord>("world_records", *reads.device->records)
+        .set_buffer<cl_uint>("world_record_starts", *reads.device->bucket_starts)
+        .set_buffer<cl_uint>("world_record_lists", *reads.device->record_lists)
+        .set("world_grid", reads.device->params);
+    return;
+  }
   // No records: an empty grid (record_count 0), which the kernel never reads past its parameters.
   const bool read_records = reads.records && reads.grid && reads.grid->params.record_count > 0 &&
                             reads.grid->params.record_count == reads.records->size();

@@ -9,15 +9,18 @@
 #include "cache/world_record_grid.h"
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/world_record_grid_pass.h"
 
 namespace rcsplat {
 
 // What the samples' rays read where they land on a Lambertian or rough surface (kernels/glossy.cl sample_radiance):
-// the cache's records by position, uploaded with their grid (with a caustic map, their irradiance holds the map's at
-// each record too: CausticMapPass::add_to_records). No records: every sample continues its path.
+// the cache's records by position, with their grid, built on the device where the records are (frames: `device`), or
+// on the host and uploaded (tests: `records` and `grid`). With a caustic map, the records' irradiance holds the map's
+// at each record too (CausticMapPass::lit_records). No records: every sample continues its path.
 struct GlossyCacheReads {
   const std::vector<CacheRecord>* records = nullptr;
   const WorldRecordGrid* grid = nullptr;
+  const DeviceWorldRecordGrid* device = nullptr;
 };
 
 class GlossyPass {

@@ -22,17 +22,26 @@ class GridSortPass {
   // parameters come from photon_grid_params.
   void sort(const cl::Buffer& items, uint32_t words, uint32_t count, const PhotonMapParams& grid,
             const cl::Buffer& sorted, const cl::Buffer& bucket_starts);
+  // Items whose buckets are given (item_bucket: `count` of them, each below `buckets`) put in bucket order, the items'
+  // own order within a bucket: the returned buffer's k-th uint is the item at place k (valid until the next sort), and
+  // `bucket_starts` (buckets + 1 entries) where each bucket's places start.
+  const cl::Buffer& order_by_bucket(const cl::Buffer& item_bucket, uint32_t count, uint32_t buckets,
+                                    const cl::Buffer& bucket_starts);
   // photon_grid_params of the items in `items` (as sort's), their lowest corner found on the device: 12 bytes read.
   PhotonMapParams grid_params(const cl::Buffer& items, uint32_t words, uint32_t count, float radius);
 
  private:
   static constexpr const char* kProgram = "grid_sort.cl";  // its kernels' file
+  // The buckets' counts zeroed (and one more, left at 0: its scan is the items' total) and the order's buffers grown.
+  void begin_sort(uint32_t count, size_t buckets);
+  // From the counts: scanned into bucket_starts, the items scattered into their buckets and ordered within them.
+  void scatter_in_order(const cl::Buffer& item_bucket, uint32_t count, size_t buckets, const cl::Buffer& bucket_starts);
   // `buffer` holding at least `count` uints (grown by doubling).
   void reserve(cl::Buffer& buffer, size_t& capacity, size_t count, const char* what);
 
   GpuContext& gpu_;
   ScanPass scan_;
-  NamedKernel count_, scatter_, order_, gather_, lowest_;
+  NamedKernel count_, count_given_, scatter_, order_, gather_, lowest_;
   cl::Buffer item_bucket_, bucket_counts_, bucket_fill_, order_buffer_, lowest_a_, lowest_b_;
   size_t item_capacity_ = 0, order_capacity_ = 0, count_capacity_ = 0, fill_capacity_ = 0, lowest_capacity_ = 0;
 };

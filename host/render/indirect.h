@@ -20,6 +20,7 @@
 #include "passes/radiance_splat_pass.h"
 #include "passes/record_pass.h"
 #include "passes/splat_pass.h"
+#include "passes/world_record_grid_pass.h"
 #include "render/device_record_index.h"
 #include "render/frame.h"
 #include "render/kept_records.h"
@@ -116,6 +117,7 @@ struct MethodPasses {
   KeptPass<DeviceRecordIndex> irradiance_index, radiance_index;
   KeptPass<SplatPass> splat;
   KeptPass<GlossyPass, bool> glossy;    // whether it samples the LOBE_HSH pixels too
+  KeptPass<WorldRecordGridPass> world_record_grid;  // the records the glossy pass reads, by position
   KeptPass<ComposePass, bool> compose;  // whether the LOBE_HSH pixels' lobes come from radiance records
   KeptPass<RadianceSplatPass, LobeKey> radiance_splat;
   KeptPass<HshRecordPass, unsigned> hsh_records;  // the order
@@ -191,13 +193,12 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& frame);
 // The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
 // a glossy material; also the LOBE_HSH pixels when radiance_cached is null), then composition (ComposePass) of the
 // cached irradiance (float4 per pixel: E, weight) and the radiance-cached lobes into the image's indirect and colour
-// layers. records: the irradiance records the cached irradiance came from; with RenderSettings::glossy_reads_records
-// the glossy samples read them where they land (kernels/glossy.cl sample_radiance; null: they continue paths).
+// layers. records: the record_count irradiance records the cached irradiance came from, on the device; with
+// RenderSettings::glossy_reads_records the glossy samples read them where they land (kernels/glossy.cl
+// sample_radiance; null: they continue paths).
 void compose_cached_indirect(IndirectFrame& frame, const cl::Buffer& irradiance,
-                             const RadianceSplatPass* radiance_cached, const std::vector<CacheRecord>* records);
-// Whether this frame's glossy pass will read the irradiance records where its samples land (compose_cached_indirect
-// builds their world grid on the host, so they must come back); radiance_cached: radiance_cached_lobes gave a pass.
-bool glossy_reads_records(const IndirectFrame& frame, bool radiance_cached);
+                             const RadianceSplatPass* radiance_cached, const cl::Buffer* records,
+                             uint32_t record_count);
 // The cache methods' own layers at output resolution: irradiance, coverage, records reaching and sitting in each
 // pixel, and the uncovered sub-pixels counted. irradiance: float4 (E.rgb, weight, 0 where uncovered);
 // records_per_pixel: uint; record_at_pixel: int, -1 where no record sits.

@@ -2,8 +2,6 @@
 // irradiance (kernels/glossy.cl, kernels/compose.cl).
 #include <atomic>
 
-#include "cache/world_record_grid.h"
-
 #include "passes/compose_pass.h"
 #include "passes/glossy_pass.h"
 #include "render/indirect.h"
@@ -30,12 +28,8 @@ GlossyWork glossy_work(const IndirectFrame& f, bool radiance_cached) {
 
 }  // namespace
 
-bool glossy_reads_records(const IndirectFrame& f, bool radiance_cached) {
-  return f.settings.glossy_reads_records && f.settings.bounces > 1 && glossy_work(f, radiance_cached).runs;
-}
-
 void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached,
-                             const std::vector<CacheRecord>* records) {
+                             const cl::Buffer* records, uint32_t record_count) {
   RenderedImage& img = f.image;
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
@@ -61,19 +55,20 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   if (glossy) {
     {
       StageTimer timing(st.glossy.seconds);
-      // The records by position, for the samples' rays to read where they land (the bounces after a hit).
-      WorldRecordGrid grid;
-      std::vector<CacheRecord> lit_records;
+      // The records by position, for the samples' rays to read where they land (the bounces after a hit), in a grid
+      // built where they are.
+      DeviceWorldRecordGrid grid;
       GlossyCacheReads reads;
       if (records && f.settings.glossy_reads_records && f.settings.bounces > 1) {
         StageTimer grid_timing(st.glossy.record_grid_s);
-        if (caustics) {  // the light the records leave to the caustic map, added at each record for the samples
-          lit_records = *records;
-          caustics->add_to_records(lit_records);
-        }
-        const std::vector<CacheRecord>& read = caustics ? lit_records : *records;
-        grid = build_world_record_grid(read, cs.accuracy);
-        reads = {&read, &grid};
+        BuildTimer grid_builds(f.gpu, st.program_s);
+        WorldRecordGridPass& grids = f.passes.world_record_grid.get(
+            {}, [&] { return std::make_unique<WorldRecordGridPass>(f.gpu); });
+        grid_builds.stop();
+        // The light the records leave to the caustic map, added at each record for the samples.
+        const cl::Buffer& read = caustics ? caustics->lit_records(*records, record_count) : *records;
+        grid = grids.build(read, record_count, cs.accuracy);
+        reads.device = &grid;
         st.glossy.reads_records = true;
       }
       glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},

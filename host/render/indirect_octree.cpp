@@ -138,7 +138,14 @@ void octree_indirect(IndirectFrame& f) {
   timing.stop();
   st.irradiance.filled_sub_pixels = filled;
   const cl::Buffer irradiance_buffer = f.gpu.upload(irradiance, CL_MEM_READ_WRITE, "octree irradiance");
-  compose_cached_indirect(f, irradiance_buffer, nullptr, &index.records());
+  // The octree's records, where the glossy pass may read them: its grid of them is built on the device.
+  const std::vector<CacheRecord>& octree_records = index.records();
+  cl::Buffer records_buffer;
+  if (f.settings.glossy_reads_records && f.settings.bounces > 1)
+    records_buffer = f.gpu.upload(octree_records.empty() ? std::vector<CacheRecord>(1) : octree_records,
+                                  CL_MEM_READ_ONLY, "octree records");
+  compose_cached_indirect(f, irradiance_buffer, nullptr, records_buffer() ? &records_buffer : nullptr,
+                          uint32_t(octree_records.size()));
   fill_cache_layers(f, irradiance_buffer, f.gpu.upload(reaching, CL_MEM_READ_ONLY, "octree records per pixel"),
                     f.gpu.upload(index.record_at_pixel(), CL_MEM_READ_ONLY, "octree record map"));
   img.records = std::move(index.records());

@@ -63,15 +63,11 @@ void splat_indirect(IndirectFrame& f) {
       st.irradiance.filled_sub_pixels = splat.fill_uncovered(gbuffer, records.records(), index.record_at_pixel_buffer(),
                                                   int(std::ceil(cs.max_reach_pixels)));
   }
-  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
-  bool records_on_host = false;
   {
     StageTimer timing(st.primary.layers_s);
-    // The records come back only where the host needs them: a frame with every layer (the tests read them), and the
-    // glossy pass's grid of them. A colour-only frame counts its clamped reaches on the device and brings back only
-    // the records a walkthrough keeps.
-    records_on_host = !layers_stay_on_device(f.settings) || glossy_reads_records(f, radiance != nullptr);
-    if (records_on_host) {
+    // The records stay on the device: a frame with every layer brings them back (tests read them); a colour-only
+    // frame counts its clamped reaches there and brings back only those a walkthrough keeps.
+    if (!layers_stay_on_device(f.settings)) {
       img.records = records.download(0, total);
       count_clamped_radii(img.records, cs, st.irradiance);
       if (f.kept_records) f.kept_records->add(img.records.data() + kept, total - kept);
@@ -86,7 +82,8 @@ void splat_indirect(IndirectFrame& f) {
     }
     if (f.kept_records) st.kept_records = f.kept_records->stats();
   }
-  compose_cached_indirect(f, splat.irradiance(), radiance, records_on_host ? &img.records : nullptr);
+  const RadianceSplatPass* radiance = radiance_cached_lobes(f);
+  compose_cached_indirect(f, splat.irradiance(), radiance, &records.records(), total);
   fill_cache_layers(f, splat.irradiance(), splat.records_per_pixel_buffer(), index.record_at_pixel_buffer());
 }
 

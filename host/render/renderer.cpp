@@ -168,8 +168,10 @@ void Renderer::build_programs_ahead(const FramePlan& plan) {
     RadianceSplatPass::build_ahead(gpu_);
   }
   const bool sample_hsh = !radiance && scene.lobe_counts()[LOBE_HSH] > 0;
-  if (scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || (radiance && guide))
+  if (scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || (radiance && guide)) {
     GlossyPass::build_ahead(gpu_, scene, sample_hsh);
+    if (s.glossy_reads_records && s.bounces > 1) WorldRecordGridPass::build_ahead(gpu_);
+  }
   ComposePass::build_ahead(gpu_, scene, radiance);
 }
 
