@@ -2,7 +2,8 @@
 // patches) of `words` 32-bit words each, the first three their position, put in bucket order the way the host's
 // stable counting sort does (host/cache/photon_map.cpp sort_into_grid), bit for bit: each item's bucket and each
 // bucket's count, the counts scanned into the buckets' starts (kernels/scan.cl), the items' numbers scattered into
-// their buckets, each bucket's numbers put back in the items' order, and the items gathered in that order.
+// their buckets, each bucket's numbers put back in the items' order, and the items gathered in that order. The same
+// steps order items whose buckets are given (count_item_buckets: the world-record grid's entries).
 #include "shared_types.h"
 #include "photon_grid.h"
 
@@ -80,24 +81,55 @@ __kernel void gather_grid_items(__global const uint* items, uint words, __global
   sorted[w] = items[(size_t)order[k] * words + w % words];
 }
 
-// The lowest coordinate on each axis of each group's LOWEST_GROUP items (xyz; w unused), for the grid's origin: the
-// host's loop of std::min over the items, exactly, as a minimum is in any order. Launched again over its own output
-// (words 4) until one group is left.
-__kernel void lowest_positions(__global const float* items, uint words, uint count, __global float4* lowest) {
+// The lowest coordinate on each axis of each group's LOWEST_GROUP items (xyz; w unused), or with `highest` the
+// highest: for the grid's origin, the host's loop of std::min over the items, exactly, as a minimum is in any order;
+// and the extent the estimates' order spans. Launched again over its own output (words 4) until one group is left.
+__kernel void extreme_positions(__global const float* items, uint words, uint count, uint highest,
+                                __global float4* extreme) {
   __local float x[LOWEST_GROUP], y[LOWEST_GROUP], z[LOWEST_GROUP];
   const size_t i = get_global_id(0);
   const uint item = get_local_id(0);
-  x[item] = i < count ? items[i * words] : INFINITY;
-  y[item] = i < count ? items[i * words + 1] : INFINITY;
-  z[item] = i < count ? items[i * words + 2] : INFINITY;
+  const float none = highest ? -INFINITY : INFINITY;
+  x[item] = i < count ? items[i * words] : none;
+  y[item] = i < count ? items[i * words + 1] : none;
+  z[item] = i < count ? items[i * words + 2] : none;
   barrier(CLK_LOCAL_MEM_FENCE);
   for (uint step = LOWEST_GROUP / 2; step > 0; step /= 2) {
     if (item < step) {
-      x[item] = fmin(x[item], x[item + step]);
-      y[item] = fmin(y[item], y[item + step]);
-      z[item] = fmin(z[item], z[item + step]);
+      x[item] = highest ? fmax(x[item], x[item + step]) : fmin(x[item], x[item + step]);
+      y[item] = highest ? fmax(y[item], y[item + step]) : fmin(y[item], y[item + step]);
+      z[item] = highest ? fmax(z[item], z[item + step]) : fmin(z[item], z[item + step]);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (item == 0) lowest[get_group_id(0)] = (float4)(x[0], y[0], z[0], 0.0f);
+  if (item == 0) extreme[get_group_id(0)] = (float4)(x[0], y[0], z[0], 0.0f);
+}
+
+// v's low 10 bits spread to every third bit (bit k to bit 3k).
+inline uint spread_to_every_third_bit(uint v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+// Each item's key for an order that keeps neighbours in space together (the photon estimates', PhotonMapPass): its
+// grid cell counted from `lowest`, coarsened to 2^shift cells a side, held below `side` (a power of two of at most
+// 2^10) and interleaved into a Morton code below side^3.
+__kernel void coarse_cell_keys(__global const float* items, uint words, uint count, PhotonMapParams grid,
+                               int lowest_x, int lowest_y, int lowest_z, uint shift, uint side,
+                               __global uint* item_key) {
+  const size_t i = get_global_id(0);
+  if (i >= count) return;
+  __global const float* position = items + i * words;
+  const int lowest[3] = {lowest_x, lowest_y, lowest_z};
+  uint key = 0u;
+  for (int a = 0; a < 3; ++a) {
+    const int cell = photon_cell(position[a], grid.grid_origin[a], grid.cell_size) - lowest[a];
+    const uint coarse = min((uint)max(cell, 0) >> shift, side - 1u);
+    key |= spread_to_every_third_bit(coarse) << a;
+  }
+  item_key[i] = key;
 }

@@ -49,7 +49,8 @@ inline float3 density_at_centre(FluxMoments f, AreaMoments a, float r2, uint sup
 // from k, where photons are few). The 3 x 3 x 3 cells around the point hold every photon and patch of the disc (cells
 // are at least r wide). map_shallow: the same over the photons of landings below shallow_landings
 // (PhotonMapGrids::shallow_landings). Work-item k makes photon estimate_order[k]'s: neighbours in space run together
-// and read the same cells (host/cache/photon_map.h cell_order; 0.85x the kernel's time on PoCL, the same bits).
+// and read the same cells (kernels/grid_sort.cl coarse_cell_keys, or on the host host/cache/photon_map.h cell_order;
+// 0.85x the kernel's time on PoCL, the same bits).
 __kernel void estimate_photon_radiance(__global const PhotonHit* all_photons, __global const uint* all_buckets,
                                        PhotonMapParams all_grid, __global const SurfacePatch* patches,
                                        __global const uint* patch_buckets, PhotonMapParams patch_grid,

@@ -208,7 +208,8 @@ typedef struct {
 #define SCAN_ITEMS 4
 #define SCAN_BLOCK (SCAN_GROUP * SCAN_ITEMS)
 
-// The work-group of the grids' lowest corner (kernels/grid_sort.cl lowest_positions): each reduces this many items.
+// The work-group of the grids' lowest and highest corners (kernels/grid_sort.cl extreme_positions): each reduces this
+// many items.
 #define LOWEST_GROUP 256
 
 // The work-group of the counts of a frame whose layers stay on the device (kernels/layers.cl count_lobes, sum_alpha,

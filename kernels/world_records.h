@@ -1,6 +1,6 @@
 // The splat's records found by position in the world, not by pixel: a glossy pixel's reflection lands where no pixel
 // of the splat may be, yet a record placed for a pixel there holds the irradiance the reflection needs
-// (kernels/glossy.cl, docs/ALGORITHM.md section 8). The grid comes from the host (host/cache/world_record_grid.h); the
+// (kernels/glossy.cl, docs/ALGORITHM.md section 8). The grid is built on the device (kernels/world_record_grid.cl); the
 // interpolation is the splat's, record for record: Ward's weight, record_reaches, the gradients' extrapolation and
 // the splat's bound on it (kernels/splat.cl), so that a point read both ways agrees (tests/world_records_test.cpp).
 #ifndef RCSPLAT_WORLD_RECORDS_H

@@ -22,6 +22,7 @@
 #include "passes/light_guide_pass.h"
 #include "passes/photon_landings_pass.h"
 #include "passes/photon_map_pass.h"
+#include "passes/surface_patch_pass.h"
 #include "render/bounce_choice.h"
 #include "scene/environment.h"
 #include "closed_cube.h"
@@ -559,7 +560,8 @@ TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
   EXPECT_TRUE(same_bytes(c, d));
 }
 
-// The estimates' order (cell_order) visits every photon once, a cell's photons together, and walks between nearby cells:
+// The estimates' order (cell_order; the device's locality_order below) visits every photon once, a cell's photons
+// together, and walks between nearby cells:
 // the mean step between consecutive cells (in cells, the largest of the three axes) is at most a quarter of the bucket
 // order's, which jumps about the whole grid. Photons on three planes of a cube 30 cells wide, as a scene's surfaces.
 TEST(PhotonMap, CellOrderVisitsEachPhotonOnceAndWalksBetweenNearbyCells) {
@@ -601,6 +603,63 @@ TEST(PhotonMap, CellOrderVisitsEachPhotonOnceAndWalksBetweenNearbyCells) {
   const double step = mean_step(order, &runs), bucket_step = mean_step(bucket_order, &bucket_runs);
   EXPECT_EQ(runs, cells.size());  // each cell's photons in one run
   EXPECT_LT(step, 0.25 * bucket_step) << "cell order " << step << ", bucket order " << bucket_step;
+
+  // The device's order (GridSortPass::locality_order, what frames use): every photon once and as local, here at
+  // whole cells (2 x 20,000 codes allow 32 a side, and the photons span about 30 cells) and, with a tenth of the
+  // photons, at cells grouped 4 x 4 x 4 (2 x 2,000 codes allow 8 a side).
+  GpuContext& gpu = test::gpu();
+  GridSortPass sorter(gpu);
+  for (const size_t count : {photons.size(), photons.size() / 10}) {
+    const std::vector<PhotonHit> some(grid.photons.begin(), grid.photons.begin() + std::ptrdiff_t(count));
+    const cl::Buffer on_device = gpu.upload(some), placed = gpu.buffer(CL_MEM_READ_WRITE, count * 4, "test");
+    sorter.locality_order(on_device, sizeof(PhotonHit) / 4, uint32_t(count), grid.params, placed);
+    const std::vector<uint32_t> device_order = gpu.download<uint32_t>(placed, count);
+    std::vector<int> visits(count, 0);
+    for (uint32_t i : device_order) ASSERT_EQ(++visits.at(i), 1) << "photon " << i << " of " << count;
+    std::vector<uint32_t> given(count);
+    for (uint32_t i = 0; i < count; ++i) given[i] = i;
+    size_t device_runs = 0, given_runs = 0;
+    const double device_step = mean_step(device_order, &device_runs), given_step = mean_step(given, &given_runs);
+    EXPECT_LT(device_step, 0.25 * given_step) << count << " photons: device order " << device_step << ", bucket order "
+                                             << given_step;
+  }
+}
+
+// The surface patches cut on the device (SurfacePatchPass, where it has doubles) are the host's, byte for byte:
+// random triangles from tiny to huge (past the 256 x 256 cap), some degenerate (a repeated corner, a line, a NaN), at
+// two patch areas; none for a zero or infinite area. Planted once: the centroids' thirds in float failed the bytes.
+TEST(PhotonMap, TheDeviceCutsTheHostsSurfacePatches) {
+  GpuContext& gpu = test::gpu();
+  if (!SurfacePatchPass::available(gpu)) GTEST_SKIP() << "the device has no doubles: the host cuts the patches";
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-4.0f, 1.5f);
+  std::vector<glm::vec3> corners;
+  for (int t = 0; t < 3000; ++t) {
+    const glm::vec3 a(3.0f * u(rng), 3.0f * u(rng), 3.0f * u(rng));
+    const float size = std::pow(10.0f, scale(rng));
+    glm::vec3 b = a + size * glm::vec3(u(rng), u(rng), u(rng)), c = a + size * glm::vec3(u(rng), u(rng), u(rng));
+    if (t % 101 == 1) b = a;                // a repeated corner
+    if (t % 101 == 2) c = a + 2.0f * (b - a);  // a line
+    if (t % 101 == 3) c.x = std::nanf("");
+    corners.insert(corners.end(), {a, b, c});
+  }
+  SurfacePatchPass cutter(gpu);
+  for (const float area : {1e-3f, 4e-2f}) {
+    const std::vector<SurfacePatch> host = surface_patches(corners, area);
+    uint32_t count = 0;
+    const cl::Buffer patches = cutter.cut(corners, area, count);
+    ASSERT_EQ(count, host.size()) << "area " << area;
+    EXPECT_GT(host.size(), 4 * corners.size() / 3) << "most triangles cut more than once";
+    EXPECT_TRUE(same_bytes(gpu.download<SurfacePatch>(patches, count), host)) << "area " << area;
+  }
+  const std::vector<glm::vec3> huge = {{0, 0, 0}, {1e3f, 0, 0}, {0, 1e3f, 0}};
+  uint32_t count = 0;
+  cutter.cut(huge, 1e-2f, count);
+  EXPECT_EQ(count, 2u * 256u * 256u) << "the cap";
+  for (const float none : {0.0f, INFINITY}) {
+    cutter.cut(corners, none, count);
+    EXPECT_EQ(count, 0u);
+  }
 }
 
 TEST(PhotonMap, AnEmptyMapIsDark) {

@@ -1,5 +1,6 @@
-// The splat's records by position in the world (kernels/world_records.h): a hashed grid over their reach spheres,
-// built on the host each frame from the records the splat used, for the glossy pass's reflections to read.
+// The splat's records by position in the world (kernels/world_records.h): a hashed grid over their reach spheres, for
+// the glossy pass's reflections to read. Frames build it on the device (passes/world_record_grid_pass.h); this host
+// build is the reference the device's must equal bit for bit (tests/world_records_test.cpp).
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -42,6 +42,7 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device, size
   info.max_allocation = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   std::string extensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
   info.int64_atomics = extensions.find("cl_khr_int64_base_atomics") != std::string::npos;
+  info.fp64 = extensions.find("cl_khr_fp64") != std::string::npos;
   if (!info.int64_atomics) info.problems.push_back("no 64-bit integer atomics (cl_khr_int64_base_atomics)");
   if (!device.getInfo<CL_DEVICE_COMPILER_AVAILABLE>()) info.problems.push_back("no OpenCL C compiler");
   if (!device.getInfo<CL_DEVICE_AVAILABLE>()) info.problems.push_back("device not available");

@@ -20,6 +20,7 @@ struct DeviceInfo {
   cl_ulong global_memory = 0;
   cl_ulong max_allocation = 0;
   bool int64_atomics = false;
+  bool fp64 = false;  // double precision (cl_khr_fp64): the photon map's surface patches are cut on the device
   bool is_gpu = false;
   std::vector<std::string> problems;  // empty when rcsplat can use the device
 

@@ -420,6 +420,21 @@ bool is_out_of_memory(cl_int code) {
          code == CL_INVALID_BUFFER_SIZE;
 }
 
+void GpuContext::reserve(cl::Buffer& buffer, size_t& capacity, size_t count, size_t element_bytes, const char* what,
+                         bool keep_contents, size_t most) {
+  if (buffer() && capacity >= count) return;
+  const size_t grown = std::max({count, std::min(2 * capacity, most), size_t(1)});
+  if (keep_contents && buffer() && capacity) {
+    cl::Buffer bigger = this->buffer(CL_MEM_READ_WRITE, grown * element_bytes, what);
+    queue_.enqueueCopyBuffer(buffer, bigger, 0, 0, capacity * element_bytes);
+    buffer = bigger;
+  } else {
+    buffer = cl::Buffer();  // freed before its successor is made
+    buffer = this->buffer(CL_MEM_READ_WRITE, grown * element_bytes, what);
+  }
+  capacity = grown;
+}
+
 cl::Buffer GpuContext::buffer(cl_mem_flags flags, size_t bytes, const std::string& what) {
   auto refuse = [&](const std::string& why, const char* advice = "choose another --device") {
     return Error("out of device memory: " + what + " needs " + byte_size(double(bytes), "MiB") + "; " + why +

@@ -96,6 +96,17 @@ class GpuContext {
   // A device buffer of `bytes`; running out of device memory (or asking for more than one buffer may hold) throws
   // rcsplat::Error naming `what`, the size asked for and what the device has.
   cl::Buffer buffer(cl_mem_flags flags, size_t bytes, const std::string& what);
+  // Makes `buffer` hold at least `count` elements of element_bytes (a pass's buffers, kept across frames): where it
+  // holds fewer (or is none), a new one of twice its capacity, or `count` if more, but doubled to at most `most`
+  // elements; with keep_contents the old one's elements are copied in, else it is freed before the new one is made.
+  // capacity: the elements `buffer` holds.
+  void reserve(cl::Buffer& buffer, size_t& capacity, size_t count, size_t element_bytes, const char* what,
+               bool keep_contents = false, size_t most = SIZE_MAX);
+  template <typename T>
+  void reserve(cl::Buffer& buffer, size_t& capacity, size_t count, const char* what, bool keep_contents = false,
+               size_t most = SIZE_MAX) {
+    reserve(buffer, capacity, count, sizeof(T), what, keep_contents, most);
+  }
   // How many buffers buffer() has made so far (tests: a later frame through a Renderer makes none).
   size_t buffers_made() const { return buffers_made_; }
   // The most device memory this context's buffers may hold at once (--max-device-memory); 0: what the device has.

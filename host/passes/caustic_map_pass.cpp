@@ -94,11 +94,7 @@ void CausticMapPass::bind(NamedKernel& kernel) const {
 
 const cl::Buffer& CausticMapPass::lit_records(const cl::Buffer& records, uint32_t record_count) {
   if (params_.photon_count == 0 || record_count == 0) return records;
-  if (!lit_records_() || lit_capacity_ < record_count) {
-    lit_capacity_ = std::max<size_t>(record_count, 2 * lit_capacity_);
-    lit_records_ = cl::Buffer();  // freed before its successor is made
-    lit_records_ = gpu_.buffer(CL_MEM_READ_WRITE, lit_capacity_ * sizeof(CacheRecord), "caustic map: lit records");
-  }
+  gpu_.reserve<CacheRecord>(lit_records_, lit_capacity_, record_count, "caustic map: lit records");
   bind(add_to_records_);
   add_to_records_.set_buffer<CacheRecord>("records", records)
       .set("record_count", cl_uint(record_count))

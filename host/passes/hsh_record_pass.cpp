@@ -72,13 +72,7 @@ HshRecordPass::HshRecordPass(GpuContext& gpu, int order)
 }
 
 void HshRecordPass::reserve(size_t records) {
-  if (records <= capacity_) return;
-  size_t grown = std::max(records, capacity_ * 2);
-  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * floats_per_order(order_) * sizeof(float), "radiance records");
-  if (capacity_)
-    gpu_.queue().enqueueCopyBuffer(coefficients_, bigger, 0, 0, capacity_ * floats_per_order(order_) * sizeof(float));
-  coefficients_ = bigger;
-  capacity_ = grown;
+  gpu_.reserve(coefficients_, capacity_, records, floats_per_order(order_) * sizeof(float), "radiance records", true);
 }
 
 void HshRecordPass::project(const cl::Buffer& strata, const cl::Buffer& records, uint32_t first, uint32_t count,

@@ -20,11 +20,8 @@ PhotonLandingsPass::PhotonLandingsPass(GpuContext& gpu)
 
 void PhotonLandingsPass::append_lit(const cl::Buffer& landings, uint32_t count) {
   if (!count) return;
-  if (flag_capacity_ < count) {
-    flag_capacity_ = count;
-    lit_ = gpu_.buffer(CL_MEM_READ_WRITE, size_t(count) * sizeof(cl_uint), "photon landings");
-    places_ = gpu_.buffer(CL_MEM_READ_WRITE, size_t(count) * sizeof(cl_uint), "photon landings");
-  }
+  gpu_.reserve<cl_uint>(lit_, lit_capacity_, count, "photon landings");
+  gpu_.reserve<cl_uint>(places_, places_capacity_, count, "photon landings");
   const size_t group = gpu_.groups().per_item;
   flag_.set_buffer<PhotonHit>("landings", landings).set("count", cl_uint(count)).set_buffer<cl_uint>("lit", lit_);
   flag_.launch(count, group);
@@ -37,14 +34,7 @@ void PhotonLandingsPass::append_lit(const cl::Buffer& landings, uint32_t count) 
   if (lit == 0) return;
   if (size_t(kept_count_) + lit > UINT32_MAX) throw Error("photon map: more than 2^32 photons kept");
   const size_t needed = kept_count_ + lit;
-  if (kept_capacity_ < needed) {  // grown by copying what is kept
-    const size_t capacity = std::max(needed, 2 * kept_capacity_);
-    cl::Buffer grown = gpu_.buffer(CL_MEM_READ_WRITE, capacity * sizeof(PhotonHit), "photon map");
-    if (kept_count_)
-      gpu_.queue().enqueueCopyBuffer(kept_, grown, 0, 0, size_t(kept_count_) * sizeof(PhotonHit));
-    kept_ = grown;
-    kept_capacity_ = capacity;
-  }
+  gpu_.reserve<PhotonHit>(kept_, kept_capacity_, needed, "photon map", true);  // what is kept, copied
   append_.set_buffer<PhotonHit>("landings", landings)
       .set("count", cl_uint(count))
       .set_buffer<cl_uint>("lit", lit_)

@@ -36,7 +36,7 @@ class PhotonLandingsPass {
   NamedKernel flag_, append_, scale_, take_;
   cl::Buffer kept_, lit_, places_;
   uint32_t kept_count_ = 0;
-  size_t kept_capacity_ = 0, flag_capacity_ = 0;
+  size_t kept_capacity_ = 0, lit_capacity_ = 0, places_capacity_ = 0;
 };
 
 }  // namespace rcsplat

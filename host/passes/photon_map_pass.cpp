@@ -5,11 +5,14 @@
 
 #include "cl/point_lookup.h"
 #include "passes/grid_sort_pass.h"
+#include "passes/surface_patch_pass.h"
+#include "util/error.h"
 
 namespace rcsplat {
 void PhotonMapPass::build_ahead(GpuContext& gpu) {
   gpu.build_ahead(kProgram);
   GridSortPass::build_ahead(gpu);
+  SurfacePatchPass::build_ahead(gpu);
   PhotonLandingsPass::build_ahead(gpu);
 }
 
@@ -21,7 +24,9 @@ DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& gri
   d.shallow_landings = grids.shallow_landings;
   d.lookup_photons = gpu.upload(grids.lookup.photons, CL_MEM_READ_ONLY, "photon map");
   d.lookup_buckets = gpu.upload(grids.lookup.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
-  d.estimate_order = cell_order(grids.lookup);
+  const std::vector<uint32_t> order = cell_order(grids.lookup);
+  d.estimate_order = gpu.upload(order.empty() ? std::vector<uint32_t>{0} : order, CL_MEM_READ_ONLY,
+                                "photon map estimate order");
   d.all_photons = gpu.upload(grids.all.photons, CL_MEM_READ_ONLY, "photon map");
   d.all_buckets = gpu.upload(grids.all.bucket_starts, CL_MEM_READ_ONLY, "photon map buckets");
   // The kernel reads no patch when there are none, but a buffer must be bound.
@@ -64,17 +69,25 @@ DevicePhotonGrids sort_photon_grids(GpuContext& gpu, PhotonLandingsPass& landing
   const cl::Buffer sparse = landings.take_every(lookup_stride, sparse_count);
   d.lookup_grid = sorter.grid_params(sparse, kPhotonWords, sparse_count, radius);
   sort_on_device<PhotonHit>(gpu, sorter, sparse, d.lookup_grid, d.lookup_photons, d.lookup_buckets, "photon map");
-  if (d.lookup_grid.photon_count) {
-    PhotonGrid lookup;  // its photons, for the Morton order of their cells
-    lookup.params = d.lookup_grid;
-    lookup.photons = gpu.download<PhotonHit>(d.lookup_photons, d.lookup_grid.photon_count);
-    d.estimate_order = cell_order(lookup);
-  }
+  d.estimate_order = gpu.buffer(CL_MEM_READ_WRITE, std::max<size_t>(d.lookup_grid.photon_count, 1) * sizeof(cl_uint),
+                                "photon map estimate order");
+  sorter.locality_order(d.lookup_photons, kPhotonWords, d.lookup_grid.photon_count, d.lookup_grid, d.estimate_order);
 
-  std::vector<SurfacePatch> patches;
-  if (kept) patches = surface_patches(triangles, photon_patch_area(radius));
-  d.patch_grid = photon_grid_params(patches, radius);
-  const cl::Buffer given = gpu.upload(patches, CL_MEM_READ_ONLY, "photon map surface patches");
+  // The surface patches: cut on the device where it has doubles (the host's bits), else on the host and uploaded.
+  cl::Buffer given;
+  uint32_t patch_count = 0;
+  if (kept && SurfacePatchPass::available(gpu)) {
+    SurfacePatchPass cutter(gpu);
+    given = cutter.cut(triangles, photon_patch_area(radius), patch_count);
+  } else {
+    std::vector<SurfacePatch> patches;
+    if (kept) patches = surface_patches(triangles, photon_patch_area(radius));
+    if (patches.size() > UINT32_MAX) throw Error("photon map: more than 2^32 surface patches");
+    patch_count = uint32_t(patches.size());
+    given = gpu.upload(patches, CL_MEM_READ_ONLY, "photon map surface patches");
+  }
+  constexpr uint32_t kPatchWords = sizeof(SurfacePatch) / sizeof(cl_uint);
+  d.patch_grid = sorter.grid_params(given, kPatchWords, patch_count, radius);
   sort_on_device<SurfacePatch>(gpu, sorter, given, d.patch_grid, d.patches, d.patch_buckets,
                                "photon map surface patches");
   return d;
@@ -87,7 +100,6 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids)
   radiance_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map estimates");
   shallow_ = gpu.buffer(CL_MEM_READ_WRITE, estimate_bytes, "photon map shallow estimates");
   if (!params_.photon_count) return;
-  cl::Buffer order = gpu.upload(grids.estimate_order, CL_MEM_READ_ONLY, "photon map estimate order");
   NamedKernel estimate = gpu.kernel(kProgram, "estimate_photon_radiance", {});
   estimate.set_buffer<PhotonHit>("all_photons", grids.all_photons)
       .set_buffer<cl_uint>("all_buckets", grids.all_buckets)
@@ -100,7 +112,7 @@ PhotonMapPass::PhotonMapPass(GpuContext& gpu, const DevicePhotonGrids& grids)
       .set("shallow_landings", cl_int(grids.shallow_landings))
       .set_buffer<cl_float4>("map_radiance", radiance_)
       .set_buffer<cl_float4>("map_shallow", shallow_)
-      .set_buffer<cl_uint>("estimate_order", order);
+      .set_buffer<cl_uint>("estimate_order", grids.estimate_order);
   estimate.launch(params_.photon_count, gpu.groups().traversal);
   gpu.queue().finish();
 }

@@ -12,19 +12,20 @@
 namespace rcsplat {
 
 // The photon map's grids on the device: the lookup photons' grid (every few photons, which carry the estimates), every
-// photon's and the surface patches', and the order the estimates are made in (cell_order, on the host from the
-// lookup photons).
+// photon's and the surface patches', and the order the estimates are made in (a lookup photon's number at each place:
+// neighbours in space together; any order gives the same estimates).
 struct DevicePhotonGrids {
   PhotonMapParams lookup_grid{}, all_grid{}, patch_grid{};
   cl::Buffer lookup_photons, lookup_buckets, all_photons, all_buckets, patches, patch_buckets;
-  std::vector<uint32_t> estimate_order;
+  cl::Buffer estimate_order;
   int shallow_landings = 0;  // PhotonMapGrids::shallow_landings
 };
 
 // The host's grids uploaded.
 DevicePhotonGrids upload_photon_grids(GpuContext& gpu, const PhotonMapGrids& grids);
 // build_photon_map's grids over the photons `landings` keeps, built on the device (passes/grid_sort_pass.h): the same
-// bits as the host's. Only the lookup photons (every lookup_stride-th) come back, for the estimates' order.
+// bits as the host's, and the estimates' order (GridSortPass::locality_order). No photon or patch comes back; the
+// surface patches are cut on the device where it has doubles (SurfacePatchPass), else on the host.
 DevicePhotonGrids sort_photon_grids(GpuContext& gpu, PhotonLandingsPass& landings, double surface_area,
                                     unsigned neighbours, unsigned lookup_stride, const std::vector<glm::vec3>& triangles,
                                     int shallow_landings);

@@ -64,11 +64,9 @@ uint32_t PlacementPass::find_uncovered(const cl::Buffer& records, uint32_t recor
   // whatever order the device runs work items, which differs from run to run on the same device.
   const size_t grid_x = padded_to_tiles((size_t(gbuffer_.width) + spacing - 1) / spacing);
   const size_t grid_y = padded_to_tiles((size_t(gbuffer_.height) + spacing - 1) / spacing), cells = grid_x * grid_y;
-  if (cells > cells_capacity_) {  // the finest grid's, padded to whole tiles (kernels/placement.cl candidate_cell)
-    flags_ = gpu_.buffer(CL_MEM_READ_WRITE, cells * sizeof(cl_uint), "placement candidates");
-    places_ = gpu_.buffer(CL_MEM_READ_WRITE, cells * sizeof(cl_uint), "placement candidates");
-    cells_capacity_ = cells;
-  }
+  // The finest grid's cells, padded to whole tiles (kernels/placement.cl candidate_cell).
+  gpu_.reserve<cl_uint>(flags_, flags_capacity_, cells, "placement candidates");
+  gpu_.reserve<cl_uint>(places_, places_capacity_, cells, "placement candidates");
   gbuffer_.bind(flag_);
   flag_.set_buffer<cl_uchar>("covered", covered_)
       .set_buffer<cl_int>("record_at_pixel", record_map_)
@@ -121,10 +119,7 @@ void PlacementPass::mark(const cl::Buffer& records, uint32_t first, uint32_t cou
 void PlacementPass::clamp_neighbours(const cl::Buffer& records, uint32_t count, uint32_t first_new, bool clamp_older,
                                      float min_radius_pixels) {
   if (!count) return;
-  if (count > radii_capacity_) {
-    radii_capacity_ = std::max<size_t>(count, radii_capacity_ * 2);
-    radii_ = gpu_.buffer(CL_MEM_READ_WRITE, radii_capacity_ * sizeof(float), "placement radii");
-  }
+  gpu_.reserve<float>(radii_, radii_capacity_, count, "placement radii");
   PlacementParams params{};
   params.record_count = count;
   params.first_new = first_new;

@@ -53,7 +53,7 @@ class PlacementPass {
   cl::Buffer candidates_, count_, record_map_, radii_, covered_, new_in_tile_, flags_, places_;
   size_t tiles_ = 0;
   size_t radii_capacity_ = 0;
-  size_t cells_capacity_ = 0;  // flags_ and places_
+  size_t flags_capacity_ = 0, places_capacity_ = 0;  // cells
   int record_grid_ = 0;  // the finest placement grid searched so far: every record sits on one of its pixels
 };
 

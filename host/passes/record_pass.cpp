@@ -74,12 +74,7 @@ void RecordPass::set_light_guide(const std::vector<GuideCluster>& clusters, unsi
 }
 
 void RecordPass::reserve(size_t count) {
-  if (count <= capacity_) return;
-  size_t grown = std::max(count, capacity_ * 2);
-  cl::Buffer bigger = gpu_.buffer(CL_MEM_READ_WRITE, grown * sizeof(CacheRecord), "irradiance records");
-  if (capacity_) gpu_.queue().enqueueCopyBuffer(records_, bigger, 0, 0, capacity_ * sizeof(CacheRecord));
-  records_ = bigger;
-  capacity_ = grown;
+  gpu_.reserve<CacheRecord>(records_, capacity_, count, "irradiance records", true);
 }
 
 void RecordPass::load(const std::vector<CacheRecord>& records) {
@@ -93,11 +88,7 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
   // capped (record_samples_per_launch), so that cap bounds the samples' memory.
   const size_t most_records = std::max<size_t>(gpu_.groups().record_samples_per_launch / samples_per_record, 1);
   auto grow = [&](cl::Buffer& buffer, size_t& capacity, size_t needed, size_t element, size_t ceiling,
-                  const char* what) {
-    if (needed <= capacity) return;
-    capacity = std::max(needed, std::min(capacity * 2, ceiling));
-    buffer = gpu_.buffer(CL_MEM_READ_WRITE, capacity * element, what);
-  };
+                  const char* what) { gpu_.reserve(buffer, capacity, needed, element, what, false, ceiling); };
   const size_t launch_samples = most_records * samples_per_record;
   grow(record_guides_, guides_capacity_, records, sizeof(RecordGuideCones), most_records, "record guide cones");
   grow(samples_, samples_capacity_, (store_strata_ ? batch : records) * samples_per_record, sizeof(cl_float4),

@@ -19,11 +19,8 @@ void ScanPass::scan_level(const cl::Buffer& in, uint32_t count, const cl::Buffer
   const size_t blocks = (size_t(count) + SCAN_BLOCK - 1) / SCAN_BLOCK;
   if (levels_.size() <= level) levels_.resize(level + 1);
   Level& l = levels_[level];
-  if (l.capacity < blocks) {
-    l.capacity = std::max(blocks, 2 * l.capacity);
-    l.sums = gpu_.buffer(CL_MEM_READ_WRITE, l.capacity * sizeof(cl_uint), "scan");
-    l.offsets = gpu_.buffer(CL_MEM_READ_WRITE, l.capacity * sizeof(cl_uint), "scan");
-  }
+  gpu_.reserve<cl_uint>(l.sums, l.sums_capacity, blocks, "scan");
+  gpu_.reserve<cl_uint>(l.offsets, l.offsets_capacity, blocks, "scan");
   blocks_.set_buffer<cl_uint>("in", in)
       .set("count", cl_uint(count))
       .set_buffer<cl_uint>("out", out)

@@ -23,7 +23,7 @@ class ScanPass {
 
   struct Level {
     cl::Buffer sums, offsets;  // each block's total; their exclusive scan
-    size_t capacity = 0;       // blocks the buffers hold
+    size_t sums_capacity = 0, offsets_capacity = 0;  // blocks the buffers hold
   };
   GpuContext& gpu_;
   NamedKernel blocks_, add_;

@@ -30,10 +30,7 @@ WorldRecordGridPass::WorldRecordGridPass(GpuContext& gpu)
 }
 
 void WorldRecordGridPass::reserve(cl::Buffer& buffer, size_t& capacity, size_t count) {
-  if (buffer() && capacity >= count) return;
-  capacity = std::max(std::max<size_t>(count, 1), 2 * capacity);
-  buffer = cl::Buffer();  // freed before its successor is made
-  buffer = gpu_.buffer(CL_MEM_READ_WRITE, capacity * sizeof(cl_uint), "world record grid");
+  gpu_.reserve<cl_uint>(buffer, capacity, count, "world record grid");
 }
 
 DeviceWorldRecordGrid WorldRecordGridPass::build(const cl::Buffer& records, uint32_t record_count, float accuracy) {

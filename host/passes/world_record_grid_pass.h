@@ -34,7 +34,7 @@ class WorldRecordGridPass {
 
  private:
   static constexpr const char* kProgram = "world_record_grid.cl";  // its kernels' file
-  // `buffer` holding at least `count` uints (grown by doubling).
+  // `buffer` holding at least `count` uints (GpuContext::reserve).
   void reserve(cl::Buffer& buffer, size_t& capacity, size_t count);
 
   GpuContext& gpu_;

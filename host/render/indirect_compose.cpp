@@ -9,25 +9,6 @@
 
 namespace rcsplat {
 
-namespace {
-
-// What the glossy pass samples in a frame: the LOBE_HSH pixels' lobes (when no radiance records hold them), the light
-// guide's share the radiance records left to the pixels (kernels/glossy.cl guide_share), and whether it runs at all.
-struct GlossyWork {
-  bool sample_hsh = false, guide_share = false, runs = false;
-};
-
-GlossyWork glossy_work(const IndirectFrame& f, bool radiance_cached) {
-  GlossyWork w;
-  w.sample_hsh = !radiance_cached && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
-  const std::vector<GuideCluster>* guide = frame_light_guide(f);
-  w.guide_share = radiance_cached && f.settings.cache.guide_rays > 0 && guide && !guide->empty();
-  w.runs = f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || w.sample_hsh || w.guide_share;
-  return w;
-}
-
-}  // namespace
-
 void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, const RadianceSplatPass* radiance_cached,
                              const cl::Buffer* records, uint32_t record_count) {
   RenderedImage& img = f.image;
@@ -35,13 +16,18 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   const GBufferView& gbuffer = f.gbuffer.view();
   BuildTimer builds(f.gpu, st.program_s);
   GlossyPass* glossy = nullptr;
+  bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
+  // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
   const CacheSettings& cs = f.settings.cache;
   const std::vector<GuideCluster>* guide = frame_light_guide(f);
-  const GlossyWork work = glossy_work(f, radiance_cached != nullptr);
-  const bool sample_hsh = work.sample_hsh, guide_share = work.guide_share;
-  if (work.runs)
+  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && guide && !guide->empty();
+  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
     glossy = &f.passes.glossy.get(
         sample_hsh, [&] { return std::make_unique<GlossyPass>(f.gpu, f.device_scene, sample_hsh); });
+  // The glossy samples read the records where they land (the bounces after a hit), by position.
+  WorldRecordGridPass* record_grids = nullptr;
+  if (glossy && records && f.settings.glossy_reads_records && f.settings.bounces > 1)
+    record_grids = &f.passes.world_record_grid.get({}, [&] { return std::make_unique<WorldRecordGridPass>(f.gpu); });
   ComposePass& compose = f.passes.compose.get(radiance_cached != nullptr, [&] {
     return std::make_unique<ComposePass>(f.gpu, f.device_scene, radiance_cached != nullptr);
   });
@@ -55,21 +41,18 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   if (glossy) {
     {
       StageTimer timing(st.glossy.seconds);
-      // The records by position, for the samples' rays to read where they land (the bounces after a hit), in a grid
-      // built where they are.
+      // The records' grid by position, built where they are.
       DeviceWorldRecordGrid grid;
       GlossyCacheReads reads;
-      if (records && f.settings.glossy_reads_records && f.settings.bounces > 1) {
+      if (record_grids) {
         StageTimer grid_timing(st.glossy.record_grid_s);
-        BuildTimer grid_builds(f.gpu, st.program_s);
-        WorldRecordGridPass& grids = f.passes.world_record_grid.get(
-            {}, [&] { return std::make_unique<WorldRecordGridPass>(f.gpu); });
-        grid_builds.stop();
         // The light the records leave to the caustic map, added at each record for the samples.
         const cl::Buffer& read = caustics ? caustics->lit_records(*records, record_count) : *records;
-        grid = grids.build(read, record_count, cs.accuracy);
+        grid = record_grids->build(read, record_count, cs.accuracy);
         reads.device = &grid;
         st.glossy.reads_records = true;
+        f.gpu.queue().finish();  // the grid's time is its own, not the glossy samples'
+        grid_timing.stop();
       }
       glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
                   guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
