@@ -147,8 +147,7 @@ void GridSortPass::locality_order(const cl::Buffer& items, uint32_t words, uint3
   uint32_t shift = 0;
   while ((uint64_t(span) - 1) >> shift >= side) ++shift;
   const uint32_t keys = side * side * side;
-  begin_sort(count, keys);
-  const size_t group = gpu_.groups().per_item;
+  reserve(item_bucket_, item_capacity_, count, "grid sort");
   keys_.set_buffer<cl_float>("items", items)
       .set("words", cl_uint(words))
       .set("count", cl_uint(count))
@@ -159,14 +158,10 @@ void GridSortPass::locality_order(const cl::Buffer& items, uint32_t words, uint3
       .set("shift", cl_uint(shift))
       .set("side", cl_uint(side))
       .set_buffer<cl_uint>("item_key", item_bucket_);
-  keys_.launch(count, group);
-  count_given_.set_buffer<cl_uint>("item_bucket", item_bucket_)
-      .set("count", cl_uint(count))
-      .set_buffer<cl_uint>("bucket_counts", bucket_counts_);
-  count_given_.launch(count, group);
+  keys_.launch(count, gpu_.groups().per_item);
   reserve(key_starts_, key_starts_capacity_, size_t(keys) + 1, "grid sort");
-  scatter_in_order(item_bucket_, count, keys, key_starts_);
-  gpu_.queue().enqueueCopyBuffer(order_buffer_, order, 0, 0, size_t(count) * sizeof(cl_uint));
+  const cl::Buffer& sorted = order_by_bucket(item_bucket_, count, keys, key_starts_);
+  gpu_.queue().enqueueCopyBuffer(sorted, order, 0, 0, size_t(count) * sizeof(cl_uint));
 }
 
 }  // namespace rcsplat

@@ -35,9 +35,13 @@ cl::Buffer SurfacePatchPass::cut(const std::vector<glm::vec3>& corners, float pa
   gpu_.queue().enqueueFillBuffer(counts_, cl_uint(0), triangles * sizeof(cl_uint), sizeof(cl_uint));
   gpu_.queue().enqueueFillBuffer(total_, cl_ulong(0), 0, sizeof(cl_ulong));
   const size_t group = gpu_.groups().per_item;
-  count_.set_buffer<cl_float>("corners", corners_)
-      .set("triangle_count", cl_uint(triangles))
-      .set("patch_area", cl_float(patch_area))
+  // Both kernels start with the triangles and the patch area.
+  auto bind_triangles = [&](NamedKernel& kernel) -> NamedKernel& {
+    return kernel.set_buffer<cl_float>("corners", corners_)
+        .set("triangle_count", cl_uint(triangles))
+        .set("patch_area", cl_float(patch_area));
+  };
+  bind_triangles(count_)
       .set_buffer<cl_uint>("counts", counts_)
       .set_buffer<cl_ulong>("total", total_);
   count_.launch(triangles, group);
@@ -50,9 +54,7 @@ cl::Buffer SurfacePatchPass::cut(const std::vector<glm::vec3>& corners, float pa
   count = uint32_t(total);
   cl::Buffer patches = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(count, 1) * sizeof(SurfacePatch),
                                    "photon map surface patches");
-  write_.set_buffer<cl_float>("corners", corners_)
-      .set("triangle_count", cl_uint(triangles))
-      .set("patch_area", cl_float(patch_area))
+  bind_triangles(write_)
       .set_buffer<cl_uint>("firsts", firsts_)
       .set_buffer<SurfacePatch>("patches", patches);
   write_.launch(triangles, group);

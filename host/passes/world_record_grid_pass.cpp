@@ -40,17 +40,17 @@ DeviceWorldRecordGrid WorldRecordGridPass::build(const cl::Buffer& records, uint
   queue.enqueueFillBuffer(extent_, cl_uint(0xffffffffu), 0, 3 * sizeof(cl_uint));
   queue.enqueueFillBuffer(extent_, cl_uint(0), 3 * sizeof(cl_uint), sizeof(WorldRecordExtent) - 3 * sizeof(cl_uint));
   queue.enqueueFillBuffer(bins_, cl_uint(0), 0, WORLD_RECORD_DIGIT_BINS * sizeof(cl_uint));
-  if (record_count) {
-    measure_.set_buffer<CacheRecord>("records", records)
+  // The measuring kernels start with the records, their count and the accuracy, then the extent.
+  auto bind_records = [&](NamedKernel& kernel) -> NamedKernel& {
+    return kernel.set_buffer<CacheRecord>("records", records)
         .set("record_count", cl_uint(record_count))
         .set("accuracy", cl_float(accuracy))
         .set_buffer<WorldRecordExtent>("extent", extent_);
-    measure_.launch(record_count, group);
+  };
+  if (record_count) {
+    bind_records(measure_).launch(record_count, group);
     for (uint32_t shift = 24;; shift -= 8) {
-      count_digits_.set_buffer<CacheRecord>("records", records)
-          .set("record_count", cl_uint(record_count))
-          .set("accuracy", cl_float(accuracy))
-          .set_buffer<WorldRecordExtent>("extent", extent_)
+      bind_records(count_digits_)
           .set("shift", cl_uint(shift))
           .set_buffer<cl_uint>("bins", bins_);
       count_digits_.launch(record_count, group);
