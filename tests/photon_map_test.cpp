@@ -626,15 +626,15 @@ TEST(PhotonMap, CellOrderVisitsEachPhotonOnceAndWalksBetweenNearbyCells) {
 }
 
 // The surface patches cut on the device (SurfacePatchPass, where it has doubles) are the host's, byte for byte:
-// random triangles from tiny to huge (past the 256 x 256 cap), some degenerate (a repeated corner, a line, a NaN), at
+// random triangles from tiny to large, and one huge (past the 256 x 256 cap), some degenerate (a repeated corner, a line, a NaN), at
 // two patch areas; none for a zero or infinite area. Planted once: the centroids' thirds in float failed the bytes.
 TEST(PhotonMap, TheDeviceCutsTheHostsSurfacePatches) {
   GpuContext& gpu = test::gpu();
   if (!SurfacePatchPass::available(gpu)) GTEST_SKIP() << "the device has no doubles: the host cuts the patches";
   std::mt19937 rng(17);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-4.0f, 1.5f);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-4.0f, 0.5f);
   std::vector<glm::vec3> corners;
-  for (int t = 0; t < 3000; ++t) {
+  for (int t = 0; t < 1500; ++t) {
     const glm::vec3 a(3.0f * u(rng), 3.0f * u(rng), 3.0f * u(rng));
     const float size = std::pow(10.0f, scale(rng));
     glm::vec3 b = a + size * glm::vec3(u(rng), u(rng), u(rng)), c = a + size * glm::vec3(u(rng), u(rng), u(rng));
