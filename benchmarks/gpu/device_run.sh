@@ -107,6 +107,14 @@ if [[ $parts == *issue43* ]]; then
     done
   done
   cmp -s $work/i43_1.png $work/i43_2.png && echo "issue43: colour-only runs identical" || echo "issue43: colour-only runs DIFFER"
+  # Third session: textured Sibenik's colour-only frame, whose glossy pass reads the records through a grid built on
+  # the device, as are the photon map's estimate order and surface patches (JSON: specular.record_grid_seconds,
+  # cache.later_bounces.seconds_by_part); twice, and the PNGs' bits compared.
+  for i in 1 2; do
+    timeout 90 $rc -q render $B --device NVIDIA $hd -o $work/i43_sib_$i.png --json $R/i43_sibenik_png_$i.json | grep -E "^total"
+  done
+  cmp -s $work/i43_sib_1.png $work/i43_sib_2.png && echo "issue43: Sibenik colour-only runs identical" ||
+    echo "issue43: Sibenik colour-only runs DIFFER"
   timeout 120 $rc -q bench $S --device NVIDIA $hd --repeats 3 --json $R/i43_bench_gpu_1080p.json
   # Programs built ahead (default) against one at a time: cold_s is the frame's wait for builds, cold_fr the frame.
   RCSPLAT_BUILD_AHEAD=0 timeout 120 $rc -q bench $S --device NVIDIA $hd --repeats 1 --json $R/i43_bench_one_at_a_time.json
