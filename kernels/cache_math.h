@@ -134,6 +134,16 @@ inline float neighbour_clamped_radius(float radius, float smallest_neighbour_bou
 
 // The fixed-point unit of w * E for a frame whose largest record irradiance component is `largest`: no
 // extrapolated value exceeds (3 + a) times it once the gradients are bounded, so sums at this scale cannot overflow.
+// Which screen-space clamp a record's reach sits at, for the summary: -1 the lower, 1 the upper, 0 neither (its reach
+// in pixels within 0.01% of min_reach_pixels or max_reach_pixels). The host's count (host/render/placement.cpp) and
+// the device's (kernels/layers.cl count_clamped_reaches) both ask this.
+inline int reach_clamp_side(float accuracy, float radius, float pixel_size, float min_reach_pixels,
+                            float max_reach_pixels) {
+  const float reach_pixels = accuracy * radius / pixel_size;
+  if (reach_pixels <= min_reach_pixels * 1.0001f) return -1;
+  return reach_pixels >= max_reach_pixels * 0.9999f ? 1 : 0;
+}
+
 inline float fixed_point_irradiance_scale(float largest, float accuracy) {
   if (!(largest > 0.0f)) return 1.0f;  // no records, or nothing but darkness and NaN
   return rc_fmin(largest * (3.0f + accuracy), FLT_MAX);

@@ -4,6 +4,7 @@
 // (benchmarks/RESULTS.md, issue 13 on the H200). Sums run in a fixed order: same input, same bits.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "shared_types.h"
+#include "cache_math.h"
 
 // The first sub-pixel of output pixel (x, y), in a sub-pixel frame side times as wide.
 inline size_t first_sub_pixel(int x, int y, uint side, int out_width) {
@@ -147,8 +148,8 @@ __kernel void count_uncovered(__global const GBufferSample* gbuffer, __global co
 }
 
 // sums[0] += the records whose reach sits at the lower screen-space clamp, sums[1] += those at the upper one, as the
-// host's count_clamped_radii (host/render/placement.cpp) counts them, in the same float operations: so that a frame
-// whose records stay on the device still reports them. One work item per record.
+// host's count_clamped_radii (host/render/placement.cpp) counts them (reach_clamp_side): so that a frame whose records
+// stay on the device still reports them. One work item per record.
 __kernel void count_clamped_reaches(__global const CacheRecord* records, uint record_count, float accuracy,
                                     float min_reach_pixels, float max_reach_pixels, __global ulong* sums) {
   __local uint at_min, at_max;
@@ -156,9 +157,10 @@ __kernel void count_clamped_reaches(__global const CacheRecord* records, uint re
   if (get_local_id(0) == 0) at_min = at_max = 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (k < record_count) {
-    const float reach_pixels = accuracy * records[k].radius / records[k].pixel_size;
-    if (reach_pixels <= min_reach_pixels * 1.0001f) atomic_inc(&at_min);
-    else if (reach_pixels >= max_reach_pixels * 0.9999f) atomic_inc(&at_max);
+    const int side =
+        reach_clamp_side(accuracy, records[k].radius, records[k].pixel_size, min_reach_pixels, max_reach_pixels);
+    if (side < 0) atomic_inc(&at_min);
+    else if (side > 0) atomic_inc(&at_max);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0) {

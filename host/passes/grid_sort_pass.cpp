@@ -33,7 +33,6 @@ void GridSortPass::reserve(cl::Buffer& buffer, size_t& capacity, size_t count, c
 void GridSortPass::begin_sort(uint32_t count, size_t buckets) {
   reserve(bucket_counts_, count_capacity_, buckets + 1, "grid sort");
   reserve(bucket_fill_, fill_capacity_, buckets, "grid sort");
-  reserve(item_bucket_, item_capacity_, count, "grid sort");
   reserve(order_buffer_, order_capacity_, count, "grid sort");
   cl::CommandQueue& queue = gpu_.queue();
   queue.enqueueFillBuffer(bucket_counts_, cl_uint(0), 0, (buckets + 1) * sizeof(cl_uint));
@@ -60,6 +59,7 @@ void GridSortPass::sort(const cl::Buffer& items, uint32_t words, uint32_t count,
                         const cl::Buffer& sorted, const cl::Buffer& bucket_starts) {
   const size_t buckets = grid.bucket_count;
   begin_sort(count, buckets);
+  reserve(item_bucket_, item_capacity_, count, "grid sort");
   const size_t group = gpu_.groups().per_item;
   count_.set_buffer<cl_float>("items", items)
       .set("words", cl_uint(words))

@@ -40,7 +40,7 @@ class GridSortPass {
 
  private:
   static constexpr const char* kProgram = "grid_sort.cl";  // its kernels' file
-  // The buckets' counts zeroed (and one more, left at 0: its scan is the items' total) and the order's buffers grown.
+  // The buckets' counts zeroed (and one more, left at 0: its scan is the items' total) and the order's buffer grown.
   void begin_sort(uint32_t count, size_t buckets);
   // From the counts: scanned into bucket_starts, the items scattered into their buckets and ordered within them.
   void scatter_in_order(const cl::Buffer& item_bucket, uint32_t count, size_t buckets, const cl::Buffer& bucket_starts);

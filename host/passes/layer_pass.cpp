@@ -4,6 +4,7 @@
 #include <string>
 
 #include "util/error.h"
+#include "util/parallel.h"
 
 namespace rcsplat {
 void LayerPass::build_ahead(GpuContext& gpu) { gpu.build_ahead(kProgram); }
@@ -98,6 +99,15 @@ std::vector<PixelSurface> LayerPass::surface(const GBufferView& gbuffer, const c
   std::vector<PixelSurface> out(pixel_count());
   surface(gbuffer, direct, into(out, 1));
   return out;
+}
+
+LayerPass::PieceVisit<float> LayerPass::rgb_into(std::vector<float>& layer) {
+  return [&layer](size_t first, const float* piece, size_t count) {
+    parallel_ranges(count, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k)
+        for (size_t c = 0; c < 3; ++c) layer[3 * (first + k) + c] = piece[4 * k + c];
+    });
+  };
 }
 
 void LayerPass::direct_colour(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<float>& visit) {

@@ -39,6 +39,9 @@ class LayerPass {
   // Emission + direct light, the sub-pixels' means as surface() gives them, summed (RGBA, A 0): the colour before
   // indirect light of a frame that brings back nothing else (RenderSettings::color_only).
   void direct_colour(const GBufferView& gbuffer, const cl::Buffer& direct, const PieceVisit<float>& visit);
+  // A visit that copies each piece's RGB (of RGBA, four floats a pixel) into `layer` (three floats a pixel, sized by
+  // the caller), on all cores.
+  static PieceVisit<float> rgb_into(std::vector<float>& layer);
   // A float4 image's sub-pixel mean (RGBA, four floats a pixel).
   void mean_rgba(const cl::Buffer& source, const PieceVisit<float>& visit);
   std::vector<float> mean_rgba(const cl::Buffer& source);

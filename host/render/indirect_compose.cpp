@@ -69,20 +69,11 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
 
   StageTimer timing(st.primary.layers_s);
   const size_t pixels = f.layers.pixel_count();
-  // The RGB of a piece of RGBA pixels into a layer.
-  auto rgb_into = [](std::vector<float>& layer) {
-    return [&layer](size_t first, const float* piece, size_t count) {
-      parallel_ranges(count, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k)
-          for (size_t c = 0; c < 3; ++c) layer[3 * (first + k) + c] = piece[4 * k + c];
-      });
-    };
-  };
   if (!layers_stay_on_device(f.settings)) {
     img.indirect.resize(pixels * 3);
-    f.layers.mean_rgba(compose.indirect(), rgb_into(img.indirect));
+    f.layers.mean_rgba(compose.indirect(), LayerPass::rgb_into(img.indirect));
   }
-  f.layers.mean_rgba(compose.color(), rgb_into(img.color));
+  f.layers.mean_rgba(compose.color(), LayerPass::rgb_into(img.color));
 }
 
 void fill_cache_layers(IndirectFrame& f, const cl::Buffer& irradiance, const cl::Buffer& records_per_pixel,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/cache_math.h"
 #include "render/timing.h"
 #include "util/log.h"
 
@@ -69,9 +70,10 @@ uint32_t place_records(RecordIndex& index, RecordPass& records, const GBufferVie
 
 void count_clamped_radii(const std::vector<CacheRecord>& records, const CacheSettings& cache, RecordStats& st) {
   for (const CacheRecord& r : records) {
-    float px = cache.accuracy * r.radius / r.pixel_size;  // the reach in pixels
-    if (px <= cache.min_reach_pixels * 1.0001f) ++st.at_min_radius;
-    else if (px >= cache.max_reach_pixels * 0.9999f) ++st.at_max_radius;
+    const int side =
+        reach_clamp_side(cache.accuracy, r.radius, r.pixel_size, cache.min_reach_pixels, cache.max_reach_pixels);
+    if (side < 0) ++st.at_min_radius;
+    else if (side > 0) ++st.at_max_radius;
   }
 }
 

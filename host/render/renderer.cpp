@@ -283,13 +283,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
     st.primary.glossy_pixels += lobes[LOBE_GLOSSY];
     st.primary.hsh_pixels += lobes[LOBE_HSH];
     st.primary.shadow_rays += layers.sum_alpha(gbuffer.view(), direct.radiance());
-    if (colour_on_host)
-      layers.direct_colour(gbuffer.view(), direct.radiance(), [&](size_t first, const float* piece, size_t count) {
-        parallel_ranges(count, [&](size_t begin, size_t end) {
-          for (size_t k = begin; k < end; ++k)
-            for (size_t c = 0; c < 3; ++c) img.color[3 * (first + k) + c] = piece[4 * k + c];
-        });
-      });
+    if (colour_on_host) layers.direct_colour(gbuffer.view(), direct.radiance(), LayerPass::rgb_into(img.color));
   } else {
     surface_layers(img, colour_on_host);
   }
