@@ -179,19 +179,6 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
 }
 #endif
 
-// Bounces first .. more.bounces - 1 of a continued path from *h, added to *sum (path_step).
-inline void continue_path_from(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more,
-                               uint first, float3* sum, uint* rays) {
-  for (uint k = first; k < more.bounces; ++k)
-    if (!path_step(SCENE, h, dir, throughput, more, k, sum, rays)) break;
-}
-
-inline float3 continued_path(SCENE_ARGS, HitSurface h, float3 dir, PathContinuation more, uint* rays) {
-  float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-  continue_path_from(SCENE, &h, &dir, &throughput, more, 0u, &sum, rays);
-  return finite_or_zero(sum);
-}
-
 #if PHOTON_GATHER
 // The lookup photon whose estimates stand for *h, or -1 where the map cannot support them: no lookup photon near, or
 // one whose disc held fewer than map.min_support photons. Where few photons land (a room lit through a gap, behind a
@@ -215,35 +202,76 @@ inline float3 miss_radiance(SCENE_ARGS, float3 dir) {
 #endif
 }
 
-// Radiance a ray along dir brings back from *h, the surface it hit at distance `distance`: the light h reflects after
-// one reflection, and after more.bounces more (or what the photon map holds there); (u, v) pick the light sample at
-// h, and u_lobe the lobe of its BRDF sample where h is glossy.
-inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
-                                float v, float u_lobe, PathContinuation more, uint* rays) {
+// What a path must still do after the light at its first hit (first_bounce_from_hit): nothing, go on bounce after
+// bounce (path_bounce), or (PHOTON_GATHER, a short ray) take one step and read the map there. The wavefront record
+// trace queues the last two (kernels/path_queue.h); PATH_ENDED marks a queued path that stopped.
+#define PATH_DONE 0u
+#define PATH_CONTINUES 1u
+#define PATH_STEPS_THEN_GATHERS 2u
+#define PATH_ENDED 3u
+
+// The light a ray along dir brings back from *h, the surface it hit at distance `distance`, before any path goes on
+// from there: h's directly lit radiance, and where the photon map stands for the later bounces, the map's estimate.
+// (u, v) pick the light sample at h, u_lobe the lobe of its BRDF sample where h is glossy; *after says what the path
+// must still do (PATH_DONE ..), its light added as finite_or_zero(sum).
+inline float3 first_bounce_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
+                                    float v, float u_lobe, PathContinuation more, uint* rays, uint* after) {
 #if CAUSTICS_APART
   float3 l = hit_direct_without_caustics(SCENE, h, dir, u, v, u_lobe, rays);
 #else
   float3 l = hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
 #endif
+  *after = PATH_DONE;
+  if (!more.bounces) return l;
 #if PHOTON_GATHER
-  if (distance < map.short_path_distance && more.bounces) {
-    // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and
-    // reads there the map without its last landing (bounces 3 .. N), or goes on where the map is thin.
-    float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
-    if (path_step(SCENE, h, &dir, &throughput, more, 0u, &sum, rays)) {
-      int nearest = supported_photon(PHOTON_MAP, h);
-      if (nearest >= 0) sum += throughput * photon_gather(SCENE, PHOTON_MAP, h, dir, nearest, true);
-      else if (nearest == -1) continue_path_from(SCENE, h, &dir, &throughput, more, 1u, &sum, rays);
-    }
-    l += finite_or_zero(sum);
-  } else {
-    int nearest = supported_photon(PHOTON_MAP, h);
-    if (nearest >= 0) l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, h, dir, nearest, false));
-    else if (nearest == -1 && more.bounces) l += continued_path(SCENE, *h, dir, more, rays);
+  // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and reads
+  // there the map without its last landing (bounces 3 .. N), or goes on where the map is thin.
+  if (distance < map.short_path_distance) {
+    *after = PATH_STEPS_THEN_GATHERS;
+    return l;
   }
+  int nearest = supported_photon(PHOTON_MAP, h);
+  if (nearest >= 0) l += finite_or_zero(photon_gather(SCENE, PHOTON_MAP, h, dir, nearest, false));
+  else if (nearest == -1) *after = PATH_CONTINUES;
 #else
-  if (more.bounces) l += continued_path(SCENE, *h, dir, more, rays);
+  *after = PATH_CONTINUES;
 #endif
+  return l;
+}
+
+// Bounce k of a path going on after its first hit (mode PATH_CONTINUES or PATH_STEPS_THEN_GATHERS): path_step, then
+// for a short ray's first step the map without its last landing, or where the map is thin the path going on. false:
+// the path ends here.
+inline bool path_bounce(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3* dir, float3* throughput,
+                        PathContinuation more, uint k, uint mode, float3* sum, uint* rays) {
+  if (!path_step(SCENE, h, dir, throughput, more, k, sum, rays)) return false;
+#if PHOTON_GATHER
+  if (mode == PATH_STEPS_THEN_GATHERS && k == 0u) {
+    int nearest = supported_photon(PHOTON_MAP, h);
+    if (nearest >= 0) {
+      *sum += *throughput * photon_gather(SCENE, PHOTON_MAP, h, *dir, nearest, true);
+      return false;
+    }
+    return nearest == -1;
+  }
+#endif
+  return true;
+}
+
+// Radiance a ray along dir brings back from *h, the surface it hit at distance `distance`: the light h reflects after
+// one reflection, and after more.bounces more (or what the photon map holds there); (u, v) pick the light sample at
+// h, and u_lobe the lobe of its BRDF sample where h is glossy. The path's bounces run here in a loop; the wavefront
+// record trace runs the same path_bounce calls one kernel a bounce, with the same bits.
+inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
+                                float v, float u_lobe, PathContinuation more, uint* rays) {
+  uint after;
+  float3 l = first_bounce_from_hit(SCENE GATHER_MAP, h, dir, distance, u, v, u_lobe, more, rays, &after);
+  if (after != PATH_DONE) {
+    float3 sum = (float3)(0.0f), throughput = (float3)(1.0f);
+    for (uint k = 0u; k < more.bounces; ++k)
+      if (!path_bounce(SCENE GATHER_MAP, h, &dir, &throughput, more, k, after, &sum, rays)) break;
+    l += finite_or_zero(sum);
+  }
   return l;
 }
 

@@ -7,8 +7,9 @@
 // hundred thousand rays, and a GPU needs that many work-items in flight), in three kernels per launch of candidates:
 //   aim_record_guides   per record: the light guide's cones its rays share (none without a guide);
 //   trace_record_rays   per ray: one stratum's radiance and hit distance, or one guided ray's weighted share of E
-//                       (or the same in two kernels, trace_record_hits and shade_record_hits, where the device does
-//                       better so: GroupSizes::split_record_trace);
+//                       (or the same in two kernels, trace_record_hits and shade_record_hits, or as a wavefront,
+//                       trace_record_hits, shade_record_first_hits and a kernel a later bounce over a queue of paths:
+//                       GroupSizes::record_trace, the device's choice);
 //   reduce_records      per record: E, the radius, the gradients and the horizon from its samples, summed in one fixed
 //                       order, so a record does not depend on how its rays were scheduled (the radius' Hessian
 //                       walks its own mesh of the samples: relative_irradiance_hessian).
@@ -16,6 +17,7 @@
 #include "bounce.h"
 #include "cache_math.h"
 #include "light_guide.h"
+#include "path_queue.h"
 #include "record_hessian.h"
 
 // The host compiles this file with THETA_STRATA_CAPACITY = the largest M it will ask for (at most
@@ -197,18 +199,26 @@ inline HitDesc trace_record_hit(SCENE_ARGS, RecordSite site, RecordRay ray) {
   return out;
 }
 
-// Sample s from the light its ray brings from `hit` (kernels/bounce.h); *rays counts the rays cast, its own included.
+// The light sample s's ray brings from `hit` (kernels/bounce.h), unweighted; *rays counts the rays cast, its own
+// included. queues_paths (the wavefront trace): only the first hit's light, *after saying what path must still go on
+// from there (PATH_DONE ..); otherwise the whole path's.
+inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
+                               RecordRay ray, HitDesc hit, bool queues_paths, uint* after, uint* rays) {
+  *rays = ray.cast ? 1u : 0u;
+  *after = PATH_DONE;
+  if (hit.prim < 0) return ray.cast ? miss_radiance(SCENE, ray.dir) : (float3)(0.0f);
+  HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
+  const PathContinuation more = path_continuation(site.key, s, hp.bounces);
+  const float u = random01(site.key, s, 2u), v = random01(site.key, s, 3u), u_lobe = random01(site.key, s, 4u);
+  if (queues_paths) return first_bounce_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays, after);
+  return radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays);
+}
+
+// Sample s from the light its ray brings from `hit`, its whole path's.
 inline float4 shade_record_hit(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
                                RecordRay ray, HitDesc hit, uint* rays) {
-  *rays = ray.cast ? 1u : 0u;
-  float3 l = (float3)(0.0f);
-  if (hit.prim >= 0) {
-    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
-    l = radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, random01(site.key, s, 2u), random01(site.key, s, 3u),
-                          random01(site.key, s, 4u), path_continuation(site.key, s, hp.bounces), rays);
-  } else if (ray.cast) {
-    l = miss_radiance(SCENE, ray.dir);
-  }
+  uint after;
+  float3 l = record_hit_light(SCENE GATHER_MAP, site, hp, s, ray, hit, false, &after, rays);
   return record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
 }
 
@@ -255,6 +265,53 @@ __kernel void shade_record_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __glob
         SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hits[record_launch_at(item) + s], &rays);
     sample_rays[record_launch_at(item) + s] = rays;
   }
+}
+
+// ... or, the wavefront trace (GroupSizes::record_trace, a GPU), in small kernels of which none holds a path's loop
+// (kernels/path_queue.h). shade_record_first_hits shades each hit as far as its first bounce's light, and queues the
+// paths that must go on from there, their samples waiting unweighted...
+__kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __global const uint* candidates,
+                                      RecordBatchParams batch, __global const RecordGuideCones* record_guides,
+                                      __global const HitDesc* hits, __global float4* samples,
+                                      __global uint* sample_rays, __global QueuedPath* paths,
+                                      volatile __global uint* path_count) {
+  RecordItem item;
+  if (!record_item(gbuffer, candidates, batch, &item)) return;
+  for (uint s = item.first; s < item.end; ++s) {
+    RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
+    const size_t at = record_samples_at(batch, item) + s, launch_at = record_launch_at(item) + s;
+    const HitDesc hit = hits[launch_at];
+    uint after, rays;
+    float3 l = record_hit_light(SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hit, true, &after, &rays);
+    float4 sample = record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
+    if (after == PATH_DONE) {
+      samples[at] = sample;
+      sample_rays[launch_at] = rays;
+    } else {
+      samples[at] = (float4)(l, sample.w);
+      const PathContinuation more = path_continuation(item.site.key, s, batch.hemisphere.bounces);
+      queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, ray.weight, rays);
+    }
+  }
+}
+
+// ... step_record_paths takes every queued path bounce `bounce` further (0 .. later_bounces - 1, a launch each)...
+__kernel void step_record_paths(SCENE_ARGS GATHER_MAP_ARGS, __global QueuedPath* paths,
+                                __global const uint* path_count, uint bounce, uint later_bounces) {
+  const size_t i = get_global_id(0);
+  if (i < *path_count) step_queued_path(SCENE GATHER_MAP, paths + i, bounce, later_bounces);
+}
+
+// ... and finish_record_paths adds each path's light to its sample and weighs it, as shade_record_hit does.
+__kernel void finish_record_paths(__global const QueuedPath* paths, __global const uint* path_count,
+                                  __global float4* samples, __global uint* sample_rays) {
+  const size_t i = get_global_id(0);
+  if (i >= *path_count) return;
+  __global const QueuedPath* path = paths + i;
+  const float4 first = samples[path->sample];
+  const float3 l = first.xyz + finite_or_zero(vload3(0, path->sum));
+  samples[path->sample] = (float4)(l * path->weight, first.w);
+  sample_rays[path->launch_sample] = path->rays;
 }
 
 // The Hessian's mesh takes every row_step-th row (ending at the last, nearest the horizon) and every column_step-th

@@ -237,6 +237,23 @@ typedef struct {
   rc_int prim;  // -1 when nothing was hit
 } HitDesc;
 
+// A record ray's path after its first hit, queued for the wavefront trace (kernels/path_queue.h): one bounce kernel a
+// step over the queue, so no kernel holds a path's loop. The hit it stands on is kept as the trace gave it (hit_surface
+// builds the same surface from it again).
+typedef struct {
+  rc_uint sample;         // where its (radiance, distance) waits in the samples buffer
+  rc_uint launch_sample;  // its place in the launch (the rays it cast)
+  rc_uint key, stream_sample;  // its random stream (PathContinuation)
+  rc_uint mode;           // PATH_CONTINUES or PATH_STEPS_THEN_GATHERS; PATH_ENDED once it stops
+  rc_uint rays;           // rays cast so far, its first hit's own included
+  rc_int prim;            // the hit it stands on: triangle and barycentrics
+  float u, v;
+  float dir[3];           // the direction it reached that hit along
+  float throughput[3];
+  float sum[3];           // the light its bounces gathered so far
+  float weight;           // the sample's factor (record_sample)
+} QueuedPath;
+
 #define RECORD_HORIZON_SECTORS 8
 // An irradiance cache record (docs/ALGORITHM.md section 2): where it sits, how far it reaches, its irradiance and the
 // Ward-Heckbert gradients. A gradient row is d(E.rgb)/d(axis): E_k(P) = E + sum_axis delta[axis] * row[axis].
@@ -547,6 +564,7 @@ static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(PixelSurface) == 80);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
+static_assert(sizeof(QueuedPath) == 76 && alignof(QueuedPath) == 4);
 static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 36);
 static_assert(sizeof(GuideCluster) == 48);

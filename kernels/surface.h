@@ -152,12 +152,17 @@ typedef struct {
   float3 ns, ng, albedo;
   SurfaceLobe lobe;
   int albedo_read, lobe_read;
+  HitDesc hit;  // the trace's hit it was built from (a queued path keeps it: kernels/path_queue.h)
 } HitSurface;
 
 // The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
 inline HitSurface hit_surface(__global const TriangleShading* triangles, int prim, float u, float v, float3 dir) {
   HitSurface h;
   h.s = surface_at(triangles, prim, u, v);
+  h.hit.t = 0.0f;  // not known here, and not needed to build the surface again
+  h.hit.u = u;
+  h.hit.v = v;
+  h.hit.prim = prim;
   bool back = dot(h.s.geometric_normal, dir) > 0.0f;
   h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
   h.ns = back ? -h.s.shading_normal : h.s.shading_normal;

@@ -98,14 +98,17 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   one_bounce.bounces = 1;
   render(gpu, scene, one_bounce);
   settings.color_only = false;
-  // The record trace the device's other way (GroupSizes::split_record_trace: split into hits and shading on a CPU
-  // device, one kernel on a GPU), with the photon map too.
+  // The record trace's other shapes than the device's (GroupSizes::record_trace: fused on a CPU device, the wavefront
+  // on a GPU), with the photon map too.
   const GroupSizes device_choice = gpu.groups();
-  GroupSizes split = device_choice;
-  split.split_record_trace = !device_choice.split_record_trace;
-  gpu.set_groups(split);
-  render(gpu, scene, settings);
-  gpu.set_groups(device_choice);
+  for (RecordTrace trace : {RecordTrace::fused, RecordTrace::split, RecordTrace::wavefront}) {
+    if (trace == device_choice.record_trace) continue;
+    GroupSizes shape = device_choice;
+    shape.record_trace = trace;
+    gpu.set_groups(shape);
+    render(gpu, scene, settings);
+    gpu.set_groups(device_choice);
+  }
   PhotonHit photon{};
   photon.hit = 1;
   photon.normal[1] = 1.0f;

@@ -14,6 +14,7 @@
 #include "brdf_reference.h"
 #include "cache_test_scenes.h"
 #include "corridor_scene.h"
+#include "gap_room_scene.h"
 #include "hsh_reference.h"
 #include "kernels/hsh.h"
 #include "kernels/low_discrepancy.h"
@@ -236,11 +237,11 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
   hp.guide_rays = 16;
   hp.guide_clusters = uint32_t(guide.size());
   const GroupSizes device_choice = gpu.groups();
-  auto records_with = [&](size_t samples_per_item, size_t samples_per_launch, bool split, unsigned bounces) {
+  auto records_with = [&](size_t samples_per_item, size_t samples_per_launch, RecordTrace trace, unsigned bounces) {
     GroupSizes shape = device_choice;
     shape.record_samples_per_item = samples_per_item;
     shape.record_samples_per_launch = samples_per_launch;
-    shape.split_record_trace = split;
+    shape.record_trace = trace;
     gpu.set_groups(shape);
     RecordPass pass(gpu, twin.device, hp.theta_strata);
     pass.begin_frame(nullptr, bounces);
@@ -252,23 +253,61 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
   size_t per_record = size_t(hp.theta_strata) * hp.phi_strata + hp.guide_rays;
   struct Shape {
     size_t per_item, per_launch;
-    bool split;
+    RecordTrace trace;
   };
-  // The continued path (3 bounces) takes the shading's every step after the hit.
+  // The continued path (3 bounces) takes the shading's every step after the hit; the wavefront queues it.
   for (unsigned bounces : {1u, 3u}) {
-    const auto [expected, expected_rays] = records_with(1, size_t(1) << 21, false, bounces);  // a GPU's shape
-    for (Shape shape : {Shape{32, size_t(1) << 21, false}, Shape{7, 3 * per_record, false},
-                        Shape{per_record, per_record / 2, false}, Shape{1, size_t(1) << 21, true},
-                        Shape{7, 3 * per_record, true}}) {
+    // A ray a work-item, as a GPU takes them.
+    const auto [expected, expected_rays] = records_with(1, size_t(1) << 21, RecordTrace::fused, bounces);
+    for (Shape shape : {Shape{32, size_t(1) << 21, RecordTrace::fused}, Shape{7, 3 * per_record, RecordTrace::fused},
+                        Shape{per_record, per_record / 2, RecordTrace::fused},
+                        Shape{1, size_t(1) << 21, RecordTrace::split}, Shape{7, 3 * per_record, RecordTrace::split},
+                        Shape{1, size_t(1) << 21, RecordTrace::wavefront},
+                        Shape{7, 3 * per_record, RecordTrace::wavefront}}) {
       std::ostringstream label;
       label << bounces << " bounces, " << shape.per_item << " samples per work-item, " << shape.per_launch
-            << " per launch, " << (shape.split ? "split into hits and shading" : "one kernel");
-      const auto [records, rays] = records_with(shape.per_item, shape.per_launch, shape.split, bounces);
+            << " per launch, the trace " << record_trace_name(shape.trace);
+      const auto [records, rays] = records_with(shape.per_item, shape.per_launch, shape.trace, bounces);
       EXPECT_EQ(rays, expected_rays) << label.str();
       ASSERT_EQ(records.size(), expected.size());
       for (size_t i = 0; i < records.size(); ++i)
         ASSERT_EQ(std::memcmp(&records[i], &expected[i], sizeof(CacheRecord)), 0)
             << "record " << i << " differs with " << label.str();
+    }
+  }
+}
+
+// The same with the photon map standing for the later bounces (the render defaults): the map reads at long rays'
+// hits, short rays take a step first and read it without its last landing, and where the map is thin paths go on, so
+// the wavefront queues both kinds of path. In the built-in Cornell box the map is dense (short rays read it: 4 radii
+// make more of them), in the room lit through a gap (tests/gap_room_scene.h) thin where the camera looks. The whole
+// frame the same bits whatever the trace's shape, its ray count too.
+TEST(RecordKernel, SameFrameWhateverTheTraceShapeWithAPhotonMap) {
+  GpuContext& gpu = test::gpu();
+  const GroupSizes device_choice = gpu.groups();
+  RenderSettings settings;
+  settings.width = 48;
+  settings.height = 36;
+  settings.bounces = 4;
+  settings.bounce_method = BounceMethod::photons;
+  settings.short_ray_paths = 4.0f;
+  const std::pair<const char*, Scene> scenes[] = {{"Cornell box", make_cornell_box()},
+                                                  {"gap room", test::gap_lit_room()}};
+  for (const auto& [name, scene] : scenes) {
+    auto frame_with = [&](RecordTrace trace) {
+      GroupSizes shape = device_choice;
+      shape.record_trace = trace;
+      gpu.set_groups(shape);
+      RenderedImage image = render(gpu, scene, settings);
+      gpu.set_groups(device_choice);
+      return image;
+    };
+    const RenderedImage fused = frame_with(RecordTrace::fused);
+    for (RecordTrace trace : {RecordTrace::split, RecordTrace::wavefront}) {
+      const RenderedImage other = frame_with(trace);
+      EXPECT_EQ(other.stats.irradiance.rays, fused.stats.irradiance.rays) << name << ", " << record_trace_name(trace);
+      EXPECT_TRUE(other.color == fused.color && other.indirect == fused.indirect)
+          << name << ", " << record_trace_name(trace);
     }
   }
 }

@@ -11,8 +11,8 @@
 # start and warm, the record trace's shapes, and PoCL as the anchor), host (the host's work between passes, against an
 # older build in .gpu/rcsplat_old, and NVIDIA's register report), regs (register budgets for NVIDIA's compiler), layers
 # (the image layers gathered on the device, against .gpu/rcsplat_old), cold (Sponza 1080p from scratch, then warm),
-# wavefront (the record trace split in two kernels, against .gpu/rcsplat_old), split_sibenik (Sibenik's record trace
-# in one kernel and split), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
+# wavefront (the record trace fused, split and as a wavefront, against .gpu/rcsplat_old), split_sibenik (Sibenik's
+# record trace in each of those shapes), defaults (this build's defaults against .gpu/rcsplat_old, Sponza and Sibenik at 1080p),
 # budget (Sponza's frame at the defaults and at cheaper settings), issue41 (Sponza and textured Sibenik on the GPU
 # against PoCL, and repeated; textured Sibenik before items 1 and 2, glossy paths without a caustic map), heap (freed host memory reused, against
 # .gpu/rcsplat_old), pieces (image layers downloaded in pieces, against .gpu/rcsplat_old).
@@ -180,54 +180,58 @@ if [[ $parts == *regs* ]]; then
   rm -f $work/*.exr
 fi
 
-# The record trace split into a tracing and a shading kernel (RCSPLAT_RECORD_TRACE_SPLIT) against $G/rcsplat_old:
-# NVIDIA's register report of the record kernels; Sponza 1920x1080 defaults alternating old, new one-kernel and new
-# split, twice (bench: warm medians of 3 and the cold frame); the images' bits; PoCL at 1024x768 as the anchor.
+# The record trace's three shapes (RCSPLAT_RECORD_TRACE=fused|split|wavefront; a GPU's default is the wavefront:
+# tracing, the first hits' shading, a kernel a later bounce over the queued paths) against $G/rcsplat_old: NVIDIA's
+# register report of the record kernels; Sponza 1920x1080 defaults alternating old and the three shapes, twice (bench:
+# warm medians of 3 and the cold frame); the images' bits (the same whatever the shape); PoCL at 1024x768 as the anchor.
 if [[ $parts == *wavefront* ]]; then
   hd="--width 1920 --height 1080"
   RCSPLAT_CACHE_DIR=$work/verbose-cache RCSPLAT_BUILD_OPTIONS=-cl-nv-verbose timeout 60 $rc render $S --device NVIDIA \
     --width 64 --height 48 -o $work/v.exr > $R/nv_verbose.txt 2>&1
-  grep -E "ptxas info|stack frame" $R/nv_verbose.txt |
-    grep -A3 -E "entry function '(trace_record_rays|trace_record_hits|shade_record_hits|reduce_records)'" | head -40
+  grep -E "ptxas info|stack frame" $R/nv_verbose.txt | grep -A3 -E \
+    "entry function '(trace_record_rays|trace_record_hits|shade_record_hits|shade_record_first_hits|step_record_paths|reduce_records)'" |
+    head -60
   for i in 1 2; do
     timeout 90 $G/rcsplat_old -q bench $S --device NVIDIA $hd --repeats 3 --json $R/wave_old_run$i.json
-    for split in 0 1; do
-      RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 90 $rc -q bench $S --device NVIDIA $hd --repeats 3 \
-        --json $R/wave_split${split}_run$i.json
+    for shape in fused split wavefront; do
+      RCSPLAT_RECORD_TRACE=$shape timeout 90 $rc -q bench $S --device NVIDIA $hd --repeats 3 \
+        --json $R/wave_${shape}_run$i.json
     done
   done
   timeout 60 $G/rcsplat_old -q render $S --device NVIDIA $hd -o $work/old.exr > /dev/null
-  for split in 0 1; do
-    RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 60 $rc -q render $S --device NVIDIA $hd -o $work/split$split.exr \
-      --json $R/wave_render_split$split.json > /dev/null
+  for shape in fused split wavefront; do
+    RCSPLAT_RECORD_TRACE=$shape timeout 60 $rc -q render $S --device NVIDIA $hd -o $work/$shape.exr \
+      --json $R/wave_render_$shape.json > /dev/null
   done
-  cmp -s $work/split0.exr $work/split1.exr && echo "split: same bits as one kernel" || echo "split: bits DIFFER"
-  cmp -s $work/split0.exr $work/old.exr && echo "new: same bits as old" || echo "new: bits DIFFER from old"
-  $rc compare $work/split1.exr $work/old.exr --json $R/wave_split_vs_old.json | sed "s/^/split vs old: /"
+  for shape in split wavefront; do
+    cmp -s $work/fused.exr $work/$shape.exr && echo "$shape: same bits as fused" || echo "$shape: bits DIFFER from fused"
+  done
+  cmp -s $work/fused.exr $work/old.exr && echo "new: same bits as old" || echo "new: bits DIFFER from old"
+  $rc compare $work/wavefront.exr $work/old.exr --json $R/wave_vs_old.json | sed "s/^/wavefront vs old: /"
   timeout 100 $G/rcsplat_old -q bench $S --device $cpu --width 1024 --height 768 --repeats 1 --json $R/wave_old_pocl.json
-  for split in 0 1; do
-    RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 100 $rc -q bench $S --device $cpu --width 1024 --height 768 --repeats 1 \
-      --json $R/wave_pocl_split$split.json
-  done
+  timeout 100 $rc -q bench $S --device $cpu --width 1024 --height 768 --repeats 1 --json $R/wave_pocl.json
   rm -f $work/*.exr
 fi
 
-# Sibenik 1920x1080 defaults with the record trace in one kernel and split (RCSPLAT_RECORD_TRACE_SPLIT), and their
-# images' bits. (At 7a3f2e2 this part, then named prefetch, also timed cold frames with a frame's programs built on
-# threads of their own: no faster on NVIDIA, so that was taken out; benchmarks/RESULTS.md.)
+# Sibenik 1920x1080 defaults with each shape of the record trace (RCSPLAT_RECORD_TRACE), and their images' bits. (At
+# 7a3f2e2 this part, then named prefetch, also timed cold frames with a frame's programs built on threads of their own:
+# no faster on NVIDIA, so that was taken out; benchmarks/RESULTS.md.)
 if [[ $parts == *split_sibenik* ]]; then
   hd="--width 1920 --height 1080"
-  for split in 0 1; do
-    RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 \
-      --json $R/sibenik_split$split.json | grep NVIDIA | sed "s/^/sibenik split $split: /"
-    RCSPLAT_RECORD_TRACE_SPLIT=$split timeout 60 $rc -q render $B --device NVIDIA $hd -o $work/sibenik$split.exr \
+  for shape in fused split wavefront; do
+    RCSPLAT_RECORD_TRACE=$shape timeout 90 $rc -q bench $B --device NVIDIA $hd --repeats 3 \
+      --json $R/sibenik_$shape.json | grep NVIDIA | sed "s/^/sibenik $shape: /"
+    RCSPLAT_RECORD_TRACE=$shape timeout 60 $rc -q render $B --device NVIDIA $hd -o $work/sibenik_$shape.exr \
       > /dev/null
   done
-  cmp -s $work/sibenik0.exr $work/sibenik1.exr && echo "sibenik split: same bits" || echo "sibenik split: bits DIFFER"
+  for shape in split wavefront; do
+    cmp -s $work/sibenik_fused.exr $work/sibenik_$shape.exr && echo "sibenik $shape: same bits" ||
+      echo "sibenik $shape: bits DIFFER"
+  done
   rm -f $work/*.exr
 fi
 
-# This build with its defaults (on a GPU the record trace split) against $G/rcsplat_old: Sponza 1920x1080 alternating
+# This build with its defaults (on a GPU the record trace a wavefront) against $G/rcsplat_old: Sponza 1920x1080 alternating
 # twice, then Sibenik 1920x1080 once each.
 if [[ $parts == *defaults* ]]; then
   alternate_sponza_1080p defaults

@@ -183,6 +183,15 @@ void GpuContext::restart_memory_peak() {
   memory_->use.at_peak_by_use = memory_->use.live_by_use;
 }
 
+const char* record_trace_name(RecordTrace shape) {
+  switch (shape) {
+    case RecordTrace::fused: return "fused";
+    case RecordTrace::split: return "split";
+    case RecordTrace::wavefront: return "wavefront";
+  }
+  return "?";
+}
+
 GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::make_shared<MemoryLedger>()) {
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
@@ -191,7 +200,7 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
   if (info_.device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) {
     groups_.per_record = 32;
     groups_.record_samples_per_item = 1;
-    groups_.split_record_trace = true;
+    groups_.record_trace = RecordTrace::wavefront;
   }
   // For measuring the record trace's shape on a device (benchmarks/gpu/device_run.sh): every shape gives the same
   // records (RecordKernel.SameRecordsWhateverTheTraceShape), only the time differs.
@@ -203,10 +212,15 @@ GpuContext::GpuContext(const DeviceInfo& device) : info_(device), memory_(std::m
                   "\"");
     groups_.record_samples_per_item = value;
   }
-  if (const char* env = std::getenv("RCSPLAT_RECORD_TRACE_SPLIT")) {  // the same for the trace's split: 0 or 1
-    if (std::string(env) != "0" && std::string(env) != "1")
-      throw Error(std::string("RCSPLAT_RECORD_TRACE_SPLIT: expected 0 or 1, got \"") + env + "\"");
-    groups_.split_record_trace = std::string(env) == "1";
+  if (const char* env = std::getenv("RCSPLAT_RECORD_TRACE")) {  // the same for the trace's shape
+    bool known = false;
+    for (RecordTrace shape : {RecordTrace::fused, RecordTrace::split, RecordTrace::wavefront})
+      if (std::string(env) == record_trace_name(shape)) {
+        groups_.record_trace = shape;
+        known = true;
+      }
+    if (!known)
+      throw Error(std::string("RCSPLAT_RECORD_TRACE: expected fused, split or wavefront, got \"") + env + "\"");
   }
   // Builds ahead run side by side on worker threads unless RCSPLAT_BUILD_AHEAD=0, which defers each to the program()
   // that asks for it (one build at a time, in the asking thread). On PoCL's CPU device (2-core VM) the cold frame took

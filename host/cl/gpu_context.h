@@ -22,18 +22,22 @@ namespace rcsplat {
 using KernelDefines = std::map<std::string, std::string>;
 
 // Work-group sizes by kind of kernel, chosen for the device at run time.
+enum class RecordTrace { fused, split, wavefront };
+const char* record_trace_name(RecordTrace shape);
+
 struct GroupSizes {
   size_t traversal = 64;  // a ray (or pixel) per work-item, tracing: PoCL runs 15% slower when it picks the size
   size_t per_record = 8;  // a record per work-item, reducing its hundreds of samples
   // Samples of one record a work-item of the record trace takes: a GPU wants a work-item per ray; PoCL's CPU device
   // ran Sponza's record pass 14% slower that way than with 32 (the record's site and cones loaded once for all).
   size_t record_samples_per_item = 32;
-  // The record trace in two kernels, one tracing each ray to its closest hit and one shading the hits
-  // (kernels/records.cl), rather than one doing both: the same samples. On an H100 (NVIDIA's compiler report) the one
-  // kernel used 225 registers, the two 128 and 229, and the record pass took 0.58x the time; PoCL is not faster so.
-  bool split_record_trace = false;
+  // The record trace's shape (kernels/records.cl), the same samples whichever: one kernel tracing and shading each
+  // ray (fused); one tracing each ray to its closest hit and one shading the hits (split: on an H100 the one kernel
+  // used 225 registers, the two 128 and 229, and the record pass took 0.58x the time); or split with the path after
+  // the first hit queued, a kernel a bounce (wavefront: no kernel holds a path's loop). PoCL is fastest fused.
+  RecordTrace record_trace = RecordTrace::fused;
   // Samples a launch of the record trace takes at most (20 bytes each kept until reduced, 36 with a split trace's
-  // hits): 2^21 fills any GPU many times over and keeps 40 MiB (72 MiB).
+  // hits, 112 with the wavefront's queued paths): 2^21 fills any GPU many times over and keeps 40 MiB (72, 224 MiB).
   size_t record_samples_per_launch = size_t(1) << 21;
   size_t per_item = 64;   // light per-pixel or per-record work
   size_t tile_side = 8;   // 2-D launches over the image, tile_side x tile_side pixels a group

@@ -46,8 +46,12 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
   trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
   trace_hits_ = gpu.kernel("records.cl", "trace_record_hits", defines);
   shade_hits_ = gpu.kernel("records.cl", "shade_record_hits", defines);
+  shade_first_hits_ = gpu.kernel("records.cl", "shade_record_first_hits", defines);
+  step_paths_ = gpu.kernel("records.cl", "step_record_paths", defines);
+  finish_paths_ = gpu.kernel("records.cl", "finish_record_paths", defines);
   reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
+  path_count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "record path queue length");
   // Never read while guide_clusters_ is 0.
   gpu_.upload_into(guide_, guide_capacity_, std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY,
                    "light guide");
@@ -95,9 +99,41 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
        store_strata_ ? batch * samples_per_record : launch_samples, store_strata_ ? "record strata" : "record samples");
   grow(sample_rays_, sample_rays_capacity_, records * samples_per_record, sizeof(cl_uint), launch_samples,
        "record samples");
-  if (gpu_.groups().split_record_trace)
+  const RecordTrace shape = gpu_.groups().record_trace;
+  if (shape != RecordTrace::fused)
     grow(sample_hits_, sample_hits_capacity_, records * samples_per_record, sizeof(HitDesc), launch_samples,
          "record hits");
+  // Every sample of a launch may go on after its first hit (no photon map, or one thin everywhere).
+  if (shape == RecordTrace::wavefront && bounces_ > 1)
+    grow(paths_, paths_capacity_, records * samples_per_record, sizeof(QueuedPath), launch_samples,
+         "record path queue");
+}
+
+void RecordPass::trace_later_bounces(NamedKernel& shade_first_hits, size_t items, size_t launch_samples) {
+  gpu_.queue().enqueueFillBuffer(path_count_, cl_uint(0), 0, sizeof(cl_uint));
+  shade_first_hits.set_buffer<HitDesc>("hits", sample_hits_)
+      .set_buffer<cl_float4>("samples", samples_)
+      .set_buffer<cl_uint>("sample_rays", sample_rays_)
+      .set_buffer<QueuedPath>("paths", paths_)
+      .set_buffer<cl_uint>("path_count", path_count_)
+      .launch(items, gpu_.groups().traversal);
+  // The queue's length stays on the device: each launch covers every sample the queue could hold, and its work-items
+  // past the length return at once (a read of it would stall the queue once a bounce).
+  const cl_uint later_bounces = bounces_ - 1;
+  for (cl_uint bounce = 0; bounce < later_bounces; ++bounce) {
+    scene_.bind(step_paths_);
+    if (photon_map_) photon_map_->bind(step_paths_);
+    step_paths_.set_buffer<QueuedPath>("paths", paths_)
+        .set_buffer<cl_uint>("path_count", path_count_)
+        .set("bounce", bounce)
+        .set("later_bounces", later_bounces)
+        .launch(launch_samples, gpu_.groups().traversal);
+  }
+  finish_paths_.set_buffer<QueuedPath>("paths", paths_)
+      .set_buffer<cl_uint>("path_count", path_count_)
+      .set_buffer<cl_float4>("samples", samples_)
+      .set_buffer<cl_uint>("sample_rays", sample_rays_)
+      .launch(launch_samples, gpu_.groups().per_item);
 }
 
 void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates,
@@ -120,18 +156,24 @@ void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& ca
         .set("batch", batch)
         .set_buffer<RecordGuideCones>("record_guides", record_guides_);
   };
-  if (gpu_.groups().split_record_trace) {
-    bind_inputs(trace_hits_, false).set_buffer<HitDesc>("hits", sample_hits_).launch(items, gpu_.groups().traversal);
-    bind_inputs(shade_hits_, true)
-        .set_buffer<HitDesc>("hits", sample_hits_)
-        .set_buffer<cl_float4>("samples", samples_)
-        .set_buffer<cl_uint>("sample_rays", sample_rays_)
-        .launch(items, gpu_.groups().traversal);
-  } else {
+  const GroupSizes& groups = gpu_.groups();
+  if (groups.record_trace == RecordTrace::fused) {
     bind_inputs(trace_, true)
         .set_buffer<cl_float4>("samples", samples_)
         .set_buffer<cl_uint>("sample_rays", sample_rays_)
-        .launch(items, gpu_.groups().traversal);
+        .launch(items, groups.traversal);
+  } else {
+    bind_inputs(trace_hits_, false).set_buffer<HitDesc>("hits", sample_hits_).launch(items, groups.traversal);
+    // One bounce gathers no path after the first hit: the wavefront's first shading would queue none.
+    if (groups.record_trace == RecordTrace::split || bounces_ <= 1) {
+      bind_inputs(shade_hits_, true)
+          .set_buffer<HitDesc>("hits", sample_hits_)
+          .set_buffer<cl_float4>("samples", samples_)
+          .set_buffer<cl_uint>("sample_rays", sample_rays_)
+          .launch(items, groups.traversal);
+    } else {
+      trace_later_bounces(bind_inputs(shade_first_hits_, true), items, size_t(batch.launch_count) * samples_per_record);
+    }
   }
 
   gbuffer.bind(reduce_);

@@ -68,22 +68,25 @@ class RecordPass {
   // Traces and reduces candidates batch.first_candidate .. + batch.launch_count - 1.
   void compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates, const RecordBatchParams& batch,
                       size_t samples_per_record);
+  // The wavefront trace after the hits: their first bounce's light (shade_first_hits, its inputs bound) queues the
+  // paths going on, a launch a later bounce steps them, and a last one adds their light to their samples.
+  void trace_later_bounces(NamedKernel& shade_first_hits, size_t items, size_t launch_samples);
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
   unsigned theta_capacity_;
   bool store_strata_;
   const PhotonMapPass* photon_map_;
-  NamedKernel aim_, trace_, trace_hits_, shade_hits_, reduce_;
+  NamedKernel aim_, trace_, trace_hits_, shade_hits_, shade_first_hits_, step_paths_, finish_paths_, reduce_;
   cl::Buffer records_, ray_total_, guide_;
   bool photon_gather_;
-  // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast, and with a split trace
-  // (GroupSizes::split_record_trace) each sample's hit. With store_strata, samples_ is the whole batch's strata
-  // (strata()).
-  cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_;
+  // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast, with a split or
+  // wavefront trace (GroupSizes::record_trace) each sample's hit, and with a wavefront the queue of paths going on
+  // after their first hit and its length. With store_strata, samples_ is the whole batch's strata (strata()).
+  cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_, paths_, path_count_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
   size_t capacity_ = 0, guide_capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
-         sample_hits_capacity_ = 0;
+         sample_hits_capacity_ = 0, paths_capacity_ = 0;
 };
 
 }  // namespace rcsplat
