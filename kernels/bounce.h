@@ -203,12 +203,11 @@ inline float3 miss_radiance(SCENE_ARGS, float3 dir) {
 }
 
 // What a path must still do after the light at its first hit (first_bounce_from_hit): nothing, go on bounce after
-// bounce (path_bounce), or (PHOTON_GATHER, a short ray) take one step and read the map there. The wavefront record
-// trace queues the last two (kernels/path_queue.h); PATH_ENDED marks a queued path that stopped.
+// bounce (path_bounce), or (PHOTON_GATHER, a short ray) take one step and read the map there. The wavefront trace
+// queues the last two (kernels/path_queue.h).
 #define PATH_DONE 0u
 #define PATH_CONTINUES 1u
 #define PATH_STEPS_THEN_GATHERS 2u
-#define PATH_ENDED 3u
 
 // The light a ray along dir brings back from *h, the surface it hit at distance `distance`, before any path goes on
 // from there: h's directly lit radiance, and where the photon map stands for the later bounces, the map's estimate.

@@ -10,6 +10,7 @@
 #include "brdf_frame.h"
 #include "counter_random.h"
 #include "light_guide.h"
+#include "path_queue.h"
 #include "world_records.h"
 
 // A sample's path ends at its first hit on a Lambertian or rough surface that a record of the splat reaches
@@ -64,6 +65,33 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
   return finite_or_zero(sum);
 }
 
+// Where a pixel's samples take their light (glossy_pixel): GLOSSY_WHOLE traces each sample's path there and then (one
+// kernel, glossy_indirect); the wavefront (GroupSizes::record_trace) runs the pixel twice around its samples' kernels:
+// GLOSSY_AIM keeps each sample's direction in its slot, and GLOSSY_GATHER reads each sample's light back from it, in
+// the same order and the same sums, so the pixel is the same bits. A slot: (direction, 1) for a ray to cast, then
+// (light, rays cast) with the counts' bits in w; (0, 0) where the sample casts no ray.
+#define GLOSSY_WHOLE 0u
+#define GLOSSY_AIM 1u
+#define GLOSSY_GATHER 2u
+
+inline float3 glossy_sample_light(SCENE_ARGS CACHED_LIGHT_ARGS, uint phase, __global float4* slot, float3 origin,
+                                  float3 dir, uint key, uint s, uint bounces, uint* rays) {
+  if (phase == GLOSSY_AIM) {
+    *slot = (float4)(dir, as_float(1u));
+    return (float3)(0.0f);
+  }
+  if (phase == GLOSSY_GATHER) {
+    const float4 light = *slot;
+    *rays += as_uint(light.w);
+    return light.xyz;
+  }
+  return sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
+                         random01(key, s, 4u), path_continuation(key, s, bounces), rays);
+}
+
+// A pixel's random stream.
+inline uint glossy_key(uint pixel, uint seed) { return hash_u32(pixel ^ hash_u32(seed ^ STREAM_GLOSSY)); }
+
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
 // adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
 // (Veach 1997): a small bright patch that the lobe's own samples find in one pixel of many (fireflies) is found by
@@ -107,8 +135,8 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
 // n_g p_g / (n_c p_c + n_g p_g). So the light of a small bright patch is never truncated to the HSH order: through the
 // basis it rang (dark bands beside its reflection) on glossy walls. Directions the lobe does not reflect cast no ray.
 inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideCluster* guide, GlossyParams params,
-                          float3 p, float3 ng,
-                          float3 origin, ShadingFrame frame, BrdfInputs in, float3 wo, uint key, uint* rays) {
+                          float3 p, float3 ng, float3 origin, ShadingFrame frame, BrdfInputs in, float3 wo, uint key,
+                          uint phase, __global float4* slots, uint* rays) {
   const float strata_density = (float)params.record_strata * RC_INV_PI;  // n_c p_c / cos(theta)
   GuideCone cones[GUIDE_MAX_CONES];
   const uint cone_count =
@@ -125,17 +153,19 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
     float3 f = brdf_eval_specular(in, wo, wi);
     if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
     float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
-    float3 l = sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
-                               random01(key, s, 4u), path_continuation(key, s, params.bounces), rays);
+    float3 l = glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, rays);
     sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
   }
   return sum / (float)max(params.guide_share_samples, 1u);
 }
 
-__kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                              WORLD_RECORD_ARGS, __global float4* glossy_out) {
-  uint pixel = get_global_id(0);
-  if (pixel >= (uint)(camera->width * camera->height)) return;
+// Pixel `pixel`'s glossy light into glossy_out (GLOSSY_WHOLE, GLOSSY_GATHER), or its samples' directions into its
+// slots_per_pixel slots (GLOSSY_AIM).
+inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                         WORLD_RECORD_ARGS, uint pixel, uint phase, __global float4* slots, uint slots_per_pixel,
+                         __global float4* glossy_out) {
+  if (phase == GLOSSY_AIM)
+    for (uint s = 0; s < slots_per_pixel; ++s) slots[s] = (float4)(0.0f);
   GBufferSample g = gbuffer[pixel];
   bool sampled = g.lobe == LOBE_GLOSSY;
 #if SAMPLE_HSH_LOBES
@@ -144,7 +174,7 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   bool cached_with_guide = !SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH && params.guide_share_samples > 0u &&
                            params.guide_clusters > 0u;
   if (g.triangle < 0 || !(sampled || cached_with_guide)) {
-    glossy_out[pixel] = (float4)(0.0f);
+    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(0.0f);
     return;
   }
   float3 p = vload3(0, g.position), ng = vload3(0, g.geometric_normal);
@@ -152,11 +182,12 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
   BrdfInputs in = gbuffer_brdf(g);
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
-  uint key = hash_u32(pixel ^ hash_u32(params.seed ^ STREAM_GLOSSY));
+  uint key = glossy_key(pixel, params.seed);
   if (cached_with_guide) {
     uint rays = 0;
-    float3 share = guide_share(SCENE CACHED_LIGHT, guide, params, p, ng, origin, frame, in, wo, key, &rays);
-    glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays);
+    float3 share =
+        guide_share(SCENE CACHED_LIGHT, guide, params, p, ng, origin, frame, in, wo, key, phase, slots, &rays);
+    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays);
     return;
   }
   GuideCone cones[GUIDE_MAX_CONES];
@@ -185,8 +216,8 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     if (wi.z <= 0.0f) continue;
     float3 dir = to_world(frame, wi);
     if (dot(dir, ng) <= 0.0f) continue;
-    float3 l = sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
-                               random01(key, s, 4u), path_continuation(key, s, params.bounces), &rays);
+    float3 l =
+        glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, &rays);
     if (!cone_count) {
       sum += brdf_specular_weight(in, wo, wi) * l;
       continue;
@@ -196,7 +227,125 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
     float combined = lobe_density + (float)guided * guide_pdf_drawn(cones, cone_count, dir, drawn_from);
     if (combined > 0.0f) sum += brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)lobe_samples / combined);
   }
-  glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays);
+  if (phase != GLOSSY_AIM)
+    glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays);
+}
+
+// Each glossy pixel's samples traced and shaded in one work-item...
+__kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                              WORLD_RECORD_ARGS, __global float4* glossy_out) {
+  uint pixel = get_global_id(0);
+  if (pixel < (uint)(camera->width * camera->height))
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, pixel, GLOSSY_WHOLE, glossy_out, 0u, glossy_out);
+}
+
+// ... or as a wavefront (GroupSizes::record_trace), over launches of pixel_count pixels from first_pixel, each with
+// slots_per_pixel sample slots: aim_glossy_samples keeps the samples' directions...
+__kernel void aim_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                                 WORLD_RECORD_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
+                                 __global float4* sample_slots) {
+  uint i = get_global_id(0);
+  if (i < pixel_count)
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, first_pixel + i, GLOSSY_AIM,
+                 sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, sample_slots);
+}
+
+// ... trace_glossy_samples traces them to their closest hits (prim -2: no ray)...
+__kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, uint first_pixel, uint pixel_count,
+                                   uint slots_per_pixel, __global const float4* sample_slots, __global HitDesc* hits) {
+  size_t i = get_global_id(0);
+  if (i >= (size_t)pixel_count * slots_per_pixel) return;
+  const float4 slot = sample_slots[i];
+  TraceHit hit = {INFINITY, 0.0f, 0.0f, -2};
+  if (as_uint(slot.w)) {
+    GBufferSample g = gbuffer[first_pixel + i / slots_per_pixel];
+    RayPrecomp r = ray_precompute(offset_ray_origin(vload3(0, g.position), vload3(0, g.geometric_normal)), slot.xyz);
+    if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) hit.prim = -1;
+  }
+  HitDesc out = {hit.t, hit.u, hit.v, hit.prim};
+  hits[i] = out;
+}
+
+// ... shade_glossy_first_hits shades each hit as far as its first bounce's light (sample_radiance's first steps), and
+// queues the paths that go on (kernels/path_queue.h)...
+__kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_RECORD_ARGS, uint first_pixel,
+                                      uint pixel_count, uint slots_per_pixel, __global float4* sample_slots,
+                                      __global const HitDesc* hits, __global QueuedPath* paths,
+                                      volatile __global uint* path_count) {
+  size_t i = get_global_id(0);
+  if (i >= (size_t)pixel_count * slots_per_pixel) return;
+  const HitDesc hit = hits[i];
+  if (hit.prim == -2) return;
+  const float3 dir = sample_slots[i].xyz;
+  const uint s = (uint)(i % slots_per_pixel), key = glossy_key(first_pixel + (uint)(i / slots_per_pixel), params.seed);
+  const PathContinuation more = path_continuation(key, s, params.bounces);
+  uint rays = 1u, after = PATH_DONE;
+  float3 l;
+  if (hit.prim < 0) {
+    l = miss_radiance(SCENE, dir);
+  } else {
+    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
+    const float u = random01(key, s, 2u), v = random01(key, s, 3u), u_lobe = random01(key, s, 4u);
+    if (!world_grid.record_count) {
+      l = first_bounce_from_hit(SCENE, &h, dir, hit.t, u, v, u_lobe, more, &rays, &after);
+    } else {
+      l = hit_direct(SCENE, &h, dir, u, v, u_lobe, &rays);
+      if (more.bounces) after = PATH_READS_RECORDS;
+      else l = finite_or_zero(l);
+    }
+  }
+  sample_slots[i] = (float4)(l, as_float(rays));
+  if (after != PATH_DONE)
+    queue_path(paths, path_count, (uint)i, (uint)i, more, after, hit, dir,
+               after == PATH_READS_RECORDS ? l : (float3)(0.0f), 1.0f, rays);
+}
+
+// Bounce k of a glossy sample's path: where it reads the records (PATH_READS_RECORDS), the records' light where they
+// reach its hit, else a step on; otherwise as a record ray's path.
+inline bool glossy_path_bounce(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3* dir, float3* throughput,
+                               PathContinuation more, uint k, uint mode, float3* sum, uint* rays) {
+  if (mode != PATH_READS_RECORDS) return path_bounce(SCENE, h, dir, throughput, more, k, mode, sum, rays);
+  float3 cached;
+  if (cached_light(SCENE CACHED_LIGHT, h, *dir, &cached)) {
+    *sum += *throughput * cached;
+    return false;
+  }
+  return path_step(SCENE, h, dir, throughput, more, k, sum, rays);
+}
+
+// ... step_glossy_paths takes every queued path bounce `bounce` further (0 .. later_bounces - 1, a launch each)...
+__kernel void step_glossy_paths(SCENE_ARGS, WORLD_RECORD_ARGS, __global QueuedPath* paths,
+                                __global const uint* path_count, uint bounce, uint later_bounces) {
+  const size_t i = get_global_id(0);
+  HitSurface h;
+  float3 dir, throughput, sum;
+  PathContinuation more;
+  uint rays;
+  if (i >= *path_count ||
+      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays))
+    return;
+  bool goes_on =
+      glossy_path_bounce(SCENE CACHED_LIGHT, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
+  store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays);
+}
+
+// ... finish_glossy_paths writes each path's whole light into its slot...
+__kernel void finish_glossy_paths(__global const QueuedPath* paths, __global const uint* path_count,
+                                  __global float4* sample_slots) {
+  const size_t i = get_global_id(0);
+  if (i >= *path_count) return;
+  __global const QueuedPath* path = paths + i;
+  sample_slots[path->sample] = (float4)(queued_path_light(path, sample_slots[path->sample].xyz), as_float(path->rays));
+}
+
+// ... and gather_glossy_samples sums each pixel's samples as glossy_indirect does.
+__kernel void gather_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                                    WORLD_RECORD_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
+                                    __global float4* sample_slots, __global float4* glossy_out) {
+  uint i = get_global_id(0);
+  if (i < pixel_count)
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, first_pixel + i, GLOSSY_GATHER,
+                 sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, glossy_out);
 }
 
 // world_cached_irradiance at query points (xyz) with their shading normals, for tests: (E, sum of weights).

@@ -1,17 +1,24 @@
-// The later bounces of record rays as a queue (the wavefront record trace, GroupSizes::record_trace): the shading of
-// a ray's first hit queues the path that must go on from there (first_bounce_from_hit's PATH_CONTINUES or
-// PATH_STEPS_THEN_GATHERS); one launch a bounce then takes every queued path one path_bounce further, and a last one
-// adds what each gathered to its sample. No kernel holds a path's loop, and each queued path makes exactly the float
-// operations radiance_from_hit makes in its loop, so the samples are the same bits as one kernel's. A path's slot comes
-// from an atomic counter: its order in the queue changes nothing a path computes, only where it is kept.
+// The bounces after a ray's first hit as a queue (the wavefront trace, GroupSizes::record_trace): the shading of the
+// first hit queues the path that must go on from there; one launch a bounce then takes every queued path one bounce
+// further, and a last one adds what each gathered to its sample. No kernel holds a path's loop, and each queued path
+// makes exactly the float operations the one-kernel trace makes in its loop, so the samples are the same bits. A path's
+// slot comes from an atomic counter: its order in the queue changes nothing a path computes, only where it is kept.
+// The record pass (kernels/records.cl) and the glossy pass (kernels/glossy.cl) queue their paths so; each steps them
+// with its own bounce (path_bounce, glossy_path_bounce) between load_queued_path and store_queued_path.
 #ifndef RCSPLAT_PATH_QUEUE_H
 #define RCSPLAT_PATH_QUEUE_H
 #include "bounce.h"
 
-// Queues a path from the hit `hit` reached along dir; sample: where its (first-hit light, distance) waits in the
-// samples buffer, launch_sample its place in the launch.
+// Set on a queued path's mode once it stops.
+#define PATH_ENDED 0x100u
+// A glossy sample's path that reads the records where they reach (kernels/glossy.cl): its sum starts at the first
+// hit's light and is its whole light.
+#define PATH_READS_RECORDS 4u
+
+// Queues a path from the hit `hit` reached along dir, its sum starting at `sum`; sample: where its first hit's light
+// waits, launch_sample where its rays are counted.
 inline void queue_path(__global QueuedPath* paths, volatile __global uint* path_count, uint sample, uint launch_sample,
-                       PathContinuation more, uint mode, HitDesc hit, float3 dir, float weight, uint rays) {
+                       PathContinuation more, uint mode, HitDesc hit, float3 dir, float3 sum, float weight, uint rays) {
   __global QueuedPath* path = paths + atomic_inc(path_count);
   path->sample = sample;
   path->launch_sample = launch_sample;
@@ -24,31 +31,47 @@ inline void queue_path(__global QueuedPath* paths, volatile __global uint* path_
   path->v = hit.v;
   vstore3(dir, 0, path->dir);
   vstore3((float3)(1.0f), 0, path->throughput);
-  vstore3((float3)(0.0f), 0, path->sum);
+  vstore3(sum, 0, path->sum);
   path->weight = weight;
 }
 
-// Bounce k of a queued path (k = 0 for every path first; a path that ended is left as it is).
-inline void step_queued_path(SCENE_ARGS GATHER_MAP_ARGS, __global QueuedPath* path, uint k, uint bounces) {
-  const uint mode = path->mode;
-  if (mode == PATH_ENDED) return;
-  PathContinuation more = {path->key, path->stream_sample, bounces};
-  float3 dir = vload3(0, path->dir), throughput = vload3(0, path->throughput), sum = vload3(0, path->sum);
-  HitSurface h = hit_surface(triangles, path->prim, path->u, path->v, dir);
-  uint rays = path->rays;
-  bool goes_on = path_bounce(SCENE GATHER_MAP, &h, &dir, &throughput, more, k, mode, &sum, &rays);
+// A queued path's state for its next bounce; false: it has ended.
+inline bool load_queued_path(__global const TriangleShading* triangles, __global const QueuedPath* path,
+                             uint later_bounces, HitSurface* h, float3* dir, float3* throughput, float3* sum,
+                             PathContinuation* more, uint* rays) {
+  if (path->mode & PATH_ENDED) return false;
+  more->key = path->key;
+  more->sample = path->stream_sample;
+  more->bounces = later_bounces;
+  *dir = vload3(0, path->dir);
+  *throughput = vload3(0, path->throughput);
+  *sum = vload3(0, path->sum);
+  *h = hit_surface(triangles, path->prim, path->u, path->v, *dir);
+  *rays = path->rays;
+  return true;
+}
+
+// Keeps what bounce k did: the path ends where it stopped or after its last bounce.
+inline void store_queued_path(__global QueuedPath* path, uint k, uint later_bounces, bool goes_on, HitSurface* h,
+                              float3 dir, float3 throughput, float3 sum, uint rays) {
   vstore3(sum, 0, path->sum);
   path->rays = rays;
-  if (!goes_on || k + 1u == bounces) {
-    path->mode = PATH_ENDED;
+  if (!goes_on || k + 1u == later_bounces) {
+    path->mode |= PATH_ENDED;
     return;
   }
   // The surface it now stands on, as the trace gave it: hit_surface builds it again for the next bounce.
-  path->prim = h.hit.prim;
-  path->u = h.hit.u;
-  path->v = h.hit.v;
+  path->prim = h->hit.prim;
+  path->u = h->hit.u;
+  path->v = h->hit.v;
   vstore3(dir, 0, path->dir);
   vstore3(throughput, 0, path->throughput);
+}
+
+// A path's whole light, from first (its first hit's, as the sample kept it) and what its bounces gathered.
+inline float3 queued_path_light(__global const QueuedPath* path, float3 first) {
+  const float3 sum = vload3(0, path->sum);
+  return (path->mode & ~PATH_ENDED) == PATH_READS_RECORDS ? finite_or_zero(sum) : first + finite_or_zero(sum);
 }
 
 #endif

@@ -290,7 +290,8 @@ __kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, 
     } else {
       samples[at] = (float4)(l, sample.w);
       const PathContinuation more = path_continuation(item.site.key, s, batch.hemisphere.bounces);
-      queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, ray.weight, rays);
+      queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, (float3)(0.0f), ray.weight,
+                 rays);
     }
   }
 }
@@ -299,7 +300,15 @@ __kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, 
 __kernel void step_record_paths(SCENE_ARGS GATHER_MAP_ARGS, __global QueuedPath* paths,
                                 __global const uint* path_count, uint bounce, uint later_bounces) {
   const size_t i = get_global_id(0);
-  if (i < *path_count) step_queued_path(SCENE GATHER_MAP, paths + i, bounce, later_bounces);
+  HitSurface h;
+  float3 dir, throughput, sum;
+  PathContinuation more;
+  uint rays;
+  if (i >= *path_count ||
+      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays))
+    return;
+  bool goes_on = path_bounce(SCENE GATHER_MAP, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
+  store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays);
 }
 
 // ... and finish_record_paths adds each path's light to its sample and weighs it, as shade_record_hit does.
@@ -309,8 +318,7 @@ __kernel void finish_record_paths(__global const QueuedPath* paths, __global con
   if (i >= *path_count) return;
   __global const QueuedPath* path = paths + i;
   const float4 first = samples[path->sample];
-  const float3 l = first.xyz + finite_or_zero(vload3(0, path->sum));
-  samples[path->sample] = (float4)(l * path->weight, first.w);
+  samples[path->sample] = (float4)(queued_path_light(path, first.xyz) * path->weight, first.w);
   sample_rays[path->launch_sample] = path->rays;
 }
 

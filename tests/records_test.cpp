@@ -16,6 +16,7 @@
 #include "corridor_scene.h"
 #include "gap_room_scene.h"
 #include "hsh_reference.h"
+#include "lobed_cornell_box.h"
 #include "kernels/hsh.h"
 #include "kernels/low_discrepancy.h"
 #include "passes/gbuffer_pass.h"
@@ -595,6 +596,46 @@ TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {
   // Float directions, BRDF and distances against double: a grazing ray may land elsewhere in a few pixels.
   EXPECT_LT(median, 1e-4);
   EXPECT_LT(p95, 5e-3);
+}
+
+// The glossy pass as a wavefront (GroupSizes::record_trace: its samples traced, their first hits shaded, the paths
+// going on queued and stepped a kernel a bounce, then each pixel's samples summed) against its one kernel: the same
+// frame, bit for bit, with its ray count. The lobed Cornell box (a glossy floor sampled per pixel, a radiance-cached
+// box) at the defaults, whose samples read the records where they land, and with three bounces continued by paths
+// that read none; the corridor with metal walls (roughness 0.6) and its bright patch, where the radiance-cached
+// pixels take the light guide's share from their own samples (guide_share).
+TEST(GlossyKernel, SameFrameWhateverTheTraceShape) {
+  GpuContext& gpu = test::gpu();
+  const GroupSizes device_choice = gpu.groups();
+  RenderSettings defaults;
+  defaults.width = 40;
+  defaults.height = 32;
+  RenderSettings paths = defaults;
+  paths.bounces = 3;
+  paths.bounce_method = BounceMethod::path;
+  paths.glossy_reads_records = false;
+  struct Case {
+    const char* name;
+    Scene scene;
+    RenderSettings settings;
+  };
+  const Case cases[] = {{"lobed Cornell box, defaults", test::cornell_box_with_lobes(0.2f, 0.5f), defaults},
+                        {"lobed Cornell box, paths", test::cornell_box_with_lobes(0.2f, 0.5f), paths},
+                        {"metal corridor, defaults", test::bright_patch_corridor(0.6f), defaults}};
+  for (const Case& c : cases) {
+    auto frame_with = [&](RecordTrace trace) {
+      GroupSizes shape = device_choice;
+      shape.record_trace = trace;
+      gpu.set_groups(shape);
+      RenderedImage image = render(gpu, c.scene, c.settings);
+      gpu.set_groups(device_choice);
+      return image;
+    };
+    const RenderedImage fused = frame_with(RecordTrace::fused), wavefront = frame_with(RecordTrace::wavefront);
+    ASSERT_GT(fused.stats.glossy.rays, 0u) << c.name;
+    EXPECT_EQ(wavefront.stats.glossy.rays, fused.stats.glossy.rays) << c.name;
+    EXPECT_TRUE(wavefront.color == fused.color && wavefront.indirect == fused.indirect) << c.name;
+  }
 }
 
 // The kernel keeps a column of M strata in an array sized when it is compiled: a larger M is refused, never clamped.

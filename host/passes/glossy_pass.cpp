@@ -14,7 +14,15 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
     : gpu_(gpu),
       scene_(scene),
       defines_(scene.defines_with("SAMPLE_HSH_LOBES", sample_radiance_cacheable)),
-      kernel_(gpu.kernel(kProgram, "glossy_indirect", defines_)) {}
+      kernel_(gpu.kernel(kProgram, "glossy_indirect", defines_)),
+      aim_(gpu.kernel(kProgram, "aim_glossy_samples", defines_)),
+      trace_(gpu.kernel(kProgram, "trace_glossy_samples", defines_)),
+      shade_first_hits_(gpu.kernel(kProgram, "shade_glossy_first_hits", defines_)),
+      step_paths_(gpu.kernel(kProgram, "step_glossy_paths", defines_)),
+      finish_paths_(gpu.kernel(kProgram, "finish_glossy_paths", defines_)),
+      gather_(gpu.kernel(kProgram, "gather_glossy_samples", defines_)) {
+  path_count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "glossy path queue length");
+}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
                      unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
@@ -39,21 +47,99 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
   // An unused one-cluster buffer when there is no guide: the kernel reads none.
   gpu_.upload_into(guide_, guide_capacity_, guide.empty() ? std::vector<GuideCluster>(1, GuideCluster{}) : guide,
                    CL_MEM_READ_ONLY, "light guide");
-  scene_.bind(kernel_);
-  gbuffer.bind(kernel_);
-  kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
-  bind_records(kernel_, reads);
-  kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
-  kernel_.launch(pixels_, gpu_.groups().traversal);
+  prepare_records(reads);
+  if (gpu_.groups().record_trace == RecordTrace::wavefront) {
+    // A pixel's slots: its lobe's samples and, with a guide, half as many again aimed at it; or the guide's share.
+    const size_t per_pixel = samples + (guide.empty() ? 0u : (samples + 1) / 2);
+    run_wavefront(gbuffer, params, std::max<size_t>({per_pixel, params.guide_share_samples, 1}));
+  } else {
+    scene_.bind(kernel_);
+    gbuffer.bind(kernel_);
+    kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
+    bind_records(kernel_);
+    kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
+    kernel_.launch(pixels_, gpu_.groups().traversal);
+  }
   gpu_.queue().finish();
 }
 
-void GlossyPass::bind_records(NamedKernel& kernel, const GlossyCacheReads& reads) {
+void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t slots_per_pixel) {
+  const GroupSizes& groups = gpu_.groups();
+  const size_t launch_pixels = std::clamp<size_t>(groups.record_samples_per_launch / slots_per_pixel, 1, pixels_);
+  const size_t launch_slots = launch_pixels * slots_per_pixel;
+  const cl_uint later_bounces = params.bounces > 1 ? params.bounces - 1 : 0;
+  gpu_.reserve<cl_float4>(sample_slots_, slots_capacity_, launch_slots, "glossy sample slots");
+  gpu_.reserve<HitDesc>(sample_hits_, hits_capacity_, launch_slots, "glossy sample hits");
+  if (later_bounces) gpu_.reserve<QueuedPath>(paths_, paths_capacity_, launch_slots, "glossy path queue");
+  // Parameters in the kernels' order: scene, G-buffer, the pass's constants and records, then the launch's.
+  auto bind_pixels = [&](NamedKernel& kernel) -> NamedKernel& {
+    scene_.bind(kernel);
+    gbuffer.bind(kernel);
+    kernel.set("params", params).set_buffer<GuideCluster>("guide", guide_);
+    bind_records(kernel);
+    return kernel;
+  };
+  for (size_t first = 0; first < pixels_; first += launch_pixels) {
+    const cl_uint first_pixel = cl_uint(first), pixel_count = cl_uint(std::min(launch_pixels, pixels_ - first));
+    const size_t slots = size_t(pixel_count) * slots_per_pixel;
+    auto set_launch = [&](NamedKernel& kernel) -> NamedKernel& {
+      return kernel.set("first_pixel", first_pixel)
+          .set("pixel_count", pixel_count)
+          .set("slots_per_pixel", cl_uint(slots_per_pixel));
+    };
+    set_launch(bind_pixels(aim_)).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(pixel_count,
+                                                                                                groups.traversal);
+    scene_.bind(trace_);
+    gbuffer.bind(trace_);
+    set_launch(trace_)
+        .set_buffer<cl_float4>("sample_slots", sample_slots_)
+        .set_buffer<HitDesc>("hits", sample_hits_)
+        .launch(slots, groups.traversal);
+    gpu_.queue().enqueueFillBuffer(path_count_, cl_uint(0), 0, sizeof(cl_uint));
+    scene_.bind(shade_first_hits_);
+    shade_first_hits_.set("params", params);
+    bind_records(shade_first_hits_);
+    // Without later bounces no path is queued: the queue is the slots' buffer, never written.
+    set_launch(shade_first_hits_)
+        .set_buffer<cl_float4>("sample_slots", sample_slots_)
+        .set_buffer<HitDesc>("hits", sample_hits_)
+        .set_buffer<QueuedPath>("paths", later_bounces ? paths_ : sample_slots_)
+        .set_buffer<cl_uint>("path_count", path_count_)
+        .launch(slots, groups.traversal);
+    for (cl_uint bounce = 0; bounce < later_bounces; ++bounce) {
+      scene_.bind(step_paths_);
+      bind_records(step_paths_);
+      step_paths_.set_buffer<QueuedPath>("paths", paths_)
+          .set_buffer<cl_uint>("path_count", path_count_)
+          .set("bounce", bounce)
+          .set("later_bounces", later_bounces)
+          .launch(slots, groups.traversal);
+    }
+    if (later_bounces)
+      finish_paths_.set_buffer<QueuedPath>("paths", paths_)
+          .set_buffer<cl_uint>("path_count", path_count_)
+          .set_buffer<cl_float4>("sample_slots", sample_slots_)
+          .launch(slots, groups.per_item);
+    set_launch(bind_pixels(gather_))
+        .set_buffer<cl_float4>("sample_slots", sample_slots_)
+        .set_buffer<cl_float4>("glossy_out", radiance_)
+        .launch(pixel_count, groups.traversal);
+  }
+}
+
+void GlossyPass::bind_records(NamedKernel& kernel) {
+  kernel.set_buffer<CacheRecord>("world_records", *bound_records_)
+      .set_buffer<cl_uint>("world_record_starts", *bound_starts_)
+      .set_buffer<cl_uint>("world_record_lists", *bound_lists_)
+      .set("world_grid", bound_grid_);
+}
+
+void GlossyPass::prepare_records(const GlossyCacheReads& reads) {
   if (reads.device) {
-    kernel.set_buffer<CacheRecord>("world_records", *reads.device->records)
-        .set_buffer<cl_uint>("world_record_starts", *reads.device->bucket_starts)
-        .set_buffer<cl_uint>("world_record_lists", *reads.device->record_lists)
-        .set("world_grid", reads.device->params);
+    bound_records_ = reads.device->records;
+    bound_starts_ = reads.device->bucket_starts;
+    bound_lists_ = reads.device->record_lists;
+    bound_grid_ = reads.device->params;
     return;
   }
   // No records: an empty grid (record_count 0), which the kernel never reads past its parameters.
@@ -68,10 +154,10 @@ void GlossyPass::bind_records(NamedKernel& kernel, const GlossyCacheReads& reads
                    read_records && !reads.grid->record_lists.empty() ? reads.grid->record_lists
                                                                      : std::vector<uint32_t>{0},
                    CL_MEM_READ_ONLY, "glossy: record grid");
-  kernel.set_buffer<CacheRecord>("world_records", records_)
-      .set_buffer<cl_uint>("world_record_starts", record_starts_)
-      .set_buffer<cl_uint>("world_record_lists", record_lists_)
-      .set("world_grid", read_records ? reads.grid->params : WorldRecordParams{});
+  bound_records_ = &records_;
+  bound_starts_ = &record_starts_;
+  bound_lists_ = &record_lists_;
+  bound_grid_ = read_records ? reads.grid->params : WorldRecordParams{};
 }
 
 std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheRecord>& records,
@@ -79,7 +165,8 @@ std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheR
                                                         const std::vector<cl_float4>& points,
                                                         const std::vector<cl_float4>& normals) {
   NamedKernel look_up = gpu_.kernel(kProgram, "cached_irradiance_at", defines_);
-  bind_records(look_up, {&records, &grid});
+  prepare_records({&records, &grid});
+  bind_records(look_up);
   return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }
 

@@ -46,16 +46,27 @@ class GlossyPass {
 
  private:
   static constexpr const char* kProgram = "glossy.cl";  // its kernels' file
-  // Uploads the records and their grid (an empty grid without them) and sets the kernel's WORLD_RECORD_ARGS.
-  void bind_records(NamedKernel& kernel, const GlossyCacheReads& reads);
+  // The records the samples read and their grid: the device's, or uploaded from the host (an empty grid without
+  // them); bind_records then sets a kernel's WORLD_RECORD_ARGS to them.
+  void prepare_records(const GlossyCacheReads& reads);
+  void bind_records(NamedKernel& kernel);
+  // The wavefront (GroupSizes::record_trace): the pixels in launches, each sample's ray traced, its first hit shaded,
+  // the paths going on queued and stepped a kernel a bounce, then each pixel's samples summed (kernels/glossy.cl).
+  void run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t slots_per_pixel);
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
   KernelDefines defines_;
-  NamedKernel kernel_;
+  NamedKernel kernel_, aim_, trace_, shade_first_hits_, step_paths_, finish_paths_, gather_;
   cl::Buffer radiance_, guide_;
-  cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records
-  size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0;
+  cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records from the host
+  const cl::Buffer *bound_records_ = nullptr, *bound_starts_ = nullptr, *bound_lists_ = nullptr;
+  WorldRecordParams bound_grid_{};
+  // The wavefront's per-launch buffers: each sample's slot (its direction, then its light), hit, and the queue of
+  // paths going on after their first hit with its length.
+  cl::Buffer sample_slots_, sample_hits_, paths_, path_count_;
+  size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0,
+         slots_capacity_ = 0, hits_capacity_ = 0, paths_capacity_ = 0;
 };
 
 }  // namespace rcsplat
