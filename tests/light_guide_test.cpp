@@ -3,13 +3,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 
 #include "bvh/bvh8.h"
 #include "cache/light_guide.h"
 #include "cl/device_scene.h"
+#include "passes/guide_cluster_pass.h"
 #include "passes/light_guide_pass.h"
+#include "corridor_scene.h"
+#include "scene/cornell_box.h"
+#include "scene/scene_frame.h"
 #include "closed_cube.h"
 #include "test_support.h"
 
@@ -142,6 +147,54 @@ TEST(LightGuide, SmallBrightPatchIsAClusterOfItsOwn) {
   EXPECT_NEAR(clusters[0].normal[2], 1.0f, 1e-6f);
   EXPECT_GT(clusters[1].radius, 1.0f) << "the evenly lit wall is one region";
   EXPECT_EQ(clusters.size(), 2u);
+}
+
+// The clusters made on the device (passes/guide_cluster_pass.h) are the host's, bit for bit: from photons shot in the
+// corridor with its bright patch (the guide the frames use: 2^14 photons), in the Cornell box, and from made-up
+// photons that try the edges: cells past the grid on every side, every facing, photons that left the scene or carry no
+// light or a NaN, neighbouring bins of fluxes near the join's ratio of 8, and more regions than clusters kept.
+TEST(LightGuide, TheDeviceClustersAsTheHostDoesBitForBit) {
+  GpuContext& gpu = test::gpu();
+  if (!GuideClusterPass::available(gpu)) GTEST_SKIP() << "the device has no doubles (cl_khr_fp64)";
+  GuideClusterPass pass(gpu);
+  auto expect_same = [&](const std::vector<PhotonHit>& photons, unsigned max_clusters, const char* what) {
+    const std::vector<GuideCluster> host = cluster_photons(photons, max_clusters);
+    const std::vector<GuideCluster> device =
+        pass.cluster(gpu.upload(photons), uint32_t(photons.size()), max_clusters);
+    ASSERT_EQ(device.size(), host.size()) << what;
+    for (size_t c = 0; c < host.size(); ++c)
+      EXPECT_EQ(std::memcmp(&device[c], &host[c], sizeof(GuideCluster)), 0) << what << ": cluster " << c;
+    std::printf("%s: %zu photons, %zu clusters, %u rounds of joining\n", what, photons.size(), host.size(),
+                pass.rounds());
+  };
+  const Scene corridor = test::bright_patch_corridor();
+  for (const auto& [what, scene] : {std::pair{"corridor", corridor}, std::pair{"Cornell box", make_cornell_box()}}) {
+    const Scene fitted = SceneFrame::fitted(scene).device_scene(scene);
+    Bvh8 bvh = build_bvh8(fitted.positions);
+    DeviceScene device(gpu, fitted, bvh);
+    expect_same(LightGuidePass(gpu, device).shoot(1u << 14, 5), GUIDE_MAX_CLUSTERS, what);
+  }
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> span(-1.15f, 1.15f), unit(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> pick(0, 15);
+  std::vector<PhotonHit> made_up;
+  for (int i = 0; i < 30000; ++i) {
+    PhotonHit p{};
+    for (int a = 0; a < 3; ++a) {
+      p.position[a] = span(rng);
+      p.normal[a] = unit(rng);
+    }
+    p.hit = pick(rng) != 0;
+    // Fluxes in steps of a factor near the join's ratio across x: neighbouring bins join or not by a hair.
+    const float flux = std::pow(7.9f, std::floor((p.position[0] + 1.2f) * 8.0f) / 4.0f) * (1.0f + 0.1f * unit(rng));
+    for (float& f : p.flux) f = flux * (0.5f + 0.5f * std::abs(unit(rng)));
+    const int kind = pick(rng);
+    if (kind == 1) p.flux[0] = p.flux[1] = p.flux[2] = 0.0f;
+    if (kind == 2) p.flux[1] = std::nanf("");
+    made_up.push_back(p);
+  }
+  expect_same(made_up, GUIDE_MAX_CLUSTERS, "made-up photons");
+  expect_same(made_up, 5, "made-up photons, 5 clusters");
 }
 
 }  // namespace

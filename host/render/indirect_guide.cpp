@@ -1,6 +1,8 @@
 // The light guide for a frame's records: photons from the lights, clustered into the brightest directly lit places.
 // Built by the first frame that asks for it and kept by the Renderer while the seed and photon count stay the same.
+// Clustered on the device where it has doubles (passes/guide_cluster_pass.h), else on the host: the same clusters.
 #include "cache/light_guide.h"
+#include "passes/guide_cluster_pass.h"
 #include "passes/light_guide_pass.h"
 #include "render/indirect.h"
 #include "kernels/counter_random.h"
@@ -33,9 +35,18 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
     StageTimer timing(st.guide.seconds, f.gpu, st.program_s);
     LightGuidePass photons(f.gpu, f.device_scene);
     // Its own seed stream: the photons must not correlate with the records' hemispheres.
-    std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, f.settings.seed ^ STREAM_LIGHT_GUIDE);
-    f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
-                                                cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
+    const unsigned seed = f.settings.seed ^ STREAM_LIGHT_GUIDE;
+    if (GuideClusterPass::available(f.gpu)) {  // the photons stay on the device; the same clusters
+      size_t slots = 0;
+      const cl::Buffer hits = photons.shoot_on_device(cs.guide_photons, seed, 1, 0, false, slots);
+      std::vector<GuideCluster> clusters;
+      if (slots) clusters = GuideClusterPass(f.gpu).cluster(hits, uint32_t(slots), GUIDE_MAX_CLUSTERS);
+      f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons, std::move(clusters), slots};
+    } else {
+      std::vector<PhotonHit> hits = photons.shoot(cs.guide_photons, seed);
+      f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons,
+                                                  cluster_photons(hits, GUIDE_MAX_CLUSTERS), hits.size()};
+    }
     if (stored) {
       stored->has_guide = true;
       stored->guide_hits = f.light.guide->hits;

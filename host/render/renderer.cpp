@@ -16,6 +16,7 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
+#include "passes/guide_cluster_pass.h"
 #include "passes/light_guide_pass.h"
 #include "render/indirect.h"
 #include "render/bounce_choice.h"
@@ -155,6 +156,7 @@ void Renderer::build_programs_ahead(const FramePlan& plan) {
   const bool radiance = radiance_cached(s);
   const unsigned theta_strata = largest_theta_strata(s.cache);
   if (photon_map || caustic_map || guide) LightGuidePass::build_ahead(gpu_, scene);
+  if (guide) GuideClusterPass::build_ahead(gpu_);
   if (photon_map) PhotonMapPass::build_ahead(gpu_);
   if (caustic_map) CausticMapPass::build_ahead(gpu_);
   RecordPass::build_ahead(gpu_, scene, theta_strata, false, photon_map, caustic_map);
