@@ -278,14 +278,24 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
   }
 }
 
+// A frame rendered with the record trace (and the glossy pass) in this shape, the device's choice restored after.
+RenderedImage frame_traced_as(RecordTrace trace, const Scene& scene, const RenderSettings& settings) {
+  GpuContext& gpu = test::gpu();
+  const GroupSizes device_choice = gpu.groups();
+  GroupSizes shape = device_choice;
+  shape.record_trace = trace;
+  gpu.set_groups(shape);
+  RenderedImage image = render(gpu, scene, settings);
+  gpu.set_groups(device_choice);
+  return image;
+}
+
 // The same with the photon map standing for the later bounces (the render defaults): the map reads at long rays'
 // hits, short rays take a step first and read it without its last landing, and where the map is thin paths go on, so
 // the wavefront queues both kinds of path. In the built-in Cornell box the map is dense (short rays read it: 4 radii
 // make more of them), in the room lit through a gap (tests/gap_room_scene.h) thin where the camera looks. The whole
 // frame the same bits whatever the trace's shape, its ray count too.
 TEST(RecordKernel, SameFrameWhateverTheTraceShapeWithAPhotonMap) {
-  GpuContext& gpu = test::gpu();
-  const GroupSizes device_choice = gpu.groups();
   RenderSettings settings;
   settings.width = 48;
   settings.height = 36;
@@ -295,17 +305,9 @@ TEST(RecordKernel, SameFrameWhateverTheTraceShapeWithAPhotonMap) {
   const std::pair<const char*, Scene> scenes[] = {{"Cornell box", make_cornell_box()},
                                                   {"gap room", test::gap_lit_room()}};
   for (const auto& [name, scene] : scenes) {
-    auto frame_with = [&](RecordTrace trace) {
-      GroupSizes shape = device_choice;
-      shape.record_trace = trace;
-      gpu.set_groups(shape);
-      RenderedImage image = render(gpu, scene, settings);
-      gpu.set_groups(device_choice);
-      return image;
-    };
-    const RenderedImage fused = frame_with(RecordTrace::fused);
+    const RenderedImage fused = frame_traced_as(RecordTrace::fused, scene, settings);
     for (RecordTrace trace : {RecordTrace::split, RecordTrace::wavefront}) {
-      const RenderedImage other = frame_with(trace);
+      const RenderedImage other = frame_traced_as(trace, scene, settings);
       EXPECT_EQ(other.stats.irradiance.rays, fused.stats.irradiance.rays) << name << ", " << record_trace_name(trace);
       EXPECT_TRUE(other.color == fused.color && other.indirect == fused.indirect)
           << name << ", " << record_trace_name(trace);
@@ -605,8 +607,6 @@ TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {
 // that read none; the corridor with metal walls (roughness 0.6) and its bright patch, where the radiance-cached
 // pixels take the light guide's share from their own samples (guide_share).
 TEST(GlossyKernel, SameFrameWhateverTheTraceShape) {
-  GpuContext& gpu = test::gpu();
-  const GroupSizes device_choice = gpu.groups();
   RenderSettings defaults;
   defaults.width = 40;
   defaults.height = 32;
@@ -623,15 +623,8 @@ TEST(GlossyKernel, SameFrameWhateverTheTraceShape) {
                         {"lobed Cornell box, paths", test::cornell_box_with_lobes(0.2f, 0.5f), paths},
                         {"metal corridor, defaults", test::bright_patch_corridor(0.6f), defaults}};
   for (const Case& c : cases) {
-    auto frame_with = [&](RecordTrace trace) {
-      GroupSizes shape = device_choice;
-      shape.record_trace = trace;
-      gpu.set_groups(shape);
-      RenderedImage image = render(gpu, c.scene, c.settings);
-      gpu.set_groups(device_choice);
-      return image;
-    };
-    const RenderedImage fused = frame_with(RecordTrace::fused), wavefront = frame_with(RecordTrace::wavefront);
+    const RenderedImage fused = frame_traced_as(RecordTrace::fused, c.scene, c.settings),
+                        wavefront = frame_traced_as(RecordTrace::wavefront, c.scene, c.settings);
     ASSERT_GT(fused.stats.glossy.rays, 0u) << c.name;
     EXPECT_EQ(wavefront.stats.glossy.rays, fused.stats.glossy.rays) << c.name;
     EXPECT_TRUE(wavefront.color == fused.color && wavefront.indirect == fused.indirect) << c.name;
