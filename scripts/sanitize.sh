@@ -6,7 +6,7 @@
 # host builds) runs here through the Renderer, Leaks, Determinism, KernelArgs, PhotonMap and LightGuide suites, and
 # every file the loader reads through GltfLoader and GltfConformance. The hostile files of tests/untrusted_scenes.cpp
 # run under both sanitizers as the fuzzer's seeds (scripts/fuzz.sh), so their suite (which starts the binary 42 times)
-# is left to the plain run; so are the photon map's estimates against double-precision sums (kernel numerics whose
+# is left to the plain run and not built here; so are the photon map's estimates against double-precision sums (kernel numerics whose
 # host references take half a minute under ASan). --all runs every suite. Any report fails the test that triggered it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
