@@ -152,8 +152,9 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
     if (wi.z <= 0.0f || dot(dir, ng) <= 0.0f) continue;
     float3 f = brdf_eval_specular(in, wo, wi);
     if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
-    float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
     float3 l = glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, rays);
+    if (phase == GLOSSY_AIM) continue;  // the direction is all the aim keeps
+    float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
     sum += f * l * (wi.z * record_guided / (strata_density * wi.z + record_guided * guide_density));
   }
   return sum / (float)max(params.guide_share_samples, 1u);
@@ -218,6 +219,7 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
     if (dot(dir, ng) <= 0.0f) continue;
     float3 l =
         glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, &rays);
+    if (phase == GLOSSY_AIM) continue;  // the weights wait for the gather
     if (!cone_count) {
       sum += brdf_specular_weight(in, wo, wi) * l;
       continue;

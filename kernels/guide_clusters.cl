@@ -14,15 +14,8 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #include "shared_types.h"
 
-// Cells per axis of the unit cube's grid (host: kGuideGridCells), and the bins: a cell coordinate from -1 to the cell
-// count (the host clamps to that range) per axis, times six facings.
-#define GUIDE_GRID_CELLS 32
-#define GUIDE_CELL_SPAN (GUIDE_GRID_CELLS + 2)
-#define GUIDE_BIN_COUNT (GUIDE_CELL_SPAN * GUIDE_CELL_SPAN * GUIDE_CELL_SPAN * 6)
+// The bins (GUIDE_BIN_COUNT) are in shared_types.h, beside the grid the host bins photons on.
 #define GUIDE_NO_BIN 0xffffffffu
-// A region's sums, doubles at region * GUIDE_REGION_DOUBLES: flux (3), weighted position (3, then the centroid),
-// weighted normal (3), weight, the weighted squared distances from the centroid.
-#define GUIDE_REGION_DOUBLES 11
 
 inline double luminance_double(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
 

@@ -302,6 +302,16 @@ typedef struct {
 #define GUIDE_MAX_STRATA 64.0f  // a record aims at a cluster only if it covers at most this many strata' solid angle
 #define GUIDE_MIN_SHARE 0.01f  // and promises at least this share of the irradiance all clusters promise
 #define GUIDE_MAX_CONES 8       // and is among the 8 that promise most (every stratum ray tests each cone)
+// The guide's clusters are made from photons binned on a grid of GUIDE_GRID_CELLS cells per axis over the device
+// frame's [-1, 1]^3 (a cell is 1/32 of the scene's diameter); a cell coordinate runs from -1 to GUIDE_GRID_CELLS (the
+// photons outside clamped onto the rim), and each cell holds six bins, one per facing (host/cache/light_guide.cpp,
+// kernels/guide_clusters.cl).
+#define GUIDE_GRID_CELLS 32
+#define GUIDE_CELL_SPAN (GUIDE_GRID_CELLS + 2)
+#define GUIDE_BIN_COUNT (GUIDE_CELL_SPAN * GUIDE_CELL_SPAN * GUIDE_CELL_SPAN * 6)
+// A region's sums, doubles at region * GUIDE_REGION_DOUBLES: flux (3), weighted position (3, then the centroid),
+// weighted normal (3), weight, the weighted squared distances from the centroid.
+#define GUIDE_REGION_DOUBLES 11
 typedef struct {
   float centre[3];
   float radius;   // bounding sphere of the cluster's photon hits

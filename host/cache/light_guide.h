@@ -8,8 +8,8 @@
 
 namespace rcsplat {
 
-// Cells per axis of the binning grid over [-1, 1]^3 (the device frame): a cell is 1/32 of the scene's diameter.
-constexpr int kGuideGridCells = 32;
+// Cells per axis of the binning grid over [-1, 1]^3 (the device frame), as the device bins them.
+constexpr int kGuideGridCells = GUIDE_GRID_CELLS;
 
 // At most max_clusters clusters (and GUIDE_MAX_CLUSTERS), brightest first; none without a photon hit.
 std::vector<GuideCluster> cluster_photons(const std::vector<PhotonHit>& photons, unsigned max_clusters);

@@ -20,9 +20,8 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
       shade_first_hits_(gpu.kernel(kProgram, "shade_glossy_first_hits", defines_)),
       step_paths_(gpu.kernel(kProgram, "step_glossy_paths", defines_)),
       finish_paths_(gpu.kernel(kProgram, "finish_glossy_paths", defines_)),
-      gather_(gpu.kernel(kProgram, "gather_glossy_samples", defines_)) {
-  path_count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "glossy path queue length");
-}
+      gather_(gpu.kernel(kProgram, "gather_glossy_samples", defines_)),
+      paths_(gpu, "glossy path queue") {}
 
 void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
                      unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
@@ -70,7 +69,8 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
   const cl_uint later_bounces = params.bounces > 1 ? params.bounces - 1 : 0;
   gpu_.reserve<cl_float4>(sample_slots_, slots_capacity_, launch_slots, "glossy sample slots");
   gpu_.reserve<HitDesc>(sample_hits_, hits_capacity_, launch_slots, "glossy sample hits");
-  if (later_bounces) gpu_.reserve<QueuedPath>(paths_, paths_capacity_, launch_slots, "glossy path queue");
+  // Without later bounces the first hits queue no path: the queue stays one element.
+  if (later_bounces) paths_.reserve(launch_slots, launch_slots);
   // Parameters in the kernels' order: scene, G-buffer, the pass's constants and records, then the launch's.
   auto bind_pixels = [&](NamedKernel& kernel) -> NamedKernel& {
     scene_.bind(kernel);
@@ -95,31 +95,23 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
         .set_buffer<cl_float4>("sample_slots", sample_slots_)
         .set_buffer<HitDesc>("hits", sample_hits_)
         .launch(slots, groups.traversal);
-    gpu_.queue().enqueueFillBuffer(path_count_, cl_uint(0), 0, sizeof(cl_uint));
+    paths_.clear();
     scene_.bind(shade_first_hits_);
     shade_first_hits_.set("params", params);
     bind_records(shade_first_hits_);
-    // Without later bounces no path is queued: the queue is the slots' buffer, never written.
-    set_launch(shade_first_hits_)
-        .set_buffer<cl_float4>("sample_slots", sample_slots_)
-        .set_buffer<HitDesc>("hits", sample_hits_)
-        .set_buffer<QueuedPath>("paths", later_bounces ? paths_ : sample_slots_)
-        .set_buffer<cl_uint>("path_count", path_count_)
+    paths_.bind(set_launch(shade_first_hits_)
+                    .set_buffer<cl_float4>("sample_slots", sample_slots_)
+                    .set_buffer<HitDesc>("hits", sample_hits_))
         .launch(slots, groups.traversal);
-    for (cl_uint bounce = 0; bounce < later_bounces; ++bounce) {
-      scene_.bind(step_paths_);
-      bind_records(step_paths_);
-      step_paths_.set_buffer<QueuedPath>("paths", paths_)
-          .set_buffer<cl_uint>("path_count", path_count_)
-          .set("bounce", bounce)
-          .set("later_bounces", later_bounces)
-          .launch(slots, groups.traversal);
-    }
+    paths_.step(
+        step_paths_,
+        [&](NamedKernel& step) {
+          scene_.bind(step);
+          bind_records(step);
+        },
+        later_bounces, slots);
     if (later_bounces)
-      finish_paths_.set_buffer<QueuedPath>("paths", paths_)
-          .set_buffer<cl_uint>("path_count", path_count_)
-          .set_buffer<cl_float4>("sample_slots", sample_slots_)
-          .launch(slots, groups.per_item);
+      paths_.bind(finish_paths_).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(slots, groups.per_item);
     set_launch(bind_pixels(gather_))
         .set_buffer<cl_float4>("sample_slots", sample_slots_)
         .set_buffer<cl_float4>("glossy_out", radiance_)

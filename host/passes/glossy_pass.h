@@ -9,6 +9,7 @@
 #include "cache/world_record_grid.h"
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/path_queue.h"
 #include "passes/world_record_grid_pass.h"
 
 namespace rcsplat {
@@ -63,10 +64,11 @@ class GlossyPass {
   const cl::Buffer *bound_records_ = nullptr, *bound_starts_ = nullptr, *bound_lists_ = nullptr;
   WorldRecordParams bound_grid_{};
   // The wavefront's per-launch buffers: each sample's slot (its direction, then its light), hit, and the queue of
-  // paths going on after their first hit with its length.
-  cl::Buffer sample_slots_, sample_hits_, paths_, path_count_;
+  // paths going on after their first hit.
+  cl::Buffer sample_slots_, sample_hits_;
+  PathQueue paths_;
   size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0,
-         slots_capacity_ = 0, hits_capacity_ = 0, paths_capacity_ = 0;
+         slots_capacity_ = 0, hits_capacity_ = 0;
 };
 
 }  // namespace rcsplat

@@ -5,9 +5,9 @@
 namespace rcsplat {
 namespace {
 
-// kernels/guide_clusters.cl's bins (34^3 cells, six facings) and the doubles of a region's sums.
-constexpr uint32_t kBinCount = 34 * 34 * 34 * 6;
-constexpr size_t kRegionDoubles = 11;
+// The guide's bins and the doubles of a region's sums (kernels/shared_types.h).
+constexpr uint32_t kBinCount = GUIDE_BIN_COUNT;
+constexpr size_t kRegionDoubles = GUIDE_REGION_DOUBLES;
 
 }  // namespace
 

@@ -40,7 +40,8 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
       theta_capacity_(theta_strata),
       store_strata_(store_strata),
       photon_map_(nullptr),
-      photon_gather_(photon_gather) {
+      photon_gather_(photon_gather),
+      paths_(gpu, "record path queue") {
   const KernelDefines defines = record_defines(scene, theta_strata, store_strata, photon_gather, caustics_apart);
   aim_ = gpu.kernel("records.cl", "aim_record_guides", defines);
   trace_ = gpu.kernel("records.cl", "trace_record_rays", defines);
@@ -51,7 +52,6 @@ RecordPass::RecordPass(GpuContext& gpu, const DeviceScene& scene, unsigned theta
   finish_paths_ = gpu.kernel("records.cl", "finish_record_paths", defines);
   reduce_ = gpu.kernel("records.cl", "reduce_records", defines);
   ray_total_ = gpu_.upload(std::vector<cl_ulong>{0}, CL_MEM_READ_WRITE, "ray counter");
-  path_count_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE, "record path queue length");
   // Never read while guide_clusters_ is 0.
   gpu_.upload_into(guide_, guide_capacity_, std::vector<GuideCluster>(1, GuideCluster{}), CL_MEM_READ_ONLY,
                    "light guide");
@@ -105,32 +105,23 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
          "record hits");
   // Every sample of a launch may go on after its first hit (no photon map, or one thin everywhere).
   if (shape == RecordTrace::wavefront && bounces_ > 1)
-    grow(paths_, paths_capacity_, records * samples_per_record, sizeof(QueuedPath), launch_samples,
-         "record path queue");
+    paths_.reserve(records * samples_per_record, launch_samples);
 }
 
 void RecordPass::trace_later_bounces(NamedKernel& shade_first_hits, size_t items, size_t launch_samples) {
-  gpu_.queue().enqueueFillBuffer(path_count_, cl_uint(0), 0, sizeof(cl_uint));
-  shade_first_hits.set_buffer<HitDesc>("hits", sample_hits_)
-      .set_buffer<cl_float4>("samples", samples_)
-      .set_buffer<cl_uint>("sample_rays", sample_rays_)
-      .set_buffer<QueuedPath>("paths", paths_)
-      .set_buffer<cl_uint>("path_count", path_count_)
+  paths_.clear();
+  paths_.bind(shade_first_hits.set_buffer<HitDesc>("hits", sample_hits_)
+                  .set_buffer<cl_float4>("samples", samples_)
+                  .set_buffer<cl_uint>("sample_rays", sample_rays_))
       .launch(items, gpu_.groups().traversal);
-  // The queue's length stays on the device: each launch covers every sample the queue could hold, and its work-items
-  // past the length return at once (a read of it would stall the queue once a bounce).
-  const cl_uint later_bounces = bounces_ - 1;
-  for (cl_uint bounce = 0; bounce < later_bounces; ++bounce) {
-    scene_.bind(step_paths_);
-    if (photon_map_) photon_map_->bind(step_paths_);
-    step_paths_.set_buffer<QueuedPath>("paths", paths_)
-        .set_buffer<cl_uint>("path_count", path_count_)
-        .set("bounce", bounce)
-        .set("later_bounces", later_bounces)
-        .launch(launch_samples, gpu_.groups().traversal);
-  }
-  finish_paths_.set_buffer<QueuedPath>("paths", paths_)
-      .set_buffer<cl_uint>("path_count", path_count_)
+  paths_.step(
+      step_paths_,
+      [&](NamedKernel& step) {
+        scene_.bind(step);
+        if (photon_map_) photon_map_->bind(step);
+      },
+      bounces_ - 1, launch_samples);
+  paths_.bind(finish_paths_)
       .set_buffer<cl_float4>("samples", samples_)
       .set_buffer<cl_uint>("sample_rays", sample_rays_)
       .launch(launch_samples, gpu_.groups().per_item);

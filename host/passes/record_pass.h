@@ -9,6 +9,7 @@
 #include "cl/gpu_context.h"
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/path_queue.h"
 #include "passes/photon_map_pass.h"
 
 namespace rcsplat {
@@ -83,10 +84,11 @@ class RecordPass {
   // Per launch: each record's guide cones, each sample's (radiance, distance) and rays cast, with a split or
   // wavefront trace (GroupSizes::record_trace) each sample's hit, and with a wavefront the queue of paths going on
   // after their first hit and its length. With store_strata, samples_ is the whole batch's strata (strata()).
-  cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_, paths_, path_count_;
+  cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_;
+  PathQueue paths_;
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
   size_t capacity_ = 0, guide_capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
-         sample_hits_capacity_ = 0, paths_capacity_ = 0;
+         sample_hits_capacity_ = 0;
 };
 
 }  // namespace rcsplat
