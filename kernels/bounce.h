@@ -29,11 +29,21 @@
 #define GATHER_MAP
 #endif
 
-inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, uint* rays) {
-  RayPrecomp r = ray_precompute(origin, dir);
+inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, RayTally* rays) {
   TraceHit hit;
-  ++*rays;
-  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+  HitDesc answer;
+  bool found;
+  if (traced_or_queued(rays, origin, dir, INFINITY, true, &answer)) {
+    hit.t = answer.t;
+    hit.u = answer.u;
+    hit.v = answer.v;
+    hit.prim = answer.prim;
+    found = answer.prim >= 0;
+  } else {
+    RayPrecomp r = ray_precompute(origin, dir);
+    found = bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit);
+  }
+  if (!found) {
     *distance = INFINITY;
     return false;
   }
@@ -44,7 +54,7 @@ inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, 
 
 // The directly lit radiance the surface reflects back along -dir; (u, v) pick the light sample, u_lobe the lobe of its
 // BRDF sample where the surface is glossy.
-inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe, uint* rays) {
+inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe, RayTally* rays) {
 #if HAS_SPECULAR_BRDF
   const int lobe = hit_lobe_kind(materials, textures, texels, h);
   if (lobe != LOBE_NONE) {
@@ -72,7 +82,7 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
 // the irradiance records' program defines CAUSTICS_APART (host/passes/record_pass.cpp); later bounces, the radiance
 // records, the glossy pass and the path tracer count every path themselves.
 inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe,
-                                          uint* rays) {
+                                          RayTally* rays) {
   if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY)
     return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
   BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h));
@@ -113,7 +123,7 @@ inline PathContinuation path_continuation(uint key, uint sample, uint bounces) {
 // *throughput by f cos / pdf, traces it and adds throughput times the new hit's direct light to *sum; *h and *dir
 // move on to that hit. false: the path ends here.
 inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more, uint k,
-                      float3* sum, uint* rays) {
+                      float3* sum, RayTally* rays) {
   uint d = PATH_FIRST_DIMENSION + 6u * k;
   float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
   float3 next;
@@ -214,14 +224,14 @@ inline float3 miss_radiance(SCENE_ARGS, float3 dir) {
 // (u, v) pick the light sample at h, u_lobe the lobe of its BRDF sample where h is glossy; *after says what the path
 // must still do (PATH_DONE ..), its light added as finite_or_zero(sum).
 inline float3 first_bounce_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
-                                    float v, float u_lobe, PathContinuation more, uint* rays, uint* after) {
+                                    float v, float u_lobe, PathContinuation more, RayTally* rays, uint* after) {
 #if CAUSTICS_APART
   float3 l = hit_direct_without_caustics(SCENE, h, dir, u, v, u_lobe, rays);
 #else
   float3 l = hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
 #endif
   *after = PATH_DONE;
-  if (!more.bounces) return l;
+  if (!more.bounces || !rays_answered(rays)) return l;  // a round that only lists its rays needs nothing more
 #if PHOTON_GATHER
   // A short ray: the map's disc would span the record's own surroundings. The path goes one bounce further and reads
   // there the map without its last landing (bounces 3 .. N), or goes on where the map is thin.
@@ -242,7 +252,7 @@ inline float3 first_bounce_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, f
 // for a short ray's first step the map without its last landing, or where the map is thin the path going on. false:
 // the path ends here.
 inline bool path_bounce(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3* dir, float3* throughput,
-                        PathContinuation more, uint k, uint mode, float3* sum, uint* rays) {
+                        PathContinuation more, uint k, uint mode, float3* sum, RayTally* rays) {
   if (!path_step(SCENE, h, dir, throughput, more, k, sum, rays)) return false;
 #if PHOTON_GATHER
   if (mode == PATH_STEPS_THEN_GATHERS && k == 0u) {
@@ -262,7 +272,7 @@ inline bool path_bounce(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3* dir, 
 // h, and u_lobe the lobe of its BRDF sample where h is glossy. The path's bounces run here in a loop; the wavefront
 // record trace runs the same path_bounce calls one kernel a bounce, with the same bits.
 inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float3 dir, float distance, float u,
-                                float v, float u_lobe, PathContinuation more, uint* rays) {
+                                float v, float u_lobe, PathContinuation more, RayTally* rays) {
   uint after;
   float3 l = first_bounce_from_hit(SCENE GATHER_MAP, h, dir, distance, u, v, u_lobe, more, rays, &after);
   if (after != PATH_DONE) {
@@ -277,7 +287,7 @@ inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float
 // Radiance arriving at origin from direction dir (radiance_from_hit, or miss_radiance); *distance is the hit
 // distance, INFINITY on a miss.
 inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
-                              PathContinuation more, float* distance, uint* rays) {
+                              PathContinuation more, float* distance, RayTally* rays) {
   HitSurface h;
   if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) return miss_radiance(SCENE, dir);
   return radiance_from_hit(SCENE GATHER_MAP, &h, dir, *distance, u, v, u_lobe, more, rays);

@@ -27,7 +27,7 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
 // with the same stratified light samples as a Lambertian pixel, each paired with a BRDF sample where the lobe is
 // glossy.
 inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world, uint strata_per_axis, uint key,
-                                    uint* rays) {
+                                    RayTally* rays) {
   float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
@@ -72,12 +72,12 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
   const uint strata_per_axis = params.strata_per_axis;
   GBufferSample g = gbuffer[pixel];
   float3 result = (float3)(0.0f);
-  uint rays = 0;
+  RayTally rays = traced_rays(0u);
 #if HAS_SPECULAR_BRDF
   if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
     float3 wo = camera_view_direction(camera, vload3(0, g.position));
     result = direct_specular_pixel(SCENE, g, wo, strata_per_axis, hash_u32(pixel ^ hash_u32(params.seed)), &rays);
-    direct_out[pixel] = (float4)(result, (float)rays);
+    direct_out[pixel] = (float4)(result, (float)rays.cast);
     return;
   }
 #endif
@@ -121,5 +121,5 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
 #endif
     result = finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
   }
-  direct_out[pixel] = (float4)(result, (float)rays);  // w: shadow rays cast (exact below 2^24)
+  direct_out[pixel] = (float4)(result, (float)rays.cast);  // w: shadow rays cast (exact below 2^24)
 }

@@ -94,14 +94,14 @@ inline float3 environment_peak_sample(__global const float4* environment, __glob
 }
 
 // Whether a ray from origin along dir leaves the scene.
-inline bool escapes(BVH_ARGS, float3 origin, float3 dir, uint* rays) {
+inline bool escapes(BVH_ARGS, float3 origin, float3 dir, RayTally* rays) {
   return visible(BVH, origin, dir, INFINITY, rays);
 }
 
 // One shadow-ray estimate of the peak's irradiance at p (normal n, geometric normal ng) from uniform (u1, u2); *wi
 // the sample's direction.
 inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, float u1, float u2,
-                                          float3* wi, uint* rays) {
+                                          float3* wi, RayTally* rays) {
   float pdf;
   float3 l = environment_peak_sample(environment, environment_cdf, scene_counts, u1, u2, wi, &pdf);
   float cos_x = dot(n, *wi);
@@ -113,7 +113,7 @@ inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, f
 // The environment's irradiance at a Lambertian point that a gathering ray found (its direct light): the smooth part
 // by one cosine-weighted ray that must escape, the peak by one light sample. (u1 .. u4) uniform.
 inline float3 environment_irradiance(SCENE_ARGS, float3 p, float3 n, float3 ng, float u1, float u2, float u3,
-                                     float u4, uint* rays) {
+                                     float u4, RayTally* rays) {
   if (!environment_present(scene_counts)) return (float3)(0.0f);
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b, wi;

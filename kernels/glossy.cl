@@ -49,7 +49,7 @@ inline bool cached_light(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3 dir
 // The radiance a sample's ray along dir brings back: as bounce_radiance, but a path that lands where the records
 // reach reads them there and ends.
 inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
-                              PathContinuation more, uint* rays) {
+                              PathContinuation more, RayTally* rays) {
   HitSurface h;
   float distance;
   if (!trace_surface(SCENE, origin, dir, &h, &distance, rays)) return miss_radiance(SCENE, dir);
@@ -75,14 +75,14 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
 #define GLOSSY_GATHER 2u
 
 inline float3 glossy_sample_light(SCENE_ARGS CACHED_LIGHT_ARGS, uint phase, __global float4* slot, float3 origin,
-                                  float3 dir, uint key, uint s, uint bounces, uint* rays) {
+                                  float3 dir, uint key, uint s, uint bounces, RayTally* rays) {
   if (phase == GLOSSY_AIM) {
     *slot = (float4)(dir, as_float(1u));
     return (float3)(0.0f);
   }
   if (phase == GLOSSY_GATHER) {
     const float4 light = *slot;
-    *rays += as_uint(light.w);
+    rays->cast += as_uint(light.w);
     return light.xyz;
   }
   return sample_radiance(SCENE CACHED_LIGHT, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
@@ -136,7 +136,7 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
 // basis it rang (dark bands beside its reflection) on glossy walls. Directions the lobe does not reflect cast no ray.
 inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideCluster* guide, GlossyParams params,
                           float3 p, float3 ng, float3 origin, ShadingFrame frame, BrdfInputs in, float3 wo, uint key,
-                          uint phase, __global float4* slots, uint* rays) {
+                          uint phase, __global float4* slots, RayTally* rays) {
   const float strata_density = (float)params.record_strata * RC_INV_PI;  // n_c p_c / cos(theta)
   GuideCone cones[GUIDE_MAX_CONES];
   const uint cone_count =
@@ -185,10 +185,10 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
   float3 origin = offset_ray_origin(p, ng);
   uint key = glossy_key(pixel, params.seed);
   if (cached_with_guide) {
-    uint rays = 0;
+    RayTally rays = traced_rays(0u);
     float3 share =
         guide_share(SCENE CACHED_LIGHT, guide, params, p, ng, origin, frame, in, wo, key, phase, slots, &rays);
-    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays);
+    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays.cast);
     return;
   }
   GuideCone cones[GUIDE_MAX_CONES];
@@ -196,7 +196,7 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
   const uint cone_count = glossy_guide_cones(guide, params.guide_clusters, p, frame, in, wo, (float)lobe_samples, cones);
   const uint guided = cone_count ? (lobe_samples + 1) / 2 : 0u, count = lobe_samples + guided;
   float3 sum = (float3)(0.0f);
-  uint rays = 0;
+  RayTally rays = traced_rays(0u);
   for (uint s = 0; s < count; ++s) {
     float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
     bool from_lobe = s < lobe_samples;
@@ -230,7 +230,7 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
     if (combined > 0.0f) sum += brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)lobe_samples / combined);
   }
   if (phase != GLOSSY_AIM)
-    glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays);
+    glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays.cast);
 }
 
 // Each glossy pixel's samples traced and shaded in one work-item...
@@ -273,7 +273,7 @@ __kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, uint first_pixel, u
 __kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_RECORD_ARGS, uint first_pixel,
                                       uint pixel_count, uint slots_per_pixel, __global float4* sample_slots,
                                       __global const HitDesc* hits, __global QueuedPath* paths,
-                                      volatile __global uint* path_count) {
+                                      volatile __global uint* path_count, RAY_QUEUE_ARGS) {
   size_t i = get_global_id(0);
   if (i >= (size_t)pixel_count * slots_per_pixel) return;
   const HitDesc hit = hits[i];
@@ -281,7 +281,8 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_REC
   const float3 dir = sample_slots[i].xyz;
   const uint s = (uint)(i % slots_per_pixel), key = glossy_key(first_pixel + (uint)(i / slots_per_pixel), params.seed);
   const PathContinuation more = path_continuation(key, s, params.bounces);
-  uint rays = 1u, after = PATH_DONE;
+  RayTally rays = queued_rays(RAY_QUEUE, i, 1u);
+  uint after = PATH_DONE;
   float3 l;
   if (hit.prim < 0) {
     l = miss_radiance(SCENE, dir);
@@ -296,16 +297,17 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_REC
       else l = finite_or_zero(l);
     }
   }
-  sample_slots[i] = (float4)(l, as_float(rays));
+  if (!rays_answered(&rays)) return;
+  sample_slots[i] = (float4)(l, as_float(rays.cast));
   if (after != PATH_DONE)
     queue_path(paths, path_count, (uint)i, (uint)i, more, after, hit, dir,
-               after == PATH_READS_RECORDS ? l : (float3)(0.0f), 1.0f, rays);
+               after == PATH_READS_RECORDS ? l : (float3)(0.0f), 1.0f, rays.cast);
 }
 
 // Bounce k of a glossy sample's path: where it reads the records (PATH_READS_RECORDS), the records' light where they
 // reach its hit, else a step on; otherwise as a record ray's path.
 inline bool glossy_path_bounce(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3* dir, float3* throughput,
-                               PathContinuation more, uint k, uint mode, float3* sum, uint* rays) {
+                               PathContinuation more, uint k, uint mode, float3* sum, RayTally* rays) {
   if (mode != PATH_READS_RECORDS) return path_bounce(SCENE, h, dir, throughput, more, k, mode, sum, rays);
   float3 cached;
   if (cached_light(SCENE CACHED_LIGHT, h, *dir, &cached)) {
@@ -317,18 +319,19 @@ inline bool glossy_path_bounce(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, floa
 
 // ... step_glossy_paths takes every queued path bounce `bounce` further (0 .. later_bounces - 1, a launch each)...
 __kernel void step_glossy_paths(SCENE_ARGS, WORLD_RECORD_ARGS, __global QueuedPath* paths,
-                                __global const uint* path_count, uint bounce, uint later_bounces) {
+                                __global const uint* path_count, uint bounce, uint later_bounces, RAY_QUEUE_ARGS) {
   const size_t i = get_global_id(0);
   HitSurface h;
   float3 dir, throughput, sum;
   PathContinuation more;
-  uint rays;
+  RayTally rays = queued_rays(RAY_QUEUE, i, 0u);
   if (i >= *path_count ||
-      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays))
+      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
     return;
   bool goes_on =
       glossy_path_bounce(SCENE CACHED_LIGHT, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
-  store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays);
+  if (rays_answered(&rays))
+    store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays.cast);
 }
 
 // ... finish_glossy_paths writes each path's whole light into its slot...

@@ -2,13 +2,16 @@
 // shadow rays, and one sample of the emissive triangles chosen by power. Lambertian surfaces; emission is not included.
 #ifndef RCSPLAT_LIGHTING_H
 #define RCSPLAT_LIGHTING_H
-#include "traverse.h"
+#include "ray_queue.h"
 #include "sampling.h"
+#include "traverse.h"
 
-// Counts every shadow ray it casts in *rays, for the summary's ray count.
+// Whether nothing blocks the segment from `from` along to_offset up to tmax (1: a point, INFINITY: a direction).
+// Counts the shadow ray in *rays; in the wavefront trace the queue may answer it (kernels/ray_queue.h).
 inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
-                    float tmax, uint* rays) {
-  ++*rays;
+                    float tmax, RayTally* rays) {
+  HitDesc answer;
+  if (traced_or_queued(rays, from, to_offset, tmax, false, &answer)) return answer.prim < 0;
   RayPrecomp r = ray_precompute(from, to_offset);
   TraceHit h;
   return !bvh_trace(BVH, &r, 0.0f, tmax, true, &h);
@@ -18,7 +21,7 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
 // Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed; *wi is the unit direction
 // toward the light.
 inline float3 punctual_irradiance(BVH_ARGS, PunctualLight light,
-                                  float3 p, float3 origin, float3 n, float3 ng, float3* wi_out, uint* rays) {
+                                  float3 p, float3 origin, float3 n, float3 ng, float3* wi_out, RayTally* rays) {
   float3 intensity = vload3(0, light.intensity);
   if (light.type == LIGHT_DIRECTIONAL) {
     float3 wi = -vload3(0, light.direction);
@@ -74,7 +77,7 @@ inline float emitter_solid_angle_pdf(EmissiveTriangle e, float d2, float cos_y) 
 // against BRDF samples.
 inline float3 emitter_sample(BVH_ARGS,
                              __global const EmissiveTriangle* emitters, uint count, float u, float v, float3 p,
-                             float3 origin, float3 n, float3 ng, float3* wi_out, float* pdf, uint* rays) {
+                             float3 origin, float3 n, float3 ng, float3* wi_out, float* pdf, RayTally* rays) {
   *pdf = 0.0f;
   *wi_out = n;
   int i = pick_emitter(emitters, count, u);
@@ -107,7 +110,7 @@ inline float3 emitter_sample(BVH_ARGS,
 inline float3 direct_irradiance(BVH_ARGS,
                                 __global const PunctualLight* lights, uint light_count,
                                 __global const EmissiveTriangle* emitters, uint emitter_count, float3 p, float3 n,
-                                float3 ng, float u, float v, uint* rays) {
+                                float3 ng, float u, float v, RayTally* rays) {
   float3 origin = offset_ray_origin(p, ng);
   float3 irradiance = (float3)(0.0f);
   float3 wi;

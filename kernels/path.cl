@@ -22,7 +22,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
   tangent_frame(n, &t, &b);
   uint key = hash_u32(pixel ^ hash_u32(params.seed ^ STREAM_PATH));
   float3 s1 = (float3)(0.0f), s2 = (float3)(0.0f);
-  uint rays = 0;
+  RayTally rays = traced_rays(0u);
 #if HAS_SPECULAR_BRDF
   bool specular = g.lobe != LOBE_NONE;
   ShadingFrame frame = shading_frame(n);
@@ -57,5 +57,5 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
   }
   sum[pixel] += (float4)(s1, 0.0f);
   sum_squares[pixel] += (float4)(s2, 0.0f);
-  atom_add(ray_total, (ulong)rays);
+  atom_add(ray_total, (ulong)rays.cast);
 }

@@ -203,8 +203,8 @@ inline HitDesc trace_record_hit(SCENE_ARGS, RecordSite site, RecordRay ray) {
 // included. queues_paths (the wavefront trace): only the first hit's light, *after saying what path must still go on
 // from there (PATH_DONE ..); otherwise the whole path's.
 inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                               RecordRay ray, HitDesc hit, bool queues_paths, uint* after, uint* rays) {
-  *rays = ray.cast ? 1u : 0u;
+                               RecordRay ray, HitDesc hit, bool queues_paths, uint* after, RayTally* rays) {
+  rays->cast = ray.cast ? 1u : 0u;
   *after = PATH_DONE;
   if (hit.prim < 0) return ray.cast ? miss_radiance(SCENE, ray.dir) : (float3)(0.0f);
   HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
@@ -216,7 +216,7 @@ inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemi
 
 // Sample s from the light its ray brings from `hit`, its whole path's.
 inline float4 shade_record_hit(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                               RecordRay ray, HitDesc hit, uint* rays) {
+                               RecordRay ray, HitDesc hit, RayTally* rays) {
   uint after;
   float3 l = record_hit_light(SCENE GATHER_MAP, site, hp, s, ray, hit, false, &after, rays);
   return record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
@@ -232,10 +232,10 @@ __kernel void trace_record_rays(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __glob
   for (uint s = item.first; s < item.end; ++s) {
     RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
     HitDesc hit = trace_record_hit(SCENE, item.site, ray);
-    uint rays;
+    RayTally rays = traced_rays(0u);
     samples[record_samples_at(batch, item) + s] =
         shade_record_hit(SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hit, &rays);
-    sample_rays[record_launch_at(item) + s] = rays;
+    sample_rays[record_launch_at(item) + s] = rays.cast;
   }
 }
 
@@ -260,10 +260,10 @@ __kernel void shade_record_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, __glob
   if (!record_item(gbuffer, candidates, batch, &item)) return;
   for (uint s = item.first; s < item.end; ++s) {
     RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
-    uint rays;
+    RayTally rays = traced_rays(0u);
     samples[record_samples_at(batch, item) + s] = shade_record_hit(
         SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hits[record_launch_at(item) + s], &rays);
-    sample_rays[record_launch_at(item) + s] = rays;
+    sample_rays[record_launch_at(item) + s] = rays.cast;
   }
 }
 
@@ -274,41 +274,44 @@ __kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, 
                                       RecordBatchParams batch, __global const RecordGuideCones* record_guides,
                                       __global const HitDesc* hits, __global float4* samples,
                                       __global uint* sample_rays, __global QueuedPath* paths,
-                                      volatile __global uint* path_count) {
+                                      volatile __global uint* path_count, RAY_QUEUE_ARGS) {
   RecordItem item;
   if (!record_item(gbuffer, candidates, batch, &item)) return;
   for (uint s = item.first; s < item.end; ++s) {
     RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
     const size_t at = record_samples_at(batch, item) + s, launch_at = record_launch_at(item) + s;
     const HitDesc hit = hits[launch_at];
-    uint after, rays;
+    uint after;
+    RayTally rays = queued_rays(RAY_QUEUE, launch_at, 0u);
     float3 l = record_hit_light(SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hit, true, &after, &rays);
+    if (!rays_answered(&rays)) continue;
     float4 sample = record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
     if (after == PATH_DONE) {
       samples[at] = sample;
-      sample_rays[launch_at] = rays;
+      sample_rays[launch_at] = rays.cast;
     } else {
       samples[at] = (float4)(l, sample.w);
       const PathContinuation more = path_continuation(item.site.key, s, batch.hemisphere.bounces);
       queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, (float3)(0.0f), ray.weight,
-                 rays);
+                 rays.cast);
     }
   }
 }
 
 // ... step_record_paths takes every queued path bounce `bounce` further (0 .. later_bounces - 1, a launch each)...
 __kernel void step_record_paths(SCENE_ARGS GATHER_MAP_ARGS, __global QueuedPath* paths,
-                                __global const uint* path_count, uint bounce, uint later_bounces) {
+                                __global const uint* path_count, uint bounce, uint later_bounces, RAY_QUEUE_ARGS) {
   const size_t i = get_global_id(0);
   HitSurface h;
   float3 dir, throughput, sum;
   PathContinuation more;
-  uint rays;
+  RayTally rays = queued_rays(RAY_QUEUE, i, 0u);
   if (i >= *path_count ||
-      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays))
+      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
     return;
   bool goes_on = path_bounce(SCENE GATHER_MAP, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
-  store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays);
+  if (rays_answered(&rays))
+    store_queued_path(paths + i, bounce, later_bounces, goes_on, &h, dir, throughput, sum, rays.cast);
 }
 
 // ... and finish_record_paths adds each path's light to its sample and weighs it, as shade_record_hit does.

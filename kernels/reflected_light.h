@@ -58,12 +58,18 @@ inline float power_heuristic(float a, float b) {
 #if HAS_EMITTERS
 // What a ray from origin along the unit dir finds first, if that is the emitting side of an emissive triangle: its
 // radiance, and in *light_pdf the density (per solid angle) with which emitter_sample would have chosen that direction.
-inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pdf, uint* rays) {
+inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pdf, RayTally* rays) {
   *light_pdf = 0.0f;
-  RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
-  ++*rays;
-  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) return (float3)(0.0f);
+  HitDesc answer;
+  if (traced_or_queued(rays, origin, dir, INFINITY, true, &answer)) {
+    if (answer.prim < 0) return (float3)(0.0f);
+    hit.t = answer.t;
+    hit.prim = answer.prim;
+  } else {
+    RayPrecomp r = ray_precompute(origin, dir);
+    if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) return (float3)(0.0f);
+  }
   int index = triangles[hit.prim].emitter;
   if (index < 0) return (float3)(0.0f);
   EmissiveTriangle e = emitters[index];
@@ -77,7 +83,7 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
 
 // Punctual lights' radiance reflected toward wo (world, unit) at p.
 inline float3 punctual_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local, float3 p,
-                                 float3 origin, float3 ng, uint* rays) {
+                                 float3 origin, float3 ng, RayTally* rays) {
   float3 sum = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
   for (uint i = 0; i < scene_counts.light_count; ++i) {
@@ -96,7 +102,7 @@ inline bool lobe_takes_brdf_samples(int lobe) { return lobe == LOBE_GLOSSY || lo
 // BRDF sample at (u_lobe, u, v), the two weighed by multiple importance sampling. Reusing (u, v) keeps each technique
 // unbiased on its own, and the weights sum to one at every direction, so their sum is too.
 inline float3 emitters_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, ShadingFrame frame, float3 wo_local, float3 p,
-                                 float3 origin, float3 ng, float u, float v, float u_lobe, uint* rays) {
+                                 float3 origin, float3 ng, float u, float v, float u_lobe, RayTally* rays) {
   float3 sum = (float3)(0.0f);
 #if HAS_EMITTERS
   if (scene_counts.emitter_count == 0) return sum;
@@ -129,7 +135,7 @@ inline float3 emitters_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, ShadingFr
 // One light-sample estimate of the environment's peak reflected toward wo: the smooth part is left to the rays that
 // gather (kernels/environment.h).
 inline float3 environment_peak_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local,
-                                         float3 origin, float3 ng, float u1, float u2, uint* rays) {
+                                         float3 origin, float3 ng, float u1, float u2, RayTally* rays) {
   float3 wi;
   float3 e = environment_peak_irradiance(SCENE, origin, frame.n, ng, u1, u2, &wi, rays);
   if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);
@@ -139,7 +145,7 @@ inline float3 environment_peak_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFram
 // The environment reflected toward wo by a surface a gathering ray found: the peak by a light sample, the smooth part
 // by a BRDF sample that must escape. Its random numbers come from the light sample's (u, v).
 inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame, float3 wo_local, float3 origin,
-                                    float3 ng, float u, float v, uint* rays) {
+                                    float3 ng, float u, float v, RayTally* rays) {
   if (!environment_present(scene_counts)) return (float3)(0.0f);
   float2 peak_u = environment_extra_randoms(u, v, 0u), lobe_u = environment_extra_randoms(u, v, 1u);
   float3 sum = environment_peak_reflected(SCENE, brdf, frame, wo_local, origin, ng, peak_u.x, peak_u.y, rays);
@@ -157,7 +163,7 @@ inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame fra
 // Direct light reflected toward wo_world (unit, pointing away from p) by a surface with a specular lobe: every
 // punctual light, one emitter estimate and, where there is one, one estimate of the environment.
 inline float3 direct_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, float3 p, float3 n, float3 ng, float3 wo_world,
-                               float u, float v, float u_lobe, uint* rays) {
+                               float u, float v, float u_lobe, RayTally* rays) {
   ShadingFrame frame = shading_frame(n);
   float3 wo_local = view_local(frame, wo_world);
   float3 origin = offset_ray_origin(p, ng);

@@ -237,6 +237,23 @@ typedef struct {
   rc_int prim;  // -1 when nothing was hit
 } HitDesc;
 
+// A ray that shading queued rather than traced where it asked for it (the wavefront trace: kernels/ray_queue.h): one
+// kernel traces the queue, and the shading that asked, launched again, reads the answer from its slot. The answer is a
+// HitDesc: the closest hit (prim -1: none), or for a shadow ray prim 0 where something blocks it, -1 where nothing does.
+typedef struct {
+  float origin[3];
+  float tmax;          // 1 for a ray toward a point (direction = the point - origin), else INFINITY
+  float direction[3];  // as the asker passed it to ray_precompute (not normalised for a ray toward a point)
+  rc_uint slot;        // where its answer goes, with QUEUED_RAY_CLOSEST set for a closest-hit ray
+} QueuedRay;
+#define QUEUED_RAY_CLOSEST 0x80000000u
+#define RAY_UNANSWERED (-3)  // a slot's prim before its ray is traced
+// A shading round's mode (kernels/ray_queue.h): every ray traced where asked for; rays without an answer queued;
+// every answer read, and what was shaded written.
+#define RAYS_TRACED 0u
+#define RAYS_QUEUED 1u
+#define RAYS_ANSWERED 2u
+
 // A record ray's path after its first hit, queued for the wavefront trace (kernels/path_queue.h): one bounce kernel a
 // step over the queue, so no kernel holds a path's loop. The hit it stands on is kept as the trace gave it (hit_surface
 // builds the same surface from it again).
@@ -574,6 +591,7 @@ static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(PixelSurface) == 80);
 static_assert(sizeof(RayDesc) == 32);
 static_assert(sizeof(HitDesc) == 16);
+static_assert(sizeof(QueuedRay) == 32);
 static_assert(sizeof(QueuedPath) == 76 && alignof(QueuedPath) == 4);
 static_assert(sizeof(CacheRecord) == 160 && alignof(CacheRecord) == 4);
 static_assert(sizeof(HemisphereParams) == 36);

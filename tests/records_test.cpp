@@ -249,6 +249,8 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
     pass.set_light_guide(guide, hp.guide_rays);
     pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
     gpu.set_groups(device_choice);
+    // The wavefront's rounds foresee every ray its shading asks for: none is traced in a round that reads answers.
+    EXPECT_EQ(pass.rays_traced_late(), 0u) << record_trace_name(trace) << ", " << bounces << " bounces";
     return std::make_pair(pass.download(0, pixels.size()), pass.rays_cast());
   };
   size_t per_record = size_t(hp.theta_strata) * hp.phi_strata + hp.guide_rays;

@@ -71,6 +71,8 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
   gpu_.reserve<HitDesc>(sample_hits_, hits_capacity_, launch_slots, "glossy sample hits");
   // Without later bounces the first hits queue no path: the queue stays one element.
   if (later_bounces) paths_.reserve(launch_slots, launch_slots);
+  if (!rays_) rays_.emplace(gpu_, scene_, "glossy ray queue");
+  rays_->reserve(launch_slots, RayQueue::slots_per_hit(scene_) + 1);
   // Parameters in the kernels' order: scene, G-buffer, the pass's constants and records, then the launch's.
   auto bind_pixels = [&](NamedKernel& kernel) -> NamedKernel& {
     scene_.bind(kernel);
@@ -96,20 +98,23 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
         .set_buffer<HitDesc>("hits", sample_hits_)
         .launch(slots, groups.traversal);
     paths_.clear();
-    scene_.bind(shade_first_hits_);
-    shade_first_hits_.set("params", params);
-    bind_records(shade_first_hits_);
-    paths_.bind(set_launch(shade_first_hits_)
-                    .set_buffer<cl_float4>("sample_slots", sample_slots_)
-                    .set_buffer<HitDesc>("hits", sample_hits_))
-        .launch(slots, groups.traversal);
+    // The first hits' shading in two rounds: it lists its shadow rays, then reads their answers.
+    rays_->run_stage(2, slots, [&](cl_uint mode) {
+      scene_.bind(shade_first_hits_);
+      shade_first_hits_.set("params", params);
+      bind_records(shade_first_hits_);
+      NamedKernel& shade = set_launch(shade_first_hits_)
+                               .set_buffer<cl_float4>("sample_slots", sample_slots_)
+                               .set_buffer<HitDesc>("hits", sample_hits_);
+      rays_->bind(paths_.bind(shade), mode).launch(slots, groups.traversal);
+    });
     paths_.step(
         step_paths_,
         [&](NamedKernel& step) {
           scene_.bind(step);
           bind_records(step);
         },
-        later_bounces, slots);
+        later_bounces, slots, *rays_);
     if (later_bounces)
       paths_.bind(finish_paths_).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(slots, groups.per_item);
     set_launch(bind_pixels(gather_))

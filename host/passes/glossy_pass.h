@@ -2,6 +2,7 @@
 // carries the rest. Compiled and run only for scenes with a glossy material (DeviceScene's HAS_SPECULAR_BRDF).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "cl/device_scene.h"
@@ -10,6 +11,7 @@
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/path_queue.h"
+#include "passes/ray_queue.h"
 #include "passes/world_record_grid_pass.h"
 
 namespace rcsplat {
@@ -67,6 +69,7 @@ class GlossyPass {
   // paths going on after their first hit.
   cl::Buffer sample_slots_, sample_hits_;
   PathQueue paths_;
+  std::optional<RayQueue> rays_;  // made for the first wavefront launch (its program built only then)
   size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0,
          slots_capacity_ = 0, hits_capacity_ = 0;
 };

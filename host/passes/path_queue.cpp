@@ -21,11 +21,13 @@ NamedKernel& PathQueue::bind(NamedKernel& kernel) const {
 }
 
 void PathQueue::step(NamedKernel& step, const std::function<void(NamedKernel&)>& bind_inputs, cl_uint later_bounces,
-                     size_t items) {
-  for (cl_uint bounce = 0; bounce < later_bounces; ++bounce) {
-    bind_inputs(step);
-    bind(step).set("bounce", bounce).set("later_bounces", later_bounces).launch(items, gpu_.groups().traversal);
-  }
+                     size_t items, RayQueue& rays) {
+  for (cl_uint bounce = 0; bounce < later_bounces; ++bounce)
+    rays.run_stage(3, items, [&](cl_uint mode) {
+      bind_inputs(step);
+      rays.bind(bind(step).set("bounce", bounce).set("later_bounces", later_bounces), mode)
+          .launch(items, gpu_.groups().traversal);
+    });
 }
 
 }  // namespace rcsplat

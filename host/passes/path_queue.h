@@ -9,6 +9,7 @@
 #include "cl/gpu_context.h"
 #include "cl/named_kernel.h"
 #include "kernels/shared_types.h"
+#include "passes/ray_queue.h"
 
 namespace rcsplat {
 
@@ -23,11 +24,12 @@ class PathQueue {
   void clear();
   // Sets the kernel's "paths" and "path_count" (its next two parameters).
   NamedKernel& bind(NamedKernel& kernel) const;
-  // Launches `step` once per later bounce over `items` work-items (those past the queue's length return at once: a
-  // read of the length would stall the queue each bounce). bind_inputs sets the parameters before the queue's
-  // (scene, maps, records).
+  // Takes every queued path `later_bounces` bounces further: a stage of `rays` a bounce, three rounds of `step` over
+  // `items` work-items (its next surface, that surface's shadow rays, then its light). Work-items past the queue's
+  // length return at once: a read of the length would stall the queue each bounce. bind_inputs sets the parameters
+  // before the path queue's (scene, maps, records).
   void step(NamedKernel& step, const std::function<void(NamedKernel&)>& bind_inputs, cl_uint later_bounces,
-            size_t items);
+            size_t items, RayQueue& rays);
 
  private:
   GpuContext& gpu_;

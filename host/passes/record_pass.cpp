@@ -103,24 +103,33 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
   if (shape != RecordTrace::fused)
     grow(sample_hits_, sample_hits_capacity_, records * samples_per_record, sizeof(HitDesc), launch_samples,
          "record hits");
-  // Every sample of a launch may go on after its first hit (no photon map, or one thin everywhere).
-  if (shape == RecordTrace::wavefront && bounces_ > 1)
-    paths_.reserve(records * samples_per_record, launch_samples);
+  if (shape == RecordTrace::wavefront) {
+    // Every sample of a launch may go on after its first hit (no photon map, or one thin everywhere).
+    if (bounces_ > 1) paths_.reserve(records * samples_per_record, launch_samples);
+    if (!rays_) rays_.emplace(gpu_, scene_, "record ray queue");
+    rays_->reserve(std::min(records * samples_per_record, launch_samples), RayQueue::slots_per_hit(scene_) + 1);
+  }
 }
 
-void RecordPass::trace_later_bounces(NamedKernel& shade_first_hits, size_t items, size_t launch_samples) {
+void RecordPass::trace_wavefront(const std::function<NamedKernel&(NamedKernel&)>& bind_inputs, size_t items,
+                                 size_t launch_samples) {
   paths_.clear();
-  paths_.bind(shade_first_hits.set_buffer<HitDesc>("hits", sample_hits_)
-                  .set_buffer<cl_float4>("samples", samples_)
-                  .set_buffer<cl_uint>("sample_rays", sample_rays_))
-      .launch(items, gpu_.groups().traversal);
+  // The first hits' shading in two rounds: it lists its shadow rays, then reads their answers and queues the paths.
+  rays_->run_stage(2, launch_samples, [&](cl_uint mode) {
+    NamedKernel& shade = bind_inputs(shade_first_hits_)
+                             .set_buffer<HitDesc>("hits", sample_hits_)
+                             .set_buffer<cl_float4>("samples", samples_)
+                             .set_buffer<cl_uint>("sample_rays", sample_rays_);
+    rays_->bind(paths_.bind(shade), mode).launch(items, gpu_.groups().traversal);
+  });
+  if (bounces_ <= 1) return;  // no path goes on after its first hit
   paths_.step(
       step_paths_,
       [&](NamedKernel& step) {
         scene_.bind(step);
         if (photon_map_) photon_map_->bind(step);
       },
-      bounces_ - 1, launch_samples);
+      bounces_ - 1, launch_samples, *rays_);
   paths_.bind(finish_paths_)
       .set_buffer<cl_float4>("samples", samples_)
       .set_buffer<cl_uint>("sample_rays", sample_rays_)
@@ -155,15 +164,15 @@ void RecordPass::compute_launch(const GBufferView& gbuffer, const cl::Buffer& ca
         .launch(items, groups.traversal);
   } else {
     bind_inputs(trace_hits_, false).set_buffer<HitDesc>("hits", sample_hits_).launch(items, groups.traversal);
-    // One bounce gathers no path after the first hit: the wavefront's first shading would queue none.
-    if (groups.record_trace == RecordTrace::split || bounces_ <= 1) {
+    if (groups.record_trace == RecordTrace::split) {
       bind_inputs(shade_hits_, true)
           .set_buffer<HitDesc>("hits", sample_hits_)
           .set_buffer<cl_float4>("samples", samples_)
           .set_buffer<cl_uint>("sample_rays", sample_rays_)
           .launch(items, groups.traversal);
     } else {
-      trace_later_bounces(bind_inputs(shade_first_hits_, true), items, size_t(batch.launch_count) * samples_per_record);
+      trace_wavefront([&](NamedKernel& kernel) -> NamedKernel& { return bind_inputs(kernel, true); }, items,
+                      size_t(batch.launch_count) * samples_per_record);
     }
   }
 

@@ -3,6 +3,8 @@
 // so they are the same records.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "cl/device_scene.h"
@@ -10,6 +12,7 @@
 #include "kernels/shared_types.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/path_queue.h"
+#include "passes/ray_queue.h"
 #include "passes/photon_map_pass.h"
 
 namespace rcsplat {
@@ -57,6 +60,8 @@ class RecordPass {
   // each pixel samples the guide's share, kernels/glossy.cl).
   const cl::Buffer& strata() const { return samples_; }
   uint64_t rays_cast();  // hemisphere and shadow rays cast so far
+  // With a wavefront trace, the rays its last rounds traced themselves (RayQueue::traced_late; tests expect none).
+  uint32_t rays_traced_late() { return rays_ ? rays_->traced_late() : 0; }
   std::vector<CacheRecord> download(size_t first, size_t count);
   // Records 0 .. records.size() - 1 become these (records kept from earlier frames: render/kept_records.h).
   void load(const std::vector<CacheRecord>& records);
@@ -69,9 +74,11 @@ class RecordPass {
   // Traces and reduces candidates batch.first_candidate .. + batch.launch_count - 1.
   void compute_launch(const GBufferView& gbuffer, const cl::Buffer& candidates, const RecordBatchParams& batch,
                       size_t samples_per_record);
-  // The wavefront trace after the hits: their first bounce's light (shade_first_hits, its inputs bound) queues the
-  // paths going on, a launch a later bounce steps them, and a last one adds their light to their samples.
-  void trace_later_bounces(NamedKernel& shade_first_hits, size_t items, size_t launch_samples);
+  // The wavefront trace after the hits: their first bounce's light (shade_first_hits_, its inputs set by
+  // bind_inputs) with its shadow rays queued, which queues the paths going on; a stage a later bounce steps them, and
+  // a last launch adds their light to their samples.
+  void trace_wavefront(const std::function<NamedKernel&(NamedKernel&)>& bind_inputs, size_t items,
+                       size_t launch_samples);
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
@@ -86,6 +93,7 @@ class RecordPass {
   // after their first hit and its length. With store_strata, samples_ is the whole batch's strata (strata()).
   cl::Buffer record_guides_, samples_, sample_rays_, sample_hits_;
   PathQueue paths_;
+  std::optional<RayQueue> rays_;  // made for the first wavefront launch (its program built only then)
   unsigned guide_clusters_ = 0, guide_rays_ = 0, bounces_ = 1;
   size_t capacity_ = 0, guide_capacity_ = 0, guides_capacity_ = 0, samples_capacity_ = 0, sample_rays_capacity_ = 0,
          sample_hits_capacity_ = 0;

@@ -18,6 +18,7 @@
 #include "passes/layer_pass.h"
 #include "passes/guide_cluster_pass.h"
 #include "passes/light_guide_pass.h"
+#include "passes/ray_queue.h"
 #include "render/indirect.h"
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
@@ -160,6 +161,7 @@ void Renderer::build_programs_ahead(const FramePlan& plan) {
   if (photon_map) PhotonMapPass::build_ahead(gpu_);
   if (caustic_map) CausticMapPass::build_ahead(gpu_);
   RecordPass::build_ahead(gpu_, scene, theta_strata, false, photon_map, caustic_map);
+  if (gpu_.groups().record_trace == RecordTrace::wavefront) RayQueue::build_ahead(gpu_, scene);  // its queued rays
   if (s.gi == GiMethod::splat) {
     PlacementPass::build_ahead(gpu_);
     SplatPass::build_ahead(gpu_);
