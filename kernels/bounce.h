@@ -31,19 +31,7 @@
 
 inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, RayTally* rays) {
   TraceHit hit;
-  HitDesc answer;
-  bool found;
-  if (traced_or_queued(rays, origin, dir, INFINITY, true, &answer)) {
-    hit.t = answer.t;
-    hit.u = answer.u;
-    hit.v = answer.v;
-    hit.prim = answer.prim;
-    found = answer.prim >= 0;
-  } else {
-    RayPrecomp r = ray_precompute(origin, dir);
-    found = bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit);
-  }
-  if (!found) {
+  if (!closest_hit(BVH, rays, origin, dir, &hit)) {
     *distance = INFINITY;
     return false;
   }

@@ -1,6 +1,6 @@
 // Rays counted, and in the wavefront trace queued (GroupSizes::record_trace; host/passes/ray_queue.h). Every function
-// that traces takes a RayTally* and traces through visible() (kernels/lighting.h), trace_surface (kernels/bounce.h)
-// or emitter_hit (kernels/reflected_light.h), which ask traced_or_queued first.
+// that traces takes a RayTally* and traces through visible() (kernels/lighting.h) or closest_hit (below), which ask
+// traced_or_queued first.
 //
 // RAYS_TRACED: every ray is traced where it is asked for (one-kernel shading, the direct pass, the path tracer).
 // The wavefront instead launches its shading kernel in rounds around a kernel that traces the queue:
@@ -22,7 +22,6 @@ typedef struct {
   uint cast;  // rays cast (or queued to be) so far: the summary's count, the same in every round and mode
   uint mode;  // RAYS_TRACED ..
   uint next, slot_count;  // the work's next ray's slot, and how many slots it has
-  uint queued;            // rays this work queued in this round
   size_t first_slot;
   __global QueuedRay* queue;
   volatile __global uint* queue_length;  // [0] the queue's length, [1] rays the last round had to trace itself
@@ -33,7 +32,7 @@ inline RayTally traced_rays(uint cast) {
   RayTally t;
   t.cast = cast;
   t.mode = RAYS_TRACED;
-  t.next = t.slot_count = t.queued = 0u;
+  t.next = t.slot_count = 0u;
   t.first_slot = 0;
   t.queue = 0;
   t.queue_length = 0;
@@ -81,10 +80,23 @@ inline bool traced_or_queued(RayTally* rays, float3 origin, float3 direction, fl
   vstore3(direction, 0, q.direction);
   q.slot = (uint)slot | (closest ? QUEUED_RAY_CLOSEST : 0u);
   rays->queue[atomic_inc(rays->queue_length)] = q;
-  ++rays->queued;
   const HitDesc for_now = {INFINITY, 0.0f, 0.0f, -1};
   *answer = for_now;
   return true;
+}
+
+// The closest hit along the unit direction dir from origin, counted in *rays and answered by the queue where it can.
+inline bool closest_hit(BVH_ARGS, RayTally* rays, float3 origin, float3 dir, TraceHit* hit) {
+  HitDesc answer;
+  if (traced_or_queued(rays, origin, dir, INFINITY, true, &answer)) {
+    hit->t = answer.t;
+    hit->u = answer.u;
+    hit->v = answer.v;
+    hit->prim = answer.prim;
+    return answer.prim >= 0;
+  }
+  RayPrecomp r = ray_precompute(origin, dir);
+  return bvh_trace(BVH, &r, 0.0f, INFINITY, false, hit);
 }
 
 #endif

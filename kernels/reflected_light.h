@@ -61,15 +61,7 @@ inline float power_heuristic(float a, float b) {
 inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pdf, RayTally* rays) {
   *light_pdf = 0.0f;
   TraceHit hit;
-  HitDesc answer;
-  if (traced_or_queued(rays, origin, dir, INFINITY, true, &answer)) {
-    if (answer.prim < 0) return (float3)(0.0f);
-    hit.t = answer.t;
-    hit.prim = answer.prim;
-  } else {
-    RayPrecomp r = ray_precompute(origin, dir);
-    if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) return (float3)(0.0f);
-  }
+  if (!closest_hit(BVH, rays, origin, dir, &hit)) return (float3)(0.0f);
   int index = triangles[hit.prim].emitter;
   if (index < 0) return (float3)(0.0f);
   EmissiveTriangle e = emitters[index];
