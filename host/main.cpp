@@ -293,6 +293,10 @@ int main(int argc, char** argv) {
   animate_cmd->add_flag("--cache-per-frame", animate.cache_per_frame,
                         "Place every frame's records anew, as `render` does (the default keeps the irradiance records "
                         "across frames and places new ones only where none reaches)");
+  animate_cmd->add_flag("--cache-fixed", animate.cache_fixed,
+                        "With --cache-in: every frame starts from the file's records alone (what a frame places is "
+                        "not kept for the next), so a frame is the same bits whatever range of frames a process "
+                        "renders: a walkthrough split over processes or machines (docs/USAGE.md, \"Cache files\")");
   animate_cmd
       ->add_option("--kept-records", animate.kept_records,
                    "Most irradiance records kept across frames; the least recently used go first (default "

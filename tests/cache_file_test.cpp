@@ -197,6 +197,46 @@ TEST(CacheFile, ARenderFromALoadedCacheIsTheWritersNextFrame) {
   EXPECT_NE(read_exr_rgb((dir / "alone/f3.exr").string(), w, h), read_exr_rgb((dir / "whole/f3.exr").string(), w, h));
 }
 
+// A fixed cache (--cache-fixed): every frame starts from the file's records alone, so a frame is the same bits whatever
+// range of frames a process renders (a walkthrough split over tasks). Frame 3 from a run of frames 1 to 3 and from a
+// run of frame 3 alone; the run's frame 1 from a run of frames 0 to 1. Without --cache-fixed the longer run's frame 3
+// would have read the records frames 1 and 2 placed.
+TEST(CacheFile, AFixedCacheRendersAFrameTheSameWhateverRangeRendersIt) {
+  const fs::path dir = test::scratch_dir();
+  AnimateOptions writer = orbit(dir / "unused");
+  writer.render.outputs.clear();
+  writer.render.outputs = {(dir / "w%d.exr").string()};
+  writer.last_frame = 0;
+  writer.render.cache_out = (dir / "key.cache").string();
+  ASSERT_EQ(run_animate(writer), 0);
+  auto fixed_run = [&](const std::string& name, long long first, long long last) {
+    fs::create_directories(dir / name);
+    AnimateOptions o = orbit(dir / name);
+    o.first_frame = first;
+    o.last_frame = last;
+    o.render.cache_in = writer.render.cache_out;
+    o.cache_fixed = true;
+    EXPECT_EQ(run_animate(o), 0);
+  };
+  fixed_run("long", 1, 3);
+  fixed_run("short", 3, 3);
+  fixed_run("first", 0, 1);
+  int w = 0, h = 0;
+  auto frame = [&](const std::string& name, int f) {
+    return read_exr_rgb((dir / name / ("f" + std::to_string(f) + ".exr")).string(), w, h);
+  };
+  EXPECT_EQ(frame("long", 3), frame("short", 3));
+  EXPECT_EQ(frame("long", 1), frame("first", 1));
+  EXPECT_NE(frame("long", 1), frame("long", 3));
+  // --cache-fixed reads a file and writes none.
+  AnimateOptions bad = orbit(dir / "bad");
+  bad.cache_fixed = true;
+  EXPECT_THROW(run_animate(bad), Error);
+  bad.render.cache_in = writer.render.cache_out;
+  bad.render.cache_out = (dir / "again.cache").string();
+  EXPECT_THROW(run_animate(bad), Error);
+}
+
 TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   const fs::path dir = test::scratch_dir();
   AnimateOptions writer = orbit(dir);

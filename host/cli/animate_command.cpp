@@ -10,11 +10,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cl/device_info.h"
 #include "cli/commands.h"
 #include "render/camera_path.h"
+#include "render/kept_records.h"
 #include "render/render_output.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -164,6 +166,11 @@ int run_animate(const AnimateOptions& o) {
   check_cache_files(o.render);
   if ((!o.render.cache_in.empty() || !o.render.cache_out.empty()) && o.cache_per_frame)
     throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
+  if (o.cache_fixed && o.render.cache_in.empty())
+    throw Error("--cache-fixed: needs --cache-in, the cache file every frame starts from");
+  if (o.cache_fixed && !o.render.cache_out.empty())
+    throw Error("--cache-fixed and --cache-out: a fixed cache keeps nothing a frame places, so there is nothing new to "
+                "write");
 
   Scene scene =
       load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment, o.render.limits);
@@ -215,6 +222,9 @@ int run_animate(const AnimateOptions& o) {
   };
   if (!o.render.cache_in.empty())  // before any frame: a file that does not fit is refused with no output
     load_cache_file(gpu, *renderer_holder, scene, renderer_holder->plan(frame_settings(first)), o.render.cache_in);
+  // A fixed cache: what the file holds, put back before every frame (a frame's own records go with it).
+  std::optional<KeptCache> fixed_cache;
+  if (o.cache_fixed) fixed_cache.emplace(renderer_holder->kept_records());
 
   std::vector<FrameRow> rows;
   int width = 0, height = 0;
@@ -225,6 +235,7 @@ int run_animate(const AnimateOptions& o) {
     row.time = double(frame) / o.fps;
     const RenderSettings settings = frame_settings(frame);
     Renderer& frame_renderer = pose_scene(frame);
+    if (fixed_cache) frame_renderer.kept_records() = *fixed_cache;
     last_plan = frame_renderer.plan(settings);
     const RenderedImage image = frame_renderer.render(last_plan);
     ExrAttributes attributes = render_attributes(posed_scene ? *posed_scene : scene, image, settings);
@@ -309,6 +320,8 @@ int run_animate(const AnimateOptions& o) {
           kind, (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
           (unsigned long long)evicted, (unsigned long long)(rows.back().stats.*member).kept, o.kept_records);
     };
+    if (o.cache_fixed)
+      std::printf("cache        fixed: every frame from %s's records (--cache-fixed)\n", o.render.cache_in.c_str());
     summary("irradiance", &RenderStats::kept_records);
     if (rows.front().stats.radiance.records) summary("radiance", &RenderStats::kept_radiance_records);
   }
@@ -330,7 +343,7 @@ int run_animate(const AnimateOptions& o) {
         {"fps", o.fps},
         {"first_frame", first},
         {"last_frame", last},
-        {"cache", o.cache_per_frame ? "per_frame" : "kept_records"},
+        {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : "kept_records"},
         {"kept_records_capacity", o.kept_records},
         {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}}},
         {"frames", frames},

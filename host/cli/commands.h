@@ -61,6 +61,9 @@ struct AnimateOptions {
   std::string stats_path;  // a CSV row a frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
   bool cache_per_frame = false;            // else irradiance records are kept across frames (render/kept_records.h)
+  // With --cache-in: every frame starts from the file's records alone, so a frame is the same bits whatever range of
+  // frames a process renders (a walkthrough split over processes or machines).
+  bool cache_fixed = false;
   size_t kept_records = size_t(1) << 20;  // at most this many kept
 };
 int run_animate(const AnimateOptions& options);
