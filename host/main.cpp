@@ -297,6 +297,10 @@ int main(int argc, char** argv) {
                         "With --cache-in: every frame starts from the file's records alone (what a frame places is "
                         "not kept for the next), so a frame is the same bits whatever range of frames a process "
                         "renders: a walkthrough split over processes or machines (docs/USAGE.md, \"Cache files\")");
+  animate_cmd->add_flag("--skip-existing", animate.skip_existing,
+                        "Render only the frames whose output files are not all there already: a rerun or requeue of "
+                        "a stopped task (outputs are written whole or not at all); needs --cache-fixed or "
+                        "--cache-per-frame, so that no frame depends on the frames before it");
   animate_cmd
       ->add_option("--kept-records", animate.kept_records,
                    "Most irradiance records kept across frames; the least recently used go first (default "

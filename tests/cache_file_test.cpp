@@ -237,6 +237,38 @@ TEST(CacheFile, AFixedCacheRendersAFrameTheSameWhateverRangeRendersIt) {
   EXPECT_THROW(run_animate(bad), Error);
 }
 
+// A rerun of a stopped task (--skip-existing): only the frames whose files are missing are rendered, the same bits as
+// the whole run's; the frames that are there are left as they are. Refused where frames depend on earlier ones.
+TEST(CacheFile, ARerunWithSkipExistingRendersOnlyTheMissingFrames) {
+  const fs::path dir = test::scratch_dir();
+  AnimateOptions writer = orbit(dir);
+  writer.render.outputs = {(dir / "w%d.exr").string()};
+  writer.last_frame = 0;
+  writer.render.cache_out = (dir / "key.cache").string();
+  ASSERT_EQ(run_animate(writer), 0);
+  fs::create_directories(dir / "run");
+  AnimateOptions run = orbit(dir / "run");
+  run.last_frame = 3;
+  run.render.cache_in = writer.render.cache_out;
+  run.cache_fixed = true;
+  ASSERT_EQ(run_animate(run), 0);
+  int w = 0, h = 0;
+  const std::string f1 = (dir / "run/f1.exr").string(), f2 = (dir / "run/f2.exr").string();
+  const std::vector<float> whole_f2 = read_exr_rgb(f2, w, h);
+  const auto f1_written = fs::last_write_time(f1);
+  fs::remove(f2);
+  run.skip_existing = true;
+  run.render.json_path = (dir / "rerun.json").string();
+  ASSERT_EQ(run_animate(run), 0);
+  EXPECT_EQ(read_exr_rgb(f2, w, h), whole_f2);
+  EXPECT_EQ(fs::last_write_time(f1), f1_written);
+  EXPECT_NE(read_bytes(run.render.json_path).find("\"skipped_frames\": 3"), std::string::npos);
+  AnimateOptions kept = run;  // each frame reading the records of the frames before it
+  kept.cache_fixed = false;
+  kept.render.cache_in.clear();
+  EXPECT_THROW(run_animate(kept), Error);
+}
+
 TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   const fs::path dir = test::scratch_dir();
   AnimateOptions writer = orbit(dir);

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -168,6 +169,9 @@ int run_animate(const AnimateOptions& o) {
     throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
   if (o.cache_fixed && o.render.cache_in.empty())
     throw Error("--cache-fixed: needs --cache-in, the cache file every frame starts from");
+  if (o.skip_existing && !o.cache_fixed && !o.cache_per_frame)
+    throw Error("--skip-existing: without --cache-fixed or --cache-per-frame each frame reads the records the frames "
+                "before it placed, so a frame rendered after a skipped one would differ from a whole run's");
   if (o.cache_fixed && !o.render.cache_out.empty())
     throw Error("--cache-fixed and --cache-out: a fixed cache keeps nothing a frame places, so there is nothing new to "
                 "write");
@@ -227,12 +231,19 @@ int run_animate(const AnimateOptions& o) {
   if (o.cache_fixed) fixed_cache.emplace(renderer_holder->kept_records());
 
   std::vector<FrameRow> rows;
+  long long skipped = 0;
   int width = 0, height = 0;
   std::string csv = kCsvHeader;
   for (long long frame = first; frame <= last; ++frame) {
     FrameRow row;
     row.frame = frame;
     row.time = double(frame) / o.fps;
+    if (o.skip_existing && std::all_of(outputs.begin(), outputs.end(), [&](const FramePattern& p) {
+          return std::filesystem::is_regular_file(p.path(frame));
+        })) {
+      ++skipped;
+      continue;
+    }
     const RenderSettings settings = frame_settings(frame);
     Renderer& frame_renderer = pose_scene(frame);
     if (fixed_cache) frame_renderer.kept_records() = *fixed_cache;
@@ -293,6 +304,18 @@ int run_animate(const AnimateOptions& o) {
     mp4_written = true;
   }
 
+  if (skipped) std::printf("skipped      %lld frames whose files were there already (--skip-existing)\n", skipped);
+  if (rows.empty()) {
+    std::printf("frames       %lld to %lld: none rendered\n", first, last);
+    if (mp4_written) std::printf("wrote        %s\n", o.mp4_path.c_str());
+    if (!o.render.json_path.empty())
+      write_text_file(o.render.json_path, nlohmann::json{{"first_frame", first},
+                                                         {"last_frame", last},
+                                                         {"skipped_frames", skipped},
+                                                         {"frames", nlohmann::json::array()}}
+                                                  .dump(2) + "\n");
+    return 0;
+  }
   // The summary: the first frame pays for the setup (BVH, upload, kernel builds); later frames show the steady cost.
   double later = 0.0;
   for (size_t i = 1; i < rows.size(); ++i) later += rows[i].stats.total_s;
@@ -345,6 +368,7 @@ int run_animate(const AnimateOptions& o) {
         {"last_frame", last},
         {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : "kept_records"},
         {"kept_records_capacity", o.kept_records},
+        {"skipped_frames", skipped},
         {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}}},
         {"frames", frames},
         {"outputs", outputs_json}};

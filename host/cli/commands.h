@@ -64,6 +64,9 @@ struct AnimateOptions {
   // With --cache-in: every frame starts from the file's records alone, so a frame is the same bits whatever range of
   // frames a process renders (a walkthrough split over processes or machines).
   bool cache_fixed = false;
+  // Render only the frames whose outputs are not all there (a rerun or a requeue of a stopped task); the frames must
+  // not depend on each other (cache_fixed or cache_per_frame).
+  bool skip_existing = false;
   size_t kept_records = size_t(1) << 20;  // at most this many kept
 };
 int run_animate(const AnimateOptions& options);
