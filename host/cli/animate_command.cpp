@@ -304,16 +304,33 @@ int run_animate(const AnimateOptions& o) {
     mp4_written = true;
   }
 
+  // The JSON summary, the same keys whether or not any frame was rendered (with --skip-existing, maybe none).
+  auto write_json = [&](const nlohmann::json& seconds) {
+    if (o.render.json_path.empty()) return;
+    nlohmann::json frames = nlohmann::json::array();
+    for (const FrameRow& r : rows) frames.push_back(frame_json(r));
+    nlohmann::json outputs_json = o.render.outputs;
+    if (mp4_written) outputs_json.push_back(o.mp4_path);
+    const nlohmann::json j = {
+        {"scene", scene.source},
+        {"camera_path", {{"source", path.description}, {"duration", path.duration}}},
+        {"device", gpu.device_info().name},
+        {"fps", o.fps},
+        {"first_frame", first},
+        {"last_frame", last},
+        {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : "kept_records"},
+        {"kept_records_capacity", o.kept_records},
+        {"skipped_frames", skipped},
+        {"seconds", seconds},
+        {"frames", frames},
+        {"outputs", outputs_json}};
+    write_text_file(o.render.json_path, j.dump(2) + "\n");
+  };
   if (skipped) std::printf("skipped      %lld frames whose files were there already (--skip-existing)\n", skipped);
   if (rows.empty()) {
     std::printf("frames       %lld to %lld: none rendered\n", first, last);
     if (mp4_written) std::printf("wrote        %s\n", o.mp4_path.c_str());
-    if (!o.render.json_path.empty())
-      write_text_file(o.render.json_path, nlohmann::json{{"first_frame", first},
-                                                         {"last_frame", last},
-                                                         {"skipped_frames", skipped},
-                                                         {"frames", nlohmann::json::array()}}
-                                                  .dump(2) + "\n");
+    write_json({{"wall", wall}});
     return 0;
   }
   // The summary: the first frame pays for the setup (BVH, upload, kernel builds); later frames show the steady cost.
@@ -354,26 +371,7 @@ int run_animate(const AnimateOptions& o) {
   if (mp4_written) std::printf("wrote        %s\n", o.mp4_path.c_str());
   if (!o.render.cache_out.empty()) std::printf("wrote        %s\n", o.render.cache_out.c_str());
   if (!o.stats_path.empty()) std::printf("wrote        %s\n", o.stats_path.c_str());
-  if (!o.render.json_path.empty()) {
-    nlohmann::json frames = nlohmann::json::array();
-    for (const FrameRow& r : rows) frames.push_back(frame_json(r));
-    nlohmann::json outputs_json = o.render.outputs;
-    if (mp4_written) outputs_json.push_back(o.mp4_path);
-    const nlohmann::json j = {
-        {"scene", scene.source},
-        {"camera_path", {{"source", path.description}, {"duration", path.duration}}},
-        {"device", gpu.device_info().name},
-        {"fps", o.fps},
-        {"first_frame", first},
-        {"last_frame", last},
-        {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : "kept_records"},
-        {"kept_records_capacity", o.kept_records},
-        {"skipped_frames", skipped},
-        {"seconds", {{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}}},
-        {"frames", frames},
-        {"outputs", outputs_json}};
-    write_text_file(o.render.json_path, j.dump(2) + "\n");
-  }
+  write_json({{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}});
   return 0;
 }
 

@@ -72,7 +72,7 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
   // Without later bounces the first hits queue no path: the queue stays one element.
   if (later_bounces) paths_.reserve(launch_slots, launch_slots);
   if (!rays_) rays_.emplace(gpu_, scene_, "glossy ray queue");
-  rays_->reserve(launch_slots, RayQueue::slots_per_hit(scene_) + 1);
+  rays_->reserve(launch_slots, RayQueue::slots_per_hit(scene_) + 1, launch_slots);
   // Parameters in the kernels' order: scene, G-buffer, the pass's constants and records, then the launch's.
   auto bind_pixels = [&](NamedKernel& kernel) -> NamedKernel& {
     scene_.bind(kernel);

@@ -14,7 +14,7 @@ void RayQueue::build_ahead(GpuContext& gpu, const DeviceScene& scene) {
 RayQueue::RayQueue(GpuContext& gpu, const DeviceScene& scene, const char* what)
     : gpu_(gpu), scene_(scene), what_(what), trace_(gpu.kernel("ray_queue.cl", "trace_queued_rays", scene.defines())) {
   length_ = gpu_.upload(std::vector<cl_uint>{0, 0}, CL_MEM_READ_WRITE, what);
-  reserve(1, 1);
+  reserve(1, 1, 1);
 }
 
 unsigned RayQueue::slots_per_hit(const DeviceScene& scene) {
@@ -23,13 +23,14 @@ unsigned RayQueue::slots_per_hit(const DeviceScene& scene) {
   return unsigned(std::clamp<size_t>(slots, 1, kMaxSlotsPerHit));
 }
 
-void RayQueue::reserve(size_t works, unsigned slots_per_work) {
+void RayQueue::reserve(size_t works, unsigned slots_per_work, size_t most_works) {
   const size_t slots = std::max<size_t>(works, 1) * std::max(slots_per_work, 1u);
   if (slots >= (size_t(1) << 31))
     throw Error(std::string(what_) + ": " + std::to_string(slots) + " ray slots in one launch (at most 2^31 - 1)");
   slots_per_work_ = std::max(slots_per_work, 1u);
-  gpu_.reserve<QueuedRay>(queue_, queue_capacity_, slots, what_);
-  gpu_.reserve<HitDesc>(answers_, answers_capacity_, slots, what_);
+  const size_t most = std::max(std::max<size_t>(most_works, 1) * slots_per_work_, slots);
+  gpu_.reserve<QueuedRay>(queue_, queue_capacity_, slots, what_, false, most);
+  gpu_.reserve<HitDesc>(answers_, answers_capacity_, slots, what_, false, most);
 }
 
 uint32_t RayQueue::traced_late() {

@@ -25,8 +25,9 @@ class RayQueue {
   static unsigned slots_per_hit(const DeviceScene& scene);
   static constexpr unsigned kMaxSlotsPerHit = 8;
 
-  // Room for `works` works of `slots_per_work` slots each (works * slots_per_work < 2^31).
-  void reserve(size_t works, unsigned slots_per_work);
+  // Room for `works` works of `slots_per_work` slots each (works * slots_per_work < 2^31). most_works: the most works
+  // one launch may hold, so that growing never doubles the buffers past one launch.
+  void reserve(size_t works, unsigned slots_per_work, size_t most_works);
   // One stage of `rounds` rounds (2: the rays are independent, as a hit's shadow rays; 3: a path's next surface,
   // then its shadow rays) over `works` works. launch(mode) binds the kernel's parameters before the queue's, then
   // bind(kernel, mode), and launches it.

@@ -107,7 +107,8 @@ void RecordPass::reserve_samples(size_t records, size_t samples_per_record, size
     // Every sample of a launch may go on after its first hit (no photon map, or one thin everywhere).
     if (bounces_ > 1) paths_.reserve(records * samples_per_record, launch_samples);
     if (!rays_) rays_.emplace(gpu_, scene_, "record ray queue");
-    rays_->reserve(std::min(records * samples_per_record, launch_samples), RayQueue::slots_per_hit(scene_) + 1);
+    rays_->reserve(std::min(records * samples_per_record, launch_samples), RayQueue::slots_per_hit(scene_) + 1,
+                   launch_samples);
   }
 }
 
