@@ -271,6 +271,8 @@ int main(int argc, char** argv) {
       "Render a camera path to a frame sequence: the scene's glTF camera animation, a keyframe file or an "
       "orbit (default scene: the built-in Cornell box, which needs --orbit or --keyframes)");
   add_frame_options(animate_cmd, animate.render, animate_camera, animate_environment, lab);
+  // A cache pre-pass or merge may render no image: run_animate asks for -o where frames are written.
+  animate_cmd->get_option("--output")->required(false);
   animate_method.add(animate_cmd, animate.render, lab);
   animate_cmd->add_option("--keyframes", animate.keyframes,
                           "Camera path from a keyframe file: a line a key, \"time ex ey ez tx ty tz ux uy uz fov\" "
@@ -301,6 +303,17 @@ int main(int argc, char** argv) {
                         "Render only the frames whose output files are not all there already: a rerun or requeue of "
                         "a stopped task (outputs are written whole or not at all); needs --cache-fixed or "
                         "--cache-per-frame, so that no frame depends on the frames before it");
+  animate_cmd
+      ->add_option("--cache-every", animate.cache_every,
+                   "The cache pre-pass of a walkthrough split over tasks: render only the range's frames that K divides "
+                   "(key frames), each from no records, and write their records, tagged by key frame, to --cache-out "
+                   "(-o optional); merge the tasks' files with --cache-merge (docs/FARM.md)")
+      ->check(CLI::Range(1LL, 1000000LL));
+  animate_cmd->add_option("--cache-merge", animate.cache_merge,
+                          "Merge these --cache-every files into --cache-out and render nothing: the same records in "
+                          "the same order whatever the split, a record dropped where an earlier key frame's records "
+                          "reach it (docs/FARM.md)")
+      ->expected(1, -1);
   animate_cmd
       ->add_option("--kept-records", animate.kept_records,
                    "Most irradiance records kept across frames; the least recently used go first (default "

@@ -16,6 +16,7 @@
 
 #include "cl/device_info.h"
 #include "cli/commands.h"
+#include "render/cache_merge.h"
 #include "render/camera_path.h"
 #include "render/kept_records.h"
 #include "render/render_output.h"
@@ -138,13 +139,106 @@ nlohmann::json frame_json(const FrameRow& r) {
           {"memory", {{"device_peak_bytes", s.device_memory.peak_bytes}, {"host_peak_bytes", r.host_peak_bytes}}}};
 }
 
+// The cache modes that may go together: a pre-pass, a merge, a fixed cache, a cache per frame, reruns.
+void check_cache_modes(const AnimateOptions& o) {
+  const bool pre_pass = o.cache_every > 0, merging = !o.cache_merge.empty();
+  if ((!o.render.cache_in.empty() || !o.render.cache_out.empty()) && o.cache_per_frame)
+    throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
+  if (o.cache_fixed && o.render.cache_in.empty())
+    throw Error("--cache-fixed: needs --cache-in, the cache file every frame starts from");
+  if (o.skip_existing && !o.cache_fixed && !o.cache_per_frame)
+    throw Error("--skip-existing: without --cache-fixed or --cache-per-frame each frame reads the records the frames "
+                "before it placed, so a frame rendered after a skipped one would differ from a whole run's");
+  if (o.cache_fixed && !o.render.cache_out.empty())
+    throw Error("--cache-fixed and --cache-out: a fixed cache keeps nothing a frame places, so there is nothing new to "
+                "write");
+  if (o.cache_every < 0) throw Error("--cache-every: a key frame every K frames needs K >= 1");
+  if (pre_pass || merging) {
+    const char* mode = pre_pass ? "--cache-every" : "--cache-merge";
+    if (pre_pass && merging) throw Error("--cache-every and --cache-merge: a pre-pass task or a merge, not both");
+    if (o.render.cache_out.empty()) throw Error(std::string(mode) + ": needs --cache-out, the file it writes");
+    if (!o.render.cache_in.empty() || o.cache_per_frame || o.skip_existing)
+      throw Error(std::string(mode) +
+                  ": a pre-pass starts each key frame from no records; leave out --cache-in, --cache-fixed, "
+                  "--cache-per-frame and --skip-existing");
+    if (!o.mp4_path.empty()) throw Error(std::string(mode) + ": renders the key frames only; leave out --mp4");
+    if (merging && !o.render.outputs.empty()) throw Error("--cache-merge: renders no frame; leave out -o");
+    if (merging && !o.stats_path.empty()) throw Error("--cache-merge: renders no frame; leave out --stats");
+  }
+}
+
+// What a pre-pass task writes: each key frame's records, in the order its frame placed them, tagged with the frame.
+struct PrePassPart {
+  KeptRecords::Contents irradiance, radiance;
+  uint64_t frames = 0;
+
+  void add_key_frame(long long frame, const KeptCache& kept) {
+    for (auto [from, to] : {std::pair{&kept.irradiance, &irradiance}, std::pair{&kept.radiance, &radiance}}) {
+      if (from->stats().evicted)
+        throw Error("--cache-every: key frame " + std::to_string(frame) + " placed more records than --kept-records " +
+                    "keeps; give a larger --kept-records here, to the merge and to every animate that reads the file");
+      to->records.insert(to->records.end(), from->records().begin(), from->records().end());
+      to->last_used.insert(to->last_used.end(), from->records().size(), uint64_t(frame));
+      to->payload.insert(to->payload.end(), from->payload().begin(), from->payload().end());
+      if (!from->records().empty()) to->payload_per_record = from->payload_per_record();
+      to->largest_radiance = std::max(to->largest_radiance, from->largest_radiance());
+    }
+    frames = uint64_t(frame) + 1;
+  }
+
+  // The part as a cache file holds it, with the light the key frames read.
+  KeptCache cache(const KeptCache& kept, const KeptRecordsKey& key, size_t capacity) const {
+    if (irradiance.records.size() > capacity || radiance.records.size() > capacity)
+      throw Error("--cache-every: the key frames placed " +
+                  std::to_string(std::max(irradiance.records.size(), radiance.records.size())) +
+                  " records, more than --kept-records " + std::to_string(capacity) +
+                  "; give a larger --kept-records here, to the merge and to every animate that reads the file");
+    KeptCache out(capacity);
+    out.irradiance.restore(key, irradiance, frames);
+    out.radiance.restore(key, radiance, frames);
+    out.light = kept.light;
+    return out;
+  }
+};
+
+// `animate --cache-merge PART... --cache-out FILE`: the parts, each read as a stranger's cache file for these settings,
+// merged (render/cache_merge.h) and written.
+int merge_parts(const AnimateOptions& o, const GpuContext& gpu, const Scene& scene, const FramePlan& plan) {
+  std::vector<KeptCache> caches(o.cache_merge.size(), KeptCache(o.kept_records));
+  std::vector<CachePart> parts;
+  for (size_t i = 0; i < caches.size(); ++i) {
+    load_cache_file(gpu, caches[i], scene, plan, o.cache_merge[i]);
+    parts.push_back({o.cache_merge[i], &caches[i]});
+  }
+  KeptCache merged(o.kept_records);
+  const CacheMergeStats stats = merge_cache_parts(parts, kept_records_key(plan.frame), o.kept_records, merged);
+  save_cache_file(gpu, merged, scene, plan, o.render.cache_out);
+  std::printf("merged       %zu parts, %zu key frames: irradiance records %zu of %zu kept, radiance records %zu of %zu "
+              "(a record no earlier key frame's records reach is kept)\n",
+              parts.size(), stats.key_frames, stats.irradiance_kept, stats.irradiance_in, stats.radiance_kept,
+              stats.radiance_in);
+  std::printf("wrote        %s\n", o.render.cache_out.c_str());
+  if (!o.render.json_path.empty())
+    write_text_file(o.render.json_path,
+                    nlohmann::json{{"parts", o.cache_merge},
+                                   {"key_frames", stats.key_frames},
+                                   {"irradiance_records", {{"in", stats.irradiance_in}, {"kept", stats.irradiance_kept}}},
+                                   {"radiance_records", {{"in", stats.radiance_in}, {"kept", stats.radiance_kept}}},
+                                   {"cache_out", o.render.cache_out}}
+                            .dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 int run_animate(const AnimateOptions& o) {
   const RenderSettings& request = o.render.settings;
   check_request(request);
   if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw Error("--fps must be above 0 and at most 1000");
-  if (o.render.outputs.empty()) throw Error("animate: give at least one output with -o frames/%04d.exr");
+  const bool pre_pass = o.cache_every > 0, merging = !o.cache_merge.empty();
+  check_cache_modes(o);
+  if (o.render.outputs.empty() && !pre_pass && !merging)
+    throw Error("animate: give at least one output with -o frames/%04d.exr");
   std::vector<FramePattern> outputs;
   for (const std::string& out : o.render.outputs) {
     outputs.emplace_back(out, "-o");
@@ -165,17 +259,6 @@ int run_animate(const AnimateOptions& o) {
   for (const std::string& path : {o.stats_path, o.render.json_path})
     if (!path.empty()) check_writable_destination(path);
   check_cache_files(o.render);
-  if ((!o.render.cache_in.empty() || !o.render.cache_out.empty()) && o.cache_per_frame)
-    throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
-  if (o.cache_fixed && o.render.cache_in.empty())
-    throw Error("--cache-fixed: needs --cache-in, the cache file every frame starts from");
-  if (o.skip_existing && !o.cache_fixed && !o.cache_per_frame)
-    throw Error("--skip-existing: without --cache-fixed or --cache-per-frame each frame reads the records the frames "
-                "before it placed, so a frame rendered after a skipped one would differ from a whole run's");
-  if (o.cache_fixed && !o.render.cache_out.empty())
-    throw Error("--cache-fixed and --cache-out: a fixed cache keeps nothing a frame places, so there is nothing new to "
-                "write");
-
   Scene scene =
       load_scene(o.render.scene_path, request.camera, request.camera_overrides, o.render.environment, o.render.limits);
   const CameraPath path = choose_path(o, scene);
@@ -184,6 +267,9 @@ int run_animate(const AnimateOptions& o) {
   if (first < 0 || last < first) throw Error("--first-frame and --last-frame: an empty or negative range");
   if (last - first + 1 > kMaxFrames) throw Error("animate: at most 1000000 frames a run");
   for (const FramePattern& p : outputs) check_writable_destination(p.path(first));
+  if (pre_pass && (first + o.cache_every - 1) / o.cache_every * o.cache_every > last)
+    throw Error("--cache-every " + std::to_string(o.cache_every) + ": no key frame (a frame it divides) in frames " +
+                std::to_string(first) + " to " + std::to_string(last));
   const bool orthographic = scene.cameras[size_t(request.camera)].orthographic;
 
   DeviceInfo device = select_device(o.render.device);
@@ -229,6 +315,8 @@ int run_animate(const AnimateOptions& o) {
   // A fixed cache: what the file holds, put back before every frame (a frame's own records go with it).
   std::optional<KeptCache> fixed_cache;
   if (o.cache_fixed) fixed_cache.emplace(renderer_holder->kept_records());
+  if (merging) return merge_parts(o, gpu, scene, renderer_holder->plan(frame_settings(first)));
+  PrePassPart part;
 
   std::vector<FrameRow> rows;
   long long skipped = 0;
@@ -238,6 +326,7 @@ int run_animate(const AnimateOptions& o) {
     FrameRow row;
     row.frame = frame;
     row.time = double(frame) / o.fps;
+    if (pre_pass && frame % o.cache_every != 0) continue;
     if (o.skip_existing && std::all_of(outputs.begin(), outputs.end(), [&](const FramePattern& p) {
           return std::filesystem::is_regular_file(p.path(frame));
         })) {
@@ -247,8 +336,13 @@ int run_animate(const AnimateOptions& o) {
     const RenderSettings settings = frame_settings(frame);
     Renderer& frame_renderer = pose_scene(frame);
     if (fixed_cache) frame_renderer.kept_records() = *fixed_cache;
+    if (pre_pass) {  // a key frame starts from no records; the light stays, the same in every task
+      frame_renderer.kept_records().irradiance.drop_records();
+      frame_renderer.kept_records().radiance.drop_records();
+    }
     last_plan = frame_renderer.plan(settings);
     const RenderedImage image = frame_renderer.render(last_plan);
+    if (pre_pass) part.add_key_frame(frame, frame_renderer.kept_records());
     ExrAttributes attributes = render_attributes(posed_scene ? *posed_scene : scene, image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);
     attributes["rcsplat:time"] = std::to_string(row.time);
@@ -272,7 +366,12 @@ int run_animate(const AnimateOptions& o) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (!o.render.cache_out.empty()) save_cache_file(gpu, *renderer_holder, scene, last_plan, o.render.cache_out);
+  if (pre_pass) {
+    const KeptCache written = part.cache(renderer_holder->kept_records(), kept_records_key(last_plan.frame), o.kept_records);
+    save_cache_file(gpu, written, scene, last_plan, o.render.cache_out);
+  } else if (!o.render.cache_out.empty()) {
+    save_cache_file(gpu, *renderer_holder, scene, last_plan, o.render.cache_out);
+  }
   bool mp4_written = false;
   if (!ffmpeg.empty()) {
     // Written beside the target and renamed, as every output is (util/atomic_file.h).
@@ -318,7 +417,7 @@ int run_animate(const AnimateOptions& o) {
         {"fps", o.fps},
         {"first_frame", first},
         {"last_frame", last},
-        {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : "kept_records"},
+        {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : pre_pass ? "pre_pass" : "kept_records"},
         {"kept_records_capacity", o.kept_records},
         {"skipped_frames", skipped},
         {"seconds", seconds},
@@ -360,10 +459,16 @@ int run_animate(const AnimateOptions& o) {
           kind, (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
           (unsigned long long)evicted, (unsigned long long)(rows.back().stats.*member).kept, o.kept_records);
     };
-    if (o.cache_fixed)
-      std::printf("cache        fixed: every frame from %s's records (--cache-fixed)\n", o.render.cache_in.c_str());
-    summary("irradiance", &RenderStats::kept_records);
-    if (rows.front().stats.radiance.records) summary("radiance", &RenderStats::kept_radiance_records);
+    if (pre_pass) {
+      std::printf("cache        pre-pass: %zu key frames (one every %lld frames), each from no records: %zu irradiance and "
+                  "%zu radiance records tagged by key frame, for --cache-merge\n",
+                  rows.size(), o.cache_every, part.irradiance.records.size(), part.radiance.records.size());
+    } else {
+      if (o.cache_fixed)
+        std::printf("cache        fixed: every frame from %s's records (--cache-fixed)\n", o.render.cache_in.c_str());
+      summary("irradiance", &RenderStats::kept_records);
+      if (rows.front().stats.radiance.records) summary("radiance", &RenderStats::kept_radiance_records);
+    }
   }
   std::printf("time         %.2f s in all; first frame %.2f s (with the setup), later frames %.2f s each on average\n",
               wall, rows.front().stats.total_s, later_mean);

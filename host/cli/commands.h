@@ -67,6 +67,11 @@ struct AnimateOptions {
   // Render only the frames whose outputs are not all there (a rerun or a requeue of a stopped task); the frames must
   // not depend on each other (cache_fixed or cache_per_frame).
   bool skip_existing = false;
+  // The cache pre-pass (render/cache_merge.h, docs/FARM.md): with cache_every K > 0, only the range's frames that K
+  // divides are rendered, each from no records (the light kept), and --cache-out gets their records tagged by frame;
+  // -o is optional. With cache_merge, no frame is rendered: those part files are merged into --cache-out.
+  long long cache_every = 0;
+  std::vector<std::string> cache_merge;
   size_t kept_records = size_t(1) << 20;  // at most this many kept
 };
 int run_animate(const AnimateOptions& options);
@@ -158,11 +163,15 @@ Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides&
                  const ScenePose& pose = {});
 
 // --cache-in / --cache-out (render/cache_file.h): checked before any work (the splat only; --cache-out writable);
-// then read into the renderer's kept records for the plan's settings, or written from them.
+// then read into the renderer's kept records (or another KeptCache) for the plan's settings, or written from them.
 void check_cache_files(const RenderOptions& options);
 void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
                      const std::string& path);
+void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
+                     const std::string& path);
 void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path);
+void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& scene, const FramePlan& plan,
                      const std::string& path);
 
 // The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.

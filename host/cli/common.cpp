@@ -60,9 +60,8 @@ CacheFileIdentity cache_identity(const GpuContext& gpu, const Scene& scene, cons
 }
 }  // namespace
 
-void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
                      const std::string& path) {
-  KeptCache& kept = renderer.kept_records();
   read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame), cache_file_limits(plan.frame),
                   kept);
   log_info(path + ": " + std::to_string(kept.irradiance.size()) + " irradiance records, " +
@@ -71,9 +70,19 @@ void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& sce
            std::to_string(kept.light.guide_clusters.size()) + " light guide clusters read");
 }
 
+void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
+                     const std::string& path) {
+  load_cache_file(gpu, renderer.kept_records(), scene, plan, path);
+}
+
+void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& scene, const FramePlan& plan,
+                     const std::string& path) {
+  write_cache_file(path, kept, cache_identity(gpu, scene, plan));
+}
+
 void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
                      const std::string& path) {
-  write_cache_file(path, renderer.kept_records(), cache_identity(gpu, scene, plan));
+  save_cache_file(gpu, renderer.kept_records(), scene, plan, path);
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

@@ -87,6 +87,13 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
   return taken;
 }
 
+void KeptRecords::drop_records() {
+  records_.clear();
+  last_used_.clear();
+  payload_.clear();
+  largest_radiance_ = 0.0f;
+}
+
 void KeptRecords::restore(const KeptRecordsKey& key, Contents contents, uint64_t frames_begun) {
   key_ = key;
   has_key_ = true;

@@ -59,6 +59,9 @@ class KeptRecords {
   float largest_radiance() const { return largest_radiance_; }
   void raise_largest_radiance(float value) { largest_radiance_ = std::max(largest_radiance_, value); }
 
+  // Drops every record (and the brightest stratum) but keeps the key, so the light kept with them stays: a cache
+  // pre-pass's key frame starts from no records (render/cache_merge.h).
+  void drop_records();
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
   void set_capacity(size_t capacity) { capacity_ = capacity; }
