@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
   ffmpeg  # rcsplat animate --mp4: the walkthrough's preview
+  slurm-wlm munge  # tests/slurm/run_test.sh: the render-farm scripts (deploy/slurm/) on a one-node Slurm cluster
 )
 missing=()
 for p in "${packages[@]}"; do

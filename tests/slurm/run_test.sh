@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# Issue 44's test on a real Slurm (docs/FARM.md): starts a one-node cluster on this machine (tests/slurm/cluster.sh),
+# submits a short walkthrough of the built-in Cornell box through deploy/slurm/submit.sh twice, and checks every frame
+# against a render by one process, bit for bit:
+#   run 1: the pre-pass over 2 array tasks, the frames over 3;
+#   run 2: the pre-pass in 1 task, the frames over 2; task 0 is requeued mid-render (`scontrol requeue`: killed, then
+#          pending again), so its second run must render only the frames the first did not finish.
+# Each run must also leave the merged cache file equal to the one process's, an MP4 and no temporary file. The
+# daemons are stopped and every file removed on exit. Needs root, slurm-wlm and munge (scripts/install-debian-packages.sh)
+# and build/rcsplat (scripts/setup.sh).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+root=$PWD
+bin="$root/build/rcsplat"
+[ -x "$bin" ] || { echo "run_test.sh: build rcsplat first (bash scripts/setup.sh)" >&2; exit 1; }
+work=$(mktemp -d /tmp/rcsplat-slurm.XXXXXX)
+cleanup() {
+  bash tests/slurm/cluster.sh stop "$work/cluster" || true
+  if [ -n "${RCSPLAT_KEEP_SLURM_TEST:-}" ]; then echo "slurm test: files kept in $work"; else rm -rf "$work"; fi
+}
+trap cleanup EXIT
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$root/build/pocl-cache}"
+mkdir -p "$POCL_CACHE_DIR"
+fail() { echo "slurm test: FAILED: $*" >&2; exit 1; }
+start=$SECONDS
+
+frames=12 fps=6 key_every=4
+walk=(--orbit 2 --orbit-degrees 30 --width 96 --height 96)
+
+# One process: the pre-pass over every key frame, its merge (of one part), every frame from the merged file.
+one="$work/one"
+mkdir -p "$one"
+"$bin" -q animate "${walk[@]}" --fps $fps --cache-every $key_every --last-frame $((frames - 1)) \
+  --cache-out "$one/part.rccache" > /dev/null
+"$bin" -q animate "${walk[@]}" --fps $fps --cache-merge "$one/part.rccache" --cache-out "$one/walk.rccache" > /dev/null
+"$bin" -q animate "${walk[@]}" --fps $fps --cache-in "$one/walk.rccache" --cache-fixed --last-frame $((frames - 1)) \
+  -o "$one/%05d.exr" -o "$one/%05d.png" > /dev/null
+echo "slurm test: one process rendered $frames frames ($((SECONDS - start)) s)"
+
+bash tests/slurm/cluster.sh start "$work/cluster"
+export SLURM_CONF="$work/cluster/slurm.conf"
+echo "slurm test: a one-node cluster is up ($(sinfo -h -o '%D node, %c CPUs'))"
+
+# Waits for a job (all its array tasks) to leave the queue; fails unless every task completed.
+wait_for() {
+  local job=$1 deadline=$((SECONDS + 300))
+  while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ]; do
+    [ $SECONDS -lt $deadline ] || fail "job $job still queued after 300 s: $(squeue -j "$job")"
+    sleep 0.5
+  done
+  local states
+  states=$(scontrol show job "$job" | grep -o 'JobState=[A-Z_]*' | sort -u | tr '\n' ' ')
+  [ "$states" = "JobState=COMPLETED " ] || fail "job $job ended $states(logs: $(ls "$out"/logs))"
+}
+
+# Every frame, the merged cache and the MP4 as one process made them; nothing half-written left.
+check_run() {
+  local out=$1
+  cmp -s "$one/walk.rccache" "$out/cache/walk.rccache" || fail "$out: the merged cache differs from one process's"
+  for ((f = 0; f < frames; ++f)); do
+    for format in exr png; do
+      local name
+      name=$(printf %05d "$f").$format
+      cmp -s "$one/$name" "$out/frames/$name" || fail "$out: frame $name differs from one process's (or is missing)"
+    done
+  done
+  [ -s "$out/walk.mp4" ] || fail "$out: no walk.mp4"
+  if find "$out" -name '.*tmp*' | grep -q .; then fail "$out: temporary files left: $(find "$out" -name '.*tmp*')"; fi
+}
+
+submit() {  # sets job_prepass, job_merge, job_frames, job_finish
+  eval "$(bash deploy/slurm/submit.sh --out "$1" --frames $frames --fps $fps --key-every $key_every --prepass-tasks "$2" \
+    --frame-tasks "$3" --cpus 1 --mem 1G -- "${walk[@]}" | sed 's/^/job_/')"
+}
+
+out="$work/run1"
+submit "$out" 2 3
+wait_for "$job_finish"
+check_run "$out"
+echo "slurm test: run 1 (pre-pass over 2 tasks, frames over 3) matches one process bit for bit ($((SECONDS - start)) s)"
+
+out="$work/run2"
+submit "$out" 1 2
+# Task 0 renders frames 0 to 5: once its first frame is written it is in the middle of the next one.
+deadline=$((SECONDS + 240))
+until [ -f "$out/frames/00000.png" ]; do
+  [ $SECONDS -lt $deadline ] || fail "task 0 of job $job_frames wrote no frame in 240 s"
+  sleep 0.05
+done
+scontrol requeue "${job_frames}_0"
+# Slurm holds a requeued job back for two minutes (its begin time, set once the killed task has ended); an
+# administrator may let it go at once.
+deadline=$((SECONDS + 60))
+until [ "$(squeue -h -j "${job_frames}_0" -o %T)" = PENDING ]; do
+  [ $SECONDS -lt $deadline ] || fail "task 0 of job $job_frames not pending again 60 s after its requeue"
+  sleep 0.1
+done
+scontrol update jobid="${job_frames}_0" StartTime=now
+wait_for "$job_finish"
+check_run "$out"
+rendered_runs=$(grep -c '^task.sh frames 0 ' "$out/logs/frames_0.log")
+[ "$rendered_runs" -eq 2 ] || fail "task 0 ran $rendered_runs times, not twice (requeued once)"
+skipped=$(grep -o '"skipped_frames": [0-9]*' "$out/logs/frames_0.json" | grep -o '[0-9]*$')
+[ "$skipped" -ge 1 ] && [ "$skipped" -lt 6 ] ||
+  fail "task 0's second run skipped $skipped of its 6 frames: it was not requeued mid-render"
+echo "slurm test: run 2 (task 0 requeued mid-render, its second run skipped the $skipped frames written) matches one" \
+  "process bit for bit ($((SECONDS - start)) s)"
