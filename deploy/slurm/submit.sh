@@ -7,7 +7,8 @@
 #               same order whatever the number of prepass tasks;
 #   3. frames   a job array: each task renders a range of frames from that file alone (`--cache-fixed`), skipping the
 #               frames already written (`--skip-existing`), so a requeued or rerun task renders only what is missing;
-#   4. finish   one job: checks that every frame is there and writes the MP4 with ffmpeg.
+#   4. finish   one job, once the frames job has ended and none of its tasks is queued again: checks that every
+#               frame is there and writes the MP4 with ffmpeg.
 # Every file goes under --out, which must be on storage every node sees. Usage:
 #   bash deploy/slurm/submit.sh --out /shared/walk --frames 240 [options] -- [scene.gltf] [animate options]
 # Everything after -- is given to every `rcsplat animate` (the scene, the camera path, --width, --quality, ...); the
@@ -94,6 +95,10 @@ merge=$(sbatch "${common[@]}" "${rendering[@]}" --job-name=rcsplat-merge --depen
   --output="$out/logs/merge.log" --open-mode=append "$task" merge "$out")
 render=$(sbatch "${common[@]}" "${rendering[@]}" --job-name=rcsplat-frames --array=0-$((frame_tasks - 1)) --requeue \
   --dependency=afterok:"$merge" --output="$out/logs/frames_%a.log" --open-mode=append "$task" frames "$out")
-finish=$(sbatch "${common[@]}" --job-name=rcsplat-finish --dependency=afterok:"$render" \
+# The finish step waits for the frames job's end whatever it was (afterany), then for any of its tasks requeued since,
+# and checks the frames itself: Slurm decides a dependency once, so an afterok on a task requeued after the others
+# had finished fails for good (sbatch(1), --dependency), though the task then renders its frames.
+echo "frames_job=$render" >> "$out"/farm.env
+finish=$(sbatch "${common[@]}" --job-name=rcsplat-finish --dependency=afterany:"$render" \
   --output="$out/logs/finish.log" --open-mode=append "$task" finish "$out")
 printf 'prepass=%s\nmerge=%s\nframes=%s\nfinish=%s\n' "$prepass" "$merge" "$render" "$finish" | tee "$out"/jobs.txt

@@ -44,6 +44,11 @@ frames)
     --first-frame "$first" --last-frame "$last" "${outputs[@]}" --json "$out/logs/frames_$task.json"
   ;;
 finish)
+  # A frames task requeued after the job had ended (a node failure, an administrator) is pending or running again:
+  # wait for it.
+  if [ -n "${frames_job:-}" ] && command -v squeue > /dev/null; then
+    while [ -n "$(squeue -h -j "$frames_job" 2> /dev/null)" ]; do sleep 2; done
+  fi
   missing=0
   for ((f = 0; f < frames; ++f)); do
     for format in $formats; do

@@ -3,8 +3,9 @@
 # submits a short walkthrough of the built-in Cornell box through deploy/slurm/submit.sh twice, and checks every frame
 # against a render by one process, bit for bit:
 #   run 1: the pre-pass over 2 array tasks, the frames over 3;
-#   run 2: the pre-pass in 1 task, the frames over 2; task 0 is requeued mid-render (`scontrol requeue`: killed, then
-#          pending again), so its second run must render only the frames the first did not finish.
+#   run 2: the pre-pass in 1 task, the frames over 3 run one after another; the last is requeued mid-render
+#          (`scontrol requeue`: killed, then pending again) after the others have ended, so its second run must render
+#          only the frames the first did not finish, and the finish step must wait for it.
 # Each run must also leave the merged cache file equal to the one process's, an MP4 and no temporary file. The
 # daemons are stopped and every file removed on exit. Needs root, slurm-wlm and munge (scripts/install-debian-packages.sh)
 # and build/rcsplat (scripts/setup.sh).
@@ -68,9 +69,9 @@ check_run() {
   if find "$out" -name '.*tmp*' | grep -q .; then fail "$out: temporary files left: $(find "$out" -name '.*tmp*')"; fi
 }
 
-submit() {  # sets job_prepass, job_merge, job_frames, job_finish
+submit() {  # OUT PREPASS_TASKS FRAME_TASKS [CPUS]; sets job_prepass, job_merge, job_frames, job_finish
   eval "$(bash deploy/slurm/submit.sh --out "$1" --frames $frames --fps $fps --key-every $key_every --prepass-tasks "$2" \
-    --frame-tasks "$3" --cpus 1 --mem 1G -- "${walk[@]}" | sed 's/^/job_/')"
+    --frame-tasks "$3" --cpus "${4:-1}" --mem 1G -- "${walk[@]}" | sed 's/^/job_/')"
 }
 
 out="$work/run1"
@@ -80,28 +81,30 @@ check_run "$out"
 echo "slurm test: run 1 (pre-pass over 2 tasks, frames over 3) matches one process bit for bit ($((SECONDS - start)) s)"
 
 out="$work/run2"
-submit "$out" 1 2
-# Task 0 renders frames 0 to 5: once its first frame is written it is in the middle of the next one.
+# The frames over 3 tasks of 2 CPUs each, so one runs at a time; task 2 (frames 8 to 11) is requeued once its first
+# frame is written: in the middle of the next, after the job's other tasks have ended (the case where an afterok on the
+# frames job would fail for good).
+submit "$out" 1 3 2
 deadline=$((SECONDS + 240))
-until [ -f "$out/frames/00000.png" ]; do
-  [ $SECONDS -lt $deadline ] || fail "task 0 of job $job_frames wrote no frame in 240 s"
+until [ -f "$out/frames/00008.png" ]; do
+  [ $SECONDS -lt $deadline ] || fail "task 2 of job $job_frames wrote no frame in 240 s"
   sleep 0.05
 done
-scontrol requeue "${job_frames}_0"
+scontrol requeue "${job_frames}_2"
 # Slurm holds a requeued job back for two minutes (its begin time, set once the killed task has ended); an
 # administrator may let it go at once.
 deadline=$((SECONDS + 60))
-until [ "$(squeue -h -j "${job_frames}_0" -o %T)" = PENDING ]; do
-  [ $SECONDS -lt $deadline ] || fail "task 0 of job $job_frames not pending again 60 s after its requeue"
+until [ "$(squeue -h -j "${job_frames}_2" -o %T)" = PENDING ]; do
+  [ $SECONDS -lt $deadline ] || fail "task 2 of job $job_frames not pending again 60 s after its requeue"
   sleep 0.1
 done
-scontrol update jobid="${job_frames}_0" StartTime=now
+scontrol update jobid="${job_frames}_2" StartTime=now
 wait_for "$job_finish"
 check_run "$out"
-rendered_runs=$(grep -c '^task.sh frames 0 ' "$out/logs/frames_0.log")
-[ "$rendered_runs" -eq 2 ] || fail "task 0 ran $rendered_runs times, not twice (requeued once)"
-skipped=$(grep -o '"skipped_frames": [0-9]*' "$out/logs/frames_0.json" | grep -o '[0-9]*$')
-[ "$skipped" -ge 1 ] && [ "$skipped" -lt 6 ] ||
-  fail "task 0's second run skipped $skipped of its 6 frames: it was not requeued mid-render"
-echo "slurm test: run 2 (task 0 requeued mid-render, its second run skipped the $skipped frames written) matches one" \
-  "process bit for bit ($((SECONDS - start)) s)"
+rendered_runs=$(grep -c '^task.sh frames 2 ' "$out/logs/frames_2.log")
+[ "$rendered_runs" -eq 2 ] || fail "task 2 ran $rendered_runs times, not twice (requeued once)"
+skipped=$(grep -o '"skipped_frames": [0-9]*' "$out/logs/frames_2.json" | grep -o '[0-9]*$')
+[ "$skipped" -ge 1 ] && [ "$skipped" -lt 4 ] ||
+  fail "task 2's second run skipped $skipped of its 4 frames: it was not requeued mid-render"
+echo "slurm test: run 2 (the last task requeued mid-render, its second run skipped the $skipped frames written) matches" \
+  "one process bit for bit ($((SECONDS - start)) s)"
