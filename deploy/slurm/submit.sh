@@ -74,10 +74,19 @@ out=$(cd "$out" && pwd)
 rcsplat=$(cd "$(dirname "$rcsplat")" && pwd)/$(basename "$rcsplat")
 # The run's settings, read by every task (deploy/slurm/task.sh): scalars as shell assignments, the animate options
 # NUL-separated so that any argument survives as it was given.
-{
-  printf 'rcsplat=%q\nframes=%q\nfps=%q\nkey_every=%q\nprepass_tasks=%q\nframe_tasks=%q\nformats=%q\n' \
-    "$rcsplat" "$frames" "$fps" "$key_every" "$prepass_tasks" "$frame_tasks" "$formats"
-} > "$out"/farm.env
+settings=$(printf 'rcsplat=%q\nframes=%q\nfps=%q\nkey_every=%q\nprepass_tasks=%q\nframe_tasks=%q\nformats=%q\n' \
+  "$rcsplat" "$frames" "$fps" "$key_every" "$prepass_tasks" "$frame_tasks" "$formats")
+# A folder that holds a run is resumed only with the same settings: its parts and frames were made with them.
+if [ -f "$out"/farm.env ]; then
+  if [ "$(grep -v '^frames_job=' "$out"/farm.env)" != "$settings" ] || ! cmp -s <(printf '%s\0' "$@") "$out"/animate.args
+  then
+    echo "submit.sh: $out holds a run with other settings (farm.env, animate.args): give a new --out, or remove" \
+      "that folder to start again" >&2
+    exit 2
+  fi
+  echo "submit.sh: $out holds this run already: its parts and frames are kept, the rest is rendered" >&2
+fi
+printf '%s\n' "$settings" > "$out"/farm.env
 printf '%s\0' "$@" > "$out"/animate.args
 
 common=(--parsable --chdir="$out" --cpus-per-task="$cpus" --mem="$mem" --export=ALL)

@@ -2,8 +2,9 @@
 # shellcheck disable=SC2154  # farm.env (sourced below) sets rcsplat, frames, fps, key_every, the tasks, formats
 # One step of a walkthrough submitted by deploy/slurm/submit.sh, run by Slurm: task.sh STEP OUT, STEP one of prepass,
 # merge, frames, finish; OUT the run's folder (farm.env and animate.args there say what to render). An array task's
-# share comes from SLURM_ARRAY_TASK_ID (or JOB_COMPLETION_INDEX: a Kubernetes Indexed Job, docs/FARM.md). Every step may be run again (a requeue, a rerun by hand): outputs are written
-# whole or not at all (rcsplat writes beside the target and renames), a step finds what is done and does the rest.
+# share comes from SLURM_ARRAY_TASK_ID (or JOB_COMPLETION_INDEX: a Kubernetes Indexed Job, docs/FARM.md). Every step
+# may be run again (a requeue, a rerun by hand): outputs are written whole or not at all (rcsplat writes beside the
+# target and renames), a step finds what is done and does the rest.
 set -euo pipefail
 step=${1:?usage: task.sh prepass|merge|frames|finish OUT} out=${2:?usage: task.sh STEP OUT}
 # shellcheck source=/dev/null

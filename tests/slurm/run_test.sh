@@ -79,6 +79,11 @@ submit "$out" 2 3
 wait_for "$job_finish"
 check_run "$out"
 echo "slurm test: run 1 (pre-pass over 2 tasks, frames over 3) matches one process bit for bit ($((SECONDS - start)) s)"
+# The same folder with other settings is refused before anything is submitted.
+if bash deploy/slurm/submit.sh --out "$out" --frames $frames --fps $fps --key-every 3 -- "${walk[@]}" 2> /dev/null
+then
+  fail "submit.sh took run 1's folder with another --key-every"
+fi
 
 out="$work/run2"
 # The frames over 3 tasks of 2 CPUs each, so one runs at a time; task 2 (frames 8 to 11) is requeued once its first
