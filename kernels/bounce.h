@@ -60,7 +60,7 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
   return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
 }
 
-#if CAUSTICS_APART
+#if HAS_SPECULAR_BRDF
 // What a record's ray finds lit directly on the surface it hits, less the light a sharp lobe (LOBE_GLOSSY) reflects of
 // the sources the caustic map shoots photons from (punctual lights, emitters, the environment's peak): that path,
 // light -> glossy -> the record's surface, is the caustic map's (kernels/caustic_map.cl), read at the pixels. A
@@ -68,7 +68,8 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
 // disc where the record splats (textured Sibenik's marble floor). The diffuse base keeps all direct light, and the
 // lobe keeps the environment's smooth part (one sample of the lobe that escapes), which the map does not shoot. Only
 // the irradiance records' program defines CAUSTICS_APART (host/passes/record_pass.cpp); later bounces, the radiance
-// records, the glossy pass and the path tracer count every path themselves.
+// records and the path tracer count every path themselves. The glossy pass's paths use it past a rough or Lambertian
+// hit no record reaches, where they read the caustic map instead (kernels/glossy.cl glossy_path_step).
 inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe,
                                           RayTally* rays) {
   if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY)
@@ -108,10 +109,10 @@ inline PathContinuation path_continuation(uint key, uint sample, uint bounces) {
 }
 
 // Bounce k of a continued path from *h (reached along *dir): draws the next direction from h's BRDF, multiplies
-// *throughput by f cos / pdf, traces it and adds throughput times the new hit's direct light to *sum; *h and *dir
-// move on to that hit. false: the path ends here.
-inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more, uint k,
-                      float3* sum, RayTally* rays) {
+// *throughput by f cos / pdf and traces it; *next is the new hit, *dir the new direction. false: the path ends here
+// (*h and *dir are then unchanged).
+inline bool path_extend(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more, uint k,
+                        HitSurface* next_hit, RayTally* rays) {
   uint d = PATH_FIRST_DIMENSION + 6u * k;
   float u1 = random01(more.key, more.sample, d), u2 = random01(more.key, more.sample, d + 1u);
   float3 next;
@@ -136,13 +137,26 @@ inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput
   if (!(throughput->x > 0.0f || throughput->y > 0.0f || throughput->z > 0.0f) || dot(next, h->ng) <= 0.0f)
     return false;
   float distance;
-  HitSurface h_next;
-  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, &h_next, &distance, rays)) return false;
-  *sum += *throughput * hit_direct(SCENE, &h_next, next, random01(more.key, more.sample, d + 3u),
-                                   random01(more.key, more.sample, d + 4u), random01(more.key, more.sample, d + 5u),
-                                   rays);
-  *h = h_next;
+  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, next_hit, &distance, rays)) return false;
   *dir = next;
+  return true;
+}
+
+// The random numbers of bounce k's light sample at its new hit (path_step): light sample (u, v) and lobe.
+inline float3 path_light_randoms(PathContinuation more, uint k) {
+  uint d = PATH_FIRST_DIMENSION + 6u * k;
+  return (float3)(random01(more.key, more.sample, d + 3u), random01(more.key, more.sample, d + 4u),
+                  random01(more.key, more.sample, d + 5u));
+}
+
+// path_extend, then the new hit's direct light times the path's throughput added to *sum; *h moves on to that hit.
+inline bool path_step(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughput, PathContinuation more, uint k,
+                      float3* sum, RayTally* rays) {
+  HitSurface h_next;
+  if (!path_extend(SCENE, h, dir, throughput, more, k, &h_next, rays)) return false;
+  const float3 r = path_light_randoms(more, k);
+  *sum += *throughput * hit_direct(SCENE, &h_next, *dir, r.x, r.y, r.z, rays);
+  *h = h_next;
   return true;
 }
 

@@ -8,6 +8,7 @@
 // pixels get the share of their light that their radiance records leave to the guide (guide_share).
 #include "bounce.h"
 #include "brdf_frame.h"
+#include "caustic_map.h"
 #include "counter_random.h"
 #include "light_guide.h"
 #include "path_queue.h"
@@ -22,8 +23,13 @@
 // records' interpolation error, seen blurred through the lobe, for the paths' noise; and a path read at its hit k
 // (0: the first) gathers k + 1 bounces more than the `bounces` it would have, the records' own (they carry `bounces`
 // after their point), which only brings it nearer the light of every bounce.
-#define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS
-#define CACHED_LIGHT , WORLD_RECORDS
+// Past a rough or Lambertian hit that no record reaches (off screen, hidden from the camera), a path reads the caustic
+// map there and leaves the light a sharp lobe at its next hit reflects of the lights out of that hit's direct light
+// (glossy_path_step): the path light -> sharp lobe -> that hit is the map's. Traced instead, it is a point light's
+// highlight in the marble floor found by one path in thousands through a random direction from a stone wall: single
+// pixels 1000x their neighbours on textured Sibenik's floor (docs/NOTES.md, "Fireflies").
+#define CACHED_LIGHT_ARGS , WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS
+#define CACHED_LIGHT , WORLD_RECORDS, CAUSTIC_MAP
 
 inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e) {
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
@@ -46,6 +52,23 @@ inline bool cached_light(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3 dir
   return true;
 }
 
+// Bounce k of a sample's path from *h, a hit the records do not reach: path_step, but where h is rough or Lambertian
+// and the scene has a caustic map, h adds the map's irradiance reflected along -*dir, and the next hit's direct light
+// leaves out what the map holds (kernels/bounce.h hit_direct_without_caustics).
+inline bool glossy_path_step(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3* dir, float3* throughput,
+                             PathContinuation more, uint k, float3* sum, RayTally* rays) {
+  const int lobe = hit_lobe_kind(materials, textures, texels, h);
+  const bool map_holds_caustics = caustic_grid.photon_count > 0u && (lobe == LOBE_NONE || lobe == LOBE_ROUGH);
+  if (!map_holds_caustics) return path_step(SCENE, h, dir, throughput, more, k, sum, rays);
+  *sum += *throughput * cached_reflection(SCENE, h, *dir, caustic_irradiance(CAUSTIC_MAP, h->s.position, h->ng));
+  HitSurface h_next;
+  if (!path_extend(SCENE, h, dir, throughput, more, k, &h_next, rays)) return false;
+  const float3 r = path_light_randoms(more, k);
+  *sum += *throughput * hit_direct_without_caustics(SCENE, &h_next, *dir, r.x, r.y, r.z, rays);
+  *h = h_next;
+  return true;
+}
+
 // The radiance a sample's ray along dir brings back: as bounce_radiance, but a path that lands where the records
 // reach reads them there and ends.
 inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
@@ -60,7 +83,7 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
       sum += throughput * cached;
       break;
     }
-    if (!path_step(SCENE, &h, &dir, &throughput, more, k, &sum, rays)) break;
+    if (!glossy_path_step(SCENE CACHED_LIGHT, &h, &dir, &throughput, more, k, &sum, rays)) break;
   }
   return finite_or_zero(sum);
 }
@@ -163,7 +186,7 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
 // Pixel `pixel`'s glossy light into glossy_out (GLOSSY_WHOLE, GLOSSY_GATHER), or its samples' directions into its
 // slots_per_pixel slots (GLOSSY_AIM).
 inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                         WORLD_RECORD_ARGS, uint pixel, uint phase, __global float4* slots, uint slots_per_pixel,
+                         WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint pixel, uint phase, __global float4* slots, uint slots_per_pixel,
                          __global float4* glossy_out) {
   if (phase == GLOSSY_AIM)
     for (uint s = 0; s < slots_per_pixel; ++s) slots[s] = (float4)(0.0f);
@@ -235,20 +258,20 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
 
 // Each glossy pixel's samples traced and shaded in one work-item...
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                              WORLD_RECORD_ARGS, __global float4* glossy_out) {
+                              WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global float4* glossy_out) {
   uint pixel = get_global_id(0);
   if (pixel < (uint)(camera->width * camera->height))
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, pixel, GLOSSY_WHOLE, glossy_out, 0u, glossy_out);
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, pixel, GLOSSY_WHOLE, glossy_out, 0u, glossy_out);
 }
 
 // ... or as a wavefront (GroupSizes::record_trace), over launches of pixel_count pixels from first_pixel, each with
 // slots_per_pixel sample slots: aim_glossy_samples keeps the samples' directions...
 __kernel void aim_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                                 WORLD_RECORD_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
+                                 WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
                                  __global float4* sample_slots) {
   uint i = get_global_id(0);
   if (i < pixel_count)
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, first_pixel + i, GLOSSY_AIM,
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, first_pixel + i, GLOSSY_AIM,
                  sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, sample_slots);
 }
 
@@ -270,7 +293,7 @@ __kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, uint first_pixel, u
 
 // ... shade_glossy_first_hits shades each hit as far as its first bounce's light (sample_radiance's first steps), and
 // queues the paths that go on (kernels/path_queue.h)...
-__kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_RECORD_ARGS, uint first_pixel,
+__kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel,
                                       uint pixel_count, uint slots_per_pixel, __global float4* sample_slots,
                                       __global const HitDesc* hits, __global QueuedPath* paths,
                                       volatile __global uint* path_count, RAY_QUEUE_ARGS) {
@@ -314,11 +337,11 @@ inline bool glossy_path_bounce(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, floa
     *sum += *throughput * cached;
     return false;
   }
-  return path_step(SCENE, h, dir, throughput, more, k, sum, rays);
+  return glossy_path_step(SCENE CACHED_LIGHT, h, dir, throughput, more, k, sum, rays);
 }
 
 // ... step_glossy_paths takes every queued path bounce `bounce` further (0 .. later_bounces - 1, a launch each)...
-__kernel void step_glossy_paths(SCENE_ARGS, WORLD_RECORD_ARGS, __global QueuedPath* paths,
+__kernel void step_glossy_paths(SCENE_ARGS, WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global QueuedPath* paths,
                                 __global const uint* path_count, uint bounce, uint later_bounces, RAY_QUEUE_ARGS) {
   const size_t i = get_global_id(0);
   HitSurface h;
@@ -345,11 +368,11 @@ __kernel void finish_glossy_paths(__global const QueuedPath* paths, __global con
 
 // ... and gather_glossy_samples sums each pixel's samples as glossy_indirect does.
 __kernel void gather_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                                    WORLD_RECORD_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
+                                    WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
                                     __global float4* sample_slots, __global float4* glossy_out) {
   uint i = get_global_id(0);
   if (i < pixel_count)
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, first_pixel + i, GLOSSY_GATHER,
+    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, first_pixel + i, GLOSSY_GATHER,
                  sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, glossy_out);
 }
 

@@ -55,7 +55,7 @@ void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed
     scene_.bind(kernel_);
     gbuffer.bind(kernel_);
     kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
-    bind_records(kernel_);
+    bind_cached_light(kernel_);
     kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
     kernel_.launch(pixels_, gpu_.groups().traversal);
   }
@@ -78,7 +78,7 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
     scene_.bind(kernel);
     gbuffer.bind(kernel);
     kernel.set("params", params).set_buffer<GuideCluster>("guide", guide_);
-    bind_records(kernel);
+    bind_cached_light(kernel);
     return kernel;
   };
   for (size_t first = 0; first < pixels_; first += launch_pixels) {
@@ -102,7 +102,7 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
     rays_->run_stage(2, slots, [&](cl_uint mode) {
       scene_.bind(shade_first_hits_);
       shade_first_hits_.set("params", params);
-      bind_records(shade_first_hits_);
+      bind_cached_light(shade_first_hits_);
       NamedKernel& shade = set_launch(shade_first_hits_)
                                .set_buffer<cl_float4>("sample_slots", sample_slots_)
                                .set_buffer<HitDesc>("hits", sample_hits_);
@@ -112,7 +112,7 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
         step_paths_,
         [&](NamedKernel& step) {
           scene_.bind(step);
-          bind_records(step);
+          bind_cached_light(step);
         },
         later_bounces, slots, *rays_);
     if (later_bounces)
@@ -131,7 +131,23 @@ void GlossyPass::bind_records(NamedKernel& kernel) {
       .set("world_grid", bound_grid_);
 }
 
+void GlossyPass::bind_cached_light(NamedKernel& kernel) {
+  bind_records(kernel);
+  if (bound_caustics_) {
+    bound_caustics_->bind(kernel);
+    return;
+  }
+  if (!no_caustic_photons_()) {
+    no_caustic_photons_ = gpu_.upload(std::vector<PhotonHit>(1), CL_MEM_READ_ONLY, "glossy: no caustic map");
+    no_caustic_buckets_ = gpu_.upload(std::vector<cl_uint>{0, 0}, CL_MEM_READ_ONLY, "glossy: no caustic map");
+  }
+  kernel.set_buffer<PhotonHit>("caustic_photons", no_caustic_photons_)
+      .set_buffer<cl_uint>("caustic_buckets", no_caustic_buckets_)
+      .set("caustic_grid", PhotonMapParams{});
+}
+
 void GlossyPass::prepare_records(const GlossyCacheReads& reads) {
+  bound_caustics_ = reads.caustics;
   if (reads.device) {
     bound_records_ = reads.device->records;
     bound_starts_ = reads.device->bucket_starts;

@@ -9,6 +9,7 @@
 #include "cl/gpu_context.h"
 #include "cache/world_record_grid.h"
 #include "kernels/shared_types.h"
+#include "passes/caustic_map_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/path_queue.h"
 #include "passes/ray_queue.h"
@@ -19,11 +20,13 @@ namespace rcsplat {
 // What the samples' rays read where they land on a Lambertian or rough surface (kernels/glossy.cl sample_radiance):
 // the cache's records by position, with their grid, built on the device where the records are (frames: `device`), or
 // on the host and uploaded (tests: `records` and `grid`). With a caustic map, the records' irradiance holds the map's
-// at each record too (CausticMapPass::lit_records). No records: every sample continues its path.
+// at each record too (CausticMapPass::lit_records), and a path past a hit that no record reaches reads the map there
+// (kernels/glossy.cl glossy_path_step). No records: every sample continues its path.
 struct GlossyCacheReads {
   const std::vector<CacheRecord>* records = nullptr;
   const WorldRecordGrid* grid = nullptr;
   const DeviceWorldRecordGrid* device = nullptr;
+  const CausticMapPass* caustics = nullptr;
 };
 
 class GlossyPass {
@@ -50,9 +53,11 @@ class GlossyPass {
  private:
   static constexpr const char* kProgram = "glossy.cl";  // its kernels' file
   // The records the samples read and their grid: the device's, or uploaded from the host (an empty grid without
-  // them); bind_records then sets a kernel's WORLD_RECORD_ARGS to them.
+  // them); bind_records then sets a kernel's WORLD_RECORD_ARGS to them, and bind_cached_light those and its
+  // CAUSTIC_MAP_ARGS to the caustic map (an empty one, which the kernels never read, without it).
   void prepare_records(const GlossyCacheReads& reads);
   void bind_records(NamedKernel& kernel);
+  void bind_cached_light(NamedKernel& kernel);
   // The wavefront (GroupSizes::record_trace): the pixels in launches, each sample's ray traced, its first hit shaded,
   // the paths going on queued and stepped a kernel a bounce, then each pixel's samples summed (kernels/glossy.cl).
   void run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t slots_per_pixel);
@@ -65,6 +70,8 @@ class GlossyPass {
   cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records from the host
   const cl::Buffer *bound_records_ = nullptr, *bound_starts_ = nullptr, *bound_lists_ = nullptr;
   WorldRecordParams bound_grid_{};
+  const CausticMapPass* bound_caustics_ = nullptr;
+  cl::Buffer no_caustic_photons_, no_caustic_buckets_;  // the empty map's placeholders
   // The wavefront's per-launch buffers: each sample's slot (its direction, then its light), hit, and the queue of
   // paths going on after their first hit.
   cl::Buffer sample_slots_, sample_hits_;

@@ -50,6 +50,7 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
         const cl::Buffer& read = caustics ? caustics->lit_records(*records, record_count) : *records;
         grid = record_grids->build(read, record_count, cs.accuracy);
         reads.device = &grid;
+        reads.caustics = caustics;
         st.glossy.reads_records = true;
         f.gpu.queue().finish();  // the grid's time is its own, not the glossy samples'
         grid_timing.stop();
