@@ -258,6 +258,11 @@ int main(int argc, char** argv) {
   EnvironmentFlags render_environment;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
   add_frame_options(render_cmd, render, render_camera, render_environment, lab);
+  render_cmd->add_flag("--denoise", render.denoise,
+                       "Denoise the light each pixel samples itself (area and environment direct light, sharp glossy "
+                       "lobes; path tracing: the whole image) with Intel Open Image Denoise, and compose it with the "
+                       "cache's indirect light, which stays as it is; the EXR keeps the noisy layers too (noisy, "
+                       "noisy_direct, noisy_glossy, noisy_indirect). Needs the library: bash scripts/install-oidn.sh");
   if (!help_all) render_cmd->footer("--help-all also lists the experiment options.");
   RenderMethodFlags render_method;
   render_method.add(render_cmd, render, lab);

@@ -9,6 +9,7 @@ packages=(
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
   ffmpeg  # rcsplat animate --mp4: the walkthrough's preview
   slurm-wlm munge  # tests/slurm/run_test.sh: the render-farm scripts (deploy/slurm/) on a one-node Slurm cluster
+  python3-pip unzip  # scripts/install-oidn.sh: Open Image Denoise's libraries from PyPI's pyoidn wheel
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -23,6 +23,8 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # these are the kernel-numerics suites in files shared with host-side ones.
 kernel_numerics='HardCases.*:SubPixelSides/LayerPassTest.*:Bench.*:PhotonMap.EstimatesMatchADoublePrecisionSumOverTheDisc'
 kernel_numerics+=':PhotonMap.EstimatesWithTheSceneSurface*'
+# Open Image Denoise is not instrumented either (a prebuilt library with TBB's threads): its suite runs in the plain run.
+kernel_numerics+=':OpenImageDenoise.*'
 if [ "${1:-}" = "--all" ]; then
   layout=(-DRCSPLAT_TEST_PER_PROCESS=ON -DRCSPLAT_TEST_KERNEL_NUMERICS=ON)
 else

@@ -4,6 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-debian-packages.sh
+bash scripts/install-oidn.sh  # optional: --denoise's library; a warning where it cannot be had
 # PoCL reports no device at all when its kernel cache is not writable: give it one unless the caller did.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR"

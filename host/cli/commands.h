@@ -31,6 +31,7 @@ struct RenderOptions {
   float exposure = 0.0f;
   std::string json_path;
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
+  bool denoise = false;  // render --denoise: Open Image Denoise on the per-pixel sampled layers (render/denoise_frame.h)
   std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
   // Cache files (render/cache_file.h): the splat's kept records read before the first frame, written after the last.
   std::string cache_in, cache_out;

@@ -8,6 +8,7 @@
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
+#include "render/denoise_frame.h"
 #include "render/render_output.h"
 #include "kernels/hsh.h"
 #include "render/bounce_choice.h"
@@ -149,6 +150,10 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 settings.path.stratified ? " (stratified)" : "", (unsigned long long)s.path.rays, s.path.seconds,
                 mrays_per_second(s.path.rays, s.path.seconds));
   }
+  if (!s.denoise.device.empty())
+    std::printf("denoise      Open Image Denoise (%s device) on %s, %.3f s\n", s.denoise.device.c_str(),
+                s.denoise.layers.empty() ? "nothing (the frame samples no light per pixel)" : s.denoise.layers.c_str(),
+                s.denoise.seconds);
   print_memory(s.device_memory);
   std::printf("total        %.3f s (on the host between passes: bounce probe %.3f s, image layers %.3f s)\n",
               s.total_s, s.bounces.probe_s, s.primary.layers_s);
@@ -193,7 +198,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                    {"photon_map", s.photon_map.seconds}, {"caustic_map", s.caustics.seconds},
                    {"light_guide", s.guide.seconds},
                    {"glossy", s.glossy.seconds}, {"bounce_probe", s.bounces.probe_s},
-                   {"layers", s.primary.layers_s}, {"total", s.total_s}}},
+                   {"layers", s.primary.layers_s}, {"denoise", s.denoise.seconds}, {"total", s.total_s}}},
+      {"denoise", {{"layers", s.denoise.layers}, {"device", s.denoise.device}}},
       {"memory", memory_json(s.device_memory)},
       {"outputs", outputs},
       {"not_simulated", scene.unsupported},
@@ -279,6 +285,9 @@ int run_render(const RenderOptions& options) {
     check_writable_destination(out);
   }
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
+  if (options.denoise && options.resume) throw Error("--denoise: a reference is not denoised (--resume continues one)");
+  // Loaded before the scene, so that a missing library stops the run before any work and with no file written.
+  std::unique_ptr<Denoiser> denoiser = options.denoise ? Denoiser::load() : nullptr;
   Scene scene =
       load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides, options.environment,
                  options.limits);
@@ -287,7 +296,7 @@ int run_render(const RenderOptions& options) {
   GpuContext gpu(device);
   gpu.set_memory_budget(options.limits.device_memory_bytes);
   RenderSettings settings = options.settings;
-  settings.color_only = outputs_need_only_color(options.outputs);
+  settings.color_only = outputs_need_only_color(options.outputs) && !denoiser;  // it reads albedo and normal
   RenderedImage image;
   std::string earlier;  // --resume: the .exr output an earlier run wrote
   for (const std::string& out : options.outputs)
@@ -308,9 +317,17 @@ int run_render(const RenderOptions& options) {
   } else {
     image = render(gpu, scene, settings);
   }
-  const ExrAttributes attributes = render_attributes(scene, image, options.settings);
-  for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   const ScenePlan plan = plan_scene(scene);
+  if (denoiser) {
+    DenoiseChoice choice;
+    choice.direct_sampled = plan.emissive_triangles > 0 || !plan.environment.empty();
+    denoise_frame(*denoiser, choice, image);
+    image.stats.total_s += image.stats.denoise.seconds;
+  }
+  ExrAttributes attributes = render_attributes(scene, image, options.settings);
+  if (denoiser) attributes["rcsplat:denoised"] = image.stats.denoise.layers.empty() ? "nothing sampled per pixel"
+                                                                                     : image.stats.denoise.layers;
+  for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
   print_summary(scene, plan, image, options.settings, options.outputs);
   if (options.settings.gi != GiMethod::path)
     std::printf("quality      %s\n", quality_summary(options.quality, options.settings).c_str());

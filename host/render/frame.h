@@ -118,6 +118,13 @@ struct PathStats {
   double seconds = 0;
 };
 
+// Open Image Denoise after the frame (--denoise): the layers it filtered ("direct glossy", "color indirect"), the
+// device it ran on, and its time (the library's first load and device included).
+struct DenoiseStats {
+  std::string layers, device;
+  double seconds = 0;
+};
+
 // Records kept across frames (render/kept_records.h): what this frame took, added and evicted.
 struct KeptRecordsStats {
   uint64_t reused = 0;   // kept records this frame's view took
@@ -146,6 +153,7 @@ struct RenderStats {
   KeptRecordsStats kept_records;           // irradiance records; all 0 unless the renderer keeps records across frames
   KeptRecordsStats kept_radiance_records;  // radiance records (LOBE_HSH pixels), likewise
   PathStats path;
+  DenoiseStats denoise;
 
   // The stages' times in the order a frame runs them (bench's columns); kernel builds are in none of them.
   struct StageTime {
@@ -183,6 +191,10 @@ struct RenderedImage {
   std::vector<float> records_per_pixel;  // records that reach each pixel (cache methods)
   std::vector<float> record_positions;   // 1 where a record sits (cache methods)
   std::vector<float> indirect_variance;  // variance of the indirect estimate (path tracing)
+  // The part of `indirect` sampled per pixel by the glossy pass (sharp lobes: kernels/glossy.cl); empty without one.
+  std::vector<float> glossy;
+  // With --denoise (render/denoise_frame.h): the layers as rendered, before Open Image Denoise; empty otherwise.
+  std::vector<float> noisy_color, noisy_direct, noisy_indirect, noisy_glossy;
   std::vector<CacheRecord> records;      // the cache's records (cache methods)
   RenderStats stats;
 };

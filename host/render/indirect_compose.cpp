@@ -73,6 +73,10 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   if (!layers_stay_on_device(f.settings)) {
     img.indirect.resize(pixels * 3);
     f.layers.mean_rgba(compose.indirect(), LayerPass::rgb_into(img.indirect));
+    if (glossy) {
+      img.glossy.resize(pixels * 3);
+      f.layers.mean_rgba(glossy->radiance(), LayerPass::rgb_into(img.glossy));
+    }
   }
   f.layers.mean_rgba(compose.color(), LayerPass::rgb_into(img.color));
 }

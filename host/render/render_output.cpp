@@ -33,6 +33,11 @@ void write_render(const std::string& path, const RenderedImage& image, float exp
     add("coverage", {"Y"}, image.coverage);
     add("records", {"Y"}, image.records_per_pixel);
     add("record_positions", {"Y"}, image.record_positions);
+    add("glossy", rgb, image.glossy);
+    add("noisy", rgb, image.noisy_color);
+    add("noisy_direct", rgb, image.noisy_direct);
+    add("noisy_indirect", rgb, image.noisy_indirect);
+    add("noisy_glossy", rgb, image.noisy_glossy);
     write_exr(path, image.width, image.height, layers, attributes);
   }
 }
