@@ -129,6 +129,25 @@ double mean_of(const std::vector<float>& rgb) {
   return sum / double(rgb.size());
 }
 
+// 256 stratified paths a pixel of the frame `cache` asks for, at the bounces it settles on: the indirect layer's mean
+// and that mean's variance (from the reference's per-pixel variance).
+struct PathReference {
+  RenderedImage image;
+  double mean = 0, variance_of_mean = 0;
+};
+PathReference path_reference(Renderer& renderer, const RenderSettings& cache) {
+  RenderSettings path = cache;
+  path.bounces = renderer.plan(cache).settings.bounces;
+  path.gi = GiMethod::path;
+  path.path.samples = 256;
+  path.path.stratified = true;
+  PathReference r{renderer.render(path)};
+  r.mean = mean_of(r.image.indirect);
+  for (float v : r.image.indirect_variance) r.variance_of_mean += v;
+  r.variance_of_mean /= double(r.image.indirect_variance.size()) * double(r.image.indirect_variance.size());
+  return r;
+}
+
 // The split against the path tracer, in a room whose far wall and ceiling a glossy floor lights with the lamp's
 // mirror image (tests/caustic_room_scene.h): the cache's indirect light (records without the caustic paths, plus the
 // caustic map at the pixels) must agree with path tracing, which counts the caustic through each path's light sample
@@ -146,17 +165,8 @@ TEST(CausticMap, GlossyFloorRoomMatchesThePathTracer) {
   cache.width = 96;
   cache.height = 72;
   cache.glossy_reads_records = false;
-  const FramePlan plan = renderer.plan(cache);
-  RenderSettings path = cache;
-  path.bounces = plan.settings.bounces;
-  path.gi = GiMethod::path;
-  path.path.samples = 256;
-  path.path.stratified = true;
-  const RenderedImage reference = renderer.render(path);
-  const double reference_mean = mean_of(reference.indirect);
-  double variance_of_mean = 0.0;
-  for (float v : reference.indirect_variance) variance_of_mean += v;
-  variance_of_mean /= double(reference.indirect_variance.size()) * double(reference.indirect_variance.size());
+  const PathReference path = path_reference(renderer, cache);
+  const double reference_mean = path.mean, variance_of_mean = path.variance_of_mean;
   auto cache_mean = [&](unsigned caustic_photons) {
     double sum = 0.0;
     for (unsigned seed : {1u, 2u}) {
@@ -209,17 +219,9 @@ TEST(CausticMap, GlossyPathsPastWallsNoRecordReachesReadTheMapWithoutFireflies) 
   RenderSettings cache;
   cache.width = 64;
   cache.height = 48;
-  const FramePlan plan = renderer.plan(cache);
-  RenderSettings path = cache;
-  path.bounces = plan.settings.bounces;
-  path.gi = GiMethod::path;
-  path.path.samples = 256;
-  path.path.stratified = true;
-  const RenderedImage reference = renderer.render(path);
-  const double reference_mean = mean_of(reference.indirect);
-  double variance_of_mean = 0.0;
-  for (float v : reference.indirect_variance) variance_of_mean += v;
-  variance_of_mean /= double(reference.indirect_variance.size()) * double(reference.indirect_variance.size());
+  const PathReference path = path_reference(renderer, cache);
+  const RenderedImage& reference = path.image;
+  const double reference_mean = path.mean, variance_of_mean = path.variance_of_mean;
   double cache_mean = 0.0;
   for (unsigned seed : {1u, 2u}) {
     RenderSettings s = cache;
