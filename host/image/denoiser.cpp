@@ -58,7 +58,7 @@ struct Denoiser::Api {
 namespace {
 
 template <typename F>
-void bind(void* library, const std::string& path, const char* name, F*& function) {
+void bind_symbol(void* library, const std::string& path, const char* name, F*& function) {
   function = reinterpret_cast<F*>(dlsym(library, name));
   if (!function) throw Error(path + ": not Open Image Denoise 2 (no symbol " + name + ")");
 }
@@ -104,22 +104,22 @@ std::unique_ptr<Denoiser> Denoiser::load() {
   denoiser->library_path_ = path;
   denoiser->api_ = std::make_unique<Api>();
   Api& api = *denoiser->api_;
-  bind(library, path, "oidnNewDevice", api.newDevice);
-  bind(library, path, "oidnCommitDevice", api.commitDevice);
-  bind(library, path, "oidnReleaseDevice", api.releaseDevice);
-  bind(library, path, "oidnGetDeviceError", api.getDeviceError);
-  bind(library, path, "oidnGetDeviceInt", api.getDeviceInt);
-  bind(library, path, "oidnNewBuffer", api.newBuffer);
-  bind(library, path, "oidnReleaseBuffer", api.releaseBuffer);
-  bind(library, path, "oidnWriteBuffer", api.writeBuffer);
-  bind(library, path, "oidnReadBuffer", api.readBuffer);
-  bind(library, path, "oidnNewFilter", api.newFilter);
-  bind(library, path, "oidnReleaseFilter", api.releaseFilter);
-  bind(library, path, "oidnSetFilterImage", api.setFilterImage);
-  bind(library, path, "oidnSetFilterBool", api.setFilterBool);
-  bind(library, path, "oidnSetFilterInt", api.setFilterInt);
-  bind(library, path, "oidnCommitFilter", api.commitFilter);
-  bind(library, path, "oidnExecuteFilter", api.executeFilter);
+  bind_symbol(library, path, "oidnNewDevice", api.newDevice);
+  bind_symbol(library, path, "oidnCommitDevice", api.commitDevice);
+  bind_symbol(library, path, "oidnReleaseDevice", api.releaseDevice);
+  bind_symbol(library, path, "oidnGetDeviceError", api.getDeviceError);
+  bind_symbol(library, path, "oidnGetDeviceInt", api.getDeviceInt);
+  bind_symbol(library, path, "oidnNewBuffer", api.newBuffer);
+  bind_symbol(library, path, "oidnReleaseBuffer", api.releaseBuffer);
+  bind_symbol(library, path, "oidnWriteBuffer", api.writeBuffer);
+  bind_symbol(library, path, "oidnReadBuffer", api.readBuffer);
+  bind_symbol(library, path, "oidnNewFilter", api.newFilter);
+  bind_symbol(library, path, "oidnReleaseFilter", api.releaseFilter);
+  bind_symbol(library, path, "oidnSetFilterImage", api.setFilterImage);
+  bind_symbol(library, path, "oidnSetFilterBool", api.setFilterBool);
+  bind_symbol(library, path, "oidnSetFilterInt", api.setFilterInt);
+  bind_symbol(library, path, "oidnCommitFilter", api.commitFilter);
+  bind_symbol(library, path, "oidnExecuteFilter", api.executeFilter);
   denoiser->device_ = api.newDevice(kOidnDeviceTypeDefault);
   if (!denoiser->device_) throw Error("Open Image Denoise (" + path + "): no device could be made");
   api.commitDevice(denoiser->device_);
