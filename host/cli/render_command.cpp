@@ -285,7 +285,6 @@ int run_render(const RenderOptions& options) {
     check_writable_destination(out);
   }
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
-  if (options.denoise && options.resume) throw Error("--denoise: a reference is not denoised (--resume continues one)");
   // Loaded before the scene, so that a missing library stops the run before any work and with no file written.
   std::unique_ptr<Denoiser> denoiser = options.denoise ? Denoiser::load() : nullptr;
   Scene scene =

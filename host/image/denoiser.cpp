@@ -100,8 +100,6 @@ std::unique_ptr<Denoiser> Denoiser::load() {
                 ". Install it with `bash scripts/install-oidn.sh` (the libraries of PyPI's pyoidn wheel), or set "
                 "RCSPLAT_OIDN_LIBRARY to a libOpenImageDenoise.so.2");
   std::unique_ptr<Denoiser> denoiser(new Denoiser());
-  denoiser->library_ = library;
-  denoiser->library_path_ = path;
   denoiser->api_ = std::make_unique<Api>();
   Api& api = *denoiser->api_;
   bind_symbol(library, path, "oidnNewDevice", api.newDevice);
@@ -151,18 +149,14 @@ void Denoiser::denoise(std::vector<float>& rgb, int width, int height, const Den
         if (b) api.releaseBuffer(b);
     }
   } buffers{api, {}};
-  auto upload = [&](const std::vector<float>& image, bool sanitize) {
+  auto upload = [&](const std::vector<float>& image) {
     OidnBuffer b = api.newBuffer(device_, bytes);
     buffers.held.push_back(b);
     check("allocating an image");
-    if (sanitize) {
-      std::vector<float> finite(image);
-      for (float& v : finite)
-        if (!std::isfinite(v)) v = 0.0f;
-      api.writeBuffer(b, 0, bytes, finite.data());
-    } else {
-      api.writeBuffer(b, 0, bytes, image.data());
-    }
+    std::vector<float> finite(image);
+    for (float& v : finite)
+      if (!std::isfinite(v)) v = 0.0f;
+    api.writeBuffer(b, 0, bytes, finite.data());
     return b;
   };
   OidnFilter filter = api.newFilter(device_, "RT");
@@ -172,12 +166,12 @@ void Denoiser::denoise(std::vector<float>& rgb, int width, int height, const Den
     OidnFilter f;
     ~FilterHolder() { api.releaseFilter(f); }
   } holder{api, filter};
-  OidnBuffer color = upload(rgb, true);
+  OidnBuffer color = upload(rgb);
   api.setFilterImage(filter, "color", color, kOidnFormatFloat3, width, height, 0, 0, 0);
   if (guides.albedo)
-    api.setFilterImage(filter, "albedo", upload(*guides.albedo, true), kOidnFormatFloat3, width, height, 0, 0, 0);
+    api.setFilterImage(filter, "albedo", upload(*guides.albedo), kOidnFormatFloat3, width, height, 0, 0, 0);
   if (guides.normal)
-    api.setFilterImage(filter, "normal", upload(*guides.normal, true), kOidnFormatFloat3, width, height, 0, 0, 0);
+    api.setFilterImage(filter, "normal", upload(*guides.normal), kOidnFormatFloat3, width, height, 0, 0, 0);
   OidnBuffer output = api.newBuffer(device_, bytes);
   buffers.held.push_back(output);
   api.setFilterImage(filter, "output", output, kOidnFormatFloat3, width, height, 0, 0, 0);

@@ -30,7 +30,6 @@ class Denoiser {
   // input values are taken as 0 (OIDN's contract wants finite input); the output is finite.
   void denoise(std::vector<float>& rgb, int width, int height, const DenoiseGuides& guides) const;
 
-  const std::string& library_path() const { return library_path_; }
   std::string device_name() const;  // "CPU", "CUDA", ...
 
  private:
@@ -38,10 +37,8 @@ class Denoiser {
   Denoiser() = default;
   // Throws with OIDN's own message when the device holds an error (OIDN reports errors per device, not per call).
   void check(const char* what) const;
-  void* library_ = nullptr;
-  std::unique_ptr<Api> api_;
+  std::unique_ptr<Api> api_;  // the library stays loaded for the process (~Denoiser)
   void* device_ = nullptr;
-  std::string library_path_;
   int device_type_ = 0;
 };
 

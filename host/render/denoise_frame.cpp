@@ -13,6 +13,7 @@ void denoise_frame(const Denoiser& denoiser, const DenoiseChoice& choice, Render
   if (img.albedo.size() != floats || img.normal.size() != floats || img.color.size() != floats)
     throw Error("--denoise needs the frame's albedo and normal layers");
   const DenoiseGuides guides{&img.albedo, &img.normal};
+  img.stats.denoise.device = denoiser.device_name();
   std::string& layers = img.stats.denoise.layers;
   auto add_name = [&](const char* name) {
     if (!layers.empty()) layers += ' ';
@@ -30,10 +31,7 @@ void denoise_frame(const Denoiser& denoiser, const DenoiseChoice& choice, Render
   } else {
     const bool direct = choice.direct_sampled && img.direct.size() == floats;
     const bool glossy = img.glossy.size() == floats && img.indirect.size() == floats;
-    if (!direct && !glossy) {
-      img.stats.denoise.device = denoiser.device_name();
-      return;
-    }
+    if (!direct && !glossy) return;
     img.noisy_color = img.color;
     if (direct) {
       img.noisy_direct = img.direct;
@@ -52,7 +50,6 @@ void denoise_frame(const Denoiser& denoiser, const DenoiseChoice& choice, Render
       img.color[i] = std::isfinite(c) ? c : 0.0f;
     }
   }
-  img.stats.denoise.device = denoiser.device_name();
   img.stats.denoise.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
