@@ -3,7 +3,8 @@
 # cache at the render defaults with --denoise (one EXR holds the denoised frame and, as noisy*, the frame as rendered),
 # path tracing (--stratified) at each SPPS count with --denoise (OIDN inside rcsplat, its time in the frame's), and
 # compares each against REF (a converged reference: `rcsplat reference SCENE --width W --height H --spp N`), full
-# image and indirect layer, with benchmarks/firefly_share.py for the fireflies. Writes OUT/*.exr, OUT/*.json and
+# image and indirect layer, with benchmarks/firefly_share.py for the fireflies. A "+ OIDN" row's time holds OIDN's on
+# the layers its image needs (path tracing: the colour; its indirect layer, denoised for compare, is not counted). Writes OUT/*.exr, OUT/*.json and
 # OUT/table.md.
 #   SPPS="8 16 32" bash benchmarks/issue59_still_frame.sh SCENE REF.exr OUT [W H]
 set -euo pipefail
@@ -35,7 +36,10 @@ PY
 import json, sys
 name, summary, compare, fireflies, prefix = sys.argv[1:]
 s, c, f = (json.load(open(p)) for p in (summary, compare, fireflies))
-sec = s["seconds"]["total"] - s["seconds"]["kernel_build"] - (s["seconds"].get("denoise", 0) if prefix else 0)
+# The frame less kernel builds; as rendered: less all of OIDN; denoised: less the indirect layer's OIDN run, which
+# only compare's indirect row needs (path tracing), not the image.
+t = s["seconds"]
+sec = t["total"] - t["kernel_build"] - (t["denoise"] if prefix else t["denoise_indirect_only"])
 full, ind = c["full"], c.get("indirect", {})
 print(f"| {name} | {sec:.2f} | {full['rel_mse']:.4g} | {full['block_rel_mse']:.4g} | {full['mean_flip']:.4f} | "
       f"{full['mean_ratio']:.4f} | {ind.get('block_rel_mse', float('nan')):.4g} | "

@@ -150,10 +150,14 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 settings.path.stratified ? " (stratified)" : "", (unsigned long long)s.path.rays, s.path.seconds,
                 mrays_per_second(s.path.rays, s.path.seconds));
   }
-  if (!s.denoise.device.empty())
-    std::printf("denoise      Open Image Denoise (%s device) on %s, %.3f s\n", s.denoise.device.c_str(),
+  if (!s.denoise.device.empty()) {
+    std::printf("denoise      Open Image Denoise (%s device) on %s, %.3f s", s.denoise.device.c_str(),
                 s.denoise.layers.empty() ? "nothing (the frame samples no light per pixel)" : s.denoise.layers.c_str(),
                 s.denoise.seconds);
+    if (s.denoise.indirect_only_s > 0)
+      std::printf(" (of which the indirect layer, for measuring, %.3f s)", s.denoise.indirect_only_s);
+    std::printf("\n");
+  }
   print_memory(s.device_memory);
   std::printf("total        %.3f s (on the host between passes: bounce probe %.3f s, image layers %.3f s)\n",
               s.total_s, s.bounces.probe_s, s.primary.layers_s);
@@ -198,7 +202,8 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
                    {"photon_map", s.photon_map.seconds}, {"caustic_map", s.caustics.seconds},
                    {"light_guide", s.guide.seconds},
                    {"glossy", s.glossy.seconds}, {"bounce_probe", s.bounces.probe_s},
-                   {"layers", s.primary.layers_s}, {"denoise", s.denoise.seconds}, {"total", s.total_s}}},
+                   {"layers", s.primary.layers_s}, {"denoise", s.denoise.seconds},
+                   {"denoise_indirect_only", s.denoise.indirect_only_s}, {"total", s.total_s}}},
       {"denoise", {{"layers", s.denoise.layers}, {"device", s.denoise.device}}},
       {"memory", memory_json(s.device_memory)},
       {"outputs", outputs},

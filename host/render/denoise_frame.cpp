@@ -24,9 +24,12 @@ void denoise_frame(const Denoiser& denoiser, const DenoiseChoice& choice, Render
     denoiser.denoise(img.color, img.width, img.height, guides);
     add_name("color");
     if (img.indirect.size() == floats) {
+      const auto indirect_start = std::chrono::steady_clock::now();
       img.noisy_indirect = img.indirect;
       denoiser.denoise(img.indirect, img.width, img.height, guides);
       add_name("indirect");
+      img.stats.denoise.indirect_only_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - indirect_start).count();
     }
   } else {
     const bool direct = choice.direct_sampled && img.direct.size() == floats;

@@ -119,10 +119,11 @@ struct PathStats {
 };
 
 // Open Image Denoise after the frame (--denoise): the layers it filtered ("direct glossy", "color indirect"), the
-// device it ran on, and its time (the library's first load and device included).
+// device it ran on, and its time (the library and its device are made before the frame, untimed); of that, the
+// time path tracing's indirect layer took, which only `compare`'s indirect row needs (not the image's).
 struct DenoiseStats {
   std::string layers, device;
-  double seconds = 0;
+  double seconds = 0, indirect_only_s = 0;
 };
 
 // Records kept across frames (render/kept_records.h): what this frame took, added and evicted.
