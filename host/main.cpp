@@ -119,7 +119,7 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
 // How `render` and `animate` compute a frame: the quality preset, the indirect-light method and the cache's options.
 struct RenderMethodFlags {
   std::string gi = "splat", hemisphere, spacing, fine_hemisphere, bounce_method;
-  bool glossy_paths = false;
+  bool glossy_paths = false, glossy_uniform = false;
 
   void add(CLI::App* cmd, RenderOptions& o, const std::string& lab) {
     cmd->add_option("--cache-in", o.cache_in,
@@ -170,8 +170,10 @@ struct RenderMethodFlags {
         ->group(lab);
     cmd->add_option("--spp", o.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
     cmd->add_option("--glossy-samples", o.settings.glossy_samples,
-                    "Cache methods: samples of each glossy pixel's specular lobe for its indirect light "
-                    "(stratified; default 16, at most 65536)")
+                    "Cache methods: samples of a glossy pixel's specular lobe for its indirect light, per "
+                    "output pixel: on average over the frame, spent where the estimated error is largest "
+                    "(with --glossy-uniform, in every glossy pixel); default " +
+                        std::to_string(RenderSettings{}.glossy_samples) + ", at most 65536")
         ->group(lab);
     cmd->add_option("--hsh-order", o.settings.hsh_order,
                     "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
@@ -190,6 +192,10 @@ struct RenderMethodFlags {
                         std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
                         std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                         " rounds; 0 too; at most 67108864)")
+        ->group(lab);
+    cmd->add_flag("--glossy-uniform", glossy_uniform,
+                  "Every glossy pixel takes --glossy-samples, rather than the frame's average spent in rounds where "
+                  "the estimated error gains most (the default)")
         ->group(lab);
     cmd->add_flag("--glossy-paths", glossy_paths,
                   "Glossy pixels' samples continue their paths past every hit, rather than reading the cache's "
@@ -222,6 +228,7 @@ struct RenderMethodFlags {
     if (!spacing.empty()) parse_spacing(spacing, o.settings.cache);
     if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, o.settings.cache, true);
     o.settings.glossy_reads_records = !glossy_paths;
+    o.settings.glossy_adaptive = !glossy_uniform;
     apply_quality(o.quality, o.settings, [&](const char* option) { return cmd->count(option) > 0; });
   }
 };

@@ -1,11 +1,14 @@
 // The specular part of the indirect light at pixels whose lobe is glossy (LOBE_GLOSSY), by sampling the lobe:
 // the cache's irradiance carries the diffuse base (kernels/splat.cl), and a glossy lobe is too narrow for irradiance
 // to stand in for the light it reflects. Each sample reflects the view about a visible normal of the GGX lobe
-// (Heitz 2018), drawn from a grid_side x grid_side grid, and weighs the directly lit radiance its ray finds
-// (kernels/bounce.h) by F G2 / G1; with a light guide, some samples aim at its clusters instead (below). Writes
-// RGB = the mean, A = the rays the pixel cast. With SAMPLE_HSH_LOBES the radiance-cacheable lobes (LOBE_HSH) are
-// sampled too, for cache methods that do not radiance-cache them; without it, and with a light guide, the LOBE_HSH
-// pixels get the share of their light that their radiance records leave to the guide (guide_share).
+// (Heitz 2018) and weighs the directly lit radiance its ray finds (kernels/bounce.h) by F G2 / G1; with a light guide,
+// some samples aim at its clusters instead (below). The samples come in chunks, each an estimate of its own, and in
+// rounds: every sampled sub-pixel takes one chunk, then the output pixels whose estimated error is largest take more
+// (passes/glossy_pass.h chooses them). A round adds each sub-pixel's chunk estimates (RGB) and rays (A) to glossy_sums
+// and its samples' luminance moments to glossy_moments; average_glossy_chunks then writes RGB = the mean, A = the rays.
+// With SAMPLE_HSH_LOBES the radiance-cacheable lobes (LOBE_HSH) are sampled too, for cache methods that do not
+// radiance-cache them; without it, and with a light guide, the LOBE_HSH pixels get the share of their light that their
+// radiance records leave to the guide (guide_share), in the first round.
 #include "bounce.h"
 #include "brdf_frame.h"
 #include "caustic_map.h"
@@ -52,19 +55,37 @@ inline bool cached_light(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3 dir
   return true;
 }
 
-// Bounce k of a sample's path from *h, a hit the records do not reach: path_step, but where h is rough or Lambertian
-// and the scene has a caustic map, h adds the map's irradiance reflected along -*dir, and the next hit's direct light
-// leaves out what the map holds (kernels/bounce.h hit_direct_without_caustics).
+// Path-space regularization (Kaplanyan and Dachsbacher 2013): at a sample's second hit and later, a sharp lobe
+// (LOBE_GLOSSY) reflects the lights' direct light as a lobe of at least GLOSSY_REGULARIZED_ROUGHNESS would, spreading
+// a highlight that only a chain of near-mirror reflections reaches (textured Sibenik's marble floor seen in its own
+// marble steps, alpha 0.0038: one sample in thousands finds the point light's highlight there, and brings 1000x its
+// pixel's light). The bias is a blur of those highlights; the mean it moves is measured in docs/NOTES.md
+// ("Fireflies through chains of mirrors"). The first hit, which the pixel's own lobe aims at, stays exact.
+#define GLOSSY_REGULARIZED_ROUGHNESS 0.3f
+inline float3 hit_direct_regularized(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v, float u_lobe,
+                                     RayTally* rays) {
+  if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY) return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
+  SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
+  lobe.roughness = fmax(lobe.roughness, GLOSSY_REGULARIZED_ROUGHNESS);
+  LazyBrdf brdf = built_brdf(surface_brdf(hit_albedo(materials, textures, texels, h), lobe));
+  return direct_reflected(SCENE, &brdf, LOBE_GLOSSY, h->s.position, h->ns, h->ng, -dir, u, v, u_lobe, rays);
+}
+
+// Bounce k of a sample's path from *h, a hit the records do not reach: path_step, with the next hit's direct light
+// regularized (above); but where h is rough or Lambertian and the scene has a caustic map, h adds the map's
+// irradiance reflected along -*dir, and the next hit's direct light leaves out what the map holds (kernels/bounce.h
+// hit_direct_without_caustics).
 inline bool glossy_path_step(SCENE_ARGS CACHED_LIGHT_ARGS, HitSurface* h, float3* dir, float3* throughput,
                              PathContinuation more, uint k, float3* sum, RayTally* rays) {
   const int lobe = hit_lobe_kind(materials, textures, texels, h);
   const bool map_holds_caustics = caustic_grid.photon_count > 0u && (lobe == LOBE_NONE || lobe == LOBE_ROUGH);
-  if (!map_holds_caustics) return path_step(SCENE, h, dir, throughput, more, k, sum, rays);
-  *sum += *throughput * cached_reflection(SCENE, h, *dir, caustic_irradiance(CAUSTIC_MAP, h->s.position, h->ng));
+  if (map_holds_caustics)
+    *sum += *throughput * cached_reflection(SCENE, h, *dir, caustic_irradiance(CAUSTIC_MAP, h->s.position, h->ng));
   HitSurface h_next;
   if (!path_extend(SCENE, h, dir, throughput, more, k, &h_next, rays)) return false;
   const float3 r = path_light_randoms(more, k);
-  *sum += *throughput * hit_direct_without_caustics(SCENE, &h_next, *dir, r.x, r.y, r.z, rays);
+  *sum += *throughput * (map_holds_caustics ? hit_direct_without_caustics(SCENE, &h_next, *dir, r.x, r.y, r.z, rays)
+                                            : hit_direct_regularized(SCENE, &h_next, *dir, r.x, r.y, r.z, rays));
   *h = h_next;
   return true;
 }
@@ -91,8 +112,8 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
 // Where a pixel's samples take their light (glossy_pixel): GLOSSY_WHOLE traces each sample's path there and then (one
 // kernel, glossy_indirect); the wavefront (GroupSizes::record_trace) runs the pixel twice around its samples' kernels:
 // GLOSSY_AIM keeps each sample's direction in its slot, and GLOSSY_GATHER reads each sample's light back from it, in
-// the same order and the same sums, so the pixel is the same bits. A slot: (direction, 1) for a ray to cast, then
-// (light, rays cast) with the counts' bits in w; (0, 0) where the sample casts no ray.
+// the same order and the same sums, so the pixel is the same bits. A slot: (direction, sample id + 1) for a ray to
+// cast, then (light, rays cast) with the counts' bits in w; (0, 0) where the sample casts no ray.
 #define GLOSSY_WHOLE 0u
 #define GLOSSY_AIM 1u
 #define GLOSSY_GATHER 2u
@@ -100,7 +121,7 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
 inline float3 glossy_sample_light(SCENE_ARGS CACHED_LIGHT_ARGS, uint phase, __global float4* slot, float3 origin,
                                   float3 dir, uint key, uint s, uint bounces, RayTally* rays) {
   if (phase == GLOSSY_AIM) {
-    *slot = (float4)(dir, as_float(1u));
+    *slot = (float4)(dir, as_float(s + 1u));  // the sample's id, for the first hit's shading
     return (float3)(0.0f);
   }
   if (phase == GLOSSY_GATHER) {
@@ -112,8 +133,64 @@ inline float3 glossy_sample_light(SCENE_ARGS CACHED_LIGHT_ARGS, uint phase, __gl
                          random01(key, s, 4u), path_continuation(key, s, bounces), rays);
 }
 
-// A pixel's random stream.
+// A sub-pixel's random stream.
 inline uint glossy_key(uint pixel, uint seed) { return hash_u32(pixel ^ hash_u32(seed ^ STREAM_GLOSSY)); }
+
+// Point t of a nested stratification of the unit square, scrambled by key: points 0..3 lie one in each quadrant,
+// 0..15 one in each cell of a 4 x 4 grid, 0..63 of an 8 x 8 one, up to 16 x 16; each alone is uniform over the square.
+// t's base-4 digits choose a child cell level by level, each level's choice permuted by a hash of the cell it is in
+// (an Owen-style scramble), so a pixel stays stratified however many samples its rounds end with.
+#define NESTED_STRATA_LEVELS 4u
+inline float2 nested_stratum_point(uint t, uint key, float u1, float u2) {
+  uint x = 0u, y = 0u;
+  for (uint level = 0u; level < NESTED_STRATA_LEVELS; ++level) {
+    const uint cell = t & ((1u << (2u * level)) - 1u);  // the digits that chose the cells above
+    const uint child = ((t >> (2u * level)) & 3u) ^ (hash_u32(key ^ hash_u32(cell * 8u + level)) & 3u);
+    x = 2u * x + (child & 1u);
+    y = 2u * y + (child >> 1u);
+  }
+  const float cells = (float)(1u << NESTED_STRATA_LEVELS);
+  return (float2)(((float)x + u1) / cells, ((float)y + u2) / cells);
+}
+
+// The sub-pixels of an output pixel: the G-buffer is an s-times larger frame (s = sub_pixel_side, row-major), and
+// sub-pixel `sub` (0 .. s^2 - 1) of output pixel o is row sub / s, column sub % s of o's s x s block.
+inline uint sub_pixels_per_pixel(__global const CameraParams* camera) {
+  const uint side = (uint)max(camera->sub_pixel_side, 1);
+  return side * side;
+}
+inline uint sub_pixel_of(__global const CameraParams* camera, uint output_pixel, uint sub) {
+  const uint side = (uint)max(camera->sub_pixel_side, 1), width = (uint)camera->width / side;
+  return ((output_pixel / width) * side + sub / side) * (uint)camera->width + (output_pixel % width) * side + sub % side;
+}
+// A round's output pixel number i: from its list, or every output pixel in order.
+inline uint round_output_pixel(GlossyParams params, __global const uint* pixel_list, uint i) {
+  return params.listed ? pixel_list[i] : i;
+}
+// The sub-pixel whose samples fill wavefront slot i of the round's launch from first_item.
+inline uint slot_sub_pixel(__global const CameraParams* camera, GlossyParams params, __global const uint* pixel_list,
+                           uint first_item, size_t i) {
+  const uint subs = sub_pixels_per_pixel(camera), sub_pixel = (uint)(i / params.slots_per_sub_pixel);
+  return sub_pixel_of(camera, round_output_pixel(params, pixel_list, first_item + sub_pixel / subs), sub_pixel % subs);
+}
+
+// Whether the pass samples a G-buffer sample's lobe (the pixels its rounds refine).
+inline bool glossy_samples_lobe(GBufferSample g) {
+  return g.triangle >= 0 && (g.lobe == LOBE_GLOSSY || (SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH));
+}
+
+// A chunk's samples: GLOSSY_CHUNK_LOBE from the lobe (ids 2c, 2c + 1, points 2c s^2 + sub ... of the output pixel's
+// nested strata, so an output pixel's first chunks fill its quadrants across its sub-pixels) and, where the lobe faces
+// a cone of the guide, GLOSSY_CHUNK_GUIDED aimed into the cones (ids from GLOSSY_GUIDED_SAMPLE).
+#define GLOSSY_GUIDED_SAMPLE 0x100000u
+// A near-mirror lobe (GGX alpha below NEAR_MIRROR_ALPHA, roughness 0.1) sends every sample of a sub-pixel nearly the
+// same way: its chunk is one lobe sample and no guided one (a guided direction it would not reflect). Textured
+// Sibenik's marble floor (alpha 0.0038) is most of its glossy pixels.
+#define NEAR_MIRROR_ALPHA 0.01f
+inline uint glossy_chunk_lobe_samples(BrdfInputs in) { return in.alpha < NEAR_MIRROR_ALPHA ? 1u : GLOSSY_CHUNK_LOBE; }
+inline uint glossy_slots_per_chunk(GlossyParams params) {
+  return GLOSSY_CHUNK_LOBE + (params.guide_clusters ? GLOSSY_CHUNK_GUIDED : 0u);
+}
 
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
 // adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
@@ -183,22 +260,22 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
   return sum / (float)max(params.guide_share_samples, 1u);
 }
 
-// Pixel `pixel`'s glossy light into glossy_out (GLOSSY_WHOLE, GLOSSY_GATHER), or its samples' directions into its
-// slots_per_pixel slots (GLOSSY_AIM).
-inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                         WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint pixel, uint phase, __global float4* slots, uint slots_per_pixel,
-                         __global float4* glossy_out) {
+// One round's samples of output pixel output_pixel's sub-pixel `sub` (GLOSSY_WHOLE, GLOSSY_GATHER: added to its sums
+// and moments; the first round writes them, zero where the pass samples nothing), or their directions into its
+// params.slots_per_sub_pixel slots (GLOSSY_AIM).
+inline void glossy_sub_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
+                             WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint output_pixel, uint sub, uint phase,
+                             __global float4* slots, __global float4* glossy_sums, __global float4* glossy_moments) {
   if (phase == GLOSSY_AIM)
-    for (uint s = 0; s < slots_per_pixel; ++s) slots[s] = (float4)(0.0f);
+    for (uint k = 0; k < params.slots_per_sub_pixel; ++k) slots[k] = (float4)(0.0f);
+  const uint subs = sub_pixels_per_pixel(camera), pixel = sub_pixel_of(camera, output_pixel, sub);
+  const bool first_round = params.first_chunk == 0u;
   GBufferSample g = gbuffer[pixel];
-  bool sampled = g.lobe == LOBE_GLOSSY;
-#if SAMPLE_HSH_LOBES
-  sampled = sampled || g.lobe == LOBE_HSH;
-#endif
-  bool cached_with_guide = !SAMPLE_HSH_LOBES && g.lobe == LOBE_HSH && params.guide_share_samples > 0u &&
-                           params.guide_clusters > 0u;
-  if (g.triangle < 0 || !(sampled || cached_with_guide)) {
-    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(0.0f);
+  const bool sampled = glossy_samples_lobe(g);
+  const bool cached_with_guide = first_round && !SAMPLE_HSH_LOBES && g.triangle >= 0 && g.lobe == LOBE_HSH &&
+                                 params.guide_share_samples > 0u && params.guide_clusters > 0u;
+  if (!(sampled || cached_with_guide)) {
+    if (phase != GLOSSY_AIM && first_round) glossy_sums[pixel] = glossy_moments[pixel] = (float4)(0.0f);
     return;
   }
   float3 p = vload3(0, g.position), ng = vload3(0, g.geometric_normal);
@@ -207,83 +284,116 @@ inline void glossy_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
   uint key = glossy_key(pixel, params.seed);
+  RayTally rays = traced_rays(0u);
   if (cached_with_guide) {
-    RayTally rays = traced_rays(0u);
     float3 share =
         guide_share(SCENE CACHED_LIGHT, guide, params, p, ng, origin, frame, in, wo, key, phase, slots, &rays);
-    if (phase != GLOSSY_AIM) glossy_out[pixel] = (float4)(finite_or_zero(share), (float)rays.cast);
+    if (phase == GLOSSY_AIM) return;
+    glossy_sums[pixel] = (float4)(finite_or_zero(share), (float)rays.cast);
+    glossy_moments[pixel] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);  // one estimate, outside the rounds' error
     return;
   }
   GuideCone cones[GUIDE_MAX_CONES];
-  const uint lobe_samples = params.sample_count, side = params.grid_side;
-  const uint cone_count = glossy_guide_cones(guide, params.guide_clusters, p, frame, in, wo, (float)lobe_samples, cones);
-  const uint guided = cone_count ? (lobe_samples + 1) / 2 : 0u, count = lobe_samples + guided;
+  const uint chunk_end = params.first_chunk + params.round_chunks;
+  // The guide leaves to the lobe the cones the pixel's lobe samples, after this round, would hit often.
+  const uint cone_count = glossy_guide_cones(guide, params.guide_clusters, p, frame, in, wo,
+                                             (float)(GLOSSY_CHUNK_LOBE * chunk_end), cones);
+  const uint lobe_samples = glossy_chunk_lobe_samples(in);
+  const uint guided = cone_count && lobe_samples == GLOSSY_CHUNK_LOBE ? GLOSSY_CHUNK_GUIDED : 0u;
+  const uint per_chunk = glossy_slots_per_chunk(params);
+  const uint strata_key = hash_u32(output_pixel ^ hash_u32(params.seed ^ STREAM_GLOSSY_STRATA));
   float3 sum = (float3)(0.0f);
-  RayTally rays = traced_rays(0u);
-  for (uint s = 0; s < count; ++s) {
-    float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
-    bool from_lobe = s < lobe_samples;
-    float3 wi;
-    uint drawn_from = GUIDE_MAX_CONES;  // a lobe sample: no cone
-    if (from_lobe) {
-      if (s < side * side) {
-        u1 = ((float)(s % side) + u1) / (float)side;
-        u2 = ((float)(s / side) + u2) / (float)side;
+  float sum_y = 0.0f, sum_y2 = 0.0f, samples = 0.0f;
+  for (uint c = params.first_chunk; c < chunk_end; ++c) {
+    float3 chunk = (float3)(0.0f);
+    for (uint j = 0; j < GLOSSY_CHUNK_LOBE + guided; ++j) {
+      if (j >= lobe_samples && j < GLOSSY_CHUNK_LOBE) continue;  // a near-mirror chunk's one sample
+      const bool from_lobe = j < GLOSSY_CHUNK_LOBE;
+      const uint s = from_lobe ? GLOSSY_CHUNK_LOBE * c + j : GLOSSY_GUIDED_SAMPLE + c;
+      float u1 = random01(key, s, 0u), u2 = random01(key, s, 1u);
+      float3 wi;
+      uint drawn_from = GUIDE_MAX_CONES;  // a lobe sample: no cone
+      if (from_lobe) {
+        const float2 cell = nested_stratum_point(s * subs + sub, strata_key, u1, u2);
+        wi = ggx_sample_reflection(wo, in.alpha, cell.x, cell.y);
+      } else {
+        // Independent numbers, not the net of guide_share: on the corridor with metal walls of roughness 0.3 the net
+        // took the median frame's relMSE 0.70x but gave 3 of 32 seeds a frame worse than any of the 32 before (one
+        // 10x): a heavier tail, unexplained (RESULTS.md "Issue 13, twelfth step").
+        wi = to_local(frame, sample_guide(cones, cone_count, random01(key, s, 5u), u1, u2, &drawn_from));
       }
-      wi = ggx_sample_reflection(wo, in.alpha, u1, u2);
-    } else {
-      // Independent numbers, not the net of guide_share: on the corridor with metal walls of roughness 0.3 the net
-      // took the median frame's relMSE 0.70x but gave 3 of 32 seeds a frame worse than any of the 32 before (one
-      // 10x): a heavier tail, unexplained (RESULTS.md "Issue 13, twelfth step").
-      wi = to_local(frame, sample_guide(cones, cone_count, random01(key, s, 5u), u1, u2, &drawn_from));
+      samples += 1.0f;  // a sample that casts no ray counts, as the zero it adds
+      if (wi.z <= 0.0f) continue;
+      float3 dir = to_world(frame, wi);
+      if (dot(dir, ng) <= 0.0f) continue;
+      float3 l = glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + (c - params.first_chunk) * per_chunk + j,
+                                     origin, dir, key, s, params.bounces, &rays);
+      if (phase == GLOSSY_AIM) continue;  // the weights wait for the gather
+      float3 y = (float3)(0.0f);
+      if (!guided) {
+        y = brdf_specular_weight(in, wo, wi) * l;
+      } else {
+        // Balance heuristic within the chunk: f cos L / (n_lobe p_lobe + n_guide p_guide) for either kind.
+        float lobe_density = (float)GLOSSY_CHUNK_LOBE * visible_normal_pdf(in, wo, wi);
+        float combined = lobe_density + (float)guided * guide_pdf_drawn(cones, cone_count, dir, drawn_from);
+        if (combined > 0.0f) y = brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)GLOSSY_CHUNK_LOBE / combined);
+      }
+      y = finite_or_zero(y);
+      chunk += y;
+      const float y_luminance = luminance(y);
+      sum_y += y_luminance;
+      sum_y2 += y_luminance * y_luminance;
     }
-    if (wi.z <= 0.0f) continue;
-    float3 dir = to_world(frame, wi);
-    if (dot(dir, ng) <= 0.0f) continue;
-    float3 l =
-        glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, &rays);
-    if (phase == GLOSSY_AIM) continue;  // the weights wait for the gather
-    if (!cone_count) {
-      sum += brdf_specular_weight(in, wo, wi) * l;
-      continue;
-    }
-    // Balance heuristic: f cos L / (n_lobe p_lobe + n_guide p_guide) for a sample of either kind.
-    float lobe_density = (float)lobe_samples * visible_normal_pdf(in, wo, wi);
-    float combined = lobe_density + (float)guided * guide_pdf_drawn(cones, cone_count, dir, drawn_from);
-    if (combined > 0.0f) sum += brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)lobe_samples / combined);
+    sum += chunk / (float)lobe_samples;
   }
-  if (phase != GLOSSY_AIM)
-    glossy_out[pixel] = (float4)(finite_or_zero(sum / (float)max(lobe_samples, 1u)), (float)rays.cast);
+  if (phase == GLOSSY_AIM) return;
+  float4 sums = (float4)(sum, (float)rays.cast), moments = (float4)(sum_y, sum_y2, samples, (float)params.round_chunks);
+  if (!first_round) {
+    sums += glossy_sums[pixel];
+    moments += glossy_moments[pixel];
+  }
+  glossy_sums[pixel] = sums;
+  glossy_moments[pixel] = moments;
 }
 
-// Each glossy pixel's samples traced and shaded in one work-item...
+// A round's sub-pixels (item_count output pixels, each of its s^2 sub-pixels a work-item) traced and shaded whole...
 __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                              WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global float4* glossy_out) {
-  uint pixel = get_global_id(0);
-  if (pixel < (uint)(camera->width * camera->height))
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, pixel, GLOSSY_WHOLE, glossy_out, 0u, glossy_out);
+                              WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global const uint* pixel_list, uint item_count,
+                              __global float4* glossy_sums, __global float4* glossy_moments) {
+  const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
+  if (i < item_count * subs)
+    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+                     round_output_pixel(params, pixel_list, i / subs), i % subs, GLOSSY_WHOLE, glossy_sums,
+                     glossy_sums, glossy_moments);
 }
 
-// ... or as a wavefront (GroupSizes::record_trace), over launches of pixel_count pixels from first_pixel, each with
-// slots_per_pixel sample slots: aim_glossy_samples keeps the samples' directions...
+// ... or as a wavefront (GroupSizes::record_trace), over launches of item_count output pixels from first_item, each
+// sub-pixel with params.slots_per_sub_pixel sample slots: aim_glossy_samples keeps the samples' directions...
 __kernel void aim_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                                 WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
-                                 __global float4* sample_slots) {
-  uint i = get_global_id(0);
-  if (i < pixel_count)
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, first_pixel + i, GLOSSY_AIM,
-                 sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, sample_slots);
+                                 WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global const uint* pixel_list, uint first_item,
+                                 uint item_count, __global float4* sample_slots) {
+  const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
+  if (i < item_count * subs)
+    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+                     round_output_pixel(params, pixel_list, first_item + i / subs), i % subs, GLOSSY_AIM,
+                     sample_slots + (size_t)i * params.slots_per_sub_pixel, sample_slots, sample_slots);
+}
+
+// The slots of a launch of item_count output pixels.
+inline size_t glossy_launch_slots(__global const CameraParams* camera, GlossyParams params, uint item_count) {
+  return (size_t)item_count * sub_pixels_per_pixel(camera) * params.slots_per_sub_pixel;
 }
 
 // ... trace_glossy_samples traces them to their closest hits (prim -2: no ray)...
-__kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, uint first_pixel, uint pixel_count,
-                                   uint slots_per_pixel, __global const float4* sample_slots, __global HitDesc* hits) {
+__kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const uint* pixel_list,
+                                   uint first_item, uint item_count, __global const float4* sample_slots,
+                                   __global HitDesc* hits) {
   size_t i = get_global_id(0);
-  if (i >= (size_t)pixel_count * slots_per_pixel) return;
+  if (i >= glossy_launch_slots(camera, params, item_count)) return;
   const float4 slot = sample_slots[i];
   TraceHit hit = {INFINITY, 0.0f, 0.0f, -2};
   if (as_uint(slot.w)) {
-    GBufferSample g = gbuffer[first_pixel + i / slots_per_pixel];
+    GBufferSample g = gbuffer[slot_sub_pixel(camera, params, pixel_list, first_item, i)];
     RayPrecomp r = ray_precompute(offset_ray_origin(vload3(0, g.position), vload3(0, g.geometric_normal)), slot.xyz);
     if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) hit.prim = -1;
   }
@@ -293,16 +403,19 @@ __kernel void trace_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, uint first_pixel, u
 
 // ... shade_glossy_first_hits shades each hit as far as its first bounce's light (sample_radiance's first steps), and
 // queues the paths that go on (kernels/path_queue.h)...
-__kernel void shade_glossy_first_hits(SCENE_ARGS, GlossyParams params, WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel,
-                                      uint pixel_count, uint slots_per_pixel, __global float4* sample_slots,
-                                      __global const HitDesc* hits, __global QueuedPath* paths,
-                                      volatile __global uint* path_count, RAY_QUEUE_ARGS) {
+__kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, WORLD_RECORD_ARGS,
+                                      CAUSTIC_MAP_ARGS, __global const uint* pixel_list, uint first_item,
+                                      uint item_count, __global float4* sample_slots, __global const HitDesc* hits,
+                                      __global QueuedPath* paths, volatile __global uint* path_count,
+                                      RAY_QUEUE_ARGS) {
   size_t i = get_global_id(0);
-  if (i >= (size_t)pixel_count * slots_per_pixel) return;
+  if (i >= glossy_launch_slots(camera, params, item_count)) return;
   const HitDesc hit = hits[i];
   if (hit.prim == -2) return;
-  const float3 dir = sample_slots[i].xyz;
-  const uint s = (uint)(i % slots_per_pixel), key = glossy_key(first_pixel + (uint)(i / slots_per_pixel), params.seed);
+  const float4 slot = sample_slots[i];
+  const float3 dir = slot.xyz;
+  const uint s = as_uint(slot.w) - 1u;
+  const uint key = glossy_key(slot_sub_pixel(camera, params, pixel_list, first_item, i), params.seed);
   const PathContinuation more = path_continuation(key, s, params.bounces);
   RayTally rays = queued_rays(RAY_QUEUE, i, 1u);
   uint after = PATH_DONE;
@@ -366,14 +479,75 @@ __kernel void finish_glossy_paths(__global const QueuedPath* paths, __global con
   sample_slots[path->sample] = (float4)(queued_path_light(path, sample_slots[path->sample].xyz), as_float(path->rays));
 }
 
-// ... and gather_glossy_samples sums each pixel's samples as glossy_indirect does.
+// ... and gather_glossy_samples sums each sub-pixel's samples as glossy_indirect does.
 __kernel void gather_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __global const GuideCluster* guide,
-                                    WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, uint first_pixel, uint pixel_count, uint slots_per_pixel,
-                                    __global float4* sample_slots, __global float4* glossy_out) {
-  uint i = get_global_id(0);
-  if (i < pixel_count)
-    glossy_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP, first_pixel + i, GLOSSY_GATHER,
-                 sample_slots + (size_t)i * slots_per_pixel, slots_per_pixel, glossy_out);
+                                    WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS, __global const uint* pixel_list,
+                                    uint first_item, uint item_count, __global float4* sample_slots,
+                                    __global float4* glossy_sums, __global float4* glossy_moments) {
+  const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
+  if (i < item_count * subs)
+    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+                     round_output_pixel(params, pixel_list, first_item + i / subs), i % subs, GLOSSY_GATHER,
+                     sample_slots + (size_t)i * params.slots_per_sub_pixel, glossy_sums, glossy_moments);
+}
+
+// After the first round: each output pixel's error estimate, for the host to choose the pixels later rounds refine
+// (passes/glossy_rounds.h): (the variance of its glossy light's luminance, as its sub-pixels' samples estimate it, each
+// sub-pixel's m samples in n chunks of k lobe samples taken as independent, Var(y) pooled over the pixel's sub-pixels:
+// m Var(y) / (kn)^2, averaged over the s^2 sub-pixels; the
+// luminance of its other light, emitted, direct and cached (from `direct` and `irradiance` where frame_light is 1); the
+// sub-pixels the rounds refine; the luminance of its glossy light).
+__kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance, __global const float4* direct,
+                                 uint frame_light, __global const float4* glossy_sums,
+                                 __global const float4* glossy_moments, uint output_pixels,
+                                 __global float4* error_out) {
+  const uint o = get_global_id(0);
+  if (o >= output_pixels) return;
+  const uint subs = sub_pixels_per_pixel(camera);
+  // The samples' luminance moments pooled over the sampled sub-pixels (a near-mirror one has one sample a chunk), and
+  // the sum over them of m / (k n)^2, which times Var(y) is each one's estimate's variance.
+  float sum_y = 0.0f, sum_y2 = 0.0f, samples = 0.0f, spread = 0.0f, other = 0.0f, glossy = 0.0f, refined = 0.0f;
+  for (uint sub = 0; sub < subs; ++sub) {
+    const uint pixel = sub_pixel_of(camera, o, sub);
+    const GBufferSample g = gbuffer[pixel];
+    const float4 moments = glossy_moments[pixel];
+    if (moments.w > 0.0f) glossy += luminance(glossy_sums[pixel].xyz / moments.w);
+    float3 light = vload3(0, g.emission);
+    if (frame_light && g.triangle >= 0) {
+      const float3 e = irradiance[pixel].xyz;
+      light += direct[pixel].xyz;
+      if (g.lobe == LOBE_NONE) {
+        light += vload3(0, g.albedo) * RC_INV_PI * e;
+      } else {
+        const float3 wo = view_local(shading_frame(vload3(0, g.normal)),
+                                     camera_view_direction(camera, vload3(0, g.position)));
+        light += brdf_eval_diffuse(gbuffer_brdf(g), wo.z) * e;
+      }
+    }
+    other += luminance(finite_or_zero(light));
+    if (!glossy_samples_lobe(g) || !(moments.z >= 1.0f)) continue;
+    refined += 1.0f;
+    sum_y += moments.x;
+    sum_y2 += moments.y;
+    samples += moments.z;
+    const float n = moments.w * (float)glossy_chunk_lobe_samples(gbuffer_brdf(g));
+    spread += moments.z / (n * n);
+  }
+  if (!(samples >= 2.0f)) refined = 0.0f;  // no estimate of the variance
+  const float var_y = samples >= 2.0f ? fmax(sum_y2 - sum_y * sum_y / samples, 0.0f) / (samples - 1.0f) : 0.0f;
+  const float variance = var_y * spread;
+  const float s2 = (float)subs;
+  error_out[o] = (float4)(finite_or_zero((float3)(variance / (s2 * s2), other / s2, glossy / s2)), refined).xywz;
+}
+
+// Each sub-pixel's glossy light, the mean of its chunks (RGB), and the rays its samples cast (A).
+__kernel void average_glossy_chunks(__global const float4* glossy_sums, __global const float4* glossy_moments,
+                                    uint pixel_count, __global float4* glossy_out) {
+  const uint i = get_global_id(0);
+  if (i >= pixel_count) return;
+  const float4 sums = glossy_sums[i];
+  const float chunks = glossy_moments[i].w;
+  glossy_out[i] = (float4)(chunks > 0.0f ? sums.xyz / chunks : (float3)(0.0f), sums.w);
 }
 
 // world_cached_irradiance at query points (xyz) with their shading normals, for tests: (E, sum of weights).

@@ -457,18 +457,26 @@ typedef struct {
 // Bins of one byte of the median's radix selection.
 #define WORLD_RECORD_DIGIT_BINS 256
 
-// The glossy pass's constants (kernels/glossy.cl).
+// The glossy pass's constants for one round of its samples (kernels/glossy.cl). A sampled sub-pixel's samples come in
+// chunks of GLOSSY_CHUNK_LOBE lobe samples (and, with a light guide, GLOSSY_CHUNK_GUIDED aimed at it), each chunk an
+// estimate of its own; a round adds chunks [first_chunk, first_chunk + round_chunks) to the sub-pixels of its output
+// pixels (passes/glossy_pass.h).
+#define GLOSSY_CHUNK_LOBE 2u
+#define GLOSSY_CHUNK_GUIDED 1u
 typedef struct {
-  rc_uint sample_count;    // samples per glossy pixel
-  rc_uint grid_side;       // the lobe's samples are stratified over a grid_side x grid_side grid
+  rc_uint first_chunk;   // 0: the first round, which writes every sub-pixel; later rounds add to theirs
+  rc_uint round_chunks;  // chunks each sampled sub-pixel takes in this round
   rc_uint seed;
   rc_uint guide_clusters;  // the light guide's clusters (0: the lobe's samples alone)
   // Radiance caching with a light guide: the radiance records' strata (M N) and guided rays per record (n_g), whose
-  // balance-heuristic share the records leave to each pixel, and the pixel's samples of it (0: none).
+  // balance-heuristic share the records leave to each pixel, and the pixel's samples of it (0: none; first round).
   rc_uint record_strata;
   rc_uint record_guide_rays;
   rc_uint guide_share_samples;
   rc_uint bounces;  // indirect bounces each sample gathers (kernels/bounce.h; 0 counts as 1)
+  rc_uint listed;   // 1: the round's output pixels are listed (pixel_list); 0: every output pixel, in order
+  rc_uint slots_per_sub_pixel;  // the wavefront's sample slots per sub-pixel of an output pixel
+  rc_uint pad[2];
 } GlossyParams;
 
 // A material's BRDF parameters (kernels/brdf.h), for the BRDF's HSH table (kernels/brdf_table.cl).
@@ -611,7 +619,7 @@ static_assert(sizeof(RecordBatchParams) == 64);
 static_assert(sizeof(StoredGuideCone) == 32);
 static_assert(sizeof(RecordGuideCones) == 32 * GUIDE_MAX_CONES + 32);
 static_assert(sizeof(HshRecordParams) == 32);
-static_assert(sizeof(GlossyParams) == 32);
+static_assert(sizeof(GlossyParams) == 48);
 static_assert(sizeof(RadianceSplatParams) == 32);
 static_assert(sizeof(PlacementParams) == 36);
 static_assert(sizeof(SplatParams) == 16);

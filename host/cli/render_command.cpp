@@ -25,6 +25,20 @@ namespace {
 
 double mrays_per_second(uint64_t rays, double seconds) { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
 
+// How the glossy pixels were sampled, in the summary's words.
+std::string glossy_samples_text(const GlossyStats& g) {
+  char text[200];
+  if (!g.adaptive) {
+    std::snprintf(text, sizeof text, "%u lobe samples each", g.samples);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "%.1f lobe samples each on average (budget %u; %u rounds by estimated error, up to %u; %llu pixels "
+                  "refined)",
+                  g.mean_samples, g.samples, g.rounds, g.most_samples, (unsigned long long)g.refined_pixels);
+  }
+  return text;
+}
+
 // Device buffers at the frame's peak, largest first, and the process's peak resident memory.
 void print_memory(const DeviceMemoryUse& device) {
   std::vector<std::pair<size_t, std::string>> uses;
@@ -128,11 +142,12 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
                 s.irradiance.placement_s, s.irradiance.splat_s, s.irradiance.resolve_s);
     if (s.primary.rough_pixels || s.primary.glossy_pixels || s.glossy.rays)
       std::printf(
-          "specular     %llu rough pixels from the irradiance; %llu glossy pixels, %u lobe samples each; per "
+          "specular     %llu rough pixels from the irradiance; %llu glossy pixels, %s; per "
           "pixel (lobes, and the light guide's share of radiance-cached pixels): %llu rays, %.3f s (%.2f "
           "Mrays/s)%s\n",
-          (unsigned long long)s.primary.rough_pixels, (unsigned long long)s.primary.glossy_pixels, s.glossy.samples,
-          (unsigned long long)s.glossy.rays, s.glossy.seconds, mrays_per_second(s.glossy.rays, s.glossy.seconds),
+          (unsigned long long)s.primary.rough_pixels, (unsigned long long)s.primary.glossy_pixels,
+          glossy_samples_text(s.glossy).c_str(), (unsigned long long)s.glossy.rays, s.glossy.seconds,
+          mrays_per_second(s.glossy.rays, s.glossy.seconds),
           s.glossy.reads_records ? "; the samples read the records where they land" : "");
     if (s.radiance.order)
       std::printf(
@@ -257,6 +272,11 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
     j["specular"] = {{"rough_pixels", s.primary.rough_pixels},
                      {"glossy_pixels", s.primary.glossy_pixels},
                      {"glossy_samples", s.glossy.samples},
+                     {"glossy_adaptive", s.glossy.adaptive},
+                     {"glossy_rounds", s.glossy.rounds},
+                     {"glossy_mean_samples", s.glossy.mean_samples},
+                     {"glossy_most_samples", s.glossy.most_samples},
+                     {"glossy_refined_pixels", s.glossy.refined_pixels},
                      {"glossy_rays", s.glossy.rays},
                      {"glossy_reads_records", s.glossy.reads_records},
                      {"record_grid_seconds", s.glossy.record_grid_s},

@@ -1,5 +1,7 @@
 #include "passes/gbuffer_pass.h"
 
+#include <algorithm>
+
 namespace rcsplat {
 void GBufferPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
@@ -16,6 +18,7 @@ void GBufferPass::run(const CameraParams& camera) {
     view_.samples = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample), "G-buffer");
   view_.width = camera.width;
   view_.height = camera.height;
+  view_.sub_pixel_side = std::max(camera.sub_pixel_side, 1);
   gpu_.upload_into(view_.camera, camera_capacity_, std::vector<CameraParams>{camera}, CL_MEM_READ_ONLY, "G-buffer");
   scene_.bind(kernel_);
   view_.bind(kernel_);

@@ -12,8 +12,10 @@ struct GBufferView {
   cl::Buffer samples;  // GBufferSample per pixel, row-major from the top
   cl::Buffer camera;   // one CameraParams
   int width = 0, height = 0;
+  int sub_pixel_side = 1;  // the frame's output pixels are sub_pixel_side^2 of these (CameraParams::sub_pixel_side)
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
+  size_t output_pixel_count() const { return pixel_count() / size_t(sub_pixel_side * sub_pixel_side); }
   // Sets a kernel's GBUFFER_ARGS ("gbuffer" and "camera").
   void bind(NamedKernel& kernel) const;
 };

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cl/point_lookup.h"
+#include "passes/glossy_rounds.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -21,51 +22,131 @@ GlossyPass::GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_ra
       step_paths_(gpu.kernel(kProgram, "step_glossy_paths", defines_)),
       finish_paths_(gpu.kernel(kProgram, "finish_glossy_paths", defines_)),
       gather_(gpu.kernel(kProgram, "gather_glossy_samples", defines_)),
+      pixel_error_(gpu.kernel(kProgram, "glossy_pixel_error", defines_)),
+      average_(gpu.kernel(kProgram, "average_glossy_chunks", defines_)),
       paths_(gpu, "glossy path queue") {}
 
-void GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide,
-                     unsigned record_strata, unsigned record_guide_rays, unsigned bounces,
-                     const GlossyCacheReads& reads) {
+GlossyRunStats GlossyPass::run(const GBufferView& gbuffer, unsigned samples, unsigned seed,
+                               const std::vector<GuideCluster>& guide, unsigned record_strata,
+                               unsigned record_guide_rays, unsigned bounces, const GlossyCacheReads& reads,
+                               const GlossyFrameLight& frame_light, bool adaptive) {
   if (gbuffer.pixel_count() != pixels_ || !radiance_()) {
     pixels_ = gbuffer.pixel_count();
-    radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels_, 1) * 4 * sizeof(float), "glossy radiance");
+    const size_t bytes = std::max<size_t>(pixels_, 1) * sizeof(cl_float4);
+    radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "glossy radiance");
+    sums_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "glossy sums");
+    moments_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "glossy moments");
   }
   if (guide.size() > GUIDE_MAX_CLUSTERS)
     throw Error("glossy: a light guide of more than " + std::to_string(GUIDE_MAX_CLUSTERS) + " clusters");
+  const unsigned sub_pixels = unsigned(gbuffer.sub_pixel_side * gbuffer.sub_pixel_side);
+  // The budget in chunks per sampled sub-pixel: samples per output pixel, split among its sub-pixels.
+  const double chunks_per_sub_pixel = double(samples) / double(sub_pixels * GLOSSY_CHUNK_LOBE);
   GlossyParams params{};
-  params.sample_count = samples;
-  params.grid_side = unsigned(std::sqrt(double(samples)));
   params.seed = seed;
   params.guide_clusters = cl_uint(guide.size());
   params.bounces = bounces;
   if (record_strata && record_guide_rays && !guide.empty()) {
     params.record_strata = record_strata;
     params.record_guide_rays = record_guide_rays;
-    params.guide_share_samples = std::max(1u, samples);
+    params.guide_share_samples = std::max(1u, (samples + sub_pixels - 1) / sub_pixels);
   }
   // An unused one-cluster buffer when there is no guide: the kernel reads none.
   gpu_.upload_into(guide_, guide_capacity_, guide.empty() ? std::vector<GuideCluster>(1, GuideCluster{}) : guide,
                    CL_MEM_READ_ONLY, "light guide");
+  if (!pixel_list_()) pixel_list_ = gpu_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_ONLY, "glossy pixel list");
   prepare_records(reads);
-  if (gpu_.groups().record_trace == RecordTrace::wavefront) {
-    // A pixel's slots: its lobe's samples and, with a guide, half as many again aimed at it; or the guide's share.
-    const size_t per_pixel = samples + (guide.empty() ? 0u : (samples + 1) / 2);
-    run_wavefront(gbuffer, params, std::max<size_t>({per_pixel, params.guide_share_samples, 1}));
-  } else {
-    scene_.bind(kernel_);
-    gbuffer.bind(kernel_);
-    kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
-    bind_cached_light(kernel_);
-    kernel_.set_buffer<cl_float4>("glossy_out", radiance_);
-    kernel_.launch(pixels_, gpu_.groups().traversal);
+  const unsigned slots_per_chunk = GLOSSY_CHUNK_LOBE + (guide.empty() ? 0u : GLOSSY_CHUNK_GUIDED);
+  GlossyRunStats stats;
+  // The first round: every output pixel, one chunk each sampled sub-pixel (or, without `adaptive`, the budget's).
+  params.first_chunk = 0;
+  params.round_chunks = adaptive ? 1u : std::max(1u, unsigned(std::lround(chunks_per_sub_pixel)));
+  params.listed = 0;
+  params.slots_per_sub_pixel = std::max(params.round_chunks * slots_per_chunk, params.guide_share_samples);
+  run_round(gbuffer, params, gbuffer.output_pixel_count());
+  stats.rounds = 1;
+  stats.most_chunks = params.round_chunks;
+  std::vector<uint8_t> levels;
+  // Without `adaptive` the counts stay 0 but for the rounds: the first round's sub-pixels are not counted.
+  if (adaptive) levels = refinement_levels(gbuffer, frame_light, chunks_per_sub_pixel, stats);
+  // Later rounds: round r doubles the chunks of the pixels whose level is r or more (2^(r-1) more each).
+  for (unsigned round = 1; round <= kGlossyMaxLevel && !levels.empty(); ++round) {
+    std::vector<cl_uint> listed;
+    for (size_t o = 0; o < levels.size(); ++o)
+      if (levels[o] >= round) listed.push_back(cl_uint(o));
+    if (listed.empty()) break;
+    gpu_.upload_into(pixel_list_, list_capacity_, listed, CL_MEM_READ_ONLY, "glossy pixel list");
+    params.first_chunk = params.round_chunks = 1u << (round - 1);
+    params.listed = 1;
+    params.slots_per_sub_pixel = params.round_chunks * slots_per_chunk;
+    run_round(gbuffer, params, listed.size());
+    stats.rounds = round + 1;
+    stats.most_chunks = 2 * params.round_chunks;
   }
+  average_.set_buffer<cl_float4>("glossy_sums", sums_)
+      .set_buffer<cl_float4>("glossy_moments", moments_)
+      .set("pixel_count", cl_uint(pixels_))
+      .set_buffer<cl_float4>("glossy_out", radiance_)
+      .launch(pixels_, gpu_.groups().per_item);
   gpu_.queue().finish();
+  return stats;
 }
 
-void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t slots_per_pixel) {
+std::vector<uint8_t> GlossyPass::refinement_levels(const GBufferView& gbuffer, const GlossyFrameLight& frame_light,
+                                                   double chunks_per_sampled_sub_pixel, GlossyRunStats& stats) {
+  const size_t output_pixels = gbuffer.output_pixel_count();
+  gpu_.reserve<cl_float4>(pixel_errors_, errors_capacity_, std::max<size_t>(output_pixels, 1), "glossy pixel errors");
+  const bool has_light = frame_light.direct && frame_light.irradiance;
+  if (!has_light && !no_frame_light_())
+    no_frame_light_ = gpu_.upload(std::vector<cl_float4>(1), CL_MEM_READ_ONLY, "glossy: no frame light");
+  gbuffer.bind(pixel_error_);
+  pixel_error_.set_buffer<cl_float4>("irradiance", has_light ? *frame_light.irradiance : no_frame_light_)
+      .set_buffer<cl_float4>("direct", has_light ? *frame_light.direct : no_frame_light_)
+      .set("frame_light", cl_uint(has_light))
+      .set_buffer<cl_float4>("glossy_sums", sums_)
+      .set_buffer<cl_float4>("glossy_moments", moments_)
+      .set("output_pixels", cl_uint(output_pixels))
+      .set_buffer<cl_float4>("error_out", pixel_errors_)
+      .launch(output_pixels, gpu_.groups().per_item);
+  const std::vector<cl_float4> errors = gpu_.download<cl_float4>(pixel_errors_, output_pixels);
+  uint64_t sampled = 0;
+  for (const cl_float4& e : errors) sampled += uint64_t(e.s[2]);
+  const int side = gbuffer.sub_pixel_side;
+  std::vector<uint8_t> levels =
+      glossy_refinement_levels(errors, gbuffer.width / side, gbuffer.height / side,
+                               (chunks_per_sampled_sub_pixel - 1.0) * double(sampled), kGlossyMaxLevel);
+  stats.sampled_sub_pixels = sampled;
+  stats.chunks = sampled;
+  for (size_t o = 0; o < levels.size(); ++o) {
+    stats.chunks += uint64_t(errors[o].s[2]) * ((uint64_t(1) << levels[o]) - 1);
+    stats.refined_pixels += levels[o] > 0;
+  }
+  return levels;
+}
+
+void GlossyPass::run_round(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count) {
+  if (gpu_.groups().record_trace == RecordTrace::wavefront) {
+    run_wavefront(gbuffer, params, item_count);
+    return;
+  }
+  const size_t sub_pixels = size_t(gbuffer.sub_pixel_side * gbuffer.sub_pixel_side);
+  scene_.bind(kernel_);
+  gbuffer.bind(kernel_);
+  kernel_.set("params", params).set_buffer<GuideCluster>("guide", guide_);
+  bind_cached_light(kernel_);
+  kernel_.set_buffer<cl_uint>("pixel_list", pixel_list_)
+      .set("item_count", cl_uint(item_count))
+      .set_buffer<cl_float4>("glossy_sums", sums_)
+      .set_buffer<cl_float4>("glossy_moments", moments_)
+      .launch(item_count * sub_pixels, gpu_.groups().traversal);
+}
+
+void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count) {
   const GroupSizes& groups = gpu_.groups();
-  const size_t launch_pixels = std::clamp<size_t>(groups.record_samples_per_launch / slots_per_pixel, 1, pixels_);
-  const size_t launch_slots = launch_pixels * slots_per_pixel;
+  const size_t sub_pixels = size_t(gbuffer.sub_pixel_side * gbuffer.sub_pixel_side);
+  const size_t slots_per_item = sub_pixels * params.slots_per_sub_pixel;
+  const size_t launch_items = std::clamp<size_t>(groups.record_samples_per_launch / slots_per_item, 1, item_count);
+  const size_t launch_slots = launch_items * slots_per_item;
   const cl_uint later_bounces = params.bounces > 1 ? params.bounces - 1 : 0;
   gpu_.reserve<cl_float4>(sample_slots_, slots_capacity_, launch_slots, "glossy sample slots");
   gpu_.reserve<HitDesc>(sample_hits_, hits_capacity_, launch_slots, "glossy sample hits");
@@ -81,18 +162,18 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
     bind_cached_light(kernel);
     return kernel;
   };
-  for (size_t first = 0; first < pixels_; first += launch_pixels) {
-    const cl_uint first_pixel = cl_uint(first), pixel_count = cl_uint(std::min(launch_pixels, pixels_ - first));
-    const size_t slots = size_t(pixel_count) * slots_per_pixel;
+  for (size_t first = 0; first < item_count; first += launch_items) {
+    const cl_uint first_item = cl_uint(first), items = cl_uint(std::min(launch_items, item_count - first));
+    const size_t slots = size_t(items) * slots_per_item, sub_pixel_items = size_t(items) * sub_pixels;
     auto set_launch = [&](NamedKernel& kernel) -> NamedKernel& {
-      return kernel.set("first_pixel", first_pixel)
-          .set("pixel_count", pixel_count)
-          .set("slots_per_pixel", cl_uint(slots_per_pixel));
+      return kernel.set_buffer<cl_uint>("pixel_list", pixel_list_).set("first_item", first_item).set("item_count",
+                                                                                                      items);
     };
-    set_launch(bind_pixels(aim_)).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(pixel_count,
+    set_launch(bind_pixels(aim_)).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(sub_pixel_items,
                                                                                                 groups.traversal);
     scene_.bind(trace_);
     gbuffer.bind(trace_);
+    trace_.set("params", params);
     set_launch(trace_)
         .set_buffer<cl_float4>("sample_slots", sample_slots_)
         .set_buffer<HitDesc>("hits", sample_hits_)
@@ -101,6 +182,7 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
     // The first hits' shading in two rounds: it lists its shadow rays, then reads their answers.
     rays_->run_stage(2, slots, [&](cl_uint mode) {
       scene_.bind(shade_first_hits_);
+      gbuffer.bind(shade_first_hits_);
       shade_first_hits_.set("params", params);
       bind_cached_light(shade_first_hits_);
       NamedKernel& shade = set_launch(shade_first_hits_)
@@ -119,8 +201,9 @@ void GlossyPass::run_wavefront(const GBufferView& gbuffer, const GlossyParams& p
       paths_.bind(finish_paths_).set_buffer<cl_float4>("sample_slots", sample_slots_).launch(slots, groups.per_item);
     set_launch(bind_pixels(gather_))
         .set_buffer<cl_float4>("sample_slots", sample_slots_)
-        .set_buffer<cl_float4>("glossy_out", radiance_)
-        .launch(pixel_count, groups.traversal);
+        .set_buffer<cl_float4>("glossy_sums", sums_)
+        .set_buffer<cl_float4>("glossy_moments", moments_)
+        .launch(sub_pixel_items, groups.traversal);
   }
 }
 

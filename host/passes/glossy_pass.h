@@ -29,19 +29,41 @@ struct GlossyCacheReads {
   const CausticMapPass* caustics = nullptr;
 };
 
+// The frame's other light at each sub-pixel, which the first round's error estimate divides by (a pixel's error is
+// relative to all its light): DirectPass's radiance and the cache's irradiance (float4 per sub-pixel). Without them
+// (tests) the glossy light alone.
+struct GlossyFrameLight {
+  const cl::Buffer* direct = nullptr;
+  const cl::Buffer* irradiance = nullptr;
+};
+
+// How a run spent its samples.
+struct GlossyRunStats {
+  unsigned rounds = 0;
+  uint64_t chunks = 0;             // chunks taken by sub-pixels that sample a lobe, every round
+  uint64_t sampled_sub_pixels = 0; // those sub-pixels
+  uint64_t refined_pixels = 0;     // output pixels that took a round after the first
+  unsigned most_chunks = 0;        // the most one sub-pixel took
+};
+
 class GlossyPass {
  public:
   // sample_radiance_cacheable: also sample the LOBE_HSH pixels (cache methods without radiance caching: the octree).
   GlossyPass(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
   // Starts building its program (GpuContext::build_ahead) with the switches the constructor will ask for.
   static void build_ahead(GpuContext& gpu, const DeviceScene& scene, bool sample_radiance_cacheable);
-  // samples per glossy pixel, stratified over a grid of floor(sqrt(samples))^2; with a light guide's clusters, half
-  // as many again aimed at those a pixel's lobe faces (kernels/glossy.cl). With radiance records that left the
-  // guide's share to the pixels (record_guide_rays guided rays beside record_strata strata, both > 0), the
-  // radiance-cached pixels get that share from as many samples. Blocks until done.
-  void run(const GBufferView& gbuffer, unsigned samples, unsigned seed, const std::vector<GuideCluster>& guide = {},
-           unsigned record_strata = 0, unsigned record_guide_rays = 0, unsigned bounces = 1,
-           const GlossyCacheReads& reads = {});
+  // samples: lobe samples per output pixel that samples a lobe, on average over the frame (the budget), split among
+  // its sub-pixels (GBufferView::sub_pixel_side). With `adaptive`, each sampled sub-pixel takes one chunk
+  // (GLOSSY_CHUNK_LOBE lobe samples and, where its lobe faces a cone of the light guide, GLOSSY_CHUNK_GUIDED aimed at
+  // it), then the output pixels whose estimated error gains most take more in later rounds (passes/glossy_rounds.h),
+  // their strata nested so that every count stays stratified; without it, every sampled sub-pixel takes the budget's
+  // chunks in one round. With radiance records that left the guide's share to the pixels (record_guide_rays guided
+  // rays beside record_strata strata, both > 0), the radiance-cached sub-pixels get that share from samples /
+  // sub-pixels samples each. Blocks until done.
+  GlossyRunStats run(const GBufferView& gbuffer, unsigned samples, unsigned seed,
+                     const std::vector<GuideCluster>& guide = {}, unsigned record_strata = 0,
+                     unsigned record_guide_rays = 0, unsigned bounces = 1, const GlossyCacheReads& reads = {},
+                     const GlossyFrameLight& frame_light = {}, bool adaptive = true);
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
   // What a sample reads of the records at these points (xyz) with these shading normals, for tests: float4 (E, the
   // sum of the weights; 0 where no record reaches).
@@ -58,15 +80,25 @@ class GlossyPass {
   void prepare_records(const GlossyCacheReads& reads);
   void bind_records(NamedKernel& kernel);
   void bind_cached_light(NamedKernel& kernel);
-  // The wavefront (GroupSizes::record_trace): the pixels in launches, each sample's ray traced, its first hit shaded,
-  // the paths going on queued and stepped a kernel a bounce, then each pixel's samples summed (kernels/glossy.cl).
-  void run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t slots_per_pixel);
+  // One round over item_count output pixels (listed in pixel_list_ when params.listed): each sub-pixel's samples
+  // whole (kernel_) or as the wavefront (GroupSizes::record_trace): the sub-pixels in launches, each sample's ray
+  // traced, its first hit shaded, the paths going on queued and stepped a kernel a bounce, then each sub-pixel's
+  // samples summed (kernels/glossy.cl).
+  void run_round(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count);
+  void run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count);
+  // After the first round: which output pixels take more (glossy_rounds.h), for chunks_per_sampled_sub_pixel on
+  // average in all.
+  std::vector<uint8_t> refinement_levels(const GBufferView& gbuffer, const GlossyFrameLight& frame_light,
+                                         double chunks_per_sampled_sub_pixel, GlossyRunStats& stats);
 
   GpuContext& gpu_;
   const DeviceScene& scene_;
   KernelDefines defines_;
-  NamedKernel kernel_, aim_, trace_, shade_first_hits_, step_paths_, finish_paths_, gather_;
+  NamedKernel kernel_, aim_, trace_, shade_first_hits_, step_paths_, finish_paths_, gather_, pixel_error_, average_;
   cl::Buffer radiance_, guide_;
+  // Per sub-pixel: its chunks' summed estimates (RGB) and rays (A); its samples' luminance sum, sum of squares, count
+  // and its chunks. Per output pixel: the first round's error estimate; a later round's list of pixels.
+  cl::Buffer sums_, moments_, pixel_errors_, pixel_list_, no_frame_light_;
   cl::Buffer records_, record_starts_, record_lists_;  // uploaded each frame that reads records from the host
   const cl::Buffer *bound_records_ = nullptr, *bound_starts_ = nullptr, *bound_lists_ = nullptr;
   WorldRecordParams bound_grid_{};
@@ -77,7 +109,7 @@ class GlossyPass {
   cl::Buffer sample_slots_, sample_hits_;
   PathQueue paths_;
   std::optional<RayQueue> rays_;  // made for the first wavefront launch (its program built only then)
-  size_t pixels_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0,
+  size_t pixels_ = 0, errors_capacity_ = 0, list_capacity_ = 0, guide_capacity_ = 0, records_capacity_ = 0, starts_capacity_ = 0, lists_capacity_ = 0,
          slots_capacity_ = 0, hits_capacity_ = 0;
 };
 

@@ -78,7 +78,14 @@ struct RadianceCacheStats : RecordStats {
 
 // The glossy pixels' specular light, sampled per pixel (kernels/glossy.cl).
 struct GlossyStats {
-  unsigned samples = 0;
+  unsigned samples = 0;  // RenderSettings::glossy_samples
+  // Adaptive sampling (RenderSettings::glossy_adaptive): the rounds run, the lobe samples per glossy output pixel on
+  // average and at most, and the output pixels refined after the first round.
+  bool adaptive = false;
+  unsigned rounds = 0;
+  double mean_samples = 0;
+  unsigned most_samples = 0;
+  uint64_t refined_pixels = 0;
   uint64_t rays = 0;
   double seconds = 0;
   // Whether the samples read the records where they landed (RenderSettings::glossy_reads_records), and the host's

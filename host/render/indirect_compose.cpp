@@ -55,9 +55,18 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
         f.gpu.queue().finish();  // the grid's time is its own, not the glossy samples'
         grid_timing.stop();
       }
-      glossy->run(gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
-                  guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u,
-                  f.settings.bounces, reads);
+      const GlossyRunStats run = glossy->run(
+          gbuffer, f.settings.glossy_samples, f.settings.seed, guide ? *guide : std::vector<GuideCluster>{},
+          guide_share ? cs.theta_strata * cs.phi_strata : 0u, guide_share ? cs.guide_rays : 0u, f.settings.bounces,
+          reads, {&f.direct.radiance(), &irradiance}, f.settings.glossy_adaptive);
+      st.glossy.adaptive = f.settings.glossy_adaptive;
+      st.glossy.rounds = std::max(st.glossy.rounds, run.rounds);
+      const unsigned sub_pixels = unsigned(gbuffer.sub_pixel_side * gbuffer.sub_pixel_side);
+      if (run.sampled_sub_pixels)
+        st.glossy.mean_samples = double(GLOSSY_CHUNK_LOBE) * double(run.chunks) / double(run.sampled_sub_pixels) *
+                                 double(sub_pixels);
+      st.glossy.most_samples = GLOSSY_CHUNK_LOBE * run.most_chunks * sub_pixels;
+      st.glossy.refined_pixels += run.refined_pixels;
     }
     st.glossy.samples = f.settings.glossy_samples;
     st.glossy.rays += f.layers.sum_alpha(gbuffer, glossy->radiance());

@@ -38,8 +38,12 @@ struct RenderSettings {
   int camera = 0;
   CameraOverrides camera_overrides;
   unsigned light_samples = 16;  // per pixel on emissive triangles; rounded up to a square number of strata
-  // Cache methods: samples of each glossy pixel's specular lobe (kernels/glossy.cl), stratified over a square grid.
+  // Cache methods: samples of a glossy pixel's specular lobe (kernels/glossy.cl), per output pixel as light_samples
+  // and split among its sub-pixels: with glossy_adaptive, the frame's average (its budget), spent first on a chunk of
+  // every sub-pixel and then where the estimated error gains most (passes/glossy_pass.h); without it, every glossy
+  // pixel's count.
   unsigned glossy_samples = 16;
+  bool glossy_adaptive = true;
   // Radiance caching of LOBE_HSH pixels: the HSH order (n^2 coefficients a channel), 0 = chosen from the cached
   // materials' roughness (the smallest order holding 95% of what order 10 holds of every cached lobe).
   unsigned hsh_order = 0;
