@@ -119,7 +119,7 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
 // How `render` and `animate` compute a frame: the quality preset, the indirect-light method and the cache's options.
 struct RenderMethodFlags {
   std::string gi = "splat", hemisphere, spacing, fine_hemisphere, bounce_method;
-  bool glossy_paths = false, glossy_uniform = false;
+  bool glossy_paths = false, glossy_uniform = false, light_uniform = false;
 
   void add(CLI::App* cmd, RenderOptions& o, const std::string& lab) {
     cmd->add_option("--cache-in", o.cache_in,
@@ -193,6 +193,10 @@ struct RenderMethodFlags {
                         std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
                         " rounds; 0 too; at most 67108864)")
         ->group(lab);
+    cmd->add_flag("--light-uniform", light_uniform,
+                  "Cache methods: every pixel takes --light-samples on area lights and the environment's peak, rather "
+                  "than the frame's average spent in rounds where the estimated error gains most (the default)")
+        ->group(lab);
     cmd->add_flag("--glossy-uniform", glossy_uniform,
                   "Every glossy pixel takes --glossy-samples, rather than the frame's average spent in rounds where "
                   "the estimated error gains most (the default)")
@@ -229,6 +233,7 @@ struct RenderMethodFlags {
     if (!fine_hemisphere.empty()) parse_hemisphere(fine_hemisphere, o.settings.cache, true);
     o.settings.glossy_reads_records = !glossy_paths;
     o.settings.glossy_adaptive = !glossy_uniform;
+    o.settings.light_adaptive = !light_uniform;
     apply_quality(o.quality, o.settings, [&](const char* option) { return cmd->count(option) > 0; });
   }
 };

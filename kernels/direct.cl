@@ -7,6 +7,7 @@
 #include "counter_random.h"
 #include "environment.h"
 #include "lighting.h"
+#include "pixel_rounds.h"
 #include "scene_args.h"
 #if HAS_SPECULAR_BRDF
 #include "reflected_light.h"
@@ -122,4 +123,146 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
     result = finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
   }
   direct_out[pixel] = (float4)(result, (float)rays.cast);  // w: shadow rays cast (exact below 2^24)
+}
+
+// Direct light in rounds (DirectPass with a light budget, in scenes with area lights or an environment peak): the
+// punctual lights once, and sample s of a sub-pixel's sampled light (an emitter sample and an environment-peak sample)
+// at point s * s^2 + sub of its output pixel's nested strata (kernels/pixel_rounds.h), so that a pixel's count, however
+// its rounds end, stays stratified across its sub-pixels. The first round writes every sub-pixel: direct_out its
+// punctual light; direct_sums its samples' sum (RGB) and count; direct_moments their luminance sum and sum of squares,
+// their count and the rays cast. Later rounds add; average_direct_samples makes direct_out what direct_light writes.
+inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, float3 wo_world, RayTally* rays) {
+  const float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  const float3 origin = offset_ray_origin(p, ng);
+#if HAS_SPECULAR_BRDF
+  if (g.lobe != LOBE_NONE) {
+    LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
+    const ShadingFrame frame = shading_frame(n);
+    return finite_or_zero(punctual_reflected(SCENE, &brdf, frame, view_local(frame, wo_world), p, origin, ng, rays));
+  }
+#endif
+  float3 irradiance = (float3)(0.0f);
+#if HAS_PUNCTUAL_LIGHTS
+  float3 wi;
+  for (uint i = 0; i < scene_counts.light_count; ++i)
+    irradiance += punctual_irradiance(BVH, lights[i], p, origin, n, ng, &wi, rays);
+#endif
+  return finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
+}
+
+inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, float3 wo_world, float2 uv, float2 uv_environment,
+                             float u_lobe, RayTally* rays) {
+  const float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  const float3 origin = offset_ray_origin(p, ng);
+  float3 light = (float3)(0.0f);
+#if HAS_SPECULAR_BRDF
+  if (g.lobe != LOBE_NONE) {
+    LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
+    const ShadingFrame frame = shading_frame(n);
+    const float3 wo = view_local(frame, wo_world);
+#if HAS_EMITTERS
+    if (scene_counts.emitter_count > 0)
+      light += emitters_reflected(SCENE, &brdf, g.lobe, frame, wo, p, origin, ng, uv.x, uv.y, u_lobe, rays);
+#endif
+#if HAS_ENVIRONMENT
+    if (scene_counts.environment_peak_power > 0.0f)
+      light += environment_peak_reflected(SCENE, &brdf, frame, wo, origin, ng, uv_environment.x, uv_environment.y,
+                                          rays);
+#endif
+    return finite_or_zero(light);
+  }
+#endif
+  float3 wi;
+#if HAS_EMITTERS
+  if (scene_counts.emitter_count > 0) {
+    float pdf;
+    light += emitter_sample(BVH, emitters, scene_counts.emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, rays);
+  }
+#endif
+#if HAS_ENVIRONMENT
+  if (scene_counts.environment_peak_power > 0.0f)
+    light += environment_peak_irradiance(SCENE, origin, n, ng, uv_environment.x, uv_environment.y, &wi, rays);
+#endif
+  return finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * light);
+}
+
+__kernel void direct_light_round(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __global const uint* pixel_list,
+                                 uint item_count, __global float4* direct_out, __global float4* direct_sums,
+                                 __global float4* direct_moments) {
+  const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
+  if (i >= item_count * subs) return;
+  const uint o = listed_output_pixel(params.listed, pixel_list, i / subs), sub = i % subs;
+  const uint pixel = sub_pixel_of(camera, o, sub);
+  const bool first_round = params.first_sample == 0u;
+  const GBufferSample g = gbuffer[pixel];
+  if (g.triangle < 0) {
+    if (first_round) direct_out[pixel] = direct_sums[pixel] = direct_moments[pixel] = (float4)(0.0f);
+    return;
+  }
+#if HAS_SPECULAR_BRDF
+  const float3 wo = camera_view_direction(camera, vload3(0, g.position));
+#else
+  const float3 wo = (float3)(0.0f);  // only a specular lobe reads the view
+#endif
+  RayTally rays = traced_rays(0u);
+  const float3 punctual = first_round ? direct_punctual(SCENE, g, wo, &rays) : (float3)(0.0f);
+  const uint key = hash_u32(pixel ^ hash_u32(params.seed)), environment_key = key ^ ENVIRONMENT_KEY;
+  const uint strata_key = hash_u32(o ^ hash_u32(params.seed ^ STREAM_LIGHT_STRATA));
+  float3 sum = (float3)(0.0f);
+  float sum_y = 0.0f, sum_y2 = 0.0f;
+  for (uint s = params.first_sample; s < params.first_sample + params.round_samples; ++s) {
+    const uint t = s * subs + sub;
+    const float2 uv = nested_stratum_point(t, strata_key, random01(key, s, 0u), random01(key, s, 1u));
+    const float2 uv_environment = nested_stratum_point(t, strata_key ^ ENVIRONMENT_KEY, random01(environment_key, s, 0u),
+                                                       random01(environment_key, s, 1u));
+    const float3 y = direct_sampled(SCENE, g, wo, uv, uv_environment, random01(key, s, 2u), &rays);
+    sum += y;
+    const float y_luminance = luminance(y);
+    sum_y += y_luminance;
+    sum_y2 += y_luminance * y_luminance;
+  }
+  float4 sums = (float4)(sum, (float)params.round_samples);
+  float4 moments = (float4)(sum_y, sum_y2, (float)params.round_samples, (float)rays.cast);
+  if (first_round) {
+    direct_out[pixel] = (float4)(punctual, 0.0f);
+  } else {
+    sums += direct_sums[pixel];
+    moments += direct_moments[pixel];
+  }
+  direct_sums[pixel] = sums;
+  direct_moments[pixel] = moments;
+}
+
+// After the first round: each output pixel's error estimate (host/passes/sample_rounds.h): (the variance of its sampled
+// light's luminance, its sub-pixels' samples pooled; the luminance of its punctual and emitted light; the sub-pixels
+// pooled; the luminance of its sampled light).
+__kernel void direct_pixel_error(GBUFFER_ARGS, __global const float4* direct_out, __global const float4* direct_sums,
+                                 __global const float4* direct_moments, uint output_pixels,
+                                 __global float4* error_out) {
+  const uint o = get_global_id(0);
+  if (o >= output_pixels) return;
+  const uint subs = sub_pixels_per_pixel(camera);
+  PooledMoments pool = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  float other = 0.0f, sampled = 0.0f;
+  for (uint sub = 0; sub < subs; ++sub) {
+    const uint pixel = sub_pixel_of(camera, o, sub);
+    const GBufferSample g = gbuffer[pixel];
+    const float4 sums = direct_sums[pixel], moments = direct_moments[pixel];
+    other += luminance(finite_or_zero(vload3(0, g.emission) + direct_out[pixel].xyz));
+    if (sums.w > 0.0f) sampled += luminance(sums.xyz / sums.w);
+    if (g.triangle >= 0 && moments.z >= 1.0f) pool_sub_pixel(&pool, moments, moments.z);
+  }
+  const float2 variance = pooled_variance(pool, subs);
+  error_out[o] = (float4)(finite_or_zero((float3)(variance.x, other / (float)subs, sampled / (float)subs)),
+                          variance.y).xywz;
+}
+
+// Each sub-pixel's direct light as direct_light writes it: punctual plus the mean of its samples (RGB), rays (A).
+__kernel void average_direct_samples(__global const float4* direct_sums, __global const float4* direct_moments,
+                                     uint pixel_count, __global float4* direct_out) {
+  const uint i = get_global_id(0);
+  if (i >= pixel_count) return;
+  const float4 sums = direct_sums[i];
+  direct_out[i] = (float4)(direct_out[i].xyz + (sums.w > 0.0f ? sums.xyz / sums.w : (float3)(0.0f)),
+                           direct_moments[i].w);
 }

@@ -15,6 +15,7 @@
 #include "counter_random.h"
 #include "light_guide.h"
 #include "path_queue.h"
+#include "pixel_rounds.h"
 #include "world_records.h"
 
 // A sample's path ends at its first hit on a Lambertian or rough surface that a record of the splat reaches
@@ -136,36 +137,8 @@ inline float3 glossy_sample_light(SCENE_ARGS CACHED_LIGHT_ARGS, uint phase, __gl
 // A sub-pixel's random stream.
 inline uint glossy_key(uint pixel, uint seed) { return hash_u32(pixel ^ hash_u32(seed ^ STREAM_GLOSSY)); }
 
-// Point t of a nested stratification of the unit square, scrambled by key: points 0..3 lie one in each quadrant,
-// 0..15 one in each cell of a 4 x 4 grid, 0..63 of an 8 x 8 one, up to 16 x 16; each alone is uniform over the square.
-// t's base-4 digits choose a child cell level by level, each level's choice permuted by a hash of the cell it is in
-// (an Owen-style scramble), so a pixel stays stratified however many samples its rounds end with.
-#define NESTED_STRATA_LEVELS 4u
-inline float2 nested_stratum_point(uint t, uint key, float u1, float u2) {
-  uint x = 0u, y = 0u;
-  for (uint level = 0u; level < NESTED_STRATA_LEVELS; ++level) {
-    const uint cell = t & ((1u << (2u * level)) - 1u);  // the digits that chose the cells above
-    const uint child = ((t >> (2u * level)) & 3u) ^ (hash_u32(key ^ hash_u32(cell * 8u + level)) & 3u);
-    x = 2u * x + (child & 1u);
-    y = 2u * y + (child >> 1u);
-  }
-  const float cells = (float)(1u << NESTED_STRATA_LEVELS);
-  return (float2)(((float)x + u1) / cells, ((float)y + u2) / cells);
-}
-
-// The sub-pixels of an output pixel: the G-buffer is an s-times larger frame (s = sub_pixel_side, row-major), and
-// sub-pixel `sub` (0 .. s^2 - 1) of output pixel o is row sub / s, column sub % s of o's s x s block.
-inline uint sub_pixels_per_pixel(__global const CameraParams* camera) {
-  const uint side = (uint)max(camera->sub_pixel_side, 1);
-  return side * side;
-}
-inline uint sub_pixel_of(__global const CameraParams* camera, uint output_pixel, uint sub) {
-  const uint side = (uint)max(camera->sub_pixel_side, 1), width = (uint)camera->width / side;
-  return ((output_pixel / width) * side + sub / side) * (uint)camera->width + (output_pixel % width) * side + sub % side;
-}
-// A round's output pixel number i: from its list, or every output pixel in order.
 inline uint round_output_pixel(GlossyParams params, __global const uint* pixel_list, uint i) {
-  return params.listed ? pixel_list[i] : i;
+  return listed_output_pixel(params.listed, pixel_list, i);
 }
 // The sub-pixel whose samples fill wavefront slot i of the round's launch from first_item.
 inline uint slot_sub_pixel(__global const CameraParams* camera, GlossyParams params, __global const uint* pixel_list,
@@ -492,7 +465,7 @@ __kernel void gather_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams param
 }
 
 // After the first round: each output pixel's error estimate, for the host to choose the pixels later rounds refine
-// (passes/glossy_rounds.h): (the variance of its glossy light's luminance, as its sub-pixels' samples estimate it, each
+// (passes/sample_rounds.h): (the variance of its glossy light's luminance, as its sub-pixels' samples estimate it, each
 // sub-pixel's m samples in n chunks of k lobe samples taken as independent, Var(y) pooled over the pixel's sub-pixels:
 // m Var(y) / (kn)^2, averaged over the s^2 sub-pixels; the
 // luminance of its other light, emitted, direct and cached (from `direct` and `irradiance` where frame_light is 1); the
@@ -504,9 +477,8 @@ __kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance
   const uint o = get_global_id(0);
   if (o >= output_pixels) return;
   const uint subs = sub_pixels_per_pixel(camera);
-  // The samples' luminance moments pooled over the sampled sub-pixels (a near-mirror one has one sample a chunk), and
-  // the sum over them of m / (k n)^2, which times Var(y) is each one's estimate's variance.
-  float sum_y = 0.0f, sum_y2 = 0.0f, samples = 0.0f, spread = 0.0f, other = 0.0f, glossy = 0.0f, refined = 0.0f;
+  PooledMoments pool = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  float other = 0.0f, glossy = 0.0f;
   for (uint sub = 0; sub < subs; ++sub) {
     const uint pixel = sub_pixel_of(camera, o, sub);
     const GBufferSample g = gbuffer[pixel];
@@ -525,19 +497,13 @@ __kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance
       }
     }
     other += luminance(finite_or_zero(light));
-    if (!glossy_samples_lobe(g) || !(moments.z >= 1.0f)) continue;
-    refined += 1.0f;
-    sum_y += moments.x;
-    sum_y2 += moments.y;
-    samples += moments.z;
-    const float n = moments.w * (float)glossy_chunk_lobe_samples(gbuffer_brdf(g));
-    spread += moments.z / (n * n);
+    // A sub-pixel's n chunks of k lobe samples: an estimate of kn samples' mean.
+    if (glossy_samples_lobe(g) && moments.z >= 1.0f)
+      pool_sub_pixel(&pool, moments, moments.w * (float)glossy_chunk_lobe_samples(gbuffer_brdf(g)));
   }
-  if (!(samples >= 2.0f)) refined = 0.0f;  // no estimate of the variance
-  const float var_y = samples >= 2.0f ? fmax(sum_y2 - sum_y * sum_y / samples, 0.0f) / (samples - 1.0f) : 0.0f;
-  const float variance = var_y * spread;
-  const float s2 = (float)subs;
-  error_out[o] = (float4)(finite_or_zero((float3)(variance / (s2 * s2), other / s2, glossy / s2)), refined).xywz;
+  const float2 variance = pooled_variance(pool, subs);
+  error_out[o] = (float4)(finite_or_zero((float3)(variance.x, other / (float)subs, glossy / (float)subs)),
+                          variance.y).xywz;
 }
 
 // Each sub-pixel's glossy light, the mean of its chunks (RGB), and the rays its samples cast (A).

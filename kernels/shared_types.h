@@ -418,7 +418,12 @@ typedef struct {
 typedef struct {
   rc_uint strata_per_axis;  // light samples per pixel = strata_per_axis^2, stratified over the emitters
   rc_uint seed;
-  rc_uint pad[2];
+  // In rounds (kernels/direct.cl direct_light_round): samples [first_sample, first_sample + round_samples) of each
+  // sub-pixel of the round's output pixels, listed (1) or all (0).
+  rc_uint first_sample;
+  rc_uint round_samples;
+  rc_uint listed;
+  rc_uint pad[3];
 } DirectParams;
 
 typedef struct {
@@ -613,7 +618,7 @@ static_assert(sizeof(WorldRecordExtent) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);
 static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);
-static_assert(sizeof(DirectParams) == 16);
+static_assert(sizeof(DirectParams) == 32);
 static_assert(sizeof(PathParams) == 32);
 static_assert(sizeof(RecordBatchParams) == 64);
 static_assert(sizeof(StoredGuideCone) == 32);

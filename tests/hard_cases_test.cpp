@@ -93,6 +93,9 @@ CorridorErrors corridor_block_errors(float metal_wall_roughness, bool check_refe
   settings.height = 48;
   settings.light_samples = 1;
   settings.seed = 7;
+  // Every glossy pixel the same count, so that the guide is measured alone: rounds by estimated error (the default)
+  // took the unguided frame's block error from 13 to 1.55 at seed 7, the guided one 0.13 (docs/NOTES.md, 2026-12-06).
+  settings.glossy_adaptive = false;
   const RenderedImage guided = render(test::gpu(), corridor, settings);
   const bool glossy = metal_wall_roughness > 0.0f, cached = metal_wall_roughness >= HSH_MIN_ROUGHNESS;
   EXPECT_EQ(guided.stats.radiance.records > 0, cached) << "which walls are radiance-cached";
@@ -153,8 +156,9 @@ TEST(HardCases, SmallBrightIndirectSourceOnSampledGlossyWalls) {
   CorridorErrors e = corridor_block_errors(0.3f, false);
   EXPECT_LE(e.guided, e.path);
   // Seeds 7 to 15 gave 0.04 to 0.2 against the unguided 13: what is left is at the walls' foot beside the disc, inside
-  // the cluster's sphere, where no cone can be aimed and the lobe's samples find the disc alone.
-  EXPECT_LT(e.guided, 0.05 * e.unguided);
+  // the cluster's sphere, where no cone can be aimed and the lobe's samples find the disc alone. Since the samples
+  // come in chunks with nested strata (2026-12-06) the unguided frame is 0.63 at seed 7 and the guided 0.045.
+  EXPECT_LT(e.guided, 0.1 * e.unguided);
 }
 
 std::string file_bytes(const std::string& path) {

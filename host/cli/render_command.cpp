@@ -99,8 +99,13 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
   std::printf("time         BVH build %.3f s, upload %.3f s, kernel build %.3f s\n", s.scene.bvh_build_s,
               s.scene.upload_s, s.program_s);
   std::printf(
-      "             G-buffer %.3f s, direct light %.3f s (%.2f Mrays/s)\n", s.primary.gbuffer_s, s.primary.direct_s,
+      "             G-buffer %.3f s, direct light %.3f s (%.2f Mrays/s)", s.primary.gbuffer_s, s.primary.direct_s,
       mrays_per_second(s.primary.primary_rays + s.primary.shadow_rays, s.primary.gbuffer_s + s.primary.direct_s));
+  if (s.primary.light_rounds)
+    std::printf("; light samples in %u rounds by estimated error, %.1f per pixel on average, %llu pixels refined",
+                s.primary.light_rounds, s.primary.light_mean_samples,
+                (unsigned long long)s.primary.light_refined_pixels);
+  std::printf("\n");
   if (s.gi == GiMethod::splat || s.gi == GiMethod::octree) {
     const CacheSettings& c = settings.cache;
     std::printf("cache        a = %g, %ux%u rays per record", c.accuracy, c.theta_strata, c.phi_strata);
@@ -201,6 +206,9 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"bounces_chosen", s.bounces.chosen},
       {"kept_per_bounce", s.bounces.kept_per_bounce},
       {"light_samples", s.primary.light_samples},
+      {"light_rounds", s.primary.light_rounds},
+      {"light_mean_samples", s.primary.light_mean_samples},
+      {"light_refined_pixels", s.primary.light_refined_pixels},
       {"pixel_samples", s.primary.pixel_samples},
       {"pixel_points", pixel_points_name(settings)},
       {"triangles", s.scene.triangles},

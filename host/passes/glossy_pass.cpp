@@ -5,7 +5,7 @@
 #include <string>
 
 #include "cl/point_lookup.h"
-#include "passes/glossy_rounds.h"
+#include "passes/sample_rounds.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -64,25 +64,21 @@ GlossyRunStats GlossyPass::run(const GBufferView& gbuffer, unsigned samples, uns
   params.listed = 0;
   params.slots_per_sub_pixel = std::max(params.round_chunks * slots_per_chunk, params.guide_share_samples);
   run_round(gbuffer, params, gbuffer.output_pixel_count());
-  stats.rounds = 1;
   stats.most_chunks = params.round_chunks;
   std::vector<uint8_t> levels;
   // Without `adaptive` the counts stay 0 but for the rounds: the first round's sub-pixels are not counted.
   if (adaptive) levels = refinement_levels(gbuffer, frame_light, chunks_per_sub_pixel, stats);
   // Later rounds: round r doubles the chunks of the pixels whose level is r or more (2^(r-1) more each).
-  for (unsigned round = 1; round <= kGlossyMaxLevel && !levels.empty(); ++round) {
-    std::vector<cl_uint> listed;
-    for (size_t o = 0; o < levels.size(); ++o)
-      if (levels[o] >= round) listed.push_back(cl_uint(o));
-    if (listed.empty()) break;
+  const unsigned rounds = run_later_rounds(levels, [&](const std::vector<cl_uint>& listed, unsigned first, unsigned chunks) {
     gpu_.upload_into(pixel_list_, list_capacity_, listed, CL_MEM_READ_ONLY, "glossy pixel list");
-    params.first_chunk = params.round_chunks = 1u << (round - 1);
+    params.first_chunk = first;
+    params.round_chunks = chunks;
     params.listed = 1;
     params.slots_per_sub_pixel = params.round_chunks * slots_per_chunk;
     run_round(gbuffer, params, listed.size());
-    stats.rounds = round + 1;
-    stats.most_chunks = 2 * params.round_chunks;
-  }
+    stats.most_chunks = 2 * chunks;
+  });
+  stats.rounds = rounds;
   average_.set_buffer<cl_float4>("glossy_sums", sums_)
       .set_buffer<cl_float4>("glossy_moments", moments_)
       .set("pixel_count", cl_uint(pixels_))
@@ -113,14 +109,11 @@ std::vector<uint8_t> GlossyPass::refinement_levels(const GBufferView& gbuffer, c
   for (const cl_float4& e : errors) sampled += uint64_t(e.s[2]);
   const int side = gbuffer.sub_pixel_side;
   std::vector<uint8_t> levels =
-      glossy_refinement_levels(errors, gbuffer.width / side, gbuffer.height / side,
-                               (chunks_per_sampled_sub_pixel - 1.0) * double(sampled), kGlossyMaxLevel);
+      rcsplat::refinement_levels(errors, gbuffer.width / side, gbuffer.height / side,
+                               (chunks_per_sampled_sub_pixel - 1.0) * double(sampled), kRoundsMaxLevel);
   stats.sampled_sub_pixels = sampled;
-  stats.chunks = sampled;
-  for (size_t o = 0; o < levels.size(); ++o) {
-    stats.chunks += uint64_t(errors[o].s[2]) * ((uint64_t(1) << levels[o]) - 1);
-    stats.refined_pixels += levels[o] > 0;
-  }
+  stats.chunks = sampled + chunks_added(levels, errors);
+  for (uint8_t level : levels) stats.refined_pixels += level > 0;
   return levels;
 }
 

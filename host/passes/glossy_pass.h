@@ -55,7 +55,7 @@ class GlossyPass {
   // samples: lobe samples per output pixel that samples a lobe, on average over the frame (the budget), split among
   // its sub-pixels (GBufferView::sub_pixel_side). With `adaptive`, each sampled sub-pixel takes one chunk
   // (GLOSSY_CHUNK_LOBE lobe samples and, where its lobe faces a cone of the light guide, GLOSSY_CHUNK_GUIDED aimed at
-  // it), then the output pixels whose estimated error gains most take more in later rounds (passes/glossy_rounds.h),
+  // it), then the output pixels whose estimated error gains most take more in later rounds (passes/sample_rounds.h),
   // their strata nested so that every count stays stratified; without it, every sampled sub-pixel takes the budget's
   // chunks in one round. With radiance records that left the guide's share to the pixels (record_guide_rays guided
   // rays beside record_strata strata, both > 0), the radiance-cached sub-pixels get that share from samples /
@@ -86,7 +86,7 @@ class GlossyPass {
   // samples summed (kernels/glossy.cl).
   void run_round(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count);
   void run_wavefront(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count);
-  // After the first round: which output pixels take more (glossy_rounds.h), for chunks_per_sampled_sub_pixel on
+  // After the first round: which output pixels take more (sample_rounds.h), for chunks_per_sampled_sub_pixel on
   // average in all.
   std::vector<uint8_t> refinement_levels(const GBufferView& gbuffer, const GlossyFrameLight& frame_light,
                                          double chunks_per_sampled_sub_pixel, GlossyRunStats& stats);

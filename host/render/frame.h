@@ -40,6 +40,11 @@ struct PrimaryStats {
   // Sub-pixels by their lobe: rough (shaded from E), glossy (sampled, kernels/glossy.cl), radiance-cached (LOBE_HSH).
   uint64_t rough_pixels = 0, glossy_pixels = 0, hsh_pixels = 0;
   double gbuffer_s = 0, direct_s = 0, layers_s = 0;
+  // Cache methods with area lights or an environment peak (RenderSettings::light_adaptive): the light samples' rounds,
+  // their mean per output pixel (sub-pixels with geometry), and the output pixels refined after the first round.
+  unsigned light_rounds = 0;
+  double light_mean_samples = 0;
+  uint64_t light_refined_pixels = 0;
 };
 
 // Bounces as rendered (chosen from the scene when --bounces was 0, with the probe's measure) and their method.

@@ -271,7 +271,16 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   }
   {
     StageTimer timing(st.primary.direct_s);
-    direct.run(gbuffer.view(), strata, settings.seed);
+    const bool cache = settings.gi == GiMethod::splat || settings.gi == GiMethod::octree;
+    const unsigned sub_pixels = unsigned(gbuffer.view().sub_pixel_side * gbuffer.view().sub_pixel_side);
+    const DirectRunStats run = direct.run(gbuffer.view(), strata, settings.seed,
+                                          cache && settings.light_adaptive ? settings.light_samples * sub_pixels : 0);
+    if (run.rounds) {
+      st.primary.light_rounds = run.rounds;
+      st.primary.light_mean_samples = double(run.samples) / double(std::max<uint64_t>(run.sampled_sub_pixels, 1)) *
+                                      double(sub_pixels);
+      st.primary.light_refined_pixels = run.refined_pixels;
+    }
   }
 
   StageTimer layers_timing(st.primary.layers_s);

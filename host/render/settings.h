@@ -38,6 +38,9 @@ struct RenderSettings {
   int camera = 0;
   CameraOverrides camera_overrides;
   unsigned light_samples = 16;  // per pixel on emissive triangles; rounded up to a square number of strata
+  // Cache methods: light_samples is the frame's average per output pixel, spent first on one sample a sub-pixel and then
+  // where the estimated error gains most (passes/direct_pass.h); false, or path tracing: every pixel's count.
+  bool light_adaptive = true;
   // Cache methods: samples of a glossy pixel's specular lobe (kernels/glossy.cl), per output pixel as light_samples
   // and split among its sub-pixels: with glossy_adaptive, the frame's average (its budget), spent first on a chunk of
   // every sub-pixel and then where the estimated error gains most (passes/glossy_pass.h); without it, every glossy

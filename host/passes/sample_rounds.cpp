@@ -1,4 +1,4 @@
-#include "passes/glossy_rounds.h"
+#include "passes/sample_rounds.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +21,7 @@ unsigned level_at(double gain_per_chunk, double t, unsigned max_level) {
 
 }  // namespace
 
-std::vector<uint8_t> glossy_refinement_levels(const std::vector<cl_float4>& errors, int width, int height,
+std::vector<uint8_t> refinement_levels(const std::vector<cl_float4>& errors, int width, int height,
                                               double extra_chunks, unsigned max_level) {
   const size_t pixels = size_t(width) * size_t(height);
   std::vector<uint8_t> levels(pixels, 0);
@@ -34,7 +34,7 @@ std::vector<uint8_t> glossy_refinement_levels(const std::vector<cl_float4>& erro
       const size_t at = size_t(y) * size_t(width) + size_t(x);
       const cl_float4& own = errors[at];
       if (!(own.s[2] > 0.0f)) continue;
-      double variance = 0.0, glossy = 0.0, neighbours = 0.0;
+      double variance = 0.0, sampled = 0.0, neighbours = 0.0;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
@@ -42,11 +42,11 @@ std::vector<uint8_t> glossy_refinement_levels(const std::vector<cl_float4>& erro
           const cl_float4& e = errors[size_t(ny) * size_t(width) + size_t(nx)];
           if (!(e.s[2] > 0.0f) || !std::isfinite(e.s[0]) || !std::isfinite(e.s[3])) continue;
           variance += double(e.s[0]);
-          glossy += double(e.s[3]);
+          sampled += double(e.s[3]);
           neighbours += 1.0;
         }
       if (!(neighbours > 0.0)) continue;
-      const double luminance = (std::isfinite(own.s[1]) ? double(own.s[1]) : 0.0) + glossy / neighbours;
+      const double luminance = (std::isfinite(own.s[1]) ? double(own.s[1]) : 0.0) + sampled / neighbours;
       const double relative = variance / neighbours / (luminance * luminance + kRelMseOffset);
       first_gain[at] = relative / (2.0 * double(own.s[2]));
       highest = std::max(highest, first_gain[at]);
@@ -73,6 +73,28 @@ std::vector<uint8_t> glossy_refinement_levels(const std::vector<cl_float4>& erro
   for (size_t i = 0; i < pixels; ++i)
     if (first_gain[i] >= t) levels[i] = uint8_t(level_at(first_gain[i], t, max_level));
   return levels;
+}
+
+uint64_t chunks_added(const std::vector<uint8_t>& levels, const std::vector<cl_float4>& errors) {
+  uint64_t chunks = 0;
+  for (size_t o = 0; o < levels.size() && o < errors.size(); ++o)
+    chunks += uint64_t(errors[o].s[2]) * ((uint64_t(1) << levels[o]) - 1);
+  return chunks;
+}
+
+unsigned run_later_rounds(
+    const std::vector<uint8_t>& levels,
+    const std::function<void(const std::vector<cl_uint>& listed, unsigned first_chunk, unsigned chunks)>& run_round) {
+  unsigned rounds = 1;
+  for (unsigned round = 1; round <= kRoundsMaxLevel; ++round) {
+    std::vector<cl_uint> listed;
+    for (size_t o = 0; o < levels.size(); ++o)
+      if (levels[o] >= round) listed.push_back(cl_uint(o));
+    if (listed.empty()) break;
+    run_round(listed, 1u << (round - 1), 1u << (round - 1));
+    rounds = round + 1;
+  }
+  return rounds;
 }
 
 }  // namespace rcsplat
