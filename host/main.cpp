@@ -153,6 +153,11 @@ struct RenderMethodFlags {
                     "Record spacing MIN,MAX in pixels: a record's reach a*R is clamped to it; default " +
                         shortest(cache_defaults.min_reach_pixels) + "," + shortest(cache_defaults.max_reach_pixels))
         ->group(lab);
+    cmd->add_option("--placement-lines", o.settings.cache.placement_lines,
+                    "Record spacings and reaches (--spacing) hold for an image this many lines high; a taller one "
+                    "scales them, so that records follow the scene rather than the image; 0: never scale; default " +
+                        std::to_string(cache_defaults.placement_lines))
+        ->group(lab);
     cmd->add_option("--hessian-error", o.settings.cache.hessian_error,
                     "Record radii from the occlusion Hessian of the irradiance with this error budget (Schwarzhaupt "
                     "et al. 2012); 0: Ward's split sphere (harmonic mean hit distance); default " +

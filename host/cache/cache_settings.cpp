@@ -44,6 +44,16 @@ void validate_cache_settings(const CacheSettings& c) {
     throw Error("the finest placement spacing must be between 1 pixel and the coarsest");
 }
 
+void scale_placement_to_image(CacheSettings& cache, int height) {
+  if (cache.placement_lines <= 0 || height <= cache.placement_lines) return;
+  const double scale = double(height) / double(cache.placement_lines);
+  cache.min_reach_pixels = float(double(cache.min_reach_pixels) * scale);
+  cache.max_reach_pixels = float(double(cache.max_reach_pixels) * scale);
+  cache.finest_spacing_pixels = std::max(1, int(std::lround(double(cache.finest_spacing_pixels) * scale)));
+  cache.coarsest_spacing_pixels =
+      std::max(cache.finest_spacing_pixels, int(std::lround(double(cache.coarsest_spacing_pixels) * scale)));
+}
+
 HemisphereParams hemisphere_params(const CacheSettings& c, unsigned seed, int spacing) {
   bool fine = spacing <= c.finest_spacing_pixels && c.fine_theta_strata > 0;
   HemisphereParams hp{};

@@ -39,8 +39,15 @@ struct CacheSettings {
   // M x N strata (0: no guide), and the photons that find those places. The command line's --guide-rays.
   unsigned guide_rays = 64;
   unsigned guide_photons = 1u << 16;  // record placement starts on this pixel grid and halves it down to 1
+  // Records follow the scene, not the image: the spacings and reaches above, in pixels, hold for an image this many
+  // output lines high, and a taller one scales them by its height over this (scale_placement_to_image). 0: they hold
+  // at every size. The command line's --placement-lines.
+  int placement_lines = 0;
   bool operator==(const CacheSettings&) const = default;
 };
+
+// The spacings and reaches of `cache` for an image `height` output lines high (CacheSettings::placement_lines).
+void scale_placement_to_image(CacheSettings& cache, int height);
 
 constexpr float kMinAccuracy = MIN_ACCURACY;
 constexpr float kMaxAccuracy = MAX_ACCURACY;

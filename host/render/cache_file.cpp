@@ -19,7 +19,7 @@ constexpr size_t kVersionBytes = 32, kDeviceBytes = 64;
 constexpr size_t kHeaderBytes = 16 + 4 + 4 + kVersionBytes + 8 * 3 + kDeviceBytes;
 constexpr size_t kPerRecordBytes = sizeof(CacheRecord) + sizeof(uint64_t);
 // A new field of CacheSettings must join settings_fingerprint below (and a new field of CacheRecord, the format).
-static_assert(sizeof(CacheSettings) == 52, "a cache setting was added: fingerprint it in settings_fingerprint");
+static_assert(sizeof(CacheSettings) == 56, "a cache setting was added: fingerprint it in settings_fingerprint");
 static_assert(sizeof(CacheRecord) == 160, "the record changed: raise kFormatVersion");
 static_assert(sizeof(PhotonHit) == 64 && sizeof(GuideCluster) == 48, "a photon or cluster changed: raise kFormatVersion");
 
@@ -213,6 +213,7 @@ uint64_t settings_fingerprint(const KeptRecordsKey& k) {
   h.value(c.finest_spacing_pixels);
   h.value(c.guide_rays);
   h.value(c.guide_photons);
+  if (c.placement_lines) h.value(c.placement_lines);  // 0 leaves the fingerprints of files written before it alone
   for (unsigned v :
        {k.seed, k.bounces, k.photon_paths, k.photon_neighbours, k.caustic_photons, k.sub_pixel_side, k.hsh_order})
     h.value(v);

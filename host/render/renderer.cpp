@@ -249,6 +249,7 @@ FramePlan Renderer::plan(const RenderSettings& request) {
     p.radiance_accuracy = radiance_accuracy(lobes, s.cache.accuracy);
   }
 
+  if (cache) scale_placement_to_image(s.cache, p.height);
   p.frame = p.side > 1 ? sub_pixel_settings(s, p.width, p.height, p.side) : s;
   if (p.side > 1) p.frame.sub_pixel_side = p.side;
   const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
