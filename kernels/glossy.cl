@@ -110,7 +110,7 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
   return finite_or_zero(sum);
 }
 
-// Where a pixel's samples take their light (glossy_pixel): GLOSSY_WHOLE traces each sample's path there and then (one
+// Where a pixel's samples take their light (glossy_sub_pixel): GLOSSY_WHOLE traces each sample's path there and then (one
 // kernel, glossy_indirect); the wavefront (GroupSizes::record_trace) runs the pixel twice around its samples' kernels:
 // GLOSSY_AIM keeps each sample's direction in its slot, and GLOSSY_GATHER reads each sample's light back from it, in
 // the same order and the same sums, so the pixel is the same bits. A slot: (direction, sample id + 1) for a ray to
@@ -166,8 +166,8 @@ inline uint glossy_slots_per_chunk(GlossyParams params) {
 }
 
 // With a light guide (params.guide_clusters > 0), a pixel whose lobe faces one of its clusters (kernels/light_guide.h)
-// adds half as many samples again, aimed into their cones, and both kinds are weighed by the balance heuristic
-// (Veach 1997): a small bright patch that the lobe's own samples find in one pixel of many (fireflies) is found by
+// adds half as many samples again, aimed into their cones (a chunk's guided sample), and both kinds are weighed by the
+// balance heuristic within the chunk (Veach 1997): a small bright patch that the lobe's own samples find in one pixel of many (fireflies) is found by
 // every pixel.
 // Cones are chosen in proportion to their promised irradiance times the lobe toward them; a cone that the
 // lobe's own samples would hit GUIDE_MAX_STRATA times or more (a wall beside a glossy floor) is left to them, as the
