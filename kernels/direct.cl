@@ -125,7 +125,9 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
   direct_out[pixel] = (float4)(result, (float)rays.cast);  // w: shadow rays cast (exact below 2^24)
 }
 
-// Direct light in rounds (DirectPass with a light budget, in scenes with area lights or an environment peak): the
+#if HAS_EMITTERS || HAS_ENVIRONMENT
+// Direct light in rounds (DirectPass with a light budget, in scenes with area lights or an environment peak, the only
+// ones that compile it): the
 // punctual lights once, and sample s of a sub-pixel's sampled light (an emitter sample and an environment-peak sample)
 // at point s * s^2 + sub of its output pixel's nested strata (kernels/pixel_rounds.h), so that a pixel's count, however
 // its rounds end, stays stratified across its sub-pixels. The first round writes every sub-pixel: direct_out its
@@ -266,3 +268,4 @@ __kernel void average_direct_samples(__global const float4* direct_sums, __globa
   direct_out[i] = (float4)(direct_out[i].xyz + (sums.w > 0.0f ? sums.xyz / sums.w : (float3)(0.0f)),
                            direct_moments[i].w);
 }
+#endif

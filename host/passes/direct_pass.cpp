@@ -10,10 +10,18 @@ void DirectPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.bu
 DirectPass::DirectPass(GpuContext& gpu, const DeviceScene& scene)
     : gpu_(gpu),
       scene_(scene),
-      kernel_(gpu.kernel(kProgram, "direct_light", scene.defines())),
-      round_(gpu.kernel(kProgram, "direct_light_round", scene.defines())),
-      pixel_error_(gpu.kernel(kProgram, "direct_pixel_error", scene.defines())),
-      average_(gpu.kernel(kProgram, "average_direct_samples", scene.defines())) {}
+      kernel_(gpu.kernel(kProgram, "direct_light", scene.defines())) {
+  // The rounds' kernels exist only where the scene samples lights (kernels/direct.cl).
+  if (samples_lights()) {
+    round_ = gpu.kernel(kProgram, "direct_light_round", scene.defines());
+    pixel_error_ = gpu.kernel(kProgram, "direct_pixel_error", scene.defines());
+    average_ = gpu.kernel(kProgram, "average_direct_samples", scene.defines());
+  }
+}
+
+bool DirectPass::samples_lights() const {
+  return !scene_.emitters().empty() || scene_.environment_peak_power() > 0.0f;
+}
 
 DirectRunStats DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_axis, unsigned seed,
                                unsigned light_budget) {
@@ -23,8 +31,7 @@ DirectRunStats DirectPass::run(const GBufferView& gbuffer, unsigned strata_per_a
     radiance_ = gpu_.buffer(CL_MEM_READ_WRITE, bytes, "direct radiance");
     sums_ = moments_ = cl::Buffer();
   }
-  const bool samples_lights = !scene_.emitters().empty() || scene_.environment_peak_power() > 0.0f;
-  if (light_budget > 0 && samples_lights && strata_per_axis > 0) return run_rounds(gbuffer, seed, light_budget);
+  if (light_budget > 0 && samples_lights() && strata_per_axis > 0) return run_rounds(gbuffer, seed, light_budget);
   DirectParams params{};
   params.strata_per_axis = strata_per_axis;
   params.seed = seed;

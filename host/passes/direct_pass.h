@@ -31,6 +31,7 @@ class DirectPass {
 
  private:
   static constexpr const char* kProgram = "direct.cl";  // its kernels' file
+  bool samples_lights() const;  // area lights or an environment peak: the rounds' kernels are compiled
   DirectRunStats run_rounds(const GBufferView& gbuffer, unsigned seed, unsigned light_budget);
   void run_round(const GBufferView& gbuffer, const DirectParams& params, size_t item_count);
 
