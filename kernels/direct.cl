@@ -254,9 +254,7 @@ __kernel void direct_pixel_error(GBUFFER_ARGS, __global const float4* direct_out
     if (sums.w > 0.0f) sampled += luminance(sums.xyz / sums.w);
     if (g.triangle >= 0 && moments.z >= 1.0f) pool_sub_pixel(&pool, moments, moments.z);
   }
-  const float2 variance = pooled_variance(pool, subs);
-  error_out[o] = (float4)(finite_or_zero((float3)(variance.x, other / (float)subs, sampled / (float)subs)),
-                          variance.y).xywz;
+  error_out[o] = pixel_error_estimate(pool, subs, other, sampled);
 }
 
 // Each sub-pixel's direct light as direct_light writes it: punctual plus the mean of its samples (RGB), rays (A).

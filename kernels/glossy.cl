@@ -501,9 +501,7 @@ __kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance
     if (glossy_samples_lobe(g) && moments.z >= 1.0f)
       pool_sub_pixel(&pool, moments, moments.w * (float)glossy_chunk_lobe_samples(gbuffer_brdf(g)));
   }
-  const float2 variance = pooled_variance(pool, subs);
-  error_out[o] = (float4)(finite_or_zero((float3)(variance.x, other / (float)subs, glossy / (float)subs)),
-                          variance.y).xywz;
+  error_out[o] = pixel_error_estimate(pool, subs, other, glossy);
 }
 
 // Each sub-pixel's glossy light, the mean of its chunks (RGB), and the rays its samples cast (A).

@@ -4,6 +4,7 @@
 #ifndef RCSPLAT_PIXEL_ROUNDS_H
 #define RCSPLAT_PIXEL_ROUNDS_H
 #include "counter_random.h"
+#include "sampling.h"
 #include "shared_types.h"
 
 // Point t of a nested stratification of the unit square, scrambled by key: points 0..3 lie one in each quadrant,
@@ -60,6 +61,14 @@ inline float2 pooled_variance(PooledMoments p, uint sub_pixels) {
   const float var_y = fmax(p.sum_y2 - p.sum_y * p.sum_y / p.samples, 0.0f) / (p.samples - 1.0f);
   const float s2 = (float)sub_pixels;
   return (float2)(var_y * p.spread / (s2 * s2), p.pooled);
+}
+
+// What an error kernel writes for an output pixel (host/passes/sample_rounds.h): (the variance of its sampled light,
+// its other light, the sub-pixels pooled, its sampled light), other and sampled summed over its s^2 sub-pixels.
+inline float4 pixel_error_estimate(PooledMoments pool, uint sub_pixels, float other, float sampled) {
+  const float2 variance = pooled_variance(pool, sub_pixels);
+  const float s2 = (float)sub_pixels;
+  return (float4)(finite_or_zero((float3)(variance.x, other / s2, sampled / s2)), variance.y).xywz;
 }
 
 #endif
