@@ -55,6 +55,14 @@ TEST(CliOptions, BadValuesAreRefusedByName) {
   CacheSettings bad_accuracy;
   bad_accuracy.accuracy = -1.0f;
   EXPECT_THROW(validate_cache_settings(bad_accuracy), Error);
+  CacheSettings bad_lines;
+  bad_lines.placement_lines = -1;
+  try {
+    validate_cache_settings(bad_lines);
+    ADD_FAILURE() << "--placement-lines -1 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--placement-lines"), std::string::npos) << e.what();
+  }
   for (float bad : {-0.1f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     CacheSettings bad_adaptive;
     bad_adaptive.adaptive_error = bad;

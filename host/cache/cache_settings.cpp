@@ -39,6 +39,9 @@ void validate_cache_settings(const CacheSettings& c) {
   if (!(c.hessian_error >= 0.0f) || !std::isfinite(c.hessian_error))
     throw Error("--hessian-error must be 0 (the split sphere) or positive (given " + number(c.hessian_error) + ")");
   if (c.guide_rays > 4096) throw Error("--guide-rays must be between 0 and 4096 (given " + std::to_string(c.guide_rays) + ")");
+  if (c.placement_lines < 0)
+    throw Error("--placement-lines must be 0 (off) or a height in lines (given " + std::to_string(c.placement_lines) +
+                ")");
   if (c.coarsest_spacing_pixels < 1) throw Error("the coarsest placement spacing must be at least 1 pixel");
   if (c.finest_spacing_pixels < 1 || c.finest_spacing_pixels > c.coarsest_spacing_pixels)
     throw Error("the finest placement spacing must be between 1 pixel and the coarsest");

@@ -81,17 +81,16 @@ DirectRunStats DirectPass::run_rounds(const GBufferView& gbuffer, unsigned seed,
       .set("output_pixels", cl_uint(output_pixels))
       .set_buffer<cl_float4>("error_out", pixel_errors_)
       .launch(output_pixels, gpu_.groups().per_item);
-  const std::vector<cl_float4> errors = gpu_.download<cl_float4>(pixel_errors_, output_pixels);
-  DirectRunStats stats;
-  for (const cl_float4& e : errors) stats.sampled_sub_pixels += uint64_t(e.s[2]);
-  // The budget per output pixel, split among its sub-pixels, less the first round's one sample each.
-  const double extra =
-      (double(light_budget) / double(sub_pixels * first_samples) - 1.0) * double(stats.sampled_sub_pixels);
+  // The budget per output pixel, split among its sub-pixels, in chunks of the first round's samples.
   const int side = gbuffer.sub_pixel_side;
-  const std::vector<uint8_t> levels = refinement_levels(errors, gbuffer.width / side, gbuffer.height / side, extra);
-  stats.samples = (stats.sampled_sub_pixels + chunks_added(levels, errors)) * first_samples;
-  for (uint8_t level : levels) stats.refined_pixels += level > 0;
-  stats.rounds = run_later_rounds(levels, [&](const std::vector<cl_uint>& listed, unsigned first, unsigned count) {
+  const RoundsPlan plan = plan_rounds(gpu_.download<cl_float4>(pixel_errors_, output_pixels), gbuffer.width / side,
+                                      gbuffer.height / side,
+                                      double(light_budget) / double(sub_pixels * first_samples));
+  DirectRunStats stats;
+  stats.sampled_sub_pixels = plan.sampled_sub_pixels;
+  stats.samples = plan.chunks * first_samples;
+  stats.refined_pixels = plan.refined_pixels;
+  stats.rounds = run_later_rounds(plan.levels, [&](const std::vector<cl_uint>& listed, unsigned first, unsigned count) {
     gpu_.upload_into(pixel_list_, list_capacity_, listed, CL_MEM_READ_ONLY, "direct pixel list");
     params.first_sample = first * first_samples;
     params.round_samples = count * first_samples;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "cl/point_lookup.h"
 #include "passes/sample_rounds.h"
@@ -104,17 +105,13 @@ std::vector<uint8_t> GlossyPass::refinement_levels(const GBufferView& gbuffer, c
       .set("output_pixels", cl_uint(output_pixels))
       .set_buffer<cl_float4>("error_out", pixel_errors_)
       .launch(output_pixels, gpu_.groups().per_item);
-  const std::vector<cl_float4> errors = gpu_.download<cl_float4>(pixel_errors_, output_pixels);
-  uint64_t sampled = 0;
-  for (const cl_float4& e : errors) sampled += uint64_t(e.s[2]);
   const int side = gbuffer.sub_pixel_side;
-  std::vector<uint8_t> levels =
-      rcsplat::refinement_levels(errors, gbuffer.width / side, gbuffer.height / side,
-                               (chunks_per_sampled_sub_pixel - 1.0) * double(sampled), kRoundsMaxLevel);
-  stats.sampled_sub_pixels = sampled;
-  stats.chunks = sampled + chunks_added(levels, errors);
-  for (uint8_t level : levels) stats.refined_pixels += level > 0;
-  return levels;
+  RoundsPlan plan = plan_rounds(gpu_.download<cl_float4>(pixel_errors_, output_pixels), gbuffer.width / side,
+                                gbuffer.height / side, chunks_per_sampled_sub_pixel);
+  stats.sampled_sub_pixels = plan.sampled_sub_pixels;
+  stats.chunks = plan.chunks;
+  stats.refined_pixels = plan.refined_pixels;
+  return std::move(plan.levels);
 }
 
 void GlossyPass::run_round(const GBufferView& gbuffer, const GlossyParams& params, size_t item_count) {

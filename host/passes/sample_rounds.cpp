@@ -75,6 +75,17 @@ std::vector<uint8_t> refinement_levels(const std::vector<cl_float4>& errors, int
   return levels;
 }
 
+RoundsPlan plan_rounds(const std::vector<cl_float4>& errors, int width, int height,
+                       double chunks_per_sampled_sub_pixel) {
+  RoundsPlan plan;
+  for (const cl_float4& e : errors) plan.sampled_sub_pixels += uint64_t(e.s[2]);
+  plan.levels = refinement_levels(errors, width, height,
+                                  (chunks_per_sampled_sub_pixel - 1.0) * double(plan.sampled_sub_pixels));
+  plan.chunks = plan.sampled_sub_pixels + chunks_added(plan.levels, errors);
+  for (uint8_t level : plan.levels) plan.refined_pixels += level > 0;
+  return plan;
+}
+
 uint64_t chunks_added(const std::vector<uint8_t>& levels, const std::vector<cl_float4>& errors) {
   uint64_t chunks = 0;
   for (size_t o = 0; o < levels.size() && o < errors.size(); ++o)

@@ -31,6 +31,18 @@ constexpr unsigned kRoundsMaxLevel = 5;
 std::vector<uint8_t> refinement_levels(const std::vector<cl_float4>& errors, int width, int height,
                                               double extra_chunks, unsigned max_level = kRoundsMaxLevel);
 
+// After a first round of one chunk a sampled sub-pixel: each output pixel's level for a budget of
+// chunks_per_sampled_sub_pixel on average (the first round's one included), from the error kernel's estimates, with
+// what the plan spends.
+struct RoundsPlan {
+  std::vector<uint8_t> levels;
+  uint64_t sampled_sub_pixels = 0;  // the sub-pixels the estimates pooled (errors' s[2], summed)
+  uint64_t chunks = 0;              // the first round's and the later rounds' together
+  uint64_t refined_pixels = 0;      // output pixels of level 1 or more
+};
+RoundsPlan plan_rounds(const std::vector<cl_float4>& errors, int width, int height,
+                       double chunks_per_sampled_sub_pixel);
+
 // The chunks the levels add beyond the first round's (a pixel of level L: a (2^L - 1), a its errors' s[2]).
 uint64_t chunks_added(const std::vector<uint8_t>& levels, const std::vector<cl_float4>& errors);
 
