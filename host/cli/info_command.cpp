@@ -95,14 +95,15 @@ nlohmann::json plan_report(const Scene& scene, const std::string& device) {
     GpuContext gpu(select_device(device));
     Renderer renderer(gpu, scene);
     const FramePlan plan = renderer.plan(RenderSettings{});  // the library's defaults are the command line's
-    const BounceChoice& cache = plan.bounces;
+    const unsigned bounces = plan.settings.bounces;
+    const BounceMethod method = plan.settings.bounce_method;
     std::printf("bounces      %u when --bounces is left out: each reflection keeps %.0f%% of the light it receives "
                 "(photons measured it on %s), so the bounces left out carry at most %.0f%% of the indirect light; "
                 "the cache takes the bounces after the first %s\n",
-                cache.bounces, 100.0 * cache.kept_per_bounce, gpu.device_info().name.c_str(),
+                bounces, 100.0 * plan.kept_per_bounce, gpu.device_info().name.c_str(),
                 100.0 * kMissingIndirectShare,
-                cache.bounces == 1 ? "(none)"
-                : cache.method == BounceMethod::photons ? "from a photon map"
+                bounces == 1 ? "(none)"
+                : method == BounceMethod::photons ? "from a photon map"
                                                         : "by path continuation");
     std::printf("plan         render's defaults: %d x %d, %u pixel samples (%ux%u sub-pixels), %u light samples, "
                 "accuracy %g, %ux%u rays a record",
@@ -114,11 +115,16 @@ nlohmann::json plan_report(const Scene& scene, const std::string& device) {
                   "accuracy %g)",
                   plan.settings.hsh_order, 100.0 * plan.hsh_captured_energy, double(plan.radiance_accuracy));
     std::printf("\n");
-    nlohmann::json report = {{"chosen", cache.bounces}, {"kept_per_bounce", cache.kept_per_bounce},
-                             {"cache_method", bounce_method_name(cache.method)}, {"device", gpu.device_info().name}};
+    const std::vector<std::string> passes = frame_pass_names(plan.passes);
+    std::string pass_list;
+    for (const std::string& name : passes) pass_list += (pass_list.empty() ? "" : ", ") + name;
+    std::printf("passes       render's defaults run: %s\n", pass_list.c_str());
+    nlohmann::json report = {{"chosen", bounces}, {"kept_per_bounce", plan.kept_per_bounce},
+                             {"cache_method", bounce_method_name(method)}, {"device", gpu.device_info().name}};
     report["plan"] = {{"width", plan.width}, {"height", plan.height}, {"pixel_samples", plan.settings.pixel_samples},
                       {"light_samples", plan.settings.light_samples}, {"accuracy", plan.settings.cache.accuracy},
-                      {"hsh_order", plan.settings.hsh_order}, {"radiance_accuracy", plan.radiance_accuracy}};
+                      {"hsh_order", plan.settings.hsh_order}, {"radiance_accuracy", plan.radiance_accuracy},
+                      {"passes", passes}};
     return report;
   } catch (const std::exception& e) {  // no OpenCL platform or device, or one that cannot run the probe
     std::printf("bounces      chosen when rendering (the photon probe needs an OpenCL device: %s)\n", e.what());

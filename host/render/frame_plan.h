@@ -5,6 +5,7 @@
 #pragma once
 #include "render/bounce_choice.h"
 #include "render/camera.h"
+#include "render/frame_passes.h"
 #include "render/settings.h"
 
 namespace rcsplat {
@@ -23,7 +24,12 @@ struct FramePlan {
   // (reach, Hessian budget, placement spacing) in sub-pixels (sub_pixel_settings), or `settings` itself.
   RenderSettings frame;
   unsigned light_strata = 0;  // per axis, each sub-pixel's (or round's) direct light
-  BounceChoice bounces;       // the count and method, and the scene's measure when it chose them
+  // Whether the bounce count was chosen from the scene, and the scene's measure it was chosen from; the count and the
+  // method themselves are settings.bounces and settings.bounce_method (render/bounce_choice.h).
+  bool bounces_chosen = false;
+  double kept_per_bounce = 0.0;
+  // The passes and maps the frame runs (render/frame_passes.h), decided once here.
+  FramePasses passes;
   // Radiance-cached lobes (0 without): accuracy a times the sharpest cached roughness, at least a / 2, and the share
   // of the sharpest lobe the order holds.
   float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;

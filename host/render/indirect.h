@@ -23,6 +23,7 @@
 #include "passes/world_record_grid_pass.h"
 #include "render/device_record_index.h"
 #include "render/frame.h"
+#include "render/frame_plan.h"
 #include "render/kept_records.h"
 #include "render/timing.h"
 #include "util/log.h"
@@ -130,6 +131,9 @@ struct IndirectFrame {
   const DeviceScene& device_scene;
   GBufferPass& gbuffer;
   DirectPass& direct;
+  // The frame's plan, passes included (render/frame_passes.h): what runs is read there, never decided again.
+  const FramePlan& plan;
+  // plan.frame, or a round's share of it (path tracing over the pixel's area: Renderer::path_trace_pixel_area).
   const RenderSettings& settings;
   // Output-resolution layers (G-buffer's, direct light, colour = emission + direct) already filled; the passes run on
   // the G-buffer's frame, layers.side() times as wide and high with sub-pixels, and `layers` gathers their images.
@@ -139,11 +143,9 @@ struct IndirectFrame {
   ViewIndependentLight& light;
   // The method's passes, kept by the Renderer.
   MethodPasses& passes;
-  // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer, and what the
-  // plan derived from it (FramePlan::radiance_accuracy, hsh_captured_energy).
+  // The lobe table of the radiance-cached materials (null: the scene has none), kept by the Renderer and sampled with
+  // plan.settings.seed; the plan derived its order and accuracy from it (FramePlan::radiance_accuracy).
   const RadianceLobeTable* lobe_table = nullptr;
-  unsigned lobe_table_seed = 0;  // the seed it was sampled with
-  float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
   // The frame's camera (the G-buffer's, in device coordinates) and the irradiance and radiance records kept across
   // frames (null: a cache of this frame's own; render/kept_records.h).
   const CameraParams* camera = nullptr;
@@ -163,21 +165,18 @@ void splat_indirect(IndirectFrame& frame);
 // interpolation through an octree on the host.
 void octree_indirect(IndirectFrame& frame);
 // Builds the frame's light guide (photons from the lights, clustered: cache/light_guide.h) on its first call, and
-// hands it to the record pass, unless --guide-rays is 0 or the scene has no light with power. Fills its statistics.
+// hands it to the record pass, when the plan's passes have one (FramePasses::light_guide). Fills its statistics.
 void attach_light_guide(IndirectFrame& frame, RecordPass& records);
 // The light guide built for this frame's settings, or null (none asked for, or not built yet).
 const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& frame);
-// The photon map the records read their hits' later bounces from (--bounce-method photons with --bounces 2 or more),
-// built on the first call; null otherwise. Fills its statistics.
+// The photon map the records read their hits' later bounces from (FramePasses::photon_map), built on the first call;
+// null when the plan has none. Fills its statistics.
 const PhotonMapPass* attach_photon_map(IndirectFrame& frame);
-// The caustic map the pixels read (cache methods with --caustic-photons above 0, in a scene with a sharp lobe:
-// scene_casts_caustics), built on the first call; null otherwise. Fills its statistics.
+// The caustic map the pixels read (FramePasses::caustic_map), built on the first call; null when the plan has none.
+// Fills its statistics.
 CausticMapPass* attach_caustic_map(IndirectFrame& frame);
 // The scene's surface area in device units: the photon maps' radii start from their photons spread over it.
 double device_surface_area(const Scene& scene, const SceneFrame& frame);
-// Whether a surface of the scene can have a sharp lobe (LOBE_GLOSSY): a material's factors make one, or its
-// metallic-roughness texture can lower its roughness into one.
-bool scene_casts_caustics(const DeviceScene& scene);
 // The frame's record pass, for irradiance records or (radiance) radiance records that keep their strata, kept in
 // frame.passes and begun for this frame: its photon map (attach_photon_map), bounces and light guide
 // (attach_light_guide). Its kernel builds count in the statistics' program_s.
@@ -186,12 +185,12 @@ RecordPass& frame_record_pass(IndirectFrame& frame, const CacheSettings& cache, 
 void path_traced_indirect(IndirectFrame& frame);
 
 // Radiance caching of the LOBE_HSH pixels (kernels/hsh_records.cl, kernels/radiance_splat.cl): the pass (kept in
-// frame.passes) that holds their lobes' indirect light, or null when the scene has no radiance-cached material. Fills
-// its statistics.
+// frame.passes) that holds their lobes' indirect light, or null when the plan has no radiance records
+// (FramePasses::radiance_records). Fills its statistics.
 const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& frame);
 
-// The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the scene has
-// a glossy material; also the LOBE_HSH pixels when radiance_cached is null), then composition (ComposePass) of the
+// The cache methods' last step: glossy pixels' specular light sampled from their lobes (GlossyPass, when the plan has
+// it: FramePasses::glossy), then composition (ComposePass) of the
 // cached irradiance (float4 per pixel: E, weight) and the radiance-cached lobes into the image's indirect and colour
 // layers. records: the record_count irradiance records the cached irradiance came from, on the device; with
 // RenderSettings::glossy_reads_records the glossy samples read them where they land (kernels/glossy.cl

@@ -7,13 +7,8 @@
 
 namespace rcsplat {
 
-bool scene_casts_caustics(const DeviceScene& scene) {
-  // A material's lobe is already the sharpest its metallic-roughness texture can make (scene/packed_scene.cpp).
-  return scene.lobe_counts()[LOBE_GLOSSY] > 0;
-}
-
 CausticMapPass* attach_caustic_map(IndirectFrame& f) {
-  if (f.settings.caustic_photons == 0 || !scene_casts_caustics(f.device_scene)) return nullptr;
+  if (!f.plan.passes.caustic_map) return nullptr;
   RenderStats& st = f.image.stats;
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::CausticKey key{f.settings.seed, f.settings.caustic_photons, f.settings.photon_neighbours};

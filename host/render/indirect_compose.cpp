@@ -15,21 +15,23 @@ void compose_cached_indirect(IndirectFrame& f, const cl::Buffer& irradiance, con
   RenderStats& st = img.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
   BuildTimer builds(f.gpu, st.program_s);
-  GlossyPass* glossy = nullptr;
-  bool sample_hsh = radiance_cached == nullptr && f.device_scene.lobe_counts()[LOBE_HSH] > 0;
-  // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share).
+  const FramePasses& passes = f.plan.passes;
+  const bool sample_hsh = passes.glossy_samples_hsh;
+  // The radiance records left the light guide's share of their light to the pixels (kernels/glossy.cl guide_share);
+  // none where the guide's photons found no lit surface.
   const CacheSettings& cs = f.settings.cache;
   const std::vector<GuideCluster>* guide = frame_light_guide(f);
-  const bool guide_share = radiance_cached != nullptr && cs.guide_rays > 0 && guide && !guide->empty();
-  if (f.device_scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || guide_share)
+  const bool guide_share = passes.glossy_guide_share && guide && !guide->empty();
+  GlossyPass* glossy = nullptr;
+  if (passes.glossy)
     glossy = &f.passes.glossy.get(
         sample_hsh, [&] { return std::make_unique<GlossyPass>(f.gpu, f.device_scene, sample_hsh); });
   // The glossy samples read the records where they land (the bounces after a hit), by position.
   WorldRecordGridPass* record_grids = nullptr;
-  if (glossy && records && f.settings.glossy_reads_records && f.settings.bounces > 1)
+  if (passes.world_record_grid && records)
     record_grids = &f.passes.world_record_grid.get({}, [&] { return std::make_unique<WorldRecordGridPass>(f.gpu); });
-  ComposePass& compose = f.passes.compose.get(radiance_cached != nullptr, [&] {
-    return std::make_unique<ComposePass>(f.gpu, f.device_scene, radiance_cached != nullptr);
+  ComposePass& compose = f.passes.compose.get(passes.radiance_records, [&] {
+    return std::make_unique<ComposePass>(f.gpu, f.device_scene, passes.radiance_records);
   });
   builds.stop();
 

@@ -13,7 +13,7 @@ namespace rcsplat {
 const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
   const auto& guide = f.light.guide;
-  if (!cs.guide_rays || !cs.guide_photons || !guide || guide->seed != f.settings.seed ||
+  if (!f.plan.passes.light_guide || !guide || guide->seed != f.settings.seed ||
       guide->photons != cs.guide_photons)
     return nullptr;
   return &guide->clusters;
@@ -22,7 +22,7 @@ const std::vector<GuideCluster>* frame_light_guide(const IndirectFrame& f) {
 void attach_light_guide(IndirectFrame& f, RecordPass& records) {
   const CacheSettings& cs = f.settings.cache;
   RenderStats& st = f.image.stats;
-  if (!cs.guide_rays || !cs.guide_photons) return;
+  if (!f.plan.passes.light_guide) return;
   KeptLight* stored = f.kept_light;
   if (frame_light_guide(f) && (!stored || stored->has_guide)) {
     // Built by an earlier frame with these settings (and kept with the records when this frame keeps them: otherwise

@@ -141,7 +141,7 @@ void octree_indirect(IndirectFrame& f) {
   // The octree's records, where the glossy pass may read them: its grid of them is built on the device.
   const std::vector<CacheRecord>& octree_records = index.records();
   cl::Buffer records_buffer;
-  if (f.settings.glossy_reads_records && f.settings.bounces > 1)
+  if (f.plan.passes.world_record_grid)
     records_buffer = f.gpu.upload(octree_records.empty() ? std::vector<CacheRecord>(1) : octree_records,
                                   CL_MEM_READ_ONLY, "octree records");
   compose_cached_indirect(f, irradiance_buffer, nullptr, records_buffer() ? &records_buffer : nullptr,

@@ -30,7 +30,7 @@ double device_surface_area(const Scene& scene, const SceneFrame& frame) {
 }
 
 const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
-  if (f.settings.bounce_method != BounceMethod::photons || f.settings.bounces < 2) return nullptr;
+  if (!f.plan.passes.photon_map) return nullptr;
   RenderStats& st = f.image.stats;
   ViewIndependentLight& light = f.light;
   const ViewIndependentLight::PhotonKey key{f.settings.seed, f.settings.bounces, f.settings.photon_paths,

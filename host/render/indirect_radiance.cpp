@@ -81,7 +81,7 @@ float radiance_accuracy(const RadianceLobeTable& table, float accuracy) {
 }
 
 const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
-  if (!f.device_scene.has_radiance_cache()) return nullptr;
+  if (!f.plan.passes.radiance_records) return nullptr;
   RenderStats& st = f.image.stats;
   const GBufferView& gbuffer = f.gbuffer.view();
   const RadianceLobeTable& lobes = *f.lobe_table;  // the plan settled the order from it
@@ -90,14 +90,14 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
   StageTimer table_timing(st.radiance.lobe_table_s, f.gpu, st.program_s);
   const unsigned order = f.settings.hsh_order;
   st.radiance.order = order;
-  st.radiance.captured_energy = f.hsh_captured_energy;
+  st.radiance.captured_energy = f.plan.hsh_captured_energy;
 
   CacheSettings cs = f.settings.cache;
-  cs.accuracy = f.radiance_accuracy;
+  cs.accuracy = f.plan.radiance_accuracy;
   st.radiance.accuracy = cs.accuracy;
 
   MethodPasses& passes = f.passes;
-  RadianceSplatPass* splat = &passes.radiance_splat.get({order, f.lobe_table_seed}, [&] {
+  RadianceSplatPass* splat = &passes.radiance_splat.get({order, f.plan.settings.seed}, [&] {
     return std::make_unique<RadianceSplatPass>(f.gpu, truncated(lobes.full, int(order)), lobes.row_of_material);
   });
   const GBufferView& cached = splat->radiance_cached_pixels(gbuffer);

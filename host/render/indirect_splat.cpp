@@ -14,7 +14,8 @@ RecordPass& frame_record_pass(IndirectFrame& f, const CacheSettings& cache, bool
   BuildTimer builds(f.gpu, f.image.stats.program_s);
   // Radiance records keep the caustic paths in their rays: the map's irradiance reaches only the diffuse base and rough
   // lobes (kernels/caustic_map.cl).
-  const bool caustics_apart = !radiance && attach_caustic_map(f) != nullptr;
+  const bool caustics_apart = !radiance && f.plan.passes.caustic_map;
+  if (caustics_apart) attach_caustic_map(f);
   const MethodPasses::RecordKey key{largest_theta_strata(cache), photon_map != nullptr, caustics_apart};
   RecordPass& records = (radiance ? f.passes.radiance_records : f.passes.irradiance_records).get(key, [&] {
     return std::make_unique<RecordPass>(f.gpu, f.device_scene, key.theta_strata, radiance, key.photon_gather,

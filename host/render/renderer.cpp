@@ -142,41 +142,31 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
 }
 
 void Renderer::build_programs_ahead(const FramePlan& plan) {
-  const RenderSettings& s = plan.frame;
+  const FramePasses& passes = plan.passes;
   const DeviceScene& scene = *device_scene_;
   LayerPass::build_ahead(gpu_);
-  if (s.gi == GiMethod::path) PathPass::build_ahead(gpu_, scene);
-  if (s.gi != GiMethod::splat && s.gi != GiMethod::octree) return;
-  // What render/indirect_splat.cpp and indirect_octree.cpp ask for: the light they read (attach_photon_map,
-  // attach_caustic_map and attach_light_guide shoot their photons with the light guide's kernel), the records, the
-  // splat's placement, the radiance-cached lobes' passes, the glossy pass and the composition
-  // (indirect_compose.cpp). tests/build_ahead_test.cpp checks this list against what frames ask for.
-  const bool photon_map = s.bounce_method == BounceMethod::photons && s.bounces >= 2;
-  const bool caustic_map = s.caustic_photons > 0 && scene_casts_caustics(scene);
-  const bool guide = s.cache.guide_rays > 0 && s.cache.guide_photons > 0;
-  const bool radiance = radiance_cached(s);
-  const unsigned theta_strata = largest_theta_strata(s.cache);
-  if (photon_map || caustic_map || guide) LightGuidePass::build_ahead(gpu_, scene);
-  if (guide) GuideClusterPass::build_ahead(gpu_);
-  if (photon_map) PhotonMapPass::build_ahead(gpu_);
-  if (caustic_map) CausticMapPass::build_ahead(gpu_);
-  RecordPass::build_ahead(gpu_, scene, theta_strata, false, photon_map, caustic_map);
-  if (gpu_.groups().record_trace == RecordTrace::wavefront) RayQueue::build_ahead(gpu_, scene);  // its queued rays
-  if (s.gi == GiMethod::splat) {
+  if (passes.path) PathPass::build_ahead(gpu_, scene);
+  if (!passes.records) return;
+  // The photon map, the caustic map and the light guide shoot their photons with the light guide's kernel.
+  if (passes.photon_map || passes.caustic_map || passes.light_guide) LightGuidePass::build_ahead(gpu_, scene);
+  if (passes.light_guide) GuideClusterPass::build_ahead(gpu_);
+  if (passes.photon_map) PhotonMapPass::build_ahead(gpu_);
+  if (passes.caustic_map) CausticMapPass::build_ahead(gpu_);
+  const unsigned theta_strata = largest_theta_strata(plan.frame.cache);
+  RecordPass::build_ahead(gpu_, scene, theta_strata, false, passes.photon_map, passes.caustic_map);
+  if (passes.record_trace == RecordTrace::wavefront) RayQueue::build_ahead(gpu_, scene);  // its queued rays
+  if (passes.device_placement) {
     PlacementPass::build_ahead(gpu_);
     SplatPass::build_ahead(gpu_);
   }
-  if (radiance) {
-    RecordPass::build_ahead(gpu_, scene, theta_strata, true, photon_map, false);
+  if (passes.radiance_records) {
+    RecordPass::build_ahead(gpu_, scene, theta_strata, true, passes.photon_map, false);
     HshRecordPass::build_ahead(gpu_);
     RadianceSplatPass::build_ahead(gpu_);
   }
-  const bool sample_hsh = !radiance && scene.lobe_counts()[LOBE_HSH] > 0;
-  if (scene.lobe_counts()[LOBE_GLOSSY] > 0 || sample_hsh || (radiance && guide)) {
-    GlossyPass::build_ahead(gpu_, scene, sample_hsh);
-    if (s.glossy_reads_records && s.bounces > 1) WorldRecordGridPass::build_ahead(gpu_);
-  }
-  ComposePass::build_ahead(gpu_, scene, radiance);
+  if (passes.glossy) GlossyPass::build_ahead(gpu_, scene, passes.glossy_samples_hsh);
+  if (passes.world_record_grid) WorldRecordGridPass::build_ahead(gpu_);
+  ComposePass::build_ahead(gpu_, scene, passes.radiance_records);
 }
 
 Renderer::~Renderer() = default;
@@ -190,10 +180,6 @@ double Renderer::kept_per_bounce() {
     kept_per_bounce_ = rcsplat::kept_per_bounce(gpu_, *device_scene_);
   }
   return *kept_per_bounce_;
-}
-
-bool Renderer::radiance_cached(const RenderSettings& settings) const {
-  return settings.gi == GiMethod::splat && device_scene_->has_radiance_cache();
 }
 
 const RadianceLobeTable& Renderer::lobe_table(unsigned seed) {
@@ -237,12 +223,15 @@ FramePlan Renderer::plan(const RenderSettings& request) {
     throw Error("--bounce-method photons: the photons come from the lights and an environment's peak, not from its "
                 "gathered part, so a sky's later bounces would be lost; use --bounce-method path with --sky or "
                 "--environment");
-  p.bounces = choose_bounces(scene_, s, [this] { return kept_per_bounce(); });
-  s.bounces = p.bounces.bounces;
-  s.bounce_method = p.bounces.method;
+  const BounceChoice bounces = choose_bounces(scene_, s, [this] { return kept_per_bounce(); });
+  s.bounces = bounces.bounces;
+  s.bounce_method = bounces.method;
+  p.bounces_chosen = bounces.bounces_chosen;
+  p.kept_per_bounce = bounces.kept_per_bounce;
+  p.passes = decide_frame_passes(s, device_scene_->lobe_counts(), gpu_.groups().record_trace);
 
   // Radiance caching (the splat's LOBE_HSH pixels): the order from the lobe table unless the request gives one.
-  if (radiance_cached(s)) {
+  if (p.passes.radiance_records) {
     const RadianceLobeTable& lobes = lobe_table(s.seed);
     if (s.hsh_order == 0) s.hsh_order = automatic_hsh_order(lobes);
     p.hsh_captured_energy = hsh_captured_energy(lobes, s.hsh_order);
@@ -251,7 +240,6 @@ FramePlan Renderer::plan(const RenderSettings& request) {
 
   if (cache) scale_placement_to_image(s.cache, p.height);
   p.frame = p.side > 1 ? sub_pixel_settings(s, p.width, p.height, p.side) : s;
-  if (p.side > 1) p.frame.sub_pixel_side = p.side;
   const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
   p.light_strata = light_sample_strata(light_samples);
   return p;
@@ -272,7 +260,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   }
   {
     StageTimer timing(st.primary.direct_s);
-    const bool cache = settings.gi == GiMethod::splat || settings.gi == GiMethod::octree;
+    const bool cache = plan.passes.records;
     const unsigned sub_pixels = unsigned(gbuffer.view().sub_pixel_side * gbuffer.view().sub_pixel_side);
     const DirectRunStats run = direct.run(gbuffer.view(), strata, settings.seed,
                                           cache && settings.light_adaptive ? settings.light_samples * sub_pixels : 0);
@@ -290,7 +278,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   st.primary.primary_rays = gbuffer.view().pixel_count();
   // The cache methods' colour comes whole from the device's composition (indirect_compose.cpp); path tracing and
   // direct light alone add up emission, direct and their indirect here.
-  const bool colour_on_host = settings.gi == GiMethod::path || settings.gi == GiMethod::none;
+  const bool colour_on_host = !plan.passes.records;
   if (layers_stay_on_device(settings)) {
     const std::array<uint64_t, LOBE_KINDS> lobes = layers.count_lobes(gbuffer.view());
     st.primary.rough_pixels += lobes[LOBE_ROUGH];
@@ -303,7 +291,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
   }
   layers_timing.stop();
 
-  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, settings, img, layers, *light_, *passes_};
+  IndirectFrame frame{gpu_, scene_, *device_scene_, gbuffer, direct, plan, settings, img, layers, *light_, *passes_};
   frame.camera = &camera;
   if (settings.keep_records && settings.gi == GiMethod::splat) {
     kept_records().set_capacity(settings.kept_records_capacity);
@@ -314,9 +302,6 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
     kept_records_.reset();
   }
   frame.lobe_table = lobe_table_.get();
-  frame.lobe_table_seed = lobe_table_seed_;
-  frame.radiance_accuracy = plan.radiance_accuracy;
-  frame.hsh_captured_energy = plan.hsh_captured_energy;
   frame.progress = progress;
   frame.progress_done_before = progress_done_before;
   switch (settings.gi) {
@@ -431,7 +416,7 @@ RenderedImage Renderer::render(const FramePlan& plan) {
   RenderedImage img;
   RenderStats& st = img.stats;
   // A plan made before another seed's frame: its lobe table again (kept per seed, as the photon map and the guide).
-  if (radiance_cached(plan.settings)) lobe_table(plan.settings.seed);
+  if (plan.passes.radiance_records) lobe_table(plan.settings.seed);
   // The setup this frame pays for (all of it for a renderer's first frame, none for a later one with the same plan).
   st.scene = scene_stats_;
   st.scene.bvh_build_s = setup_.scene.bvh_build_s;
@@ -446,10 +431,10 @@ RenderedImage Renderer::render(const FramePlan& plan) {
 
   st.device = gpu_.device_info().name;
   st.gi = plan.settings.gi;
-  st.bounces.count = plan.bounces.bounces;
-  st.bounces.method = plan.bounces.method;
-  st.bounces.chosen = plan.bounces.bounces_chosen;
-  st.bounces.kept_per_bounce = plan.bounces.kept_per_bounce;
+  st.bounces.count = plan.settings.bounces;
+  st.bounces.method = plan.settings.bounce_method;
+  st.bounces.chosen = plan.bounces_chosen;
+  st.bounces.kept_per_bounce = plan.kept_per_bounce;
   st.primary.light_samples = plan.light_strata * plan.light_strata;
   img.width = plan.width;
   img.height = plan.height;

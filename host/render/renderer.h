@@ -54,8 +54,6 @@ class Renderer {
 
  private:
   double kept_per_bounce();
-  // Whether a frame with these settings radiance-caches lobes: the splat's, in a scene with a LOBE_HSH material.
-  bool radiance_cached(const RenderSettings& settings) const;
   // Starts building every program the planned frame will use (GpuContext::build_ahead), so that they compile side by
   // side and beside the frame's first passes; a program a frame asks for that is not among them builds when asked.
   void build_programs_ahead(const FramePlan& plan);
