@@ -441,7 +441,7 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
                    [](AnimateOptions& o) { o.render.environment.sky = glm::vec3(0.1f); }});
   cases.push_back({"settings", good, "written with other settings",
                    [](AnimateOptions& o) { o.render.settings.cache.accuracy = 0.5f; }});
-  cases.push_back({"cap", good, "more than the 10 kept at most", [](AnimateOptions& o) { o.kept_records = 10; }});
+  cases.push_back({"cap", good, "more than the 10 kept at most", [](AnimateOptions& o) { o.render.settings.kept_records_capacity = 10; }});
   for (const Case& c : cases) {
     const std::string path = (dir / (c.name + ".cache")).string();
     test::write_file(path, c.bytes);

@@ -132,9 +132,12 @@ TEST(ImageIo, PngAndUnknownFormats) {
   write_render(dir + "/out.png", img, 0.0f);
   EXPECT_TRUE(std::filesystem::exists(dir + "/out.png"));
   EXPECT_THROW(write_render(dir + "/out.bmp", img, 0.0f), Error);
-  EXPECT_THROW(write_render(dir + "/missing-folder/out.exr", img, 0.0f), Error);
-  // Only the PNG remains: no temporary files left behind by the failures.
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+  EXPECT_THROW(write_render(dir + "/out.png/out.exr", img, 0.0f), Error) << "a folder under a file";
+  // A folder that does not exist yet is made.
+  write_render(dir + "/made/deeper/out.exr", img, 0.0f);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/made/deeper/out.exr"));
+  // The PNG and the made folder remain: no temporary files left behind by the failures.
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 2);
 }
 
 }  // namespace

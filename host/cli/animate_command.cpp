@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cl/device_info.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "render/cache_merge.h"
 #include "render/camera_path.h"
@@ -204,14 +205,14 @@ struct PrePassPart {
 // `animate --cache-merge PART... --cache-out FILE`: the parts, each read as a stranger's cache file for these settings,
 // merged (render/cache_merge.h) and written.
 int merge_parts(const AnimateOptions& o, const GpuContext& gpu, const Scene& scene, const FramePlan& plan) {
-  std::vector<KeptCache> caches(o.cache_merge.size(), KeptCache(o.kept_records));
+  std::vector<KeptCache> caches(o.cache_merge.size(), KeptCache(o.render.settings.kept_records_capacity));
   std::vector<CachePart> parts;
   for (size_t i = 0; i < caches.size(); ++i) {
     load_cache_file(gpu, caches[i], scene, plan, o.cache_merge[i]);
     parts.push_back({o.cache_merge[i], &caches[i]});
   }
-  KeptCache merged(o.kept_records);
-  const CacheMergeStats stats = merge_cache_parts(parts, kept_records_key(plan.frame), o.kept_records, merged);
+  KeptCache merged(o.render.settings.kept_records_capacity);
+  const CacheMergeStats stats = merge_cache_parts(parts, kept_records_key(plan.frame), o.render.settings.kept_records_capacity, merged);
   save_cache_file(gpu, merged, scene, plan, o.render.cache_out);
   std::printf("merged       %zu parts, %zu key frames: irradiance records %zu of %zu kept, radiance records %zu of %zu "
               "(a record no earlier key frame's records reach is kept)\n",
@@ -232,6 +233,7 @@ int merge_parts(const AnimateOptions& o, const GpuContext& gpu, const Scene& sce
 }  // namespace
 
 int run_animate(const AnimateOptions& o) {
+  set_progress_lines(o.render.progress_lines);
   const RenderSettings& request = o.render.settings;
   check_request(request);
   if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw Error("--fps must be above 0 and at most 1000");
@@ -303,7 +305,6 @@ int run_animate(const AnimateOptions& o) {
   auto frame_settings = [&](long long frame) {
     RenderSettings settings = request;
     settings.keep_records = !o.cache_per_frame;
-    settings.kept_records_capacity = o.kept_records;
     settings.color_only = outputs_need_only_color(o.render.outputs);
     CameraPose pose = path.at(double(frame) / o.fps);
     if (orthographic) pose.fov_degrees.reset();
@@ -363,11 +364,13 @@ int run_animate(const AnimateOptions& o) {
                   (unsigned long long)image.stats.kept_records.reused,
                   (unsigned long long)image.stats.kept_records.kept);
     log_info(line);
+    report_progress(double(frame - first + 1) / double(last - first + 1));
   }
+  report_progress(1.0);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (pre_pass) {
-    const KeptCache written = part.cache(renderer_holder->kept_records(), kept_records_key(last_plan.frame), o.kept_records);
+    const KeptCache written = part.cache(renderer_holder->kept_records(), kept_records_key(last_plan.frame), o.render.settings.kept_records_capacity);
     save_cache_file(gpu, written, scene, last_plan, o.render.cache_out);
   } else if (!o.render.cache_out.empty()) {
     save_cache_file(gpu, *renderer_holder, scene, last_plan, o.render.cache_out);
@@ -418,7 +421,7 @@ int run_animate(const AnimateOptions& o) {
         {"first_frame", first},
         {"last_frame", last},
         {"cache", o.cache_per_frame ? "per_frame" : o.cache_fixed ? "fixed" : pre_pass ? "pre_pass" : "kept_records"},
-        {"kept_records_capacity", o.kept_records},
+        {"kept_records_capacity", o.render.settings.kept_records_capacity},
         {"skipped_frames", skipped},
         {"seconds", seconds},
         {"frames", frames},
@@ -457,7 +460,7 @@ int run_animate(const AnimateOptions& o) {
           "cache        %s records kept across frames: %llu placed, %llu reused in all (%.0f a frame), %llu "
           "evicted, %llu kept at the end (at most %zu: --kept-records)\n",
           kind, (unsigned long long)added, (unsigned long long)reused, double(reused) / double(rows.size()),
-          (unsigned long long)evicted, (unsigned long long)(rows.back().stats.*member).kept, o.kept_records);
+          (unsigned long long)evicted, (unsigned long long)(rows.back().stats.*member).kept, o.render.settings.kept_records_capacity);
     };
     if (pre_pass) {
       std::printf("cache        pre-pass: %zu key frames (one every %lld frames), each from no records: %zu irradiance and "
@@ -478,6 +481,79 @@ int run_animate(const AnimateOptions& o) {
   if (!o.stats_path.empty()) std::printf("wrote        %s\n", o.stats_path.c_str());
   write_json({{"wall", wall}, {"first_frame", rows.front().stats.total_s}, {"later_frames_mean", later_mean}});
   return 0;
+}
+
+Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
+  struct State {
+    AnimateOptions options;
+    CameraFlags camera;
+    EnvironmentFlags environment;
+    RenderMethodFlags method;
+  };
+  auto s = std::make_shared<State>();
+  AnimateOptions& o = s->options;
+  const AnimateOptions defaults;
+  CLI::App* cmd = app.add_subcommand(
+      "animate",
+      "Render a camera path to a frame sequence: the scene's glTF camera animation, a keyframe file or an orbit "
+      "(default scene: the built-in Cornell box, which needs --orbit or --keyframes)");
+  add_frame_options(cmd, o.render, s->camera, s->environment, groups);
+  // A cache pre-pass or merge may render no image: run_animate asks for -o where frames are written.
+  cmd->get_option("--output")->required(false);
+  s->method.add(cmd, o.render, groups);
+  cmd->add_option("--keyframes", o.keyframes,
+                  "Camera path from a keyframe file: a line a key, \"time ex ey ez tx ty tz ux uy uz fov\" "
+                  "(docs/USAGE.md)");
+  cmd->add_option("--orbit", o.orbit_seconds,
+                  "Camera path: one turn around the camera's target in this many seconds (--eye, --target and --up "
+                  "set where it starts)");
+  cmd->add_option("--orbit-degrees", o.orbit_degrees,
+                  "--orbit: the arc swept in its seconds, in degrees (default " + shortest(float(defaults.orbit_degrees)) +
+                      ": a whole turn; negative: clockwise seen from above)");
+  cmd->add_option("--animation", o.animation,
+                  "Without --keyframes or --orbit: the scene's glTF animation that moves --camera (default " +
+                      std::to_string(defaults.animation) + ")")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--fps", o.fps, "Frames a second of the path's time (default " + shortest(float(defaults.fps)) + ")");
+  cmd->add_option("--first-frame", o.first_frame, "First frame rendered (default 0)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--last-frame", o.last_frame, "Last frame rendered (default: the path's end)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--cache-per-frame", o.cache_per_frame,
+                "Place every frame's records anew, as `render` does (the default keeps the irradiance records across "
+                "frames and places new ones only where none reaches)");
+  cmd->add_flag("--cache-fixed", o.cache_fixed,
+                "With --cache-in: every frame starts from the file's records alone (what a frame places is not kept "
+                "for the next), so a frame is the same bits whatever range of frames a process renders: a "
+                "walkthrough split over processes or machines (docs/USAGE.md, \"Cache files\")");
+  cmd->add_flag("--skip-existing", o.skip_existing,
+                "Render only the frames whose output files are not all there already: a rerun or requeue of a "
+                "stopped task (outputs are written whole or not at all); needs --cache-fixed or --cache-per-frame, "
+                "so that no frame depends on the frames before it");
+  cmd->add_option("--cache-every", o.cache_every,
+                  "The cache pre-pass of a walkthrough split over tasks: render only the range's frames that K "
+                  "divides (key frames), each from no records, and write their records, tagged by key frame, to "
+                  "--cache-out (-o optional); merge the tasks' files with --cache-merge (docs/FARM.md)")
+      ->check(CLI::Range(1LL, 1000000LL));
+  cmd->add_option("--cache-merge", o.cache_merge,
+                  "Merge these --cache-every files into --cache-out and render nothing: the same records in the same "
+                  "order whatever the split, a record dropped where an earlier key frame's records reach it "
+                  "(docs/FARM.md)")
+      ->expected(1, -1);
+  cmd->add_option("--kept-records", o.render.settings.kept_records_capacity,
+                  "Most irradiance records kept across frames; the least recently used go first (default " +
+                      std::to_string(RenderSettings{}.kept_records_capacity) + ", " +
+                      std::to_string(sizeof(CacheRecord)) + " bytes each)")
+      ->check(CLI::Range(size_t(1), size_t(1) << 28));
+  cmd->add_option("--stats", o.stats_path,
+                  "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
+  cmd->add_option("--mp4", o.mp4_path,
+                  "Also write an MP4 preview of the PNG frames with ffmpeg (H.264; needs ffmpeg installed)");
+  return {cmd, [s, cmd] {
+            s->camera.apply(s->options.render.settings);
+            s->environment.apply(s->options.render.environment);
+            s->method.apply(cmd, s->options.render);
+            return run_animate(s->options);
+          }};
 }
 
 }  // namespace rcsplat

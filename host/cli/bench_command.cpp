@@ -13,6 +13,7 @@
 #include "bvh/embree_scene.h"
 #include "cl/device_info.h"
 #include "cl/device_scene.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/procedural.h"
@@ -181,6 +182,40 @@ int run_bench(const BenchOptions& options) {
   }
   if (!options.json_path.empty()) write_text_file(options.json_path, report.dump(2) + "\n");
   return 0;
+}
+
+Command add_bench_command(CLI::App& app, const HelpGroups&) {
+  auto o = std::make_shared<BenchOptions>();
+  const BenchOptions defaults;
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "The same frame on each OpenCL device (kernel builds, time per pass, memory), or --traversal");
+  cmd->add_option("scene", o->scene_path,
+                  "glTF scene (default: the built-in Cornell box; for --traversal ../shared/scenes Sponza, else a "
+                  "generated one)");
+  cmd->add_option("--devices", o->devices,
+                  "Devices to compare: all (every usable one) or a comma-separated list of indices or name parts; "
+                  "default: the default device");
+  cmd->add_option("--device", o->device, "One OpenCL device: index or name substring");
+  cmd->add_option("--width", o->width, "Frame width (default " + std::to_string(defaults.width) + ")")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o->height, "Frame height (default " + std::to_string(defaults.height) + ")")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_flag("--traversal", o->traversal, "Instead: the traversal kernel against Embree's rtcIntersect1 on the same rays");
+  cmd->add_option("--rays", o->rays, "--traversal: rays in the incoherent pattern")
+      ->check(CLI::Range(size_t(1), size_t(1) << 26));
+  cmd->add_option("--record-points", o->record_points, "--traversal: points for the 256-ray record pattern")
+      ->check(CLI::Range(size_t(1), size_t(1) << 18));
+  cmd->add_option("--repeats", o->repeats,
+                  "Timed frames per device (default " + std::to_string(kBenchFrameRepeats) +
+                      "), or --traversal's paired runs (default " + std::to_string(kBenchTraversalRepeats) +
+                      "); medians")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--json", o->json_path, "Also write the results as JSON");
+  add_scene_limit_options(cmd, o->limits, false);
+  return {cmd, [o, cmd] {
+            if (!o->traversal && cmd->count("--repeats") == 0) o->repeats = kBenchFrameRepeats;
+            return run_bench(*o);
+          }};
 }
 
 }  // namespace rcsplat

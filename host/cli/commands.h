@@ -30,6 +30,7 @@ struct RenderOptions {
   SceneLimits limits;               // --asset-root, --max-triangles, --max-host-memory, --max-device-memory
   float exposure = 0.0f;
   std::string json_path;
+  bool progress_lines = false;  // --progress-lines: "Progress: NN%" lines on stdout (util/log.h)
   bool resume = false;  // reference: add samples to the .exr output written by an earlier run
   bool denoise = false;  // render --denoise: Open Image Denoise on the per-pixel sampled layers (render/denoise_frame.h)
   std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
@@ -43,6 +44,8 @@ void apply_quality(const std::string& quality, RenderSettings& settings,
                    const std::function<bool(const char*)>& given);
 std::string quality_summary(const std::string& quality, const RenderSettings& settings);
 int run_render(const RenderOptions& options);
+// `reference`'s default path samples per pixel (and light samples, unless --light-samples is given).
+constexpr unsigned kReferenceSamples = 1024;
 
 // A reference continued: reads the path-traced layers of the earlier .exr at `path`, renders the missing samples with
 // other seeds and merges both, weighted by their sample counts. Throws rcsplat::Error when the file does not belong to
@@ -73,7 +76,7 @@ struct AnimateOptions {
   // -o is optional. With cache_merge, no frame is rendered: those part files are merged into --cache-out.
   long long cache_every = 0;
   std::vector<std::string> cache_merge;
-  size_t kept_records = size_t(1) << 20;  // at most this many kept
+  // --kept-records is render.settings.kept_records_capacity.
 };
 int run_animate(const AnimateOptions& options);
 
@@ -134,6 +137,8 @@ struct SweepOptions {
 };
 int run_sweep(const SweepOptions& options);
 
+// Timed runs `bench` takes the median of: frames per device, or the traversal's paired runs.
+constexpr int kBenchFrameRepeats = 3, kBenchTraversalRepeats = 5;
 struct BenchOptions {
   std::string scene_path;  // empty: frames of the built-in Cornell box; --traversal: Sponza from ../shared/scenes
                            // when present, else a generated mesh
@@ -145,7 +150,7 @@ struct BenchOptions {
   bool traversal = false;  // the traversal kernel against Embree instead
   size_t rays = 1u << 20;
   size_t record_points = 4096;
-  int repeats = 5;
+  int repeats = kBenchTraversalRepeats;  // frames: kBenchFrameRepeats unless --repeats is given
   std::string json_path;
   SceneLimits limits;
 };

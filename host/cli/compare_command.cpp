@@ -1,5 +1,6 @@
 #include <cstdio>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "image/comparison.h"
 #include "image/flip.h"
@@ -43,6 +44,25 @@ int run_compare(const CompareOptions& o) {
   }
   if (!o.json_path.empty()) write_text_file(o.json_path, comparison_json(c).dump(2) + "\n");
   return 0;
+}
+
+Command add_compare_command(CLI::App& app, const HelpGroups&) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Error of an image against a reference: relMSE, RMSE, MAE, relMSE of block means, FLIP");
+  cmd->add_option("image", o->image_path, "The image to judge (.exr)")->required();
+  cmd->add_option("reference", o->reference_path, "The reference (.exr)")->required();
+  cmd->add_option("--heatmap", o->heatmap_path, "Write a false-colour per-pixel relMSE image (.png)");
+  cmd->add_option("--flip-heatmap", o->flip_heatmap_path, "Write the per-pixel FLIP image (.png, magma)");
+  cmd->add_option("--heatmap-layer", o->heatmap_layer, "Layer the heat maps show: full (default) or indirect")
+      ->check(CLI::IsMember({"full", "indirect"}));
+  cmd->add_option("--exposure", o->exposure, "Exposure in stops of the tone mapping FLIP judges (as for PNGs)");
+  cmd->add_option("--json", o->json_path, "Also write the numbers as JSON");
+  cmd->add_option("--block", o->block,
+                  "Also relMSE of BxB pixel means (default " + std::to_string(CompareOptions{}.block) +
+                      "): noise averages out, a cache's blotches do not")
+      ->check(CLI::Range(1, 4096));
+  return {cmd, [o] { return run_compare(*o); }};
 }
 
 }  // namespace rcsplat

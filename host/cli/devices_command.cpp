@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cl/device_info.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 
 namespace rcsplat {
@@ -30,6 +31,13 @@ int run_devices(const DevicesOptions& options) {
   }
   if (!options.json_path.empty()) write_text_file(options.json_path, list.dump(2) + "\n");
   return 0;
+}
+
+Command add_devices_command(CLI::App& app, const HelpGroups&) {
+  auto options = std::make_shared<DevicesOptions>();
+  CLI::App* cmd = app.add_subcommand("devices", "List OpenCL platforms and devices, and whether rcsplat can use them");
+  cmd->add_option("--json", options->json_path, "Also write the list as JSON");
+  return {cmd, [options] { return run_devices(*options); }};
 }
 
 }  // namespace rcsplat

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "image/flicker.h"
 #include "util/atomic_file.h"
@@ -92,6 +93,30 @@ int run_flicker(const FlickerOptions& o) {
     write_text_file(o.json_path, j.dump(2) + "\n");
   }
   return 0;
+}
+
+Command add_flicker_command(CLI::App& app, const HelpGroups&) {
+  auto o = std::make_shared<FlickerOptions>();
+  CLI::App* cmd =
+      app.add_subcommand("flicker",
+                         "How much a frame sequence's light changes between consecutive frames where both see the same "
+                         "surface (temporal relMSE after reprojection by the position layer), less a reference's");
+  cmd->add_option("frames", o->frames, "The frames, as animate wrote them (.exr pattern: frames/%04d.exr)")->required();
+  cmd->add_option("--reference", o->reference,
+                  "A reference sequence of the same path (pattern): its own flicker is subtracted");
+  cmd->add_option("--positions", o->positions,
+                  "Take each frame's position, depth and camera from this sequence (pattern) of the same frames: for "
+                  "a denoised sequence, whose EXRs hold only colours");
+  cmd->add_option("--first-frame", o->first_frame, "First frame (default 0)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--last-frame", o->last_frame, "Last frame (default: up to the first missing one)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--layer", o->layer, "Layer judged: indirect (default) or full")
+      ->check(CLI::IsMember({"indirect", "full"}));
+  cmd->add_flag("--demodulate", o->demodulate,
+                "Judge the layer divided by the albedo layer (pixels of albedo below 0.02 left out): textures do not "
+                "flicker, but the nearest pixel does not reproject them exactly either");
+  cmd->add_option("--json", o->json_path, "Also write the numbers, a pair of frames each, as JSON");
+  return {cmd, [o] { return run_flicker(*o); }};
 }
 
 }  // namespace rcsplat

@@ -8,6 +8,7 @@
 #include "cl/device_bvh.h"
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "render/bounce_choice.h"
 #include "render/renderer.h"
@@ -150,6 +151,27 @@ int run_info(const InfoOptions& options) {
     write_text_file(options.json_path, report.dump(2) + "\n");
   }
   return 0;
+}
+
+Command add_info_command(CLI::App& app, const HelpGroups&) {
+  struct State {
+    InfoOptions options;
+    EnvironmentFlags environment;
+  };
+  auto s = std::make_shared<State>();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "What a scene contains and what rcsplat will simulate for it, with the kernel switches it compiles");
+  cmd->add_option("scene", s->options.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
+  cmd->add_option("--json", s->options.json_path, "Also write it as JSON");
+  cmd->add_option("--device", s->options.device,
+                  "OpenCL device for the bounce probe (the bounce count a render chooses); without one, info says so "
+                  "and prints the rest");
+  s->environment.add(cmd, s->options.environment);
+  add_scene_limit_options(cmd, s->options.limits, false);
+  return {cmd, [s] {
+            s->environment.apply(s->options.environment);
+            return run_info(s->options);
+          }};
 }
 
 }  // namespace rcsplat

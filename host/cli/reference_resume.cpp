@@ -3,6 +3,7 @@
 // own error stays known.
 #include <string>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "render/camera.h"
@@ -95,6 +96,33 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
   image.stats.path.samples = unsigned(n);
   image.stats.primary.light_samples = unsigned(l0 + l1);
   return true;
+}
+
+Command add_reference_command(CLI::App& app, const HelpGroups& groups) {
+  struct State {
+    RenderOptions options;
+    CameraFlags camera;
+    EnvironmentFlags environment;
+  };
+  auto s = std::make_shared<State>();
+  RenderSettings& settings = s->options.settings;
+  settings.gi = GiMethod::path;
+  settings.path.samples = kReferenceSamples;
+  settings.path.stratified = true;
+  settings.preferred_pixel_samples = kReferencePixelSamples;
+  CLI::App* cmd =
+      app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
+  add_frame_options(cmd, s->options, s->camera, s->environment, groups);
+  cmd->add_option("--spp", settings.path.samples,
+                  "Samples per pixel (default " + std::to_string(kReferenceSamples) +
+                      "); the light samples default to the same number");
+  cmd->add_flag("--resume", s->options.resume, "Add samples to the .exr output an earlier run wrote, up to --spp in all");
+  return {cmd, [s, cmd] {
+            s->camera.apply(s->options.settings);
+            s->environment.apply(s->options.environment);
+            if (cmd->count("--light-samples") == 0) s->options.settings.light_samples = s->options.settings.path.samples;
+            return run_render(s->options);
+          }};
 }
 
 }  // namespace rcsplat

@@ -6,6 +6,7 @@
 
 #include "cl/device_info.h"
 #include "cl/gpu_context.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
 #include "render/denoise_frame.h"
@@ -310,6 +311,7 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
 }  // namespace
 
 int run_render(const RenderOptions& options) {
+  set_progress_lines(options.progress_lines);
   check_request(options.settings);  // every range, before the scene is read
   check_cache_files(options);
   if (options.outputs.empty()) throw Error("render: give at least one output with -o OUT.exr or -o OUT.png");
@@ -360,6 +362,7 @@ int run_render(const RenderOptions& options) {
   if (denoiser) attributes["rcsplat:denoised"] = image.stats.denoise.layers.empty() ? "nothing sampled per pixel"
                                                                                      : image.stats.denoise.layers;
   for (const std::string& out : options.outputs) write_render(out, image, options.exposure, attributes);
+  report_progress(1.0);
   print_summary(scene, plan, image, options.settings, options.outputs);
   if (options.settings.gi != GiMethod::path)
     std::printf("quality      %s\n", quality_summary(options.quality, options.settings).c_str());
@@ -369,6 +372,31 @@ int run_render(const RenderOptions& options) {
     write_text_file(options.json_path, j.dump(2) + "\n");
   }
   return 0;
+}
+
+Command add_render_command(CLI::App& app, const HelpGroups& groups) {
+  struct State {
+    RenderOptions options;
+    CameraFlags camera;
+    EnvironmentFlags environment;
+    RenderMethodFlags method;
+  };
+  auto s = std::make_shared<State>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
+  add_frame_options(cmd, s->options, s->camera, s->environment, groups);
+  cmd->add_flag("--denoise", s->options.denoise,
+                "Denoise the light each pixel samples itself (area and environment direct light, sharp glossy "
+                "lobes; path tracing: the whole image) with Intel Open Image Denoise, and compose it with the "
+                "cache's indirect light, which stays as it is; the EXR keeps the noisy layers too (noisy, "
+                "noisy_direct, noisy_glossy, noisy_indirect). Needs the library: bash scripts/install-oidn.sh");
+  if (!groups.help_all) cmd->footer("--help-all also lists the experiment options.");
+  s->method.add(cmd, s->options, groups);
+  return {cmd, [s, cmd] {
+            s->camera.apply(s->options.settings);
+            s->environment.apply(s->options.environment);
+            s->method.apply(cmd, s->options);
+            return run_render(s->options);
+          }};
 }
 
 }  // namespace rcsplat

@@ -12,6 +12,8 @@
 
 #include "cl/device_info.h"
 #include "cl/gpu_context.h"
+#include "cli/command_line.h"
+#include "kernels/hsh.h"
 #include "cli/commands.h"
 #include "image/comparison.h"
 #include "image/image_io.h"
@@ -244,6 +246,71 @@ int run_sweep(const SweepOptions& o) {
     }
   }
   return 0;
+}
+
+Command add_sweep_command(CLI::App& app, const HelpGroups&) {
+  struct State {
+    SweepOptions options;
+    EnvironmentFlags environment;
+  };
+  auto s = std::make_shared<State>();
+  SweepOptions& o = s->options;
+  const SweepOptions defaults;
+  auto listed = [](const auto& values) {
+    std::string text;
+    for (const auto& v : values) {
+      std::ostringstream one;
+      one << v;
+      text += (text.empty() ? "" : ",") + one.str();
+    }
+    return text;
+  };
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "What accuracy costs in time: cache settings and path tracing against a reference, as a CSV and a plot");
+  cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (default: the built-in Cornell box)");
+  cmd->add_option("--reference", o.reference_path,
+                  "Converged reference (.exr from `rcsplat reference`): the frame size and bounces follow it")
+      ->required();
+  cmd->add_option("-o,--output", o.output_dir, "Folder for sweep.csv, accuracy_vs_time.png and the images")
+      ->required();
+  cmd->add_option("--device", o.device, "OpenCL device: index or name substring");
+  cmd->add_option("--accuracy", o.accuracies,
+                  "Cache accuracies (default " + listed(defaults.accuracies) + "; none: --accuracy \"\")")
+      ->delimiter(',')
+      ->expected(0, 64);
+  cmd->add_option("--hemisphere", o.hemispheres, "Rays per record, MxN each (default " + listed(defaults.hemispheres) + ")")
+      ->delimiter(',')
+      ->expected(0, 64);
+  cmd->add_option("--hsh-order", o.hsh_orders, "HSH orders of radiance-cached lobes (default: chosen)")
+      ->delimiter(',')
+      ->expected(0, 64)
+      ->check(CLI::Range(1u, unsigned(HSH_MAX_ORDER)));
+  cmd->add_option("--path-spp", o.path_samples,
+                  "Stratified path tracing at these samples per pixel (default " + listed(defaults.path_samples) +
+                      "; none: --path-spp \"\")")
+      ->delimiter(',')
+      ->expected(0, 64);
+  cmd->add_option("--denoise", o.denoise,
+                  "Path tracing plus Intel Open Image Denoise (pyoidn, benchmarks/denoise.py) beside plain: auto "
+                  "(when the benchmark Python has it; default), on, off")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->add_flag("!--no-plot", o.plot, "Do not draw accuracy_vs_time.png");
+  cmd->add_option("--light-samples", o.light_samples,
+                  "Light samples per pixel (default " + std::to_string(defaults.light_samples) + ")")
+      ->check(CLI::Range(0u, 1u << 20));
+  cmd->add_option("--pixel-samples", o.pixel_samples, "Primary samples per pixel (default: as render)")
+      ->check(CLI::Range(1u, 64u));
+  cmd->add_option("--bounces", o.bounces, "Indirect bounces (default: the reference's)")
+      ->check(CLI::Range(1u, unsigned(kMaxBounces)));
+  cmd->add_option("--camera", o.camera, "Index of the scene camera to use")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--block", o.block, "Block size of block relMSE (default " + std::to_string(defaults.block) + ")")
+      ->check(CLI::Range(1, 4096));
+  s->environment.add(cmd, o.environment);
+  add_scene_limit_options(cmd, o.limits, true);
+  return {cmd, [s] {
+            s->environment.apply(s->options.environment);
+            return run_sweep(s->options);
+          }};
 }
 
 }  // namespace rcsplat

@@ -2,12 +2,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace rcsplat {
 namespace {
 bool g_quiet = false;
 bool g_progress = true;
+bool g_progress_lines = false;
+int g_last_progress_line = -1;
 }
 
 std::string printable(const std::string& text) {
@@ -52,6 +55,20 @@ void set_quiet(bool quiet) { g_quiet = quiet; }
 void set_progress_shown(bool shown) { g_progress = shown; }
 bool is_quiet() { return g_quiet; }
 
+void set_progress_lines(bool on) {
+  g_progress_lines = on;
+  g_last_progress_line = -1;
+}
+
+void report_progress(double fraction) {
+  if (!g_progress_lines || !(fraction >= 0.0)) return;
+  const int percent = int(100.0 * std::min(fraction, 1.0));
+  if (percent <= g_last_progress_line) return;
+  g_last_progress_line = percent;
+  std::printf("Progress: %d%%\n", percent);
+  std::fflush(stdout);  // a farm's manager reads the pipe as the task runs
+}
+
 void log_info(const std::string& message) {
   if (!g_quiet) std::fprintf(stderr, "%s\n", printable(message).c_str());
 }
@@ -61,6 +78,8 @@ void log_warning(const std::string& message) { std::fprintf(stderr, "warning: %s
 Progress::Progress(std::string label, size_t total) : label_(std::move(label)), total_(total ? total : 1) {}
 
 void Progress::update(size_t done) {
+  // A pass's 100% is not the command's: only the command reports the whole.
+  if (g_progress) report_progress(std::min(double(done) / double(total_), 0.99));
   if (g_quiet || !g_progress) return;
   int percent = int(100.0 * double(done) / double(total_));
   if (percent == last_percent_) return;

@@ -15,6 +15,11 @@ void set_quiet(bool quiet);
 // Whether Progress lines are drawn (a command that prints its own progress, a line a frame, turns them off).
 void set_progress_shown(bool shown);
 bool is_quiet();
+// Render-farm managers (Deadline and others) read a task's progress from stdout lines "Progress: NN%". With these on
+// (--progress-lines), report_progress prints one whenever the whole percentage grows (never going back, whatever
+// reports it), -q or not, and every Progress shown reports its own fraction through it.
+void set_progress_lines(bool on);
+void report_progress(double fraction);
 
 // A one-line progress indicator, redrawn in place on a terminal and printed at each quarter otherwise.
 class Progress {
