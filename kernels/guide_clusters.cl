@@ -12,12 +12,15 @@
 //   (a scan of the regions that hold light, into a list)
 //   write_guide_clusters   each region's rank (brightest first, ties by position), the first max_clusters written.
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#include "host_device.h"
 #include "shared_types.h"
 
 // The bins (GUIDE_BIN_COUNT) are in shared_types.h, beside the grid the host bins photons on.
 #define GUIDE_NO_BIN 0xffffffffu
 
-inline double luminance_double(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+inline double luminance_double(double r, double g, double b) {
+  return RC_LUMINANCE_R * r + RC_LUMINANCE_G * g + RC_LUMINANCE_B * b;
+}
 
 inline double3 load_double3(__global const float* v) { return (double3)((double)v[0], (double)v[1], (double)v[2]); }
 

@@ -8,6 +8,14 @@
 #define RC_PI 3.14159265358979f
 #define RC_INV_PI 0.318309886183791f
 
+// Rec. 709 luminance of linear RGB: the weights written once for the host (util/colour.h) and the kernels
+// (sampling.h, guide_clusters.cl), as double literals; RC_FLOAT spells one as a float literal (0.2126 -> 0.2126f).
+#define RC_LUMINANCE_R 0.2126
+#define RC_LUMINANCE_G 0.7152
+#define RC_LUMINANCE_B 0.0722
+#define RC_FLOAT_LITERAL(x) x##f
+#define RC_FLOAT(x) RC_FLOAT_LITERAL(x)
+
 #ifdef __OPENCL_VERSION__
 typedef float3 rc_float3;
 #define RC_GLOBAL __global

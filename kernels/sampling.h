@@ -9,7 +9,9 @@ inline float3 offset_ray_origin(float3 p, float3 n) {
   return (float3)(offset_ray_coordinate(p.x, n.x), offset_ray_coordinate(p.y, n.y), offset_ray_coordinate(p.z, n.z));
 }
 
-inline float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float luminance(float3 c) {
+  return RC_FLOAT(RC_LUMINANCE_R) * c.x + RC_FLOAT(RC_LUMINANCE_G) * c.y + RC_FLOAT(RC_LUMINANCE_B) * c.z;
+}
 
 inline float3 finite_or_zero(float3 c) {
   return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);

@@ -10,10 +10,10 @@
 #include <fstream>
 #include <random>
 
-#include "cli/commands.h"
+#include "sequence/walkthrough.h"
 #include "gltf_builder.h"
 #include "image/image_io.h"
-#include "render/camera_path.h"
+#include "sequence/camera_path.h"
 #include "scene/gltf_loader.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -259,14 +259,14 @@ std::string sliding_quad_scene(const std::string& dir, const std::string& name, 
 TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
   const fs::path dir = test::scratch_dir();
   const std::string moving = sliding_quad_scene(dir.string(), "moving", 0.6f, true);
-  AnimateOptions o;
+  WalkthroughRequest o;
   o.render.scene_path = moving;
   o.render.settings = test::one_bounce_one_sample();
   o.render.settings.width = o.render.settings.height = 32;
   o.fps = 2.0;
-  o.cache_per_frame = true;
+  o.cache = CacheMode::per_frame;
   o.render.outputs = {(dir / "slide_%d.exr").string()};
-  ASSERT_EQ(run_animate(o), 0);
+  ASSERT_NO_THROW(render_walkthrough(o));
   EXPECT_TRUE(fs::exists(dir / "slide_2.exr")) << "the animation lasts 1 s: frames 0 to 2";
   EXPECT_FALSE(fs::exists(dir / "slide_3.exr"));
   int w = 0, h = 0;
@@ -274,17 +274,18 @@ TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
   EXPECT_EQ(read_exr_rgb((dir / "slide_1.exr").string(), w, h), before) << "STEP: still at rest at t = 0.5 s";
   const std::vector<float> after = read_exr_rgb((dir / "slide_2.exr").string(), w, h);
   EXPECT_NE(after, before);
-  RenderOptions posed;
-  posed.scene_path = sliding_quad_scene(dir.string(), "posed", 0.6f, false);
-  posed.settings = o.render.settings;
-  posed.outputs = {(dir / "posed.exr").string()};
-  ASSERT_EQ(run_render(posed), 0);
+  // `render` on a file with the quad standing there, as a user runs it.
+  const test::CommandRun posed =
+      test::run_rcsplat(dir.string(), {"render", sliding_quad_scene(dir.string(), "posed", 0.6f, false), "--width",
+                                       "32", "--height", "32", "--bounces", "1", "--pixel-samples", "1", "-o",
+                                       "posed.exr"});
+  ASSERT_EQ(posed.exit_code, 0) << posed.output;
   EXPECT_EQ(read_exr_rgb((dir / "posed.exr").string(), w, h), after);
 
-  o.cache_per_frame = false;
+  o.cache = CacheMode::kept;
   o.render.outputs = {(dir / "kept_%d.exr").string()};
   try {
-    run_animate(o);
+    render_walkthrough(o);
     ADD_FAILURE() << "a moving mesh with records kept was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -385,7 +386,7 @@ TEST(Animation, AnimateRendersEachFrameAsRenderDoesAtItsPose) {
   const fs::path dir = test::scratch_dir();
   test::write_file((dir / "still.txt").string(), "0 0 1 3.5 0 1 0 0 1 0 40\n1 0 1 3.5 0 1 0 0 1 0 40\n");
   test::write_file((dir / "move.txt").string(), "0 -0.3 1 3.5 0 1 0 0 1 0 40\n2 0.3 1.1 3.4 0 1 0 0 1 0 45\n");
-  AnimateOptions o;
+  WalkthroughRequest o;
   o.render.settings = test::one_bounce_one_sample();
   o.render.settings.width = 40;
   o.render.settings.height = 40;
@@ -393,7 +394,7 @@ TEST(Animation, AnimateRendersEachFrameAsRenderDoesAtItsPose) {
   o.render.outputs = {(dir / "still_%02d.exr").string()};
   o.keyframes = (dir / "still.txt").string();
   o.stats_path = (dir / "still.csv").string();
-  ASSERT_EQ(run_animate(o), 0);
+  ASSERT_NO_THROW(render_walkthrough(o));
   int w = 0, h = 0;
   const std::vector<float> first = read_exr_rgb((dir / "still_00.exr").string(), w, h);
   for (const char* later : {"still_01.exr", "still_02.exr"})
@@ -409,32 +410,41 @@ TEST(Animation, AnimateRendersEachFrameAsRenderDoesAtItsPose) {
   o.first_frame = 1;
   o.last_frame = 2;
   o.stats_path.clear();
-  ASSERT_EQ(run_animate(o), 0);
+  ASSERT_NO_THROW(render_walkthrough(o));
   EXPECT_FALSE(fs::exists(dir / "move_0.exr"));
   EXPECT_FALSE(fs::exists(dir / "move_3.exr"));
   const CameraPose pose = read_keyframe_camera_path(o.keyframes).at(1.0);  // frame 2 at 2 frames a second
-  RenderOptions still;
-  still.settings = o.render.settings;
-  still.settings.camera_overrides = pose.overrides();
-  still.outputs = {(dir / "render.exr").string()};
-  ASSERT_EQ(run_render(still), 0);
+  // `render` from that pose, as a user runs it.
+  const CameraOverrides view = pose.overrides();
+  auto triple = [](const std::optional<glm::vec3>& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", double(v->x), double(v->y), double(v->z));
+    return std::string(text);
+  };
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.9g", double(*view.fov_degrees));
+  const test::CommandRun still = test::run_rcsplat(
+      dir.string(), {"render", "--width", "40", "--height", "40", "--bounces", "1", "--pixel-samples", "1", "--eye",
+                     triple(view.eye), "--target", triple(view.target), "--up", triple(view.up), "--fov", fov, "-o",
+                     "render.exr"});
+  ASSERT_EQ(still.exit_code, 0) << still.output;
   EXPECT_EQ(read_exr_rgb((dir / "move_2.exr").string(), w, h), read_exr_rgb((dir / "render.exr").string(), w, h));
   EXPECT_NE(read_exr_rgb((dir / "move_1.exr").string(), w, h), read_exr_rgb((dir / "render.exr").string(), w, h));
 
   // Refused before any frame: no output.
   o.mp4_path = (dir / "preview.mp4").string();
   o.render.outputs = {(dir / "bad_%d.exr").string()};
-  EXPECT_THROW(run_animate(o), Error);  // --mp4 without PNG frames
+  EXPECT_THROW(render_walkthrough(o), Error);  // --mp4 without PNG frames
   o.mp4_path.clear();
   o.orbit_seconds = 4.0;
-  EXPECT_THROW(run_animate(o), Error);  // --keyframes and --orbit
+  EXPECT_THROW(render_walkthrough(o), Error);  // --keyframes and --orbit
   EXPECT_FALSE(fs::exists(dir / "bad_1.exr"));
 }
 
 // --mp4 through the real ffmpeg (scripts/install-debian-packages.sh installs it): one video frame a PNG frame.
 TEST(Animation, AnimateWritesAnMp4PreviewWithFfmpeg) {
   const fs::path dir = test::scratch_dir();
-  AnimateOptions o;
+  WalkthroughRequest o;
   o.render.settings = test::one_bounce_one_sample();
   o.render.settings.width = 30;  // odd sizes: padded to even ones for H.264
   o.render.settings.height = 25;
@@ -443,7 +453,7 @@ TEST(Animation, AnimateWritesAnMp4PreviewWithFfmpeg) {
   o.fps = 3.0;
   o.render.outputs = {(dir / "orbit_%03d.png").string()};
   o.mp4_path = (dir / "orbit.mp4").string();
-  ASSERT_EQ(run_animate(o), 0) << "is ffmpeg installed (scripts/install-debian-packages.sh)?";
+  ASSERT_NO_THROW(render_walkthrough(o)) << "is ffmpeg installed (scripts/install-debian-packages.sh)?";
   for (int f = 0; f < 4; ++f) EXPECT_TRUE(fs::exists(dir / ("orbit_00" + std::to_string(f) + ".png")));
   const std::string probe =
       "ffprobe -v error -count_frames -select_streams v:0 -show_entries "

@@ -1,8 +1,10 @@
-// Cache files (issue 42, item 3; render/cache_file.h): records round-trip bit for bit, a process that reads the file
+// Cache files (issue 42, item 3; sequence/cache_file.h): records round-trip bit for bit, a process that reads the file
 // renders the next frame as the writer would have, and every bad file is refused by name before any frame.
-#include "render/cache_file.h"
+#include "sequence/cache_file.h"
 
 #include <gtest/gtest.h>
+
+#include <map>
 
 #include <random>
 
@@ -11,9 +13,9 @@
 #include <fstream>
 #include <functional>
 
-#include "cli/commands.h"
+#include "sequence/walkthrough.h"
 #include "image/image_io.h"
-#include "render/cache_merge.h"
+#include "sequence/cache_merge.h"
 #include "render/renderer.h"
 #include "cache/octree_lookup.h"
 #include "scene/cornell_box.h"
@@ -38,8 +40,8 @@ void reseal(std::string& bytes) {
   std::memcpy(bytes.data() + bytes.size() - 8, &h, 8);
 }
 
-AnimateOptions orbit(const fs::path& dir) {
-  AnimateOptions o;
+WalkthroughRequest orbit(const fs::path& dir) {
+  WalkthroughRequest o;
   o.render.settings = test::one_bounce_one_sample();
   o.render.settings.width = o.render.settings.height = 40;
   o.render.settings.light_samples = 4;
@@ -177,27 +179,27 @@ TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
 // frames after the split are the same bits.
 TEST(CacheFile, ARenderFromALoadedCacheIsTheWritersNextFrame) {
   const fs::path dir = test::scratch_dir();
-  AnimateOptions whole = orbit(dir / "whole");
+  WalkthroughRequest whole = orbit(dir / "whole");
   fs::create_directories(dir / "whole");
   whole.last_frame = 3;
-  ASSERT_EQ(run_animate(whole), 0);
+  ASSERT_NO_THROW(render_walkthrough(whole));
   fs::create_directories(dir / "split");
-  AnimateOptions before = orbit(dir / "split");
+  WalkthroughRequest before = orbit(dir / "split");
   before.last_frame = 2;
   before.render.cache_out = (dir / "walk.cache").string();
-  ASSERT_EQ(run_animate(before), 0);
-  AnimateOptions after = orbit(dir / "split");
+  ASSERT_NO_THROW(render_walkthrough(before));
+  WalkthroughRequest after = orbit(dir / "split");
   after.first_frame = after.last_frame = 3;
   after.render.cache_in = before.render.cache_out;
-  ASSERT_EQ(run_animate(after), 0);
+  ASSERT_NO_THROW(render_walkthrough(after));
   int w = 0, h = 0;
   for (const char* f : {"f2.exr", "f3.exr"})
     EXPECT_EQ(read_exr_rgb((dir / "whole" / f).string(), w, h), read_exr_rgb((dir / "split" / f).string(), w, h)) << f;
   // Without the file, frame 3 alone is a fresh cache's: other bits.
-  AnimateOptions alone = orbit(dir / "alone");
+  WalkthroughRequest alone = orbit(dir / "alone");
   fs::create_directories(dir / "alone");
   alone.first_frame = alone.last_frame = 3;
-  ASSERT_EQ(run_animate(alone), 0);
+  ASSERT_NO_THROW(render_walkthrough(alone));
   EXPECT_NE(read_exr_rgb((dir / "alone/f3.exr").string(), w, h), read_exr_rgb((dir / "whole/f3.exr").string(), w, h));
 }
 
@@ -207,20 +209,20 @@ TEST(CacheFile, ARenderFromALoadedCacheIsTheWritersNextFrame) {
 // would have read the records frames 1 and 2 placed.
 TEST(CacheFile, AFixedCacheRendersAFrameTheSameWhateverRangeRendersIt) {
   const fs::path dir = test::scratch_dir();
-  AnimateOptions writer = orbit(dir / "unused");
+  WalkthroughRequest writer = orbit(dir / "unused");
   writer.render.outputs.clear();
   writer.render.outputs = {(dir / "w%d.exr").string()};
   writer.last_frame = 0;
   writer.render.cache_out = (dir / "key.cache").string();
-  ASSERT_EQ(run_animate(writer), 0);
+  ASSERT_NO_THROW(render_walkthrough(writer));
   auto fixed_run = [&](const std::string& name, long long first, long long last) {
     fs::create_directories(dir / name);
-    AnimateOptions o = orbit(dir / name);
+    WalkthroughRequest o = orbit(dir / name);
     o.first_frame = first;
     o.last_frame = last;
     o.render.cache_in = writer.render.cache_out;
-    o.cache_fixed = true;
-    EXPECT_EQ(run_animate(o), 0);
+    o.cache = CacheMode::fixed;
+    EXPECT_NO_THROW(render_walkthrough(o));
   };
   fixed_run("long", 1, 3);
   fixed_run("short", 3, 3);
@@ -233,44 +235,44 @@ TEST(CacheFile, AFixedCacheRendersAFrameTheSameWhateverRangeRendersIt) {
   EXPECT_EQ(frame("long", 1), frame("first", 1));
   EXPECT_NE(frame("long", 1), frame("long", 3));
   // --cache-fixed reads a file and writes none.
-  AnimateOptions bad = orbit(dir / "bad");
-  bad.cache_fixed = true;
-  EXPECT_THROW(run_animate(bad), Error);
+  WalkthroughRequest bad = orbit(dir / "bad");
+  bad.cache = CacheMode::fixed;
+  EXPECT_THROW(render_walkthrough(bad), Error);
   bad.render.cache_in = writer.render.cache_out;
   bad.render.cache_out = (dir / "again.cache").string();
-  EXPECT_THROW(run_animate(bad), Error);
+  EXPECT_THROW(render_walkthrough(bad), Error);
 }
 
 // A rerun of a stopped task (--skip-existing): only the frames whose files are missing are rendered, the same bits as
 // the whole run's; the frames that are there are left as they are. Refused where frames depend on earlier ones.
 TEST(CacheFile, ARerunWithSkipExistingRendersOnlyTheMissingFrames) {
   const fs::path dir = test::scratch_dir();
-  AnimateOptions writer = orbit(dir);
+  WalkthroughRequest writer = orbit(dir);
   writer.render.outputs = {(dir / "w%d.exr").string()};
   writer.last_frame = 0;
   writer.render.cache_out = (dir / "key.cache").string();
-  ASSERT_EQ(run_animate(writer), 0);
+  ASSERT_NO_THROW(render_walkthrough(writer));
   fs::create_directories(dir / "run");
-  AnimateOptions run = orbit(dir / "run");
+  WalkthroughRequest run = orbit(dir / "run");
   run.last_frame = 3;
   run.render.cache_in = writer.render.cache_out;
-  run.cache_fixed = true;
-  ASSERT_EQ(run_animate(run), 0);
+  run.cache = CacheMode::fixed;
+  ASSERT_NO_THROW(render_walkthrough(run));
   int w = 0, h = 0;
   const std::string f1 = (dir / "run/f1.exr").string(), f2 = (dir / "run/f2.exr").string();
   const std::vector<float> whole_f2 = read_exr_rgb(f2, w, h);
   const auto f1_written = fs::last_write_time(f1);
   fs::remove(f2);
   run.skip_existing = true;
-  run.render.json_path = (dir / "rerun.json").string();
-  ASSERT_EQ(run_animate(run), 0);
+  const WalkthroughResult rerun = render_walkthrough(run);
   EXPECT_EQ(read_exr_rgb(f2, w, h), whole_f2);
   EXPECT_EQ(fs::last_write_time(f1), f1_written);
-  EXPECT_NE(read_bytes(run.render.json_path).find("\"skipped_frames\": 3"), std::string::npos);
-  AnimateOptions kept = run;  // each frame reading the records of the frames before it
-  kept.cache_fixed = false;
+  EXPECT_EQ(rerun.skipped, 3);
+  EXPECT_EQ(rerun.rows.size(), 1u);
+  WalkthroughRequest kept = run;  // each frame reading the records of the frames before it
+  kept.cache = CacheMode::kept;
   kept.render.cache_in.clear();
-  EXPECT_THROW(run_animate(kept), Error);
+  EXPECT_THROW(render_walkthrough(kept), Error);
 }
 
 // A cache pre-pass split over tasks (--cache-every, --cache-merge): two tasks' parts, merged in either order, are the
@@ -279,22 +281,24 @@ TEST(CacheFile, ARerunWithSkipExistingRendersOnlyTheMissingFrames) {
 TEST(CacheFile, APrePassSplitOverTasksMergesToTheSameCacheWhateverTheSplit) {
   const fs::path dir = test::scratch_dir();
   auto pre_pass = [&](const std::string& part, long long first, long long last) {
-    AnimateOptions o = orbit(dir);
+    WalkthroughRequest o = orbit(dir);
     o.render.outputs.clear();
+    o.cache = CacheMode::pre_pass;
     o.cache_every = 3;
     o.first_frame = first;
     o.last_frame = last;
     o.render.cache_out = (dir / part).string();
-    EXPECT_EQ(run_animate(o), 0);
+    EXPECT_NO_THROW(render_walkthrough(o));
     return o.render.cache_out;
   };
+  std::map<std::string, CacheMergeStats> merged;
   auto merge = [&](const std::vector<std::string>& parts, const std::string& out) {
-    AnimateOptions o = orbit(dir);
+    WalkthroughRequest o = orbit(dir);
     o.render.outputs.clear();
+    o.cache = CacheMode::merge;
     o.cache_merge = parts;
     o.render.cache_out = (dir / out).string();
-    o.render.json_path = (dir / (out + ".json")).string();
-    EXPECT_EQ(run_animate(o), 0);
+    EXPECT_NO_THROW(merged[out] = render_walkthrough(o).merge);
     return o.render.cache_out;
   };
   const std::string whole = pre_pass("whole.part", 0, 8);
@@ -302,16 +306,16 @@ TEST(CacheFile, APrePassSplitOverTasksMergesToTheSameCacheWhateverTheSplit) {
   const std::string one = merge({whole}, "one.cache"), two = merge({late, early}, "two.cache");
   EXPECT_EQ(read_bytes(one), read_bytes(two));
   // Key frames 0, 3 and 6 overlap: the merge keeps fewer records than the parts hold.
-  const std::string summary = read_bytes(one + ".json");
-  EXPECT_NE(summary.find("\"key_frames\": 3"), std::string::npos) << summary;
+  EXPECT_EQ(merged["one.cache"].key_frames, 3u);
+  EXPECT_LT(merged["one.cache"].irradiance_kept, merged["one.cache"].irradiance_in);
   auto frames = [&](const std::string& name, const std::string& cache, long long first, long long last) {
     fs::create_directories(dir / name);
-    AnimateOptions o = orbit(dir / name);
+    WalkthroughRequest o = orbit(dir / name);
     o.first_frame = first;
     o.last_frame = last;
     o.render.cache_in = cache;
-    o.cache_fixed = true;
-    EXPECT_EQ(run_animate(o), 0);
+    o.cache = CacheMode::fixed;
+    EXPECT_NO_THROW(render_walkthrough(o));
   };
   frames("all", one, 0, 8);
   frames("task", two, 4, 5);
@@ -323,22 +327,25 @@ TEST(CacheFile, APrePassSplitOverTasksMergesToTheSameCacheWhateverTheSplit) {
   // Refused, with no file written: parts that share a key frame, a pre-pass without --cache-out or with a range
   // holding no key frame, a merge asked for images.
   const std::string overlap = pre_pass("overlap.part", 3, 5);
-  AnimateOptions bad = orbit(dir);
+  WalkthroughRequest bad = orbit(dir);
   bad.render.outputs.clear();
+  bad.cache = CacheMode::merge;
   bad.cache_merge = {early, overlap};
   bad.render.cache_out = (dir / "bad.cache").string();
-  EXPECT_THROW(run_animate(bad), Error);
+  EXPECT_THROW(render_walkthrough(bad), Error);
+  bad.cache = CacheMode::merge;
   bad.cache_merge = {early};
   bad.render.outputs = {(dir / "bad%d.exr").string()};
-  EXPECT_THROW(run_animate(bad), Error);
+  EXPECT_THROW(render_walkthrough(bad), Error);
   bad = orbit(dir);
   bad.render.outputs.clear();
+  bad.cache = CacheMode::pre_pass;
   bad.cache_every = 3;
-  EXPECT_THROW(run_animate(bad), Error);
+  EXPECT_THROW(render_walkthrough(bad), Error);
   bad.render.cache_out = (dir / "bad.cache").string();
   bad.first_frame = 4;
   bad.last_frame = 5;
-  EXPECT_THROW(run_animate(bad), Error);
+  EXPECT_THROW(render_walkthrough(bad), Error);
   EXPECT_FALSE(fs::exists(dir / "bad.cache"));
 }
 
@@ -387,15 +394,15 @@ TEST(CacheFile, TheMergeDropsExactlyTheRecordsAnEarlierKeyFrameReaches) {
 
 TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   const fs::path dir = test::scratch_dir();
-  AnimateOptions writer = orbit(dir);
+  WalkthroughRequest writer = orbit(dir);
   writer.last_frame = 1;
   writer.render.outputs = {(dir / "w%d.exr").string()};
   writer.render.cache_out = (dir / "good.cache").string();
-  ASSERT_EQ(run_animate(writer), 0);
+  ASSERT_NO_THROW(render_walkthrough(writer));
   const std::string good = read_bytes(writer.render.cache_out);
   struct Case {
     std::string name, bytes, expected;
-    std::function<void(AnimateOptions&)> change;
+    std::function<void(WalkthroughRequest&)> change;
   };
   std::vector<Case> cases;
   auto patched = [&](size_t at, char value, bool sealed) {
@@ -438,20 +445,20 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
     cases.push_back({"cluster", b, "light guide cluster 0 holds numbers out of range", {}});
   }
   cases.push_back({"scene", good, "written for another scene",
-                   [](AnimateOptions& o) { o.render.environment.sky = glm::vec3(0.1f); }});
+                   [](WalkthroughRequest& o) { o.render.environment.sky = glm::vec3(0.1f); }});
   cases.push_back({"settings", good, "written with other settings",
-                   [](AnimateOptions& o) { o.render.settings.cache.accuracy = 0.5f; }});
-  cases.push_back({"cap", good, "more than the 10 kept at most", [](AnimateOptions& o) { o.render.settings.kept_records_capacity = 10; }});
+                   [](WalkthroughRequest& o) { o.render.settings.cache.accuracy = 0.5f; }});
+  cases.push_back({"cap", good, "more than the 10 kept at most", [](WalkthroughRequest& o) { o.render.settings.kept_records_capacity = 10; }});
   for (const Case& c : cases) {
     const std::string path = (dir / (c.name + ".cache")).string();
     test::write_file(path, c.bytes);
-    AnimateOptions reader = orbit(dir);
+    WalkthroughRequest reader = orbit(dir);
     reader.render.outputs = {(dir / (c.name + "_%d.exr")).string()};
     reader.render.cache_in = path;
     reader.last_frame = 1;
     if (c.change) c.change(reader);
     try {
-      run_animate(reader);
+      render_walkthrough(reader);
       ADD_FAILURE() << c.name << ": accepted";
     } catch (const Error& e) {
       const std::string message = e.what();

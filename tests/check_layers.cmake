@@ -1,5 +1,5 @@
 # The layer rule of docs/ARCHITECTURE.md. First, every file under host/ includes only its own layer or lower ones:
-# util, tables < scene, bvh, image, cache < cl < passes < render, bench < cli (main.cpp); kernels/ (the shared headers)
+# util, tables < scene, bvh, image, cache < cl < passes < render, bench < sequence < cli (main.cpp); kernels/ (the shared headers)
 # anywhere. tables/ holds generators of the tables kernels include, outside the renderer's library.
 # Then nothing under host/cache, host/scene or host/image (nor the frame's results and settings) may include the
 # OpenCL headers, directly or through another header. Run by CTest with -DCXX=... -DSOURCE_DIR=... -DINCLUDES=...
@@ -12,8 +12,9 @@ set(rank_cache 1)
 set(rank_cl 2)
 set(rank_passes 3)
 set(rank_render 4)
+set(rank_sequence 5)
 set(rank_bench 4)
-set(rank_cli 5)
+set(rank_cli 6)
 set(upward "")
 file(GLOB_RECURSE sources ${SOURCE_DIR}/host/*.h ${SOURCE_DIR}/host/*.cpp)
 foreach(source ${sources})

@@ -4,11 +4,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>
 
-#include "cli/commands.h"
+#include "render/settings_text.h"
+#include "sequence/render_job.h"
 #include "image/error_metrics.h"
 #include "image/image_io.h"
 #include "render/frame_plan.h"
@@ -83,10 +85,11 @@ void write_rgb_exr(const std::string& path, int w, int h, float value, bool with
   write_exr(path, w, h, layers, attributes);
 }
 
-// Runs compare and reads back the JSON it wrote.
-nlohmann::json compare_json(const CompareOptions& o) {
-  EXPECT_EQ(run_compare(o), 0);
-  std::ifstream in(o.json_path);
+// Runs `rcsplat compare IMAGE REFERENCE --json cmp.json` in dir and reads back the JSON it wrote.
+nlohmann::json compare_json(const std::string& dir, const std::string& image, const std::string& reference) {
+  const test::CommandRun run = test::run_rcsplat(dir, {"compare", image, reference, "--json", "cmp.json"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(dir + "/cmp.json");
   return nlohmann::json::parse(in);
 }
 
@@ -98,26 +101,21 @@ TEST(Compare, NamesWhatTheTwoRendersDidDifferently) {
                 {{"rcsplat:pixel_samples", "1"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "1"}});
   write_rgb_exr(dir + "/b.exr", 8, 6, 1.1f, true,
                 {{"rcsplat:pixel_samples", "4"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "1"}});
-  CompareOptions o;
-  o.image_path = dir + "/b.exr";
-  o.reference_path = dir + "/a.exr";
-  o.json_path = dir + "/cmp.json";
-  const nlohmann::json j = compare_json(o);
+  const nlohmann::json j = compare_json(dir, "b.exr", "a.exr");
   ASSERT_EQ(j["rendered_differently"].size(), 1u) << j.dump();
   EXPECT_EQ(j["rendered_differently"][0]["attribute"], "rcsplat:pixel_samples");
   EXPECT_EQ(j["rendered_differently"][0]["image"], "4");
   EXPECT_EQ(j["rendered_differently"][0]["reference"], "1");
   EXPECT_FALSE(j["finer_pixel_reference"]);
 
-  std::swap(o.image_path, o.reference_path);  // the image at 1 sample against the reference at 4
-  const nlohmann::json area = compare_json(o);
+  // The image at 1 sample against the reference at 4.
+  const nlohmann::json area = compare_json(dir, "a.exr", "b.exr");
   EXPECT_EQ(area["rendered_differently"].size(), 0u) << area.dump();
   EXPECT_TRUE(area["finer_pixel_reference"]);
 
   write_rgb_exr(dir + "/c.exr", 8, 6, 1.0f, true,
                 {{"rcsplat:pixel_samples", "1"}, {"rcsplat:environment", "none"}, {"rcsplat:bounces", "3"}});
-  o.reference_path = dir + "/c.exr";
-  const nlohmann::json bounces = compare_json(o);
+  const nlohmann::json bounces = compare_json(dir, "a.exr", "c.exr");
   ASSERT_EQ(bounces["rendered_differently"].size(), 1u) << bounces.dump();
   EXPECT_EQ(bounces["rendered_differently"][0]["attribute"], "rcsplat:bounces");
 }
@@ -127,17 +125,13 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
   write_rgb_exr(dir + "/a.exr", 8, 6, 1.0f, true);
   write_rgb_exr(dir + "/b.exr", 8, 6, 1.1f, true);
   write_rgb_exr(dir + "/small.exr", 4, 6, 1.0f, true);
-  CompareOptions o;
-  o.image_path = dir + "/b.exr";
-  o.reference_path = dir + "/a.exr";
-  o.heatmap_path = dir + "/heat.png";
-  o.json_path = dir + "/cmp.json";
-  o.flip_heatmap_path = dir + "/flip.png";
-  EXPECT_EQ(run_compare(o), 0);
-  EXPECT_TRUE(std::filesystem::exists(o.heatmap_path));
-  EXPECT_TRUE(std::filesystem::exists(o.flip_heatmap_path));
-  EXPECT_TRUE(std::filesystem::exists(o.json_path));
-  const nlohmann::json j = compare_json(o);
+  const test::CommandRun run = test::run_rcsplat(
+      dir, {"compare", "b.exr", "a.exr", "--heatmap", "heat.png", "--flip-heatmap", "flip.png", "--json", "cmp.json"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/heat.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/flip.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/cmp.json"));
+  const nlohmann::json j = compare_json(dir, "b.exr", "a.exr");
   EXPECT_GT(j["full"]["mean_flip"].get<double>(), 0.0) << j.dump();
   EXPECT_LT(j["full"]["mean_flip"].get<double>(), 0.2) << j.dump();
   ErrorMetrics m = image_error(std::vector<float>(3, 1.1f), std::vector<float>(3, 1.0f));
@@ -145,19 +139,15 @@ TEST(Compare, ReportsErrorsAndRefusesMismatchedImages) {
   EXPECT_NEAR(m.rmse, 0.1, 1e-6);
   EXPECT_NEAR(m.mae, 0.1, 1e-6);
 
-  o.reference_path = dir + "/small.exr";
-  o.heatmap_path = dir + "/heat2.png";
-  o.flip_heatmap_path = dir + "/flip2.png";
-  try {
-    run_compare(o);
-    ADD_FAILURE() << "images of different sizes were compared";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("small.exr"), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(std::filesystem::exists(o.heatmap_path));
-  EXPECT_FALSE(std::filesystem::exists(o.flip_heatmap_path));
-  o.reference_path = dir + "/missing.exr";
-  EXPECT_THROW(run_compare(o), Error);
+  const test::CommandRun mismatched = test::run_rcsplat(
+      dir, {"compare", "b.exr", "small.exr", "--heatmap", "heat2.png", "--flip-heatmap", "flip2.png"});
+  EXPECT_NE(mismatched.exit_code, 0) << "images of different sizes were compared";
+  EXPECT_NE(mismatched.output.find("small.exr"), std::string::npos) << mismatched.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/heat2.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/flip2.png"));
+  const test::CommandRun missing = test::run_rcsplat(dir, {"compare", "b.exr", "missing.exr"});
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find("missing.exr"), std::string::npos) << missing.output;
 }
 
 }  // namespace
@@ -170,23 +160,34 @@ namespace {
 // what it writes is exactly the two parts' weighted mean, and a mismatched file is refused by name.
 TEST(Reference, ResumeAddsIndependentSamples) {
   std::string dir = test::scratch_dir();
-  RenderOptions o;
-  o.outputs = {dir + "/ref.exr"};
-  o.settings.width = o.settings.height = 16;
-  o.settings.gi = GiMethod::path;
-  o.settings.path.stratified = true;
-  o.settings.path.samples = o.settings.light_samples = 8;
-  o.settings.bounces = o.settings.pixel_samples = 1;  // what the refusals below change
-  o.resume = true;  // no file yet: an ordinary first run
-  ASSERT_EQ(run_render(o), 0);
+  const std::string ref = dir + "/ref.exr";
+  // What the refusals below change: the frame, bounces, environment, pixel samples and points.
+  using Options = std::map<std::string, std::string>;
+  const Options base = {{"--width", "16"}, {"--height", "16"}, {"--bounces", "1"}, {"--pixel-samples", "1"}};
+  auto run = [&](const std::string& spp, const Options& changed = {}) {
+    Options options = base;
+    for (const auto& [option, value] : changed) options[option] = value;
+    std::vector<std::string> args = {"reference", "-o", "ref.exr", "--resume", "--spp", spp, "--light-samples", spp};
+    for (const auto& [option, value] : options) {
+      args.push_back(option);
+      if (!value.empty()) args.push_back(value);  // a flag
+    }
+    return test::run_rcsplat(dir, args);
+  };
+  test::CommandRun r = run("8");  // no file yet: an ordinary first run
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   int w = 0, h = 0;
-  std::vector<float> first = read_exr_layer(o.outputs[0], "indirect", w, h);
-  o.settings.path.samples = o.settings.light_samples = 24;
-  ASSERT_EQ(run_render(o), 0);
-  EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24");
-  std::vector<float> merged = read_exr_layer(o.outputs[0], "indirect", w, h);
+  std::vector<float> first = read_exr_layer(ref, "indirect", w, h);
+  r = run("24");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_exr_attributes(ref)["rcsplat:path_samples"], "24");
+  std::vector<float> merged = read_exr_layer(ref, "indirect", w, h);
 
-  RenderSettings second = o.settings;
+  RenderSettings second;
+  second.width = second.height = 16;
+  second.gi = GiMethod::path;
+  second.path.stratified = true;
+  second.bounces = second.pixel_samples = 1;
   second.path.samples = 16;
   second.light_samples = 16;
   second.seed = 8;  // the resumed part's seed: the first seed plus the samples before it
@@ -194,42 +195,27 @@ TEST(Reference, ResumeAddsIndependentSamples) {
   for (size_t i = 0; i < merged.size(); ++i)
     ASSERT_NEAR(merged[i], (first[i] * 8.0f + part.indirect[i] * 16.0f) / 24.0f, 1e-6f) << i;
 
-  o.settings.path.samples = 32;
   // Another frame, bounce count, environment or pixel sampling: refused by name, and the file is left as it was.
-  auto refused = [&](RenderOptions changed, const std::string& expected) {
-    try {
-      run_render(changed);
-      ADD_FAILURE() << "resumed despite " << expected;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
-    }
-    EXPECT_EQ(read_exr_attributes(o.outputs[0])["rcsplat:path_samples"], "24") << expected;
+  auto refused = [&](const Options& changed, const std::string& expected) {
+    const test::CommandRun run32 = run("32", changed);
+    EXPECT_NE(run32.exit_code, 0) << "resumed despite " << expected;
+    EXPECT_NE(run32.output.find(expected), std::string::npos) << run32.output;
+    EXPECT_EQ(read_exr_attributes(ref)["rcsplat:path_samples"], "24") << expected;
   };
-  RenderOptions narrower = o;
-  narrower.settings.width = 8;
-  refused(narrower, "is 16x16, this frame 8x16");
-  RenderOptions bounces = o;
-  bounces.settings.bounces = 2;
-  refused(bounces, "rendered with --bounces 1, not 2");
-  RenderOptions sky = o;
-  sky.environment.sky = glm::vec3(0.5f);
-  refused(sky, "rendered with environment none, not uniform sky (0.5, 0.5, 0.5)");
-  RenderOptions anti_aliased = o;
-  anti_aliased.settings.pixel_samples = 4;
-  refused(anti_aliased, "rendered with --pixel-samples 1, not 4");
-  RenderOptions grid = o;
-  grid.settings.path.pixel_area = false;
-  refused(grid, "rendered with pixel points jittered, not rotated grid");
+  refused({{"--width", "8"}}, "is 16x16, this frame 8x16");
+  refused({{"--bounces", "2"}}, "rendered with --bounces 1, not 2");
+  refused({{"--sky", "0.5,0.5,0.5"}}, "rendered with environment none, not uniform sky (0.5, 0.5, 0.5)");
+  refused({{"--pixel-samples", "4"}}, "rendered with --pixel-samples 1, not 4");
+  refused({{"--sub-pixel-grid", ""}}, "rendered with pixel points jittered, not rotated grid");
 }
 
 // info runs the bounce probe a render runs (the built-in Cornell box keeps half of each reflection: 5 bounces) and
 // says why not when it has no device, printing the rest.
 TEST(Info, NamesTheBouncesARenderChooses) {
   const std::string dir = test::scratch_dir();
-  InfoOptions o;
-  o.json_path = dir + "/info.json";
-  ASSERT_EQ(run_info(o), 0);
-  nlohmann::json j = nlohmann::json::parse(std::ifstream(o.json_path));
+  test::CommandRun run = test::run_rcsplat(dir, {"info", "--json", "info.json"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/info.json"));
   EXPECT_EQ(j["bounces"]["chosen"], 5);
   EXPECT_NEAR(j["bounces"]["kept_per_bounce"].get<double>(), 0.50, 0.03);
   EXPECT_EQ(j["bounces"]["cache_method"], "photons");
@@ -238,9 +224,9 @@ TEST(Info, NamesTheBouncesARenderChooses) {
   settings.bounces = 0;
   EXPECT_EQ(render(test::gpu(), load_scene(""), settings).stats.bounces.count, 5u) << "what a render chooses";
 
-  o.device = "no such device";
-  ASSERT_EQ(run_info(o), 0);
-  j = nlohmann::json::parse(std::ifstream(o.json_path));
+  run = test::run_rcsplat(dir, {"info", "--json", "info.json", "--device", "no such device"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  j = nlohmann::json::parse(std::ifstream(dir + "/info.json"));
   EXPECT_TRUE(j["bounces"]["chosen"].is_null());
   EXPECT_NE(j["bounces"]["why_not"].get<std::string>().find("no such device"), std::string::npos);
   EXPECT_EQ(j["triangles"], 32);

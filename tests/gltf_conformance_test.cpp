@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "cli/commands.h"
+#include "sequence/render_job.h"
 #include "image/image_io.h"
 #include "gltf_builder.h"
 #include "test_support.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "cli/commands.h"
+#include "sequence/render_job.h"
 #include "gltf_builder.h"
 #include "scene/gltf_loader.h"
 #include "scene/packed_scene.h"
@@ -335,15 +335,14 @@ TEST(GltfLoader, RejectsNodeCycles) {
   expect_load_error(b.write(test::scratch_dir(), "cycle"), "cycle");
 }
 
-// The CLI path: a malformed scene gives an error and leaves no output file behind.
+// The command as a user runs it: a malformed scene gives an error and leaves no output file behind.
 TEST(GltfLoader, RenderOfMalformedSceneWritesNothing) {
   std::string dir = test::scratch_dir();
   std::string bad = dir + "/broken.gltf";
   test::write_file(bad, "not json at all");
-  RenderOptions options;
-  options.scene_path = bad;
-  options.outputs = {dir + "/out.exr", dir + "/out.png"};
-  EXPECT_THROW(run_render(options), Error);
+  const test::CommandRun run = test::run_rcsplat(dir, {"render", bad, "-o", "out.exr", "-o", "out.png"});
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("broken.gltf"), std::string::npos) << run.output;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/out.png"));
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);

@@ -11,7 +11,6 @@
 #include <iterator>
 #include <thread>
 
-#include "cli/commands.h"
 #include "image/error_metrics.h"
 #include "kernels/hsh.h"
 #include "image/exr_file.h"
@@ -170,11 +169,10 @@ std::string file_bytes(const std::string& path) {
 // (OpenImageIO would stamp the clock into the EXR header); SOURCE_DATE_EPOCH, when set, dates it instead.
 TEST(Determinism, OutputFilesAreTheSameBytesAcrossRuns) {
   const std::string dir = test::scratch_dir();
-  RenderOptions options;
-  options.settings.width = options.settings.height = 40;
   auto run = [&](const std::string& name) {
-    options.outputs = {dir + "/" + name + ".exr", dir + "/" + name + ".png"};
-    run_render(options);
+    const test::CommandRun r =
+        test::run_rcsplat(dir, {"render", "--width", "40", "--height", "40", "-o", name + ".exr", "-o", name + ".png"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
   };
   unsetenv("SOURCE_DATE_EPOCH");
   run("first");

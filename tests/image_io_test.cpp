@@ -10,7 +10,7 @@
 #include <random>
 #include <fstream>
 
-#include "cli/commands.h"
+#include "render/render_output.h"
 #include "image/exr_file.h"
 #include "image/image_io.h"
 #include "render/render_output.h"
@@ -149,15 +149,11 @@ namespace {
 // `rcsplat render` as a user runs it: the EXR carries the cache's layers, every value finite, and the summary JSON.
 TEST(ImageIo, RenderCommandWritesTheCacheLayers) {
   std::string dir = test::scratch_dir();
-  RenderOptions o;
-  o.outputs = {dir + "/cornell.exr"};
-  o.json_path = dir + "/summary.json";
-  o.settings.width = o.settings.height = 40;
-  o.settings.light_samples = 1;
-  o.settings.cache.theta_strata = 4;
-  o.settings.cache.phi_strata = 8;
-  ASSERT_EQ(run_render(o), 0);
-  auto in = OIIO::ImageInput::open(o.outputs[0]);
+  const test::CommandRun run =
+      test::run_rcsplat(dir, {"render", "-o", "cornell.exr", "--json", "summary.json", "--width", "40", "--height",
+                              "40", "--light-samples", "1", "--hemisphere", "4x8"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  auto in = OIIO::ImageInput::open(dir + "/cornell.exr");
   ASSERT_TRUE(in);
   const OIIO::ImageSpec& spec = in->spec();
   for (const char* name : {"R", "direct.R", "indirect.R", "irradiance.G", "coverage.Y", "records.Y",
@@ -166,7 +162,7 @@ TEST(ImageIo, RenderCommandWritesTheCacheLayers) {
   std::vector<float> all(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
   for (float v : all) ASSERT_TRUE(std::isfinite(v));
-  EXPECT_TRUE(std::filesystem::exists(o.json_path));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/summary.json"));
 }
 
 }  // namespace

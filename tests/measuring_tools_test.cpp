@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "cl/gpu_context.h"
-#include "cli/commands.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -33,29 +32,22 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path) {
 
 TEST(Sweep, WritesEveryConfigurationsTimeAndErrorsToTheCsv) {
   const std::string dir = test::scratch_dir();
-  RenderOptions reference;
-  reference.outputs = {dir + "/ref.exr"};
-  reference.settings.width = 24;
-  reference.settings.height = 18;
-  reference.settings.gi = GiMethod::path;
-  reference.settings.path.samples = 64;
-  reference.settings.light_samples = 64;
-  reference.settings.path.stratified = true;
-  reference.settings.path.pixel_area = false;  // the renders' points: at 24 x 18, jittered emitter edges dominate
-  reference.settings.bounces = 1;
-  ASSERT_EQ(run_render(reference), 0);
+  // The renders' points (--sub-pixel-grid): at 24 x 18, jittered emitter edges dominate.
+  const test::CommandRun reference =
+      test::run_rcsplat(dir, {"render", "-o", "ref.exr", "--width", "24", "--height", "18", "--gi", "path", "--spp",
+                              "64", "--light-samples", "64", "--stratified", "--sub-pixel-grid", "--bounces", "1"});
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
 
-  SweepOptions o;
-  o.reference_path = dir + "/ref.exr";
-  o.output_dir = dir + "/sweep";
-  o.accuracies = {0.5f, 1.0f};
-  o.hemispheres = {"8x16"};
-  o.path_samples = {4};
-  o.denoise = "off";
-  o.plot = false;
-  o.light_samples = 4;
-  ASSERT_EQ(run_sweep(o), 0);
-  const auto rows = read_csv(o.output_dir + "/sweep.csv");
+  const std::vector<std::string> sweep = {"sweep", "--accuracy", "0.5,1", "--hemisphere", "8x16", "--path-spp", "4",
+                                          "--denoise", "off", "--no-plot", "--light-samples", "4"};
+  auto with = [&](std::vector<std::string> args, const std::vector<std::string>& more) {
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  const test::CommandRun run = test::run_rcsplat(dir, with(sweep, {"--reference", "ref.exr", "-o", "sweep"}));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string output_dir = dir + "/sweep";
+  const auto rows = read_csv(output_dir + "/sweep.csv");
   ASSERT_EQ(rows.size(), 4u);  // the header, two cache settings, one path-traced count
   const std::vector<std::string>& header = rows[0];
   auto column = [&](const std::string& name) {
@@ -73,7 +65,7 @@ TEST(Sweep, WritesEveryConfigurationsTimeAndErrorsToTheCsv) {
       EXPECT_TRUE(std::isfinite(v)) << metric;
       EXPECT_LT(std::abs(v), 1.0) << metric << " in row " << r;
     }
-    EXPECT_TRUE(fs::exists(o.output_dir + "/" + rows[r][column("config")] + ".exr"));
+    EXPECT_TRUE(fs::exists(output_dir + "/" + rows[r][column("config")] + ".exr"));
   }
   EXPECT_EQ(rows[1][column("method")], "cache");
   EXPECT_EQ(rows[1][column("accuracy")], "0.5");
@@ -83,27 +75,19 @@ TEST(Sweep, WritesEveryConfigurationsTimeAndErrorsToTheCsv) {
   EXPECT_LT(std::stod(rows[2][column("records")]), std::stod(rows[1][column("records")]));
 
   // A missing reference is named, and nothing is written.
-  o.reference_path = dir + "/missing.exr";
-  o.output_dir = dir + "/sweep2";
-  try {
-    run_sweep(o);
-    ADD_FAILURE() << "a missing reference was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing.exr"), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(fs::exists(o.output_dir));
+  const test::CommandRun missing = test::run_rcsplat(dir, with(sweep, {"--reference", "missing.exr", "-o", "sweep2"}));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find("missing.exr"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir + "/sweep2"));
 }
 
 TEST(Bench, TablesEachDevicesBuildsPassesAndMemory) {
   const std::string dir = test::scratch_dir();
-  BenchOptions o;
   // The built-in Cornell box.
-  o.width = 16;
-  o.height = 12;
-  o.repeats = 1;
-  o.json_path = dir + "/bench.json";
-  ASSERT_EQ(run_bench(o), 0);
-  std::ifstream in(o.json_path);
+  const test::CommandRun run =
+      test::run_rcsplat(dir, {"bench", "--width", "16", "--height", "12", "--repeats", "1", "--json", "bench.json"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(dir + "/bench.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   ASSERT_EQ(j["devices"].size(), 1u) << j.dump();
   const nlohmann::json& d = j["devices"][0];

@@ -461,7 +461,7 @@ TEST(HshRecordGradients, BoundedByTheRadianceOverTheRadius) {
 }
 
 // Radiance records with a light guide: every coefficient lambda_k (kernels/hsh_records.cl, order 4) against the
-// host's double-precision projection of the host's own record (cache/host_records.h): each stratum's share of the
+// host's double-precision projection of the host's own record (tests/reference/host_records.h): each stratum's share of the
 // light (the balance-heuristic weight beside the guide's rays, which the pixels take: kernels/glossy.cl guide_share)
 // times the exact integral of H_k over the stratum (Gauss-Legendre in cos(theta) and phi, 8 x 8 nodes, exact for
 // these polynomials in cos(theta) and nearly so in phi). In the Cornell box, where every record's strata see light
@@ -532,7 +532,7 @@ TEST(HshRecordKernel, GuidedCoefficientsMatchHostDoublePrecision) {
 // The other half of that split (kernels/glossy.cl guide_share): at each radiance-cached pixel of the corridor with
 // metal walls (roughness 0.6), the glossy pass's estimate of the light the records leave to the guide, against the
 // same estimator in double on the host (the same random numbers; cones, directions and densities from
-// cache/host_records.h, Embree rays, the BRDF of tests/brdf_reference.h): the mean over the pixel's samples of
+// tests/reference/host_records.h, Embree rays, the BRDF of tests/brdf_reference.h): the mean over the pixel's samples of
 // f cos L n_g / (n_c p_c + n_g p_g), drawn from the records' own cones. Nearly every cone holds nearly all of the
 // weight here (n_g p_g >> n_c p_c), so a weight of 1 in its place would still be off by about 1%: far above float.
 TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {

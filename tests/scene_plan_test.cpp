@@ -8,7 +8,6 @@
 
 #include "bvh/bvh8.h"
 #include "cl/device_scene.h"
-#include "cli/commands.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "scene/scene_plan.h"
@@ -85,7 +84,7 @@ TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
     const Bvh8 bvh = build_bvh8(scene.positions);
     DeviceScene device(test::gpu(), scene, bvh);
     std::map<std::string, std::string> compiled(device.defines().begin(), device.defines().end());
-    EXPECT_EQ(compiled, plan_switches(plan_scene(scene), bvh.depth)) << feature;
+    EXPECT_EQ(compiled, scene_plan_switches(plan_scene(scene), bvh.depth)) << feature;
   }
 }
 

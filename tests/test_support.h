@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cl/gpu_context.h"
 #include "render/settings.h"
@@ -20,6 +21,17 @@ std::unique_ptr<GpuContext> fresh_gpu();
 std::string scratch_dir();
 
 void write_file(const std::string& path, const std::string& content);
+
+// The rcsplat binary the suite was built with, run in `folder` with `args` as a user runs it: its exit code (128 +
+// the signal when killed), its stdout and stderr together, and its peak resident memory. A run past limit_seconds is
+// killed and fails the test (a hang is a failure, not a measurement). Tests of a command go through this, never
+// through the command line's code.
+struct CommandRun {
+  int exit_code = -1;
+  std::string output;
+  long peak_memory_kib = 0;
+};
+CommandRun run_rcsplat(const std::string& folder, const std::vector<std::string>& args, int limit_seconds = 300);
 
 // A request for one bounce and one sample a pixel, what most tests isolate; the library's own defaults (0: chosen
 // from the scene, as on the command line) are tested where a test says so.

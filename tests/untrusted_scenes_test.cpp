@@ -32,54 +32,6 @@ constexpr bool kSanitized = true;
 constexpr bool kSanitized = false;
 #endif
 
-struct ProcessRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-  long peak_memory_kib = 0;
-};
-
-// Runs the binary in `folder` with `args`, killed after `limit` (a hang is a failure, not a measurement).
-ProcessRun run_binary(const fs::path& folder, const std::vector<std::string>& args, std::chrono::seconds limit) {
-  const fs::path log = folder / "output.txt";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (chdir(folder.c_str()) != 0) _exit(127);
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, 1);
-    dup2(fd, 2);
-    std::vector<char*> argv;
-    std::string binary = RCSPLAT_BINARY;
-    argv.push_back(binary.data());
-    std::vector<std::string> copy = args;
-    for (std::string& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(binary.c_str(), argv.data());
-    _exit(127);
-  }
-  ProcessRun run;
-  int status = 0;
-  struct rusage usage {};
-  const auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    const pid_t done = wait4(pid, &status, WNOHANG, &usage);
-    if (done == pid) break;
-    if (std::chrono::steady_clock::now() - start > limit) {
-      kill(pid, SIGKILL);
-      wait4(pid, &status, 0, &usage);
-      ADD_FAILURE() << "still running after " << limit.count() << " s: killed";
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  run.peak_memory_kib = usage.ru_maxrss;
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  run.output = text.str();
-  return run;
-}
-
 class UntrustedScene : public ::testing::TestWithParam<UntrustedCase> {};
 
 TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
@@ -111,7 +63,7 @@ TEST_P(UntrustedScene, IsRefusedClearlyOrRendered) {
     if (at != std::string::npos) a.replace(at, 6, folder.string());
     args.push_back(a);
   }
-  const ProcessRun run = run_binary(work, args, std::chrono::seconds(300));
+  const test::CommandRun run = test::run_rcsplat(work.string(), args, 300);
   const bool outputs = fs::exists(work / "out.exr") || fs::exists(work / "out.png") || fs::exists(work / "out.json");
   if (c.renders) {
     EXPECT_EQ(run.exit_code, 0) << run.output;
@@ -151,7 +103,7 @@ TEST(UntrustedScenePolicy, ARefusalDoesNotTellWhetherAFileOutsideExists) {
     test::write_untrusted_case(c, folder);
     fs::create_directories(folder / "work");
     messages[c.name] =
-        run_binary(folder / "work", {"info", (folder / c.scene).string()}, std::chrono::seconds(120)).output;
+        test::run_rcsplat((folder / "work").string(), {"info", (folder / c.scene).string()}, 120).output;
   }
   ASSERT_EQ(messages.size(), 2u);
   EXPECT_EQ(messages["SymbolicLinkLeadingOut"], messages["SymbolicLinkLeadingOutToNothing"]);

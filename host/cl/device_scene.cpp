@@ -51,4 +51,10 @@ void DeviceScene::bind(NamedKernel& kernel) const {
       .set("scene_counts", counts_);
 }
 
+std::map<std::string, std::string> scene_plan_switches(const ScenePlan& plan, int bvh_depth) {
+  std::map<std::string, std::string> switches = plan.switches;
+  switches["BVH_STACK_SIZE"] = bvh_stack_switch(Bvh8::stack_size_for_depth(bvh_depth));
+  return switches;
+}
+
 }  // namespace rcsplat

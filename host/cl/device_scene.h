@@ -2,6 +2,7 @@
 // materials, textures, lights (kernels/scene_args.h SCENE_ARGS). Also the one place that decides the kernels'
 // compile-time switches from the scene.
 #pragma once
+#include <map>
 #include <array>
 #include <set>
 #include <string>
@@ -11,6 +12,7 @@
 #include "cl/device_bvh.h"
 #include "cl/gpu_context.h"
 #include "scene/packed_scene.h"
+#include "scene/scene_plan.h"
 
 namespace rcsplat {
 
@@ -61,5 +63,9 @@ class DeviceScene {
   std::vector<EmissiveTriangle> emitters_host_;
   SceneFrame frame_;
 };
+
+// The kernel switches a scene compiles as `info` reports them: the scene plan's (scene/scene_plan.h) with the BVH's
+// stack size for a tree of this depth; DeviceScene::defines() holds the same (tests/scene_plan_test.cpp).
+std::map<std::string, std::string> scene_plan_switches(const ScenePlan& plan, int bvh_depth);
 
 }  // namespace rcsplat

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "cl/embedded_kernels.h"
+#include "util/atomic_file.h"
 #include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -410,14 +411,13 @@ std::shared_ptr<cl::Program> GpuContext::build(const std::string& file, const st
     if (!cache_file.empty()) {
       try {
         auto binaries = program->getInfo<CL_PROGRAM_BINARIES>();
-        if (!binaries.empty() && !binaries[0].empty()) {
-          fs::create_directories(cache_file.parent_path());
-          fs::path temp = cache_file;
-          temp += ".tmp" + std::to_string(::getpid());
-          std::ofstream(temp, std::ios::binary)
-              .write(reinterpret_cast<const char*>(binaries[0].data()), std::streamsize(binaries[0].size()));
-          fs::rename(temp, cache_file);
-        }
+        if (!binaries.empty() && !binaries[0].empty())
+          // Whole or not at all: another process may read the cache while this one writes it.
+          write_file_atomically(cache_file.string(), [&](const std::string& temp) -> std::string {
+            std::ofstream out(temp, std::ios::binary);
+            out.write(reinterpret_cast<const char*>(binaries[0].data()), std::streamsize(binaries[0].size()));
+            return out.flush() ? "" : "cannot be written";
+          });
       } catch (const std::exception& e) {
         log_warning(std::string("could not store the compiled kernel in the cache: ") + e.what());
       }

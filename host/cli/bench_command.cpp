@@ -15,6 +15,7 @@
 #include "cl/device_scene.h"
 #include "cli/command_line.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "passes/ray_cast_pass.h"
 #include "scene/procedural.h"
 #include "util/log.h"

@@ -11,6 +11,7 @@
 #include "cl/device_info.h"
 #include "cl/gpu_context.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "render/renderer.h"
 #include "util/byte_size.h"
 #include "util/error.h"

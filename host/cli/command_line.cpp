@@ -68,8 +68,8 @@ void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device) {
         ->check(CLI::Range(1.0 / 1024.0, 65536.0));
 }
 
-void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env,
-                       const HelpGroups& groups) {
+void add_frame_options(CLI::App* cmd, RenderJob& o, std::string& json_path, bool& progress_lines, CameraFlags& cam,
+                       EnvironmentFlags& env, const HelpGroups& groups) {
   const std::string& lab = groups.lab;
   cmd->add_option("scene", o.scene_path, "glTF 2.0 scene (.gltf or .glb); default: the built-in Cornell box");
   cmd->add_option("-o,--output", o.outputs, "Output image(s): .exr (linear, with layers) or .png (tone-mapped)")
@@ -106,13 +106,13 @@ void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, Enviro
   env.add(cmd, o.environment);
   add_scene_limit_options(cmd, o.limits, true);
   cmd->add_option("--exposure", o.exposure, "PNG exposure in stops");
-  cmd->add_option("--json", o.json_path, "Also write the summary as JSON");
-  cmd->add_flag("--progress-lines", o.progress_lines,
+  cmd->add_option("--json", json_path, "Also write the summary as JSON");
+  cmd->add_flag("--progress-lines", progress_lines,
                 "Also print the command's progress as lines \"Progress: NN%\" on stdout, as render-farm managers "
                 "(Deadline and others) read it");
 }
 
-void RenderMethodFlags::add(CLI::App* cmd, RenderOptions& o, const HelpGroups& groups) {
+void RenderMethodFlags::add(CLI::App* cmd, RenderJob& o, std::string& quality, const HelpGroups& groups) {
   const std::string& lab = groups.lab;
   cmd->add_option("--cache-in", o.cache_in,
                   "Splat: start from the irradiance records of a cache file that --cache-out wrote for this scene "
@@ -120,7 +120,7 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderOptions& o, const HelpGroups& g
       ->check(CLI::ExistingFile);
   cmd->add_option("--cache-out", o.cache_out,
                   "Splat: write the irradiance records kept after the last frame to this cache file");
-  cmd->add_option("--quality", o.quality,
+  cmd->add_option("--quality", quality,
                   "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
                   "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
                   "where the frame allows, 64 light samples); options given on the command line win")
@@ -221,7 +221,7 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderOptions& o, const HelpGroups& g
       ->group(lab);
 }
 
-void RenderMethodFlags::apply(CLI::App* cmd, RenderOptions& o) const {
+void RenderMethodFlags::apply(CLI::App* cmd, RenderJob& o, const std::string& quality) const {
   o.settings.gi = parse_gi_method(gi);
   if (!bounce_method.empty()) o.settings.bounce_method = parse_bounce_method(bounce_method);
   if (!hemisphere.empty()) parse_hemisphere(hemisphere, o.settings.cache);
@@ -230,7 +230,7 @@ void RenderMethodFlags::apply(CLI::App* cmd, RenderOptions& o) const {
   o.settings.glossy_reads_records = !glossy_paths;
   o.settings.glossy_adaptive = !glossy_uniform;
   o.settings.light_adaptive = !light_uniform;
-  apply_quality(o.quality, o.settings, [&](const char* option) { return cmd->count(option) > 0; });
+  apply_quality(quality, o.settings, [&](const char* option) { return cmd->count(option) > 0; });
 }
 
 HelpGroups help_groups(std::vector<char*>& args) {

@@ -44,17 +44,18 @@ struct EnvironmentFlags {
 // one. --max-device-memory only where a frame is rendered.
 void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device);
 
-// The options every image-making command shares: scene, outputs, device, frame and camera, light samples.
-void add_frame_options(CLI::App* cmd, RenderOptions& o, CameraFlags& cam, EnvironmentFlags& env,
-                       const HelpGroups& groups);
+// The options every image-making command shares: scene, outputs, device, frame and camera, light samples, and the
+// summary's JSON and progress lines.
+void add_frame_options(CLI::App* cmd, RenderJob& job, std::string& json_path, bool& progress_lines, CameraFlags& cam,
+                       EnvironmentFlags& env, const HelpGroups& groups);
 
 // How `render` and `animate` compute a frame: the quality preset, the indirect-light method and the cache's options.
 struct RenderMethodFlags {
   std::string gi = "splat", hemisphere, spacing, fine_hemisphere, bounce_method;
   bool glossy_paths = false, glossy_uniform = false, light_uniform = false;
-  void add(CLI::App* cmd, RenderOptions& o, const HelpGroups& groups);
+  void add(CLI::App* cmd, RenderJob& job, std::string& quality, const HelpGroups& groups);
   // After parsing: the strings parsed into the settings, then the quality preset under the options given.
-  void apply(CLI::App* cmd, RenderOptions& o) const;
+  void apply(CLI::App* cmd, RenderJob& job, const std::string& quality) const;
 };
 
 // The commands, each registering its options in its own file (cli/<name>_command.cpp; reference's in

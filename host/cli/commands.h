@@ -13,6 +13,9 @@
 #include "scene/gltf_loader.h"
 #include "scene/scene_limits.h"
 #include "scene/scene_plan.h"
+#include "render/settings_text.h"
+#include "sequence/render_job.h"
+#include "sequence/walkthrough.h"
 
 namespace rcsplat {
 
@@ -21,28 +24,14 @@ struct DevicesOptions {
 };
 int run_devices(const DevicesOptions& options);
 
-struct RenderOptions {
-  std::string scene_path;  // empty: the built-in Cornell box
-  std::vector<std::string> outputs;
-  std::string device;
-  RenderSettings settings;
-  EnvironmentSettings environment;  // --sky, --environment (part of the scene once loaded)
-  SceneLimits limits;               // --asset-root, --max-triangles, --max-host-memory, --max-device-memory
-  float exposure = 0.0f;
-  std::string json_path;
+// render and reference: the job (sequence/render_job.h) and what the command does besides.
+struct RenderOptions : RenderJob {
+  std::string json_path;        // the summary as JSON
   bool progress_lines = false;  // --progress-lines: "Progress: NN%" lines on stdout (util/log.h)
-  bool resume = false;  // reference: add samples to the .exr output written by an earlier run
+  bool resume = false;   // reference: add samples to the .exr output written by an earlier run
   bool denoise = false;  // render --denoise: Open Image Denoise on the per-pixel sampled layers (render/denoise_frame.h)
   std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
-  // Cache files (render/cache_file.h): the splat's kept records read before the first frame, written after the last.
-  std::string cache_in, cache_out;
 };
-// --quality: draft, standard (the defaults) or final sets accuracy, rays per record, pixel and light samples, except
-// those whose option was given (`given("--accuracy")`). quality_summary says what the request holds after it, for the
-// summary, and whether given options replaced some of the preset's.
-void apply_quality(const std::string& quality, RenderSettings& settings,
-                   const std::function<bool(const char*)>& given);
-std::string quality_summary(const std::string& quality, const RenderSettings& settings);
 int run_render(const RenderOptions& options);
 // `reference`'s default path samples per pixel (and light samples, unless --light-samples is given).
 constexpr unsigned kReferenceSamples = 1024;
@@ -53,30 +42,12 @@ constexpr unsigned kReferenceSamples = 1024;
 bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& options, const std::string& path,
                       RenderedImage& image);
 
-// `rcsplat animate`: a camera path (render/camera_path.h) rendered to a numbered frame sequence.
+// `rcsplat animate`: the walkthrough library's request (sequence/walkthrough.h) with the command's summary.
 struct AnimateOptions {
-  RenderOptions render;  // outputs are frame patterns (util/frame_pattern.h); --eye and the like start an --orbit
-  std::string keyframes;     // a keyframe file; else
-  double orbit_seconds = 0;  // an orbit of this many seconds, sweeping orbit_degrees; else the scene's glTF animation:
-  double orbit_degrees = 360.0;
-  int animation = 0;
-  double fps = 24.0;
-  long long first_frame = 0, last_frame = -1;  // -1: the path's last frame
-  std::string stats_path;  // a CSV row a frame
-  std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
-  bool cache_per_frame = false;            // else irradiance records are kept across frames (render/kept_records.h)
-  // With --cache-in: every frame starts from the file's records alone, so a frame is the same bits whatever range of
-  // frames a process renders (a walkthrough split over processes or machines).
-  bool cache_fixed = false;
-  // Render only the frames whose outputs are not all there (a rerun or a requeue of a stopped task); the frames must
-  // not depend on each other (cache_fixed or cache_per_frame).
-  bool skip_existing = false;
-  // The cache pre-pass (render/cache_merge.h, docs/FARM.md): with cache_every K > 0, only the range's frames that K
-  // divides are rendered, each from no records (the light kept), and --cache-out gets their records tagged by frame;
-  // -o is optional. With cache_merge, no frame is rendered: those part files are merged into --cache-out.
-  long long cache_every = 0;
-  std::vector<std::string> cache_merge;
-  // --kept-records is render.settings.kept_records_capacity.
+  WalkthroughRequest walk;
+  std::string json_path;
+  bool progress_lines = false;
+  std::string quality = "standard";
 };
 int run_animate(const AnimateOptions& options);
 
@@ -99,10 +70,9 @@ struct InfoOptions {
   SceneLimits limits;
 };
 int run_info(const InfoOptions& options);
-// The scene plan's lines (info and the render summary), its JSON, and the kernel switches with the BVH's stack size.
+// The scene plan's lines (info and the render summary) and its JSON.
 void print_scene_plan(const ScenePlan& plan, int bvh_depth);
 nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth);
-std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth);
 
 struct CompareOptions {
   std::string image_path, reference_path, heatmap_path, flip_heatmap_path, json_path;
@@ -111,12 +81,6 @@ struct CompareOptions {
   float exposure = 0.0f;               // the tone mapping FLIP judges, in stops as for PNGs
 };
 int run_compare(const CompareOptions& options);
-
-// Parsers for the render options; each throws rcsplat::Error naming the option on bad input.
-GiMethod parse_gi_method(const std::string& name);
-BounceMethod parse_bounce_method(const std::string& name);
-void parse_hemisphere(const std::string& text, CacheSettings& cache, bool fine = false);  // "MxN"
-void parse_spacing(const std::string& text, CacheSettings& cache);     // "MIN,MAX"
 
 // `rcsplat sweep`: every combination of cache settings, and path tracing at several sample counts (plain and, where
 // the benchmark Python environment has pyoidn, denoised), rendered on one device and judged against a reference.
@@ -158,32 +122,5 @@ int run_bench(const BenchOptions& options);
 int run_bench_frames(const BenchOptions& options);
 // Sponza from ../shared/scenes beside the source tree, or "" when it is not there.
 std::string default_bench_scene();
-
-// The scene at path (glTF), or the built-in Cornell box for an empty path; a camera and light added where missing,
-// placed for the camera the user chose (render/camera.h add_view_defaults).
-// With the environment the options ask for (--sky, --environment), which also stands in for the default light.
-// A glTF scene reads only what `limits` allows (scene/scene_limits.h, docs/SECURITY.md), placed in `pose` (its rest
-// pose by default; scene/gltf_loader.h).
-Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
-                 const EnvironmentSettings& environment = {}, const SceneLimits& limits = {},
-                 const ScenePose& pose = {});
-
-// --cache-in / --cache-out (render/cache_file.h): checked before any work (the splat only; --cache-out writable);
-// then read into the renderer's kept records (or another KeptCache) for the plan's settings, or written from them.
-void check_cache_files(const RenderOptions& options);
-void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
-void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
-void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
-void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
-
-// The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.
-ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings);
-
-// Writes text to path atomically (temporary file, then rename). Throws rcsplat::Error.
-void write_text_file(const std::string& path, const std::string& text);
 
 }  // namespace rcsplat

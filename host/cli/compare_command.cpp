@@ -2,6 +2,7 @@
 
 #include "cli/command_line.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "image/comparison.h"
 #include "image/flip.h"
 #include "image/image_io.h"

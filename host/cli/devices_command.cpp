@@ -4,6 +4,7 @@
 #include "cl/device_info.h"
 #include "cli/command_line.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 
 namespace rcsplat {
 

@@ -10,18 +10,13 @@
 #include "cl/gpu_context.h"
 #include "cli/command_line.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "render/bounce_choice.h"
 #include "render/renderer.h"
 #include "scene/scene_frame.h"
 #include "util/error.h"
 
 namespace rcsplat {
-
-std::map<std::string, std::string> plan_switches(const ScenePlan& plan, int bvh_depth) {
-  std::map<std::string, std::string> switches = plan.switches;
-  switches["BVH_STACK_SIZE"] = bvh_stack_switch(Bvh8::stack_size_for_depth(bvh_depth));
-  return switches;
-}
 
 void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
   std::printf("triangles    %zu, %zu of them emissive\n", plan.triangles, plan.emissive_triangles);
@@ -52,7 +47,7 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
               plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)");
   std::printf("switches    ");
-  for (const auto& [name, value] : plan_switches(plan, bvh_depth)) std::printf(" %s=%s", name.c_str(), value.c_str());
+  for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth)) std::printf(" %s=%s", name.c_str(), value.c_str());
   std::printf("\n");
 }
 
@@ -83,7 +78,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
            {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
           {"environment", environment},
           {"not_simulated", plan.not_simulated},
-          {"switches", plan_switches(plan, bvh_depth)}};
+          {"switches", scene_plan_switches(plan, bvh_depth)}};
 }
 
 namespace {

@@ -112,7 +112,8 @@ Command add_reference_command(CLI::App& app, const HelpGroups& groups) {
   settings.preferred_pixel_samples = kReferencePixelSamples;
   CLI::App* cmd =
       app.add_subcommand("reference", "Path-trace a converged reference (same materials, lights and bounce count)");
-  add_frame_options(cmd, s->options, s->camera, s->environment, groups);
+  add_frame_options(cmd, s->options, s->options.json_path, s->options.progress_lines, s->camera, s->environment,
+                    groups);
   cmd->add_option("--spp", settings.path.samples,
                   "Samples per pixel (default " + std::to_string(kReferenceSamples) +
                       "); the light samples default to the same number");

@@ -383,18 +383,19 @@ Command add_render_command(CLI::App& app, const HelpGroups& groups) {
   };
   auto s = std::make_shared<State>();
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene (default: the built-in Cornell box)");
-  add_frame_options(cmd, s->options, s->camera, s->environment, groups);
+  add_frame_options(cmd, s->options, s->options.json_path, s->options.progress_lines, s->camera, s->environment,
+                    groups);
   cmd->add_flag("--denoise", s->options.denoise,
                 "Denoise the light each pixel samples itself (area and environment direct light, sharp glossy "
                 "lobes; path tracing: the whole image) with Intel Open Image Denoise, and compose it with the "
                 "cache's indirect light, which stays as it is; the EXR keeps the noisy layers too (noisy, "
                 "noisy_direct, noisy_glossy, noisy_indirect). Needs the library: bash scripts/install-oidn.sh");
   if (!groups.help_all) cmd->footer("--help-all also lists the experiment options.");
-  s->method.add(cmd, s->options, groups);
+  s->method.add(cmd, s->options, s->options.quality, groups);
   return {cmd, [s, cmd] {
             s->camera.apply(s->options.settings);
             s->environment.apply(s->options.environment);
-            s->method.apply(cmd, s->options);
+            s->method.apply(cmd, s->options, s->options.quality);
             return run_render(s->options);
           }};
 }

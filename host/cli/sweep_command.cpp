@@ -15,6 +15,7 @@
 #include "cli/command_line.h"
 #include "kernels/hsh.h"
 #include "cli/commands.h"
+#include "util/atomic_file.h"
 #include "image/comparison.h"
 #include "image/image_io.h"
 #include "render/render_output.h"

@@ -1,6 +1,7 @@
 #include "image/flicker.h"
 
 #include <cmath>
+#include <numbers>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -60,7 +61,7 @@ ViewCamera parse_view_camera(const std::string& attribute, const std::string& so
   if (!(glm::length(c.right) > 1e-9)) throw Error(source + ": its rcsplat:camera's up is along the view");
   c.right = glm::normalize(c.right);
   c.up = glm::cross(c.right, c.forward);
-  c.tan_half_fov_y = std::tan(0.5 * yfov_degrees * 3.14159265358979323846 / 180.0);
+  c.tan_half_fov_y = std::tan(0.5 * yfov_degrees * std::numbers::pi / 180.0);
   c.half_height = ymag;
   return c;
 }

@@ -52,7 +52,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     // The photons stay on the device from their shooting to the grids (passes/photon_landings_pass.h).
     PhotonLandingsPass kept(f.gpu);
     uint64_t paths = 0;
-    // A cache file's photons (render/cache_file.h) for a Renderer that has built no map yet: the same photons, so the
+    // A cache file's photons (sequence/cache_file.h) for a Renderer that has built no map yet: the same photons, so the
     // same map on the same device.
     if (stored && stored->has_photon_map && !had_map) {
       kept.load(stored->photons);

@@ -60,13 +60,13 @@ class KeptRecords {
   void raise_largest_radiance(float value) { largest_radiance_ = std::max(largest_radiance_, value); }
 
   // Drops every record (and the brightest stratum) but keeps the key, so the light kept with them stays: a cache
-  // pre-pass's key frame starts from no records (render/cache_merge.h).
+  // pre-pass's key frame starts from no records (sequence/cache_merge.h).
   void drop_records();
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
   void set_capacity(size_t capacity) { capacity_ = capacity; }
 
-  // For cache files (render/cache_file.h): what is kept, the frame that last used each record, the frames begun.
+  // For cache files (sequence/cache_file.h): what is kept, the frame that last used each record, the frames begun.
   const std::vector<CacheRecord>& records() const { return records_; }
   const std::vector<uint64_t>& last_used() const { return last_used_; }
   const std::vector<float>& payload() const { return payload_; }

@@ -49,7 +49,7 @@ class Renderer {
 
   const DeviceScene& device_scene() const { return *device_scene_; }
   // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
-  // cache files (render/cache_file.h) read into it before a frame and write it after one.
+  // cache files (sequence/cache_file.h) read into it before a frame and write it after one.
   KeptCache& kept_records();
 
  private:

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include <filesystem>
+#include <fstream>
 
 #include "util/error.h"
 
@@ -51,6 +52,14 @@ void write_file_atomically(const std::string& path, const std::function<std::str
     fs::remove(temp, ec);
     throw Error(path + ": cannot move the finished file into place: " + ec.message());
   }
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](const std::string& temp) -> std::string {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    return out.flush() ? "" : "cannot be written";
+  });
 }
 
 }  // namespace rcsplat

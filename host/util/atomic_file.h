@@ -17,4 +17,7 @@ void check_writable_destination(const std::string& path);
 // removed).
 void write_file_atomically(const std::string& path, const std::function<std::string(const std::string&)>& write);
 
+// Writes text to path atomically, as write_file_atomically does. Throws rcsplat::Error.
+void write_text_file(const std::string& path, const std::string& text);
+
 }  // namespace rcsplat

@@ -6,14 +6,20 @@
 
 #include <cmath>
 
+#include "kernels/host_device.h"
+
 namespace rcsplat {
 
-inline double luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+inline double luminance(double r, double g, double b) {
+  return RC_LUMINANCE_R * r + RC_LUMINANCE_G * g + RC_LUMINANCE_B * b;
+}
 inline double luminance(const glm::dvec3& c) { return luminance(c.x, c.y, c.z); }
 inline double luminance(const glm::vec3& c) { return luminance(c.x, c.y, c.z); }
 inline double luminance(const float* c) { return luminance(c[0], c[1], c[2]); }
 // In float, as the kernels compute it (where the host must weigh as they do).
-inline float luminance_f(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
+inline float luminance_f(float r, float g, float b) {
+  return RC_FLOAT(RC_LUMINANCE_R) * r + RC_FLOAT(RC_LUMINANCE_G) * g + RC_FLOAT(RC_LUMINANCE_B) * b;
+}
 
 // An sRGB-encoded value in [0, 1] to linear.
 inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }

@@ -1,4 +1,4 @@
-#include "render/camera_path.h"
+#include "sequence/camera_path.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <sstream>
 
 #include "util/error.h"
@@ -15,7 +16,6 @@
 namespace rcsplat {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr uintmax_t kMaxKeyframeFileBytes = 16u << 20;
 
 std::string camera_name(const Scene& scene, int camera) {
@@ -204,7 +204,7 @@ CameraPath orbit_camera_path(const SceneCamera& start, double seconds, double de
   path.description = text;
   path.duration = seconds;
   path.at = [=](double t) {
-    const double angle = degrees * kPi / 180.0 * t / seconds, c = std::cos(angle), s = std::sin(angle);
+    const double angle = degrees * std::numbers::pi / 180.0 * t / seconds, c = std::cos(angle), s = std::sin(angle);
     // Rodrigues' rotation of the radial part about the axis (radial is perpendicular to it).
     const glm::dvec3 turned = c * radial + s * glm::cross(axis, radial);
     CameraPose pose;

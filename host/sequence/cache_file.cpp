@@ -1,4 +1,4 @@
-#include "render/cache_file.h"
+#include "sequence/cache_file.h"
 
 #include <algorithm>
 #include <cmath>

@@ -32,4 +32,19 @@ std::vector<char> records_not_reached_earlier(const std::vector<CacheRecord>& re
 CacheMergeStats merge_cache_parts(const std::vector<CachePart>& parts, const KeptRecordsKey& key, size_t capacity,
                                   KeptCache& into);
 
+// What a pre-pass task writes: each key frame's records, in the order its frame placed them, tagged with the frame.
+class PrePassPart {
+ public:
+  // The records a key frame's renderer kept (it started from none). Throws rcsplat::Error when it evicted some.
+  void add_key_frame(long long frame, const KeptCache& kept);
+  // The part as a cache file holds it, with the light the key frames read. Throws rcsplat::Error past capacity.
+  KeptCache cache(const KeptCache& kept, const KeptRecordsKey& key, size_t capacity) const;
+  size_t irradiance_records() const { return irradiance_.records.size(); }
+  size_t radiance_records() const { return radiance_.records.size(); }
+
+ private:
+  KeptRecords::Contents irradiance_, radiance_;
+  uint64_t frames_ = 0;
+};
+
 }  // namespace rcsplat

@@ -1,5 +1,5 @@
 // A camera path for `rcsplat animate`: where the camera is at each time of a walkthrough, from the scene's own glTF
-// animation of a camera node (scene/animation.h), from a keyframe file (docs/USAGE.md "Camera paths"), or an orbit
+// animation of a camera node (scene/animation.h), from a keyframe file (docs/USAGE.md "Walkthroughs", --keyframes), or an orbit
 // around the chosen camera's target. A pose becomes a frame through the camera overrides (render/camera.h), so every
 // frame is planned exactly as `render` plans a still one.
 #pragma once

@@ -1,7 +1,7 @@
-// Parsing the render command's compound options.
+#include "render/settings_text.h"
+
 #include <cstdio>
 
-#include "cli/commands.h"
 #include "util/error.h"
 
 namespace rcsplat {

@@ -1,16 +1,13 @@
-#include <unistd.h>
+#include "sequence/render_job.h"
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 
-#include "cli/commands.h"
-#include "util/atomic_file.h"
-#include "render/cache_file.h"
 #include "render/camera.h"
+#include "render/kept_records.h"
 #include "render/pixel_samples.h"
 #include "scene/cornell_box.h"
-#include "scene/gltf_loader.h"
+#include "sequence/cache_file.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -48,7 +45,11 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:pixel_points", pixel_points_name(settings)}};
 }
 
-void check_cache_files(const RenderOptions& o) {
+Scene load_scene(const RenderJob& job) {
+  return load_scene(job.scene_path, job.settings.camera, job.settings.camera_overrides, job.environment, job.limits);
+}
+
+void check_cache_files(const RenderJob& o) {
   if ((!o.cache_in.empty() || !o.cache_out.empty()) && o.settings.gi != GiMethod::splat)
     throw Error("--cache-in and --cache-out: only the splat keeps records (--gi splat)");
   if (!o.cache_out.empty()) check_writable_destination(o.cache_out);
@@ -83,14 +84,6 @@ void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& 
 void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
                      const std::string& path) {
   save_cache_file(gpu, renderer.kept_records(), scene, plan, path);
-}
-
-void write_text_file(const std::string& path, const std::string& text) {
-  write_file_atomically(path, [&](const std::string& temp) -> std::string {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    return out.flush() ? "" : "cannot be written";
-  });
 }
 
 }  // namespace rcsplat

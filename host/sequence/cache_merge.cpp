@@ -1,4 +1,4 @@
-#include "render/cache_merge.h"
+#include "sequence/cache_merge.h"
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +180,33 @@ CacheMergeStats merge_cache_parts(const std::vector<CachePart>& parts, const Kep
   into.radiance.restore(key, std::move(radiance), frames);
   into.light = parts[0].cache->light;
   return stats;
+}
+
+void PrePassPart::add_key_frame(long long frame, const KeptCache& kept) {
+  for (auto [from, to] : {std::pair{&kept.irradiance, &irradiance_}, std::pair{&kept.radiance, &radiance_}}) {
+    if (from->stats().evicted)
+      throw Error("--cache-every: key frame " + std::to_string(frame) + " placed more records than --kept-records " +
+                  "keeps; give a larger --kept-records here, to the merge and to every animate that reads the file");
+    to->records.insert(to->records.end(), from->records().begin(), from->records().end());
+    to->last_used.insert(to->last_used.end(), from->records().size(), uint64_t(frame));
+    to->payload.insert(to->payload.end(), from->payload().begin(), from->payload().end());
+    if (!from->records().empty()) to->payload_per_record = from->payload_per_record();
+    to->largest_radiance = std::max(to->largest_radiance, from->largest_radiance());
+  }
+  frames_ = uint64_t(frame) + 1;
+}
+
+KeptCache PrePassPart::cache(const KeptCache& kept, const KeptRecordsKey& key, size_t capacity) const {
+  if (irradiance_.records.size() > capacity || radiance_.records.size() > capacity)
+    throw Error("--cache-every: the key frames placed " +
+                std::to_string(std::max(irradiance_.records.size(), radiance_.records.size())) +
+                " records, more than --kept-records " + std::to_string(capacity) +
+                "; give a larger --kept-records here, to the merge and to every animate that reads the file");
+  KeptCache out(capacity);
+  out.irradiance.restore(key, irradiance_, frames_);
+  out.radiance.restore(key, radiance_, frames_);
+  out.light = kept.light;
+  return out;
 }
 
 }  // namespace rcsplat

@@ -1,0 +1,293 @@
+#include "sequence/walkthrough.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "cl/device_info.h"
+#include "render/kept_records.h"
+#include "render/render_output.h"
+#include "sequence/cache_merge.h"
+#include "sequence/camera_path.h"
+#include "sequence/video.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/frame_pattern.h"
+#include "util/log.h"
+#include "util/memory_use.h"
+#include "util/paths.h"
+
+namespace rcsplat {
+namespace {
+
+constexpr long long kMaxFrames = 1000000;
+
+CameraPath choose_path(const WalkthroughRequest& o, const Scene& scene) {
+  const CameraOverrides& overrides = o.render.settings.camera_overrides;
+  const bool overridden = overrides.eye || overrides.target || overrides.up || overrides.fov_degrees;
+  if (!o.keyframes.empty() && o.orbit_seconds > 0.0) throw Error("animate: give --keyframes or --orbit, not both");
+  if (o.orbit_seconds > 0.0)
+    return orbit_camera_path(choose_camera(scene, o.render.settings.camera, overrides), o.orbit_seconds,
+                             o.orbit_degrees);
+  if (overridden)
+    throw Error(
+        "animate: --eye, --target, --up and --fov set where an --orbit starts; a keyframe file or the scene's "
+        "animation places the camera itself");
+  if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
+  if (o.render.scene_path.empty())
+    throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
+  return gltf_camera_path(scene, o.render.settings.camera, o.animation, o.cache == CacheMode::per_frame);
+}
+
+// The PNG frame pattern the MP4 preview is made from: the first PNG output.
+std::string png_pattern(const WalkthroughRequest& o) {
+  for (const std::string& out : o.render.outputs)
+    if (lower_extension(out) == ".png") return out;
+  return "";
+}
+
+// The frames a request renders and the scene's renderer for each: one Renderer for a still scene; a scene the path's
+// animation moves (CacheMode::per_frame only: choose_path refuses it otherwise) is loaded again in each frame's pose
+// with a renderer of its own, as `render` would render that pose.
+class FrameRenderers {
+ public:
+  FrameRenderers(GpuContext& gpu, const WalkthroughRequest& o, const Scene& scene, const CameraPath& path)
+      : gpu_(gpu), o_(o), scene_(scene), path_(path), moves_(path.moves_scene_animation >= 0) {
+    if (!moves_) renderer_ = std::make_unique<Renderer>(gpu_, scene_, o_.render.settings.forced_switches);
+  }
+  Renderer& for_frame(long long frame) {
+    if (!moves_) return *renderer_;
+    renderer_.reset();  // before the scene it renders from
+    const RenderSettings& s = o_.render.settings;
+    posed_ = std::make_unique<Scene>(load_scene(o_.render.scene_path, s.camera, s.camera_overrides,
+                                                o_.render.environment, o_.render.limits,
+                                                ScenePose{path_.moves_scene_animation, double(frame) / o_.fps}));
+    renderer_ = std::make_unique<Renderer>(gpu_, *posed_, s.forced_switches);
+    return *renderer_;
+  }
+  Renderer& current() { return *renderer_; }
+  const Scene& scene() const { return posed_ ? *posed_ : scene_; }
+
+ private:
+  GpuContext& gpu_;
+  const WalkthroughRequest& o_;
+  const Scene& scene_;
+  const CameraPath& path_;
+  const bool moves_;
+  std::unique_ptr<Scene> posed_;
+  std::unique_ptr<Renderer> renderer_;
+};
+
+}  // namespace
+
+const char* cache_mode_name(CacheMode mode) {
+  switch (mode) {
+    case CacheMode::kept: return "kept_records";
+    case CacheMode::per_frame: return "per_frame";
+    case CacheMode::fixed: return "fixed";
+    case CacheMode::pre_pass: return "pre_pass";
+    case CacheMode::merge: return "merge";
+  }
+  return "?";
+}
+
+CacheMode cache_mode_from_flags(bool per_frame, bool fixed, bool pre_pass, bool merge) {
+  std::vector<std::string> given;
+  if (per_frame) given.push_back("--cache-per-frame");
+  if (fixed) given.push_back("--cache-fixed");
+  if (pre_pass) given.push_back("--cache-every");
+  if (merge) given.push_back("--cache-merge");
+  if (given.size() > 1) {
+    std::string names;
+    for (size_t i = 0; i < given.size(); ++i) names += (i ? " and " : "") + given[i];
+    throw Error(names + ": one cache mode a run (a cache per frame, a fixed cache, a pre-pass task or a merge)");
+  }
+  return per_frame ? CacheMode::per_frame
+         : fixed   ? CacheMode::fixed
+         : pre_pass ? CacheMode::pre_pass
+         : merge    ? CacheMode::merge
+                    : CacheMode::kept;
+}
+
+void check_walkthrough(const WalkthroughRequest& o) {
+  check_request(o.render.settings);
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw Error("--fps must be above 0 and at most 1000");
+  const RenderJob& job = o.render;
+  const CacheMode mode = o.cache;
+  const bool pre_pass = mode == CacheMode::pre_pass, merging = mode == CacheMode::merge;
+  if ((!job.cache_in.empty() || !job.cache_out.empty()) && mode == CacheMode::per_frame)
+    throw Error("--cache-in and --cache-out: with --cache-per-frame no record is kept to read or write");
+  if (mode == CacheMode::fixed && job.cache_in.empty())
+    throw Error("--cache-fixed: needs --cache-in, the cache file every frame starts from");
+  if (o.skip_existing && mode != CacheMode::fixed && mode != CacheMode::per_frame)
+    throw Error("--skip-existing: without --cache-fixed or --cache-per-frame each frame reads the records the frames "
+                "before it placed, so a frame rendered after a skipped one would differ from a whole run's");
+  if (mode == CacheMode::fixed && !job.cache_out.empty())
+    throw Error("--cache-fixed and --cache-out: a fixed cache keeps nothing a frame places, so there is nothing new to "
+                "write");
+  if (pre_pass && o.cache_every < 1) throw Error("--cache-every: a key frame every K frames needs K >= 1");
+  if (merging && o.cache_merge.empty()) throw Error("--cache-merge: name the pre-pass parts to merge");
+  if (pre_pass || merging) {
+    const char* name = pre_pass ? "--cache-every" : "--cache-merge";
+    if (job.cache_out.empty()) throw Error(std::string(name) + ": needs --cache-out, the file it writes");
+    if (!job.cache_in.empty() || o.skip_existing)
+      throw Error(std::string(name) +
+                  ": a pre-pass starts each key frame from no records; leave out --cache-in, --cache-fixed, "
+                  "--cache-per-frame and --skip-existing");
+    if (!o.mp4_path.empty()) throw Error(std::string(name) + ": renders the key frames only; leave out --mp4");
+    if (merging && !job.outputs.empty()) throw Error("--cache-merge: renders no frame; leave out -o");
+    if (merging && !o.stats_path.empty()) throw Error("--cache-merge: renders no frame; leave out --stats");
+  }
+  if (job.outputs.empty() && !pre_pass && !merging) throw Error("animate: give at least one output with -o frames/%04d.exr");
+  for (const std::string& out : job.outputs) {
+    (void)FramePattern(out, "-o");  // throws for a pattern without one frame number
+    if (!is_output_format(out)) throw Error(out + ": unknown output format (use " + output_formats() + ")");
+  }
+  if (!o.mp4_path.empty()) {
+    if (png_pattern(o).empty()) throw Error("--mp4: the preview is made from PNG frames; add -o frames/%04d.png");
+    if (find_ffmpeg().empty())
+      throw Error(
+          "--mp4: ffmpeg is not installed (on Debian: apt-get install ffmpeg); the frames need no ffmpeg, leave "
+          "--mp4 out to render them alone");
+    check_writable_destination(o.mp4_path);
+  }
+  if (!o.stats_path.empty()) check_writable_destination(o.stats_path);
+  check_cache_files(job);
+}
+
+WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
+  check_walkthrough(o);
+  const RenderSettings& request = o.render.settings;
+  const bool pre_pass = o.cache == CacheMode::pre_pass;
+  WalkthroughResult result;
+  const Scene scene = load_scene(o.render);
+  const CameraPath path = choose_path(o, scene);
+  const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
+  const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
+  if (first < 0 || last < first) throw Error("--first-frame and --last-frame: an empty or negative range");
+  if (last - first + 1 > kMaxFrames) throw Error("animate: at most " + std::to_string(kMaxFrames) + " frames a run");
+  std::vector<FramePattern> outputs;
+  for (const std::string& out : o.render.outputs) outputs.emplace_back(out, "-o");
+  for (const FramePattern& p : outputs) check_writable_destination(p.path(first));
+  if (pre_pass && (first + o.cache_every - 1) / o.cache_every * o.cache_every > last)
+    throw Error("--cache-every " + std::to_string(o.cache_every) + ": no key frame (a frame it divides) in frames " +
+                std::to_string(first) + " to " + std::to_string(last));
+  const bool orthographic = scene.cameras[size_t(request.camera)].orthographic;
+  result.scene = scene.source;
+  result.path_description = path.description;
+  result.path_duration = path.duration;
+  result.first = first;
+  result.last = last;
+
+  DeviceInfo device = select_device(o.render.device);
+  result.device = device.name;
+  log_info("device: " + device.name + " (" + device.platform_name + ")");
+  log_info("camera path: " + path.description + ", " + std::to_string(path.duration) + " s; frames " +
+           std::to_string(first) + " to " + std::to_string(last) + " at " + std::to_string(o.fps) + " frames/s");
+  const auto start = std::chrono::steady_clock::now();
+  GpuContext gpu(device);
+  gpu.set_memory_budget(o.render.limits.device_memory_bytes);
+  FrameRenderers renderers(gpu, o, scene, path);
+  set_progress_shown(false);  // a line a frame instead of each pass's progress
+  struct ShowProgressAgain {
+    ~ShowProgressAgain() { set_progress_shown(true); }
+  } show_progress_again;
+
+  auto frame_settings = [&](long long frame) {
+    RenderSettings settings = request;
+    settings.keep_records = o.cache != CacheMode::per_frame;
+    settings.color_only = outputs_need_only_color(o.render.outputs);
+    CameraPose pose = path.at(double(frame) / o.fps);
+    if (orthographic) pose.fov_degrees.reset();
+    settings.camera_overrides = pose.overrides();
+    return settings;
+  };
+  if (!o.render.cache_in.empty())  // before any frame: a file that does not fit is refused with no output
+    load_cache_file(gpu, renderers.current(), scene, renderers.current().plan(frame_settings(first)),
+                    o.render.cache_in);
+  if (o.cache == CacheMode::merge) {
+    // The parts, each read as a stranger's cache file for these settings, merged (sequence/cache_merge.h), written.
+    const FramePlan plan = renderers.current().plan(frame_settings(first));
+    const size_t capacity = request.kept_records_capacity;
+    std::vector<KeptCache> caches(o.cache_merge.size(), KeptCache(capacity));
+    std::vector<CachePart> parts;
+    for (size_t i = 0; i < caches.size(); ++i) {
+      load_cache_file(gpu, caches[i], scene, plan, o.cache_merge[i]);
+      parts.push_back({o.cache_merge[i], &caches[i]});
+    }
+    KeptCache merged(capacity);
+    result.merge = merge_cache_parts(parts, kept_records_key(plan.frame), capacity, merged);
+    save_cache_file(gpu, merged, scene, plan, o.render.cache_out);
+    return result;
+  }
+  // A fixed cache: what the file holds, put back before every frame (a frame's own records go with it).
+  std::optional<KeptCache> fixed_cache;
+  if (o.cache == CacheMode::fixed) fixed_cache.emplace(renderers.current().kept_records());
+  PrePassPart part;
+
+  FramePlan last_plan;
+  std::string table = kFrameTableHeader;
+  for (long long frame = first; frame <= last; ++frame) {
+    FrameRow row;
+    row.frame = frame;
+    row.time = double(frame) / o.fps;
+    if (pre_pass && frame % o.cache_every != 0) continue;
+    if (o.skip_existing && std::all_of(outputs.begin(), outputs.end(), [&](const FramePattern& p) {
+          return std::filesystem::is_regular_file(p.path(frame));
+        })) {
+      ++result.skipped;
+      continue;
+    }
+    const RenderSettings settings = frame_settings(frame);
+    Renderer& renderer = renderers.for_frame(frame);
+    if (fixed_cache) renderer.kept_records() = *fixed_cache;
+    if (pre_pass) {  // a key frame starts from no records; the light stays, the same in every task
+      renderer.kept_records().irradiance.drop_records();
+      renderer.kept_records().radiance.drop_records();
+    }
+    last_plan = renderer.plan(settings);
+    const RenderedImage image = renderer.render(last_plan);
+    if (pre_pass) part.add_key_frame(frame, renderer.kept_records());
+    ExrAttributes attributes = render_attributes(renderers.scene(), image, settings);
+    attributes["rcsplat:frame"] = std::to_string(frame);
+    attributes["rcsplat:time"] = std::to_string(row.time);
+    for (const FramePattern& p : outputs) write_render(p.path(frame), image, o.render.exposure, attributes);
+    row.stats = image.stats;
+    result.width = image.width;
+    result.height = image.height;
+    row.host_peak_bytes = peak_host_bytes();
+    result.rows.push_back(row);
+    table += frame_table_row(row);
+    if (!o.stats_path.empty()) write_text_file(o.stats_path, table);  // after each frame: a stopped run keeps its rows
+    char line[200];
+    std::snprintf(line, sizeof line, "frame %lld (%lld of %lld, t = %.3f s): %.2f s, %llu records (%llu reused, %llu kept)",
+                  frame, frame - first + 1, last - first + 1, row.time, image.stats.total_s,
+                  (unsigned long long)(image.stats.irradiance.records + image.stats.radiance.records),
+                  (unsigned long long)image.stats.kept_records.reused,
+                  (unsigned long long)image.stats.kept_records.kept);
+    log_info(line);
+    report_progress(double(frame - first + 1) / double(last - first + 1));
+  }
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (pre_pass) {
+    const KeptCache written =
+        part.cache(renderers.current().kept_records(), kept_records_key(last_plan.frame), request.kept_records_capacity);
+    save_cache_file(gpu, written, scene, last_plan, o.render.cache_out);
+    result.pre_pass_irradiance = part.irradiance_records();
+    result.pre_pass_radiance = part.radiance_records();
+  } else if (!o.render.cache_out.empty()) {
+    save_cache_file(gpu, renderers.current(), scene, last_plan, o.render.cache_out);
+  }
+  if (!o.mp4_path.empty()) {
+    encode_mp4(find_ffmpeg(), png_pattern(o), first, last - first + 1, o.fps, o.mp4_path);
+    result.mp4_written = true;
+  }
+  return result;
+}
+
+}  // namespace rcsplat
