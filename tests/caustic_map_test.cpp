@@ -15,6 +15,7 @@
 #include "passes/caustic_map_pass.h"
 #include "render/renderer.h"
 #include "caustic_room_scene.h"
+#include "pass_probe.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -58,7 +59,7 @@ TEST(CausticMap, IrradianceMatchesADoublePrecisionSumOverTheDisc) {
     points.push_back(floor ? cl_float4{{u(rng), 0.0f, u(rng), 0.0f}} : cl_float4{{u(rng), u(rng), 0.0f, 0.0f}});
     normals.push_back(floor ? cl_float4{{0, 1, 0, 0}} : cl_float4{{0, 0, 1, 0}});
   }
-  const std::vector<cl_float4> got = map.irradiance_at(points, normals);
+  const std::vector<cl_float4> got = test::caustic_irradiance_at(test::gpu(), map, points, normals);
   const double r2 = double(radius) * radius, half = PHOTON_DISC_HALF_THICKNESS * double(radius);
   size_t lit = 0;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -105,7 +106,7 @@ TEST(CausticMap, LitRecordsAddTheMapsIrradianceAtEachRecord) {
     points.push_back({{p.x, p.y, p.z, 0.0f}});
     normals.push_back({{n.x, n.y, n.z, 0.0f}});
   }
-  const std::vector<cl_float4> caustic = map.irradiance_at(points, normals);
+  const std::vector<cl_float4> caustic = test::caustic_irradiance_at(test::gpu(), map, points, normals);
   const cl::Buffer on_device = test::gpu().upload(records);
   const cl::Buffer& lit_buffer = map.lit_records(on_device, uint32_t(records.size()));
   const std::vector<CacheRecord> lit = test::gpu().download<CacheRecord>(lit_buffer, records.size());

@@ -8,6 +8,7 @@
 #include <regex>
 #include <set>
 
+#include "reference/world_record_grid.h"
 #include "cl/device_scene.h"
 #include "cl/embedded_kernels.h"
 #include "passes/ray_cast_pass.h"
@@ -19,6 +20,7 @@
 #include "passes/photon_map_pass.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
+#include "pass_probe.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -116,9 +118,9 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   PhotonHit beside = photon;  // a photon's own estimate leaves it out: a second one lights it
   beside.position[0] = 0.01f;
   PhotonMapPass map(gpu, build_photon_map({photon, beside}, 1.0, 1, 1));
-  EXPECT_GT(map.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
+  EXPECT_GT(test::photon_radiance_at(gpu, map, {{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   CausticMapPass caustics(gpu, {photon, beside}, 0.1f);
-  EXPECT_GT(caustics.irradiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
+  EXPECT_GT(test::caustic_irradiance_at(gpu, caustics, {{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0], 0.0f);
   Bvh8 bvh = build_bvh8(scene.positions);
   DeviceScene device(gpu, scene, bvh);
   CacheRecord record{};
@@ -129,7 +131,7 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   const std::vector<CacheRecord> one_record{record};
   const WorldRecordGrid record_grid = build_world_record_grid(one_record, 0.5f);
   GlossyPass glossy(gpu, device, false);
-  EXPECT_GT(glossy.cached_irradiance_at(one_record, record_grid, {{{0.0f, 0.0f, 0.0f, 0.0f}}},
+  EXPECT_GT(test::PassProbe::cached_irradiance_at(glossy, one_record, record_grid, {{{0.0f, 0.0f, 0.0f, 0.0f}}},
                                         {{{0.0f, 1.0f, 0.0f, 0.0f}}})[0].s[0],
             0.0f);
   RayCastPass caster(gpu, device);

@@ -28,6 +28,7 @@
 #include "closed_cube.h"
 #include "gap_room_scene.h"
 #include "render/renderer.h"
+#include "pass_probe.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -138,7 +139,7 @@ TEST(PhotonMap, EstimatesMatchADoublePrecisionSumOverTheDisc) {
   ASSERT_GT(r, 0.0);
   ASSERT_EQ(float(r), expected_r);
   PhotonMapPass pass(test::gpu(), grids);
-  std::vector<cl_float4> estimates = pass.estimates(), shallow = pass.shallow_estimates();
+  std::vector<cl_float4> estimates = test::PassProbe::photon_estimates(pass), shallow = test::PassProbe::shallow_photon_estimates(pass);
   ASSERT_EQ(estimates.size(), 2 * grids.lookup.photons.size());
   ASSERT_EQ(shallow.size(), 2 * grids.lookup.photons.size());
   size_t compared = 0, ambiguous = 0;
@@ -266,7 +267,7 @@ TEST(PhotonMap, EstimatesWithTheSceneSurfaceFitTheLightLinearlyToTheDiscsCentre)
   PhotonMapGrids grids = build_photon_map(photons, 2.0, 256, 2, triangles);
   ASSERT_FALSE(grids.patches.patches.empty());
   PhotonMapPass pass(test::gpu(), grids);
-  std::vector<cl_float4> estimates = pass.estimates();
+  std::vector<cl_float4> estimates = test::PassProbe::photon_estimates(pass);
   const double r = grids.all.params.radius;
   size_t compared = 0, edge_count = 0;
   double edge_ratio = 0.0, edge_square = 0.0, plain_ratio = 0.0;
@@ -353,7 +354,7 @@ TEST(PhotonMap, LookupReturnsTheNearestFacingPhotonsEstimate) {
   const PhotonMapParams& m = grids.lookup.params;
   const double r = m.radius;
   PhotonMapPass pass(test::gpu(), grids);
-  std::vector<cl_float4> estimates = pass.estimates();
+  std::vector<cl_float4> estimates = test::PassProbe::photon_estimates(pass);
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> u(-0.1f, 1.1f);
   std::vector<cl_float4> points, normals;
@@ -365,7 +366,7 @@ TEST(PhotonMap, LookupReturnsTheNearestFacingPhotonsEstimate) {
     points.push_back({{p.x, p.y, p.z, 0.0f}});
     normals.push_back({{n.x, n.y, n.z, 0.0f}});
   }
-  std::vector<cl_float4> found = pass.radiance_at(points, normals);
+  std::vector<cl_float4> found = test::photon_radiance_at(test::gpu(), pass, points, normals);
   size_t own_bucket = 0, half_cell = 0, dark = 0, loose = 0;
   auto equals = [&](size_t i, size_t j) {
     return found[i].s[0] == estimates[2 * j].s[0] && found[i].s[1] == estimates[2 * j].s[1] &&
@@ -551,8 +552,8 @@ TEST(PhotonMap, EstimatesFromTheDeviceSortedGridsAreTheHostGridsBitForBit) {
   PhotonLandingsPass kept(test::gpu());
   kept.load(given.photons);
   PhotonMapPass from_device(test::gpu(), sort_photon_grids(test::gpu(), kept, 2.0, 64, 4, triangles, 2));
-  const std::vector<cl_float4> a = from_host.estimates(), b = from_device.estimates();
-  const std::vector<cl_float4> c = from_host.shallow_estimates(), d = from_device.shallow_estimates();
+  const std::vector<cl_float4> a = test::PassProbe::photon_estimates(from_host), b = test::PassProbe::photon_estimates(from_device);
+  const std::vector<cl_float4> c = test::PassProbe::shallow_photon_estimates(from_host), d = test::PassProbe::shallow_photon_estimates(from_device);
   ASSERT_EQ(a.size(), 2 * host.lookup.photons.size());
   ASSERT_EQ(b.size(), a.size());
   ASSERT_EQ(d.size(), c.size());
@@ -665,7 +666,8 @@ TEST(PhotonMap, TheDeviceCutsTheHostsSurfacePatches) {
 TEST(PhotonMap, AnEmptyMapIsDark) {
   PhotonMapGrids grids = build_photon_map({}, 1.0, 32, 4);
   PhotonMapPass pass(test::gpu(), grids);
-  std::vector<cl_float4> found = pass.radiance_at({{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}});
+  std::vector<cl_float4> found =
+      test::photon_radiance_at(test::gpu(), pass, {{{0.0f, 0.0f, 0.0f, 0.0f}}}, {{{0.0f, 1.0f, 0.0f, 0.0f}}});
   EXPECT_EQ(found[0].s[0], 0.0f);
   PhotonMapGrids no_area = build_photon_map(random_photons(30, 1).photons, 0.0, 32, 4);
   EXPECT_EQ(no_area.lookup.params.photon_count, 0u);

@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "pass_probe.h"
 #include "reference/host_records.h"
 #include "cache/hsh_rotation.h"
 #include "cache/light_guide.h"
@@ -549,7 +550,7 @@ TEST(GlossyKernel, GuideShareOfRadianceCachedPixelsMatchesHostDoublePrecision) {
   const unsigned samples = 16, seed = 9, record_strata = 16 * 32, record_guide_rays = 64;
   GlossyPass glossy(gpu, twin.device, false);
   glossy.run(gbuffer.view(), samples, seed, guide, record_strata, record_guide_rays);
-  const std::vector<float> device = glossy.download_rgba();
+  const std::vector<float> device = test::PassProbe::glossy_rgba(glossy);
   const unsigned share_samples = samples;
   const SceneMaterial& metal = twin.scene.materials[1];
   const brdf_reference::Material brdf{{metal.base_color.x, metal.base_color.y, metal.base_color.z}, metal.metallic,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "pass_probe.h"
 #include "cache_test_scenes.h"
 #include "corridor_scene.h"
 #include "passes/direct_pass.h"
@@ -89,7 +90,7 @@ TEST(GlossyKernel, RoundsByEstimatedErrorKeepTheLightsMean) {
   gbuffer.run(camera_params(choose_camera(twin.scene, 0, {}), w, h));
   GlossyPass glossy(gpu, twin.device, false);
   glossy.run(gbuffer.view(), 512, 1000, {}, 0, 0, 1, {}, {}, false);
-  const double converged = frame_mean(glossy.download_rgba());
+  const double converged = frame_mean(test::PassProbe::glossy_rgba(glossy));
   ASSERT_GT(converged, 0.0) << "the walls should reflect the bright spot";
   const int seeds = 8, budget = 8;
   std::vector<double> means;
@@ -98,7 +99,7 @@ TEST(GlossyKernel, RoundsByEstimatedErrorKeepTheLightsMean) {
     ASSERT_GT(stats.sampled_sub_pixels, 100u);
     EXPECT_GT(stats.rounds, 1u) << "the budget leaves room for later rounds";
     EXPECT_LE(double(stats.chunks), double(budget) / GLOSSY_CHUNK_LOBE * double(stats.sampled_sub_pixels));
-    means.push_back(frame_mean(glossy.download_rgba()));
+    means.push_back(frame_mean(test::PassProbe::glossy_rgba(glossy)));
   }
   const auto [mean, standard_error] = mean_and_standard_error(means);
   std::printf("glossy light's frame mean: rounds %.5f +- %.5f over %d seeds, one round of 512 %.5f\n", mean,

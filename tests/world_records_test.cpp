@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "reference/world_record_grid.h"
 #include "cache/world_record_grid.h"
 #include "kernels/photon_grid.h"
 #include "passes/glossy_pass.h"
@@ -16,6 +17,7 @@
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "scene/scene_frame.h"
+#include "pass_probe.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -58,7 +60,7 @@ TEST(WorldRecords, ALookupByPositionGivesWhatTheSplatGivesThePixel) {
     pixels.push_back(i);
   }
   GlossyPass glossy(test::gpu(), renderer.device_scene(), false);
-  const std::vector<cl_float4> read = glossy.cached_irradiance_at(img.records, grid, points, normals);
+  const std::vector<cl_float4> read = test::PassProbe::cached_irradiance_at(glossy, img.records, grid, points, normals);
   double scale = 0.0;
   for (float v : img.irradiance) scale = std::max(scale, double(v));
   size_t covered = 0;
@@ -152,7 +154,8 @@ TEST(WorldRecords, TheDeviceBuildsTheHostsGridBitForBit) {
     for (const Case& c : cases) {
       const WorldRecordGrid host = build_world_record_grid(c.records, accuracy);
       const cl::Buffer records = gpu.upload(c.records.empty() ? std::vector<CacheRecord>(1) : c.records);
-      const WorldRecordGrid device = pass.download(pass.build(records, uint32_t(c.records.size()), accuracy));
+      const WorldRecordGrid device =
+          test::download_world_record_grid(gpu, pass.build(records, uint32_t(c.records.size()), accuracy));
       const std::string what = std::string(c.name) + " at a = " + std::to_string(accuracy);
       EXPECT_EQ(std::memcmp(&device.params, &host.params, sizeof(WorldRecordParams)), 0)
           << what << ": cell " << device.params.cell_size << " against " << host.params.cell_size << ", buckets "

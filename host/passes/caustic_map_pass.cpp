@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cl/point_lookup.h"
 #include "kernels/photon_grid.h"
 #include "passes/light_guide_pass.h"
 
@@ -101,13 +100,6 @@ const cl::Buffer& CausticMapPass::lit_records(const cl::Buffer& records, uint32_
       .set_buffer<CacheRecord>("lit", lit_records_);
   add_to_records_.launch(record_count, gpu_.groups().per_item);
   return lit_records_;
-}
-
-std::vector<cl_float4> CausticMapPass::irradiance_at(const std::vector<cl_float4>& points,
-                                                     const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel(kProgram, "caustic_irradiance_at", {});
-  bind(look_up);
-  return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
 }
 
 }  // namespace rcsplat

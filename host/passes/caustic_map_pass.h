@@ -35,8 +35,6 @@ class CausticMapPass {
   // records a glossy sample reads then stand for all the light there (kernels/glossy.cl), which costs one lookup per
   // record, not one per sample. A buffer this pass owns until the next call, or `records` itself for an empty map.
   const cl::Buffer& lit_records(const cl::Buffer& records, uint32_t record_count);
-  // The caustic irradiance at these points (xyz) on surfaces facing these normals (the records' lookups, and tests).
-  std::vector<cl_float4> irradiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
   // Sets a kernel's CAUSTIC_MAP_ARGS (kernels/caustic_map.h).
   void bind(NamedKernel& kernel) const;
   const PhotonMapParams& params() const { return params_; }

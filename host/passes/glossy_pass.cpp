@@ -5,7 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "cl/point_lookup.h"
 #include "passes/sample_rounds.h"
 #include "util/error.h"
 
@@ -245,17 +244,5 @@ void GlossyPass::prepare_records(const GlossyCacheReads& reads) {
   bound_lists_ = &record_lists_;
   bound_grid_ = read_records ? reads.grid->params : WorldRecordParams{};
 }
-
-std::vector<cl_float4> GlossyPass::cached_irradiance_at(const std::vector<CacheRecord>& records,
-                                                        const WorldRecordGrid& grid,
-                                                        const std::vector<cl_float4>& points,
-                                                        const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel(kProgram, "cached_irradiance_at", defines_);
-  prepare_records({&records, &grid});
-  bind_records(look_up);
-  return run_point_lookup(gpu_, look_up, points, normals, "irradiance");
-}
-
-std::vector<float> GlossyPass::download_rgba() { return gpu_.download<float>(radiance_, pixels_ * 4); }
 
 }  // namespace rcsplat

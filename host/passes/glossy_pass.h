@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "util/test_probe.h"
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
 #include "cache/world_record_grid.h"
@@ -65,14 +66,9 @@ class GlossyPass {
                      unsigned record_guide_rays = 0, unsigned bounces = 1, const GlossyCacheReads& reads = {},
                      const GlossyFrameLight& frame_light = {}, bool adaptive = true);
   const cl::Buffer& radiance() const { return radiance_; }  // float4 per pixel: RGB, A = rays cast
-  // What a sample reads of the records at these points (xyz) with these shading normals, for tests: float4 (E, the
-  // sum of the weights; 0 where no record reaches).
-  std::vector<cl_float4> cached_irradiance_at(const std::vector<CacheRecord>& records, const WorldRecordGrid& grid,
-                                              const std::vector<cl_float4>& points,
-                                              const std::vector<cl_float4>& normals);
-  std::vector<float> download_rgba();
 
  private:
+  friend struct test::PassProbe;  // what a sample reads of the records (tests/pass_probe.h)
   static constexpr const char* kProgram = "glossy.cl";  // its kernels' file
   // The records the samples read and their grid: the device's, or uploaded from the host (an empty grid without
   // them); bind_records then sets a kernel's WORLD_RECORD_ARGS to them, and bind_cached_light those and its

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "cl/point_lookup.h"
 #include "passes/grid_sort_pass.h"
 #include "passes/surface_patch_pass.h"
 #include "util/error.h"
@@ -128,21 +127,6 @@ void PhotonMapPass::bind(NamedKernel& kernel) const {
       .set_buffer<cl_float4>("map_shallow", shallow_)
       .set_buffer<cl_uint>("map_buckets", buckets_)
       .set("map", params_);
-}
-
-std::vector<cl_float4> PhotonMapPass::estimates() {
-  return gpu_.download<cl_float4>(radiance_, 2 * size_t(params_.photon_count));
-}
-
-std::vector<cl_float4> PhotonMapPass::shallow_estimates() {
-  return gpu_.download<cl_float4>(shallow_, 2 * size_t(params_.photon_count));
-}
-
-std::vector<cl_float4> PhotonMapPass::radiance_at(const std::vector<cl_float4>& points,
-                                                  const std::vector<cl_float4>& normals) {
-  NamedKernel look_up = gpu_.kernel(kProgram, "look_up_photon_radiance", {});
-  bind(look_up);
-  return run_point_lookup(gpu_, look_up, points, normals, "radiance");
 }
 
 }  // namespace rcsplat

@@ -7,6 +7,7 @@
 #include "cache/photon_map.h"
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
+#include "util/test_probe.h"
 #include "passes/photon_landings_pass.h"
 
 namespace rcsplat {
@@ -45,15 +46,9 @@ class PhotonMapPass {
   // Sets a kernel's PHOTON_MAP_ARGS (the lookup grid and its estimates).
   void bind(NamedKernel& kernel) const;
   const PhotonMapParams& params() const { return params_; }
-  // The lookup photons' estimates, in the lookup grid's order, for tests: two float4 (RGB, 0) per photon, the reflected
-  // light and the irradiance, both over pi (kernels/photon_map.cl).
-  std::vector<cl_float4> estimates();
-  // The same without the landings from PhotonMapGrids::shallow_landings on (map_shallow), for tests.
-  std::vector<cl_float4> shallow_estimates();
-  // The reflected-light estimate a lookup finds at these points (xyz) on surfaces facing these normals, for tests.
-  std::vector<cl_float4> radiance_at(const std::vector<cl_float4>& points, const std::vector<cl_float4>& normals);
 
  private:
+  friend struct test::PassProbe;  // the lookup photons' estimates (tests/pass_probe.h)
   static constexpr const char* kProgram = "photon_map.cl";  // its kernels' file
   GpuContext& gpu_;
   PhotonMapParams params_;

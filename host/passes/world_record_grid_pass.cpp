@@ -140,13 +140,4 @@ DeviceWorldRecordGrid WorldRecordGridPass::build(const cl::Buffer& records, uint
   return grid;
 }
 
-WorldRecordGrid WorldRecordGridPass::download(const DeviceWorldRecordGrid& grid) {
-  WorldRecordGrid out;
-  out.params = grid.params;
-  out.bucket_starts = gpu_.download<cl_uint>(*grid.bucket_starts, size_t(grid.params.bucket_count) + 1);
-  if (out.bucket_starts.back())
-    out.record_lists = gpu_.download<cl_uint>(*grid.record_lists, out.bucket_starts.back());
-  return out;
-}
-
 }  // namespace rcsplat

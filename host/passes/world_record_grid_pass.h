@@ -1,5 +1,5 @@
 // The glossy pass's grid of the splat's records by position (kernels/world_record_grid.cl), built on the device
-// where the records are: the same grid as the host's build_world_record_grid (cache/world_record_grid.h), bit for
+// where the records are: the same grid as the tests' host build (tests/reference/world_record_grid.h build_world_record_grid), bit for
 // bit, with 36 bytes read back (its parameters and the count of its entries, which size the buckets). Owns the grid's
 // buffers and its scratch, kept for the next frame.
 #pragma once
@@ -29,8 +29,6 @@ class WorldRecordGridPass {
 
   // The grid of records 0 .. record_count - 1 of `records` at the splat's accuracy.
   DeviceWorldRecordGrid build(const cl::Buffer& records, uint32_t record_count, float accuracy);
-  // A built grid brought back (tests).
-  WorldRecordGrid download(const DeviceWorldRecordGrid& grid);
 
  private:
   static constexpr const char* kProgram = "world_record_grid.cl";  // its kernels' file

@@ -1,5 +1,5 @@
-// Kernels that read a map (photons, caustic photons, records) at query points: the tests' lookups and the caustic map's
-// at each record. One work-item a point.
+// Kernels that read a map (photons, caustic photons, records) at query points, as the tests look them up
+// (tests/pass_probe.h). One work-item a point.
 #pragma once
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "cache/world_record_grid.h"
+#include "reference/world_record_grid.h"
 
 #include <algorithm>
 #include <array>

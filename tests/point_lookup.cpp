@@ -1,4 +1,4 @@
-#include "cl/point_lookup.h"
+#include "point_lookup.h"
 
 #include <algorithm>
 
