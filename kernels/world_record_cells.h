@@ -1,5 +1,5 @@
 // Which cells of the world-record grid (kernels/world_records.h) a record's reach sphere meets: one source for the
-// host's build (host/cache/world_record_grid.cpp) and the device's (kernels/world_record_grid.cl), so that both list
+// host's build (tests/reference/world_record_grid.cpp) and the device's (kernels/world_record_grid.cl), so that both list
 // the same records in the same buckets, bit for bit.
 #ifndef RCSPLAT_WORLD_RECORD_CELLS_H
 #define RCSPLAT_WORLD_RECORD_CELLS_H

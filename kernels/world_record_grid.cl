@@ -1,6 +1,6 @@
 // The world-record grid (kernels/world_records.h) built on the device from the records where the splat left them
 // (host/passes/world_record_grid_pass.h): the same grid as the host's build_world_record_grid
-// (host/cache/world_record_grid.cpp), bit for bit, without the records coming back. In order:
+// (tests/reference/world_record_grid.cpp), bit for bit, without the records coming back. In order:
 //   measure_world_records      the kept records' lowest corner and widest sphere, the brightest record;
 //   count_diameter_digits,     the median diameter by a radix selection, a byte at a time from the top: each byte's
 //   choose_diameter_digit      histogram over the diameters that share the bytes chosen so far, then the byte that

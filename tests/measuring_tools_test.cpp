@@ -44,8 +44,12 @@ TEST(Sweep, WritesEveryConfigurationsTimeAndErrorsToTheCsv) {
     args.insert(args.end(), more.begin(), more.end());
     return args;
   };
-  const test::CommandRun run = test::run_rcsplat(dir, with(sweep, {"--reference", "ref.exr", "-o", "sweep"}));
+  const test::CommandRun run =
+      test::run_rcsplat(dir, with(sweep, {"--reference", "ref.exr", "-o", "sweep", "--progress-lines"}));
   ASSERT_EQ(run.exit_code, 0) << run.output;
+  // A farm manager's lines: a run each, then the whole (tests/cli_outputs.cmake checks render's and animate's).
+  EXPECT_NE(run.output.find("Progress: 66%"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Progress: 100%"), std::string::npos) << run.output;
   const std::string output_dir = dir + "/sweep";
   const auto rows = read_csv(output_dir + "/sweep.csv");
   ASSERT_EQ(rows.size(), 4u);  // the header, two cache settings, one path-traced count

@@ -38,7 +38,9 @@ void validate_cache_settings(const CacheSettings& c) {
     throw Error("--adaptive-rays must be 0 (off) or positive (given " + number(c.adaptive_error) + ")");
   if (!(c.hessian_error >= 0.0f) || !std::isfinite(c.hessian_error))
     throw Error("--hessian-error must be 0 (the split sphere) or positive (given " + number(c.hessian_error) + ")");
-  if (c.guide_rays > 4096) throw Error("--guide-rays must be between 0 and 4096 (given " + std::to_string(c.guide_rays) + ")");
+  if (c.guide_rays > kMaxGuideRays)
+    throw Error("--guide-rays must be between 0 and " + std::to_string(kMaxGuideRays) + " (given " +
+                std::to_string(c.guide_rays) + ")");
   if (c.placement_lines < 0)
     throw Error("--placement-lines must be 0 (off) or a height in lines (given " + std::to_string(c.placement_lines) +
                 ")");

@@ -8,6 +8,9 @@
 
 namespace rcsplat {
 
+// The most guided rays a record may take beside its strata (--guide-rays).
+constexpr unsigned kMaxGuideRays = 4096;
+
 struct CacheSettings {
   float accuracy = 0.3f;       // a: smaller means more records and less error (MIN_ACCURACY .. MAX_ACCURACY)
   unsigned theta_strata = 16;  // hemisphere rays per record: M x N

@@ -6,6 +6,7 @@
 
 #include "kernels/hsh.h"
 #include "render/bounce_choice.h"
+#include "render/frame_plan.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -84,7 +85,8 @@ void add_frame_options(CLI::App* cmd, RenderJob& o, std::string& json_path, bool
   cmd->add_option("--up", cam.up, "Camera up vector x,y,z")->delimiter(',')->expected(3);
   cmd->add_option("--fov", cam.fov, "Vertical field of view in degrees");
   cmd->add_option("--light-samples", o.settings.light_samples,
-                  "Samples per pixel on emissive triangles (rounded up to a square; 0 to 1048576)");
+                  "Samples per pixel on emissive triangles (rounded up to a square; 0 to " +
+                      std::to_string(kMaxLightSamples) + ")");
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
   cmd->add_option("--pixel-samples", o.settings.pixel_samples,
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
@@ -121,9 +123,9 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderJob& o, std::string& quality, c
   cmd->add_option("--cache-out", o.cache_out,
                   "Splat: write the irradiance records kept after the last frame to this cache file");
   cmd->add_option("--quality", quality,
-                  "Quality preset: draft (a quick look: accuracy 0.6, 8x16 rays a record, one sample a pixel, 4 "
-                  "light samples), standard (the defaults), final (accuracy 0.15, a 4x4 grid of pixel samples "
-                  "where the frame allows, 64 light samples); options given on the command line win")
+                  "Quality preset: draft (a quick look: " + quality_preset_description("draft") +
+                      "), standard (the defaults), final (" + quality_preset_description("final") +
+                      "); options given on the command line win")
       ->check(CLI::IsMember({"draft", "standard", "final"}));
   cmd->add_option("--gi", gi,
                   "Indirect light: splat (radiance cache splatting, default), octree (classic "
@@ -163,14 +165,15 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderJob& o, std::string& quality, c
   cmd->add_option("--guide-rays", o.settings.cache.guide_rays,
                   "Rays per record aimed at the brightest directly lit places (photons from the lights find "
                   "them), beside the MxN strata, combined by multiple importance sampling; 0: none; default " +
-                      std::to_string(cache_defaults.guide_rays) + " (at most 4096)")
+                      std::to_string(cache_defaults.guide_rays) + " (at most " + std::to_string(kMaxGuideRays) + ")")
       ->group(lab);
-  cmd->add_option("--spp", o.settings.path.samples, "Path samples per pixel (--gi path; 1 to 1048576)");
+  cmd->add_option("--spp", o.settings.path.samples,
+                  "Path samples per pixel (--gi path; 1 to " + std::to_string(kMaxPathSamples) + ")");
   cmd->add_option("--glossy-samples", o.settings.glossy_samples,
                   "Cache methods: samples of a glossy pixel's specular lobe for its indirect light, per "
                   "output pixel: on average over the frame, spent where the estimated error is largest "
                   "(with --glossy-uniform, in every glossy pixel); default " +
-                      std::to_string(RenderSettings{}.glossy_samples) + ", at most 65536")
+                      std::to_string(RenderSettings{}.glossy_samples) + ", at most " + std::to_string(kMaxGlossySamples))
       ->group(lab);
   cmd->add_option("--hsh-order", o.settings.hsh_order,
                   "Splat: hemispherical-harmonic order of the radiance-cached lobes (n^2 coefficients a "
@@ -188,7 +191,7 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderJob& o, std::string& quality, c
                   "Photons shot for --bounce-method photons; default: rounds of " +
                       std::to_string(kPhotonMapPhotons) + " / (bounces - 1) until the map holds about " +
                       std::to_string(kPhotonMapPhotons) + " (at most " + std::to_string(kPhotonRounds) +
-                      " rounds; 0 too; at most 67108864)")
+                      " rounds; 0 too; at most " + std::to_string(kMaxPhotonPaths) + ")")
       ->group(lab);
   cmd->add_flag("--light-uniform", light_uniform,
                 "Cache methods: every pixel takes --light-samples on area lights and the environment's peak, rather "
@@ -205,7 +208,7 @@ void RenderMethodFlags::add(CLI::App* cmd, RenderJob& o, std::string& quality, c
   cmd->add_option("--caustic-photons", o.settings.caustic_photons,
                   "Cache methods, scenes with a sharp glossy lobe: photons shot for the caustic map, which "
                   "carries light reflected by a glossy surface onto rough ones to the pixels (0: none, the "
-                  "records' rays count it; at most 67108864); default " +
+                  "records' rays count it; at most " + std::to_string(kMaxPhotonPaths) + "); default " +
                       std::to_string(o.settings.caustic_photons))
       ->group(lab);
   cmd->add_option("--photon-min-support", o.settings.photon_min_support,

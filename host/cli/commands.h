@@ -30,7 +30,7 @@ struct RenderOptions : RenderJob {
   bool progress_lines = false;  // --progress-lines: "Progress: NN%" lines on stdout (util/log.h)
   bool resume = false;   // reference: add samples to the .exr output written by an earlier run
   bool denoise = false;  // render --denoise: Open Image Denoise on the per-pixel sampled layers (render/denoise_frame.h)
-  std::string quality = "standard";  // render --quality: draft, standard, final (apply_quality)
+  std::string quality = kDefaultQuality;  // render --quality: draft, standard, final (apply_quality)
 };
 int run_render(const RenderOptions& options);
 // `reference`'s default path samples per pixel (and light samples, unless --light-samples is given).
@@ -47,7 +47,7 @@ struct AnimateOptions {
   WalkthroughRequest walk;
   std::string json_path;
   bool progress_lines = false;
-  std::string quality = "standard";
+  std::string quality = kDefaultQuality;
 };
 int run_animate(const AnimateOptions& options);
 
@@ -97,6 +97,7 @@ struct SweepOptions {
   EnvironmentSettings environment;
   SceneLimits limits;
   int block = 8;
+  bool progress_lines = false;  // --progress-lines (util/log.h)
   float exposure = 0.0f;
 };
 int run_sweep(const SweepOptions& options);

@@ -106,6 +106,7 @@ std::string metric_cells(const ImageComparison& c, const std::string& layer) {
 }  // namespace
 
 int run_sweep(const SweepOptions& o) {
+  set_progress_lines(o.progress_lines);
   if (o.output_dir.empty()) throw Error("sweep: give an output folder with -o DIR");
   if (o.accuracies.empty() && o.path_samples.empty())
     throw Error("sweep: nothing to render (no --accuracy, no --path-spp)");
@@ -157,6 +158,10 @@ int run_sweep(const SweepOptions& o) {
   csv << "\n";
 
   std::printf("%-34s %9s %12s %12s %8s\n", "config", "seconds", "ind relMSE", "ind block", "FLIP");
+  set_progress_shown(false);  // a line a run instead of each pass's progress (and of its Progress lines)
+  struct ShowProgressAgain {
+    ~ShowProgressAgain() { set_progress_shown(true); }
+  } show_progress_again;
   const bool was_quiet = is_quiet();
   // A small frame of each method first: drivers that compile at first launch (PoCL) would otherwise charge the first
   // timed run of each method for it.
@@ -178,6 +183,7 @@ int run_sweep(const SweepOptions& o) {
     const SweepRun& run = runs[i];
     // Progress on stderr, one line a run; the renders themselves are quiet so that it stays readable.
     std::fprintf(stderr, "sweep [%zu/%zu] %s\n", i + 1, runs.size(), run.name.c_str());
+    report_progress(double(i) / double(runs.size()));
     const std::string exr = (fs::path(o.output_dir) / (run.name + ".exr")).string();
     RenderedImage image;
     double denoise_s = 0.0;
@@ -246,6 +252,7 @@ int run_sweep(const SweepOptions& o) {
       std::printf("wrote        %s\n", png.c_str());
     }
   }
+  report_progress(1.0);
   return 0;
 }
 
@@ -296,9 +303,12 @@ Command add_sweep_command(CLI::App& app, const HelpGroups&) {
                   "(when the benchmark Python has it; default), on, off")
       ->check(CLI::IsMember({"auto", "on", "off"}));
   cmd->add_flag("!--no-plot", o.plot, "Do not draw accuracy_vs_time.png");
+  cmd->add_flag("--progress-lines", o.progress_lines,
+                "Also print the sweep's progress as lines \"Progress: NN%\" on stdout (a run each), as render-farm "
+                "managers read it");
   cmd->add_option("--light-samples", o.light_samples,
                   "Light samples per pixel (default " + std::to_string(defaults.light_samples) + ")")
-      ->check(CLI::Range(0u, 1u << 20));
+      ->check(CLI::Range(0u, kMaxLightSamples));
   cmd->add_option("--pixel-samples", o.pixel_samples, "Primary samples per pixel (default: as render)")
       ->check(CLI::Range(1u, 64u));
   cmd->add_option("--bounces", o.bounces, "Indirect bounces (default: the reference's)")

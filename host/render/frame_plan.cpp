@@ -19,11 +19,11 @@ void check_request(const RenderSettings& r) {
   range("--height", r.height, 0, 16384, " (0: from the camera)");
   range("--bounces", r.bounces, 0, kMaxBounces, " (0: chosen from the scene)");
   range("--hsh-order", r.hsh_order, 0, HSH_MAX_ORDER, " (0: chosen from the roughness)");
-  range("--light-samples", r.light_samples, 0, 1 << 20, "");
-  range("--glossy-samples", r.glossy_samples, 1, 1 << 16, "");
-  range("--spp", r.path.samples, 1, 1 << 20, "");
-  range("--photons", r.photon_paths, 0, 1 << 26, " (0: rounds until the map is full)");
-  range("--caustic-photons", r.caustic_photons, 0, 1 << 26, " (0: no caustic map)");
+  range("--light-samples", r.light_samples, 0, kMaxLightSamples, "");
+  range("--glossy-samples", r.glossy_samples, 1, kMaxGlossySamples, "");
+  range("--spp", r.path.samples, 1, kMaxPathSamples, "");
+  range("--photons", r.photon_paths, 0, kMaxPhotonPaths, " (0: rounds until the map is full)");
+  range("--caustic-photons", r.caustic_photons, 0, kMaxPhotonPaths, " (0: no caustic map)");
   range("RenderSettings::photon_neighbours", r.photon_neighbours, 1, 1 << 16, "");
   if (!(r.short_ray_paths >= 0.0f) || !std::isfinite(r.short_ray_paths))
     throw Error("--short-ray-paths must be 0 or positive (given " + std::to_string(r.short_ray_paths) + ")");

@@ -35,6 +35,10 @@ struct FramePlan {
   float radiance_accuracy = 0.0f, hsh_captured_energy = 0.0f;
 };
 
+// The largest counts a request may ask for (check_request holds it to them; the help texts print them).
+constexpr unsigned kMaxLightSamples = 1u << 20, kMaxPathSamples = 1u << 20, kMaxGlossySamples = 1u << 16;
+constexpr unsigned kMaxPhotonPaths = 1u << 26;  // --photons and --caustic-photons
+
 // Every range of a request, checked once, each message naming its option (--accuracy, --bounces, --hsh-order,
 // --pixel-samples, --hemisphere, --spacing, ...). Throws rcsplat::Error. The command line calls it before it loads
 // the scene; Renderer::plan calls it again for library callers.

@@ -79,6 +79,18 @@ void apply_quality(const std::string& quality, RenderSettings& s, const std::fun
   }
 }
 
+std::string quality_preset_description(const std::string& quality) {
+  const QualityPreset p = quality_preset(quality);
+  char text[200];
+  const std::string pixels =
+      p.pixel_samples == 1 ? "one sample a pixel"
+      : p.pixel_samples    ? std::to_string(p.pixel_samples) + " samples a pixel"
+                           : "up to " + std::to_string(p.preferred_pixel_samples) + " samples a pixel where the frame allows";
+  std::snprintf(text, sizeof text, "accuracy %g, %ux%u rays a record, %s, %u light samples", double(p.accuracy),
+                p.theta_strata, p.phi_strata, pixels.c_str(), p.light_samples);
+  return text;
+}
+
 std::string quality_summary(const std::string& quality, const RenderSettings& s) {
   const QualityPreset p = quality_preset(quality);
   char text[240];
