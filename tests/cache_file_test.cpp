@@ -92,12 +92,12 @@ TEST(CacheFile, EverythingKeptRoundTripsBitForBit) {
   ASSERT_GT(kept.radiance.payload_per_record(), 0u);
   ASSERT_TRUE(kept.light.has_photon_map && kept.light.has_caustic_map && kept.light.has_guide);
   ASSERT_FALSE(kept.light.photons.empty() || kept.light.caustic_photons.empty() || kept.light.guide_clusters.empty());
-  const KeptRecordsKey key = kept_records_key(plan.frame);
+  const KeptRecordsKey key = kept_records_key(plan.frame_settings());
   const CacheFileIdentity identity{scene_fingerprint(scene), settings_fingerprint(key), "test"};
   const std::string path = test::scratch_dir() + "/lobed.cache";
   write_cache_file(path, kept, identity);
   KeptCache read(1u << 20);
-  read_cache_file(path, identity, key, cache_file_limits(plan.frame), read);
+  read_cache_file(path, identity, key, cache_file_limits(plan.frame_settings()), read);
   for (const auto& [a, b] : {std::pair{&read.irradiance, &kept.irradiance}, std::pair{&read.radiance, &kept.radiance}}) {
     EXPECT_TRUE(same_bytes(a->records(), b->records()));
     EXPECT_EQ(a->last_used(), b->last_used());
@@ -143,7 +143,7 @@ TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
   writer.render(writer.plan(at_pose(scene, 0)));
   writer.render(writer.plan(at_pose(scene, 1)));
   const FramePlan next = writer.plan(at_pose(scene, 2));
-  const KeptRecordsKey key = kept_records_key(next.frame);
+  const KeptRecordsKey key = kept_records_key(next.frame_settings());
   const CacheFileIdentity identity{scene_fingerprint(scene), settings_fingerprint(key), "test"};
   const std::string path = test::scratch_dir() + "/walk.cache";
   write_cache_file(path, writer.kept_records(), identity);
@@ -154,7 +154,7 @@ TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
   const RenderedImage expected = writer.render(next);
 
   Renderer reader(test::gpu(), scene);
-  read_cache_file(path, identity, key, cache_file_limits(next.frame), reader.kept_records());
+  read_cache_file(path, identity, key, cache_file_limits(next.frame_settings()), reader.kept_records());
   const RenderedImage frame = reader.render(reader.plan(at_pose(scene, 2)));
   EXPECT_EQ(frame.color, expected.color);
   EXPECT_EQ(frame.stats.photon_map.shoot_s, 0.0) << "photons shot again";
@@ -171,7 +171,7 @@ TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
   reseal(bytes);
   test::write_file(path, bytes);
   Renderer brighter(test::gpu(), scene);
-  read_cache_file(path, identity, key, cache_file_limits(next.frame), brighter.kept_records());
+  read_cache_file(path, identity, key, cache_file_limits(next.frame_settings()), brighter.kept_records());
   EXPECT_NE(brighter.render(brighter.plan(at_pose(scene, 2))).color, expected.color);
 }
 

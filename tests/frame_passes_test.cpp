@@ -9,6 +9,7 @@
 #include "render/frame_passes.h"
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
+#include "pass_probe.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -106,7 +107,7 @@ TEST(FramePasses, AFrameRunsItsPlannedPassesAndBuildsAheadExactlyTheirPrograms) 
   ASSERT_TRUE(p.photon_map && p.caustic_map && p.light_guide && p.radiance_records && p.glossy &&
               p.world_record_grid)
       << ::testing::PrintToString(frame_pass_names(p));
-  const std::set<std::string> asked_by_plan = gpu->programs_asked_for();  // the bounce probe's, the lobe table's
+  const std::set<std::string> asked_by_plan = test::PassProbe::programs_asked_for(*gpu);  // the bounce probe's, the lobe table's
   const RenderStats st = renderer.render(plan).stats;
   EXPECT_GT(st.photon_map.photons, 0u);
   EXPECT_GT(st.caustics.photons, 0u);
@@ -115,8 +116,8 @@ TEST(FramePasses, AFrameRunsItsPlannedPassesAndBuildsAheadExactlyTheirPrograms) 
   EXPECT_GT(st.glossy.rays, 0u);
   EXPECT_TRUE(st.glossy.reads_records);
   EXPECT_EQ(st.path.rays, 0u);
-  const std::set<std::string> asked = gpu->programs_asked_for();
-  const std::set<std::string> ahead = gpu->programs_built_ahead();
+  const std::set<std::string> asked = test::PassProbe::programs_asked_for(*gpu);
+  const std::set<std::string> ahead = test::PassProbe::programs_built_ahead(*gpu);
   for (const std::string& program : asked)
     if (!asked_by_plan.count(program)) EXPECT_TRUE(ahead.count(program)) << "not built ahead: " << program;
   for (const std::string& program : ahead) EXPECT_TRUE(asked.count(program)) << "built ahead in vain: " << program;
@@ -146,8 +147,8 @@ TEST(FramePasses, DeferredBuildsRunOnlyWhenAskedFor) {
   const std::map<std::string, double> built = gpu->program_seconds_by_file();
   EXPECT_TRUE(built.count("scan.cl"));
   EXPECT_FALSE(built.count("splat.cl"));
-  EXPECT_TRUE(gpu->built_kernel_names().count("scan_blocks"));
-  EXPECT_FALSE(gpu->built_kernel_names().count("splat_records"));
+  EXPECT_TRUE(test::PassProbe::built_kernel_names(*gpu).count("scan_blocks"));
+  EXPECT_FALSE(test::PassProbe::built_kernel_names(*gpu).count("splat_records"));
   gpu.reset();  // must not build splat.cl on the way out (nor hang)
 }
 

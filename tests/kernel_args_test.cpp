@@ -107,9 +107,9 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     if (trace == device_choice.record_trace) continue;
     GroupSizes shape = device_choice;
     shape.record_trace = trace;
-    gpu.set_groups(shape);
+    test::PassProbe::set_groups(gpu, shape);
     render(gpu, scene, settings);
-    gpu.set_groups(device_choice);
+    test::PassProbe::set_groups(gpu, device_choice);
   }
   PhotonHit photon{};
   photon.hit = 1;
@@ -155,13 +155,13 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
   grid_sort.sort(gpu.upload(std::vector<PhotonHit>{photon, beside}), sizeof(PhotonHit) / 4, 2, grid, sorted, starts);
   EXPECT_EQ(gpu.download<cl_uint>(starts, grid.bucket_count + 1).back(), 2u);
 
-  std::set<std::string> built = gpu.built_kernel_names();
+  std::set<std::string> built = test::PassProbe::built_kernel_names(gpu);
   const std::set<std::string> every_kernel = every_kernel_in_the_sources();
   EXPECT_GE(every_kernel.size(), 36u) << "the sources' kernels were not all found";
   for (const std::string& expected : every_kernel) EXPECT_TRUE(built.count(expected)) << expected << " was not built";
   for (const std::string& name : built) {
-    auto launched = gpu.launched_kernels().find(name);
-    ASSERT_NE(launched, gpu.launched_kernels().end()) << "kernel " << name << " was never launched";
+    auto launched = test::PassProbe::launched_kernels(gpu).find(name);
+    ASSERT_NE(launched, test::PassProbe::launched_kernels(gpu).end()) << "kernel " << name << " was never launched";
     EXPECT_TRUE(launched->second) << "kernel " << name << ": parameters not all set in the kernel's order";
   }
   NamedKernel sample = gpu.kernel("splat.cl", "splat_records");

@@ -1,5 +1,8 @@
 #include "pass_probe.h"
 
+#include <chrono>
+#include <sstream>
+
 #include "point_lookup.h"
 
 namespace rcsplat::test {
@@ -48,5 +51,45 @@ std::vector<cl_float4> PassProbe::cached_irradiance_at(GlossyPass& glossy, const
 std::vector<float> PassProbe::glossy_rgba(GlossyPass& glossy) {
   return glossy.gpu_.download<float>(glossy.radiance_, glossy.pixels_ * 4);
 }
+
+std::set<std::string> PassProbe::programs_asked_for(const GpuContext& gpu) {
+  std::lock_guard<std::mutex> lock(gpu.programs_mutex_);
+  return gpu.asked_for_;
+}
+
+std::set<std::string> PassProbe::programs_built_ahead(const GpuContext& gpu) {
+  std::lock_guard<std::mutex> lock(gpu.programs_mutex_);
+  return gpu.built_ahead_;
+}
+
+std::set<std::string> PassProbe::built_kernel_names(const GpuContext& gpu) {
+  std::vector<GpuContext::ProgramFuture> programs;
+  {
+    std::lock_guard<std::mutex> lock(gpu.programs_mutex_);
+    for (const auto& [key, future] : gpu.programs_) programs.push_back(future);
+  }
+  std::set<std::string> names;
+  for (const GpuContext::ProgramFuture& future : programs) {
+    if (future.wait_for(std::chrono::seconds(0)) == std::future_status::deferred) continue;  // never asked for
+    std::shared_ptr<cl::Program> program;
+    try {
+      program = future.get();
+    } catch (const std::exception&) {
+      continue;  // a build that failed has no kernels
+    }
+    std::istringstream list(program->getInfo<CL_PROGRAM_KERNEL_NAMES>());
+    for (std::string name; std::getline(list, name, ';');) {
+      while (!name.empty() && (name.back() == '\0' || name.back() == ' ')) name.pop_back();
+      if (!name.empty()) names.insert(name);
+    }
+  }
+  return names;
+}
+
+const std::map<std::string, bool>& PassProbe::launched_kernels(const GpuContext& gpu) { return gpu.launched_; }
+
+size_t PassProbe::buffers_made(const GpuContext& gpu) { return gpu.buffers_made_; }
+
+void PassProbe::set_groups(GpuContext& gpu, const GroupSizes& groups) { gpu.groups_ = groups; }
 
 }  // namespace rcsplat::test

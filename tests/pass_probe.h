@@ -2,6 +2,9 @@
 // the glossy pass's raw light and its reads of the records, a device grid brought back. PassProbe is the friend the
 // passes name (util/test_probe.h); the free functions need only the passes' public binding.
 #pragma once
+#include <map>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "cache/world_record_grid.h"
@@ -34,6 +37,18 @@ struct PassProbe {
                                                      const std::vector<cl_float4>& normals);
   // The glossy pass's light, float4 per pixel (RGB, rays cast).
   static std::vector<float> glossy_rgba(GlossyPass& glossy);
+
+  // A context's programs ("file|options") asked for by program() so far, and those build_ahead started.
+  static std::set<std::string> programs_asked_for(const GpuContext& gpu);
+  static std::set<std::string> programs_built_ahead(const GpuContext& gpu);
+  // Every kernel of every program the context built so far, and for each kernel launched whether its last launch set
+  // all its parameters by name in the kernel's own order.
+  static std::set<std::string> built_kernel_names(const GpuContext& gpu);
+  static const std::map<std::string, bool>& launched_kernels(const GpuContext& gpu);
+  // How many buffers the context has made so far.
+  static size_t buffers_made(const GpuContext& gpu);
+  // Another device's group sizes on this one (a GPU's record trace on PoCL must give the same records).
+  static void set_groups(GpuContext& gpu, const GroupSizes& groups);
 };
 
 }  // namespace rcsplat::test

@@ -244,12 +244,12 @@ TEST(RecordKernel, SameRecordsWhateverTheTraceShape) {
     shape.record_samples_per_item = samples_per_item;
     shape.record_samples_per_launch = samples_per_launch;
     shape.record_trace = trace;
-    gpu.set_groups(shape);
+    test::PassProbe::set_groups(gpu, shape);
     RecordPass pass(gpu, twin.device, hp.theta_strata);
     pass.begin_frame(nullptr, bounces);
     pass.set_light_guide(guide, hp.guide_rays);
     pass.compute(gbuffer.view(), gpu.upload(pixels), uint32_t(pixels.size()), 0, hp);
-    gpu.set_groups(device_choice);
+    test::PassProbe::set_groups(gpu, device_choice);
     // The wavefront's rounds foresee every ray its shading asks for: none is traced in a round that reads answers.
     EXPECT_EQ(pass.rays_traced_late(), 0u) << record_trace_name(trace) << ", " << bounces << " bounces";
     return std::make_pair(pass.download(0, pixels.size()), pass.rays_cast());
@@ -287,9 +287,9 @@ RenderedImage frame_traced_as(RecordTrace trace, const Scene& scene, const Rende
   const GroupSizes device_choice = gpu.groups();
   GroupSizes shape = device_choice;
   shape.record_trace = trace;
-  gpu.set_groups(shape);
+  test::PassProbe::set_groups(gpu, shape);
   RenderedImage image = render(gpu, scene, settings);
-  gpu.set_groups(device_choice);
+  test::PassProbe::set_groups(gpu, device_choice);
   return image;
 }
 

@@ -6,6 +6,7 @@
 #include "render/renderer.h"
 #include "scene/cornell_box.h"
 #include "lobed_cornell_box.h"
+#include "pass_probe.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -36,7 +37,7 @@ TEST(Renderer, LaterFramesAreTheSameBitsAsFreshRendersAndPayNoSetup) {
   EXPECT_EQ(plan.settings.pixel_samples, 4u);
   EXPECT_EQ(plan.side, 2u);
   EXPECT_GE(plan.settings.hsh_order, 1u) << "chosen from the roughness";
-  EXPECT_EQ(plan.frame.cache.min_reach_pixels, 2.0f * first.cache.min_reach_pixels) << "reach in sub-pixels";
+  EXPECT_EQ(plan.frame_settings().cache.min_reach_pixels, 2.0f * first.cache.min_reach_pixels) << "reach in sub-pixels";
 
   const RenderedImage a = renderer.render(plan);
   const RenderedImage b = renderer.render(moved);
@@ -72,9 +73,9 @@ TEST(Renderer, ALaterFrameMakesNoBuffer) {
     Renderer renderer(test::gpu(), scene);
     const FramePlan plan = renderer.plan(s);
     renderer.render(plan);
-    const size_t before = test::gpu().buffers_made();
+    const size_t before = test::PassProbe::buffers_made(test::gpu());
     renderer.render(plan);
-    EXPECT_EQ(test::gpu().buffers_made() - before, 0u) << gi_method_name(gi);
+    EXPECT_EQ(test::PassProbe::buffers_made(test::gpu()) - before, 0u) << gi_method_name(gi);
   }
 }
 

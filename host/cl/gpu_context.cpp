@@ -347,40 +347,6 @@ std::map<std::string, double> GpuContext::program_seconds_by_file() const {
   return program_seconds_by_file_;
 }
 
-std::set<std::string> GpuContext::programs_asked_for() const {
-  std::lock_guard<std::mutex> lock(programs_mutex_);
-  return asked_for_;
-}
-
-std::set<std::string> GpuContext::programs_built_ahead() const {
-  std::lock_guard<std::mutex> lock(programs_mutex_);
-  return built_ahead_;
-}
-
-std::set<std::string> GpuContext::built_kernel_names() const {
-  std::vector<ProgramFuture> programs;
-  {
-    std::lock_guard<std::mutex> lock(programs_mutex_);
-    for (const auto& [key, future] : programs_) programs.push_back(future);
-  }
-  std::set<std::string> names;
-  for (const ProgramFuture& future : programs) {
-    if (future.wait_for(std::chrono::seconds(0)) == std::future_status::deferred) continue;  // never asked for
-    std::shared_ptr<cl::Program> program;
-    try {
-      program = future.get();
-    } catch (const std::exception&) {
-      continue;  // a build that failed has no kernels
-    }
-    std::istringstream list(program->getInfo<CL_PROGRAM_KERNEL_NAMES>());
-    for (std::string name; std::getline(list, name, ';');) {
-      while (!name.empty() && (name.back() == '\0' || name.back() == ' ')) name.pop_back();
-      if (!name.empty()) names.insert(name);
-    }
-  }
-  return names;
-}
-
 std::shared_ptr<cl::Program> GpuContext::build(const std::string& file, const std::string& source,
                                                const std::string& options) {
   auto start = std::chrono::steady_clock::now();

@@ -14,6 +14,7 @@
 
 #include "cl/device_info.h"
 #include "cl/named_kernel.h"
+#include "util/test_probe.h"
 #include "util/memory_use.h"
 
 namespace rcsplat {
@@ -82,19 +83,11 @@ class GpuContext {
   // Each build's own seconds by kernel file ("records.cl"), every set of switches of a file together (`rcsplat
   // bench`'s cold builds by file); builds ahead included, so the sum may exceed the wait.
   std::map<std::string, double> program_seconds_by_file() const;
-  // The programs ("file|options") asked for by program() so far, and those build_ahead started (tests: a frame's
-  // programs are all built ahead, and none in vain).
-  std::set<std::string> programs_asked_for() const;
-  std::set<std::string> programs_built_ahead() const;
 
   const GroupSizes& groups() const { return groups_; }
-  // Another device's shapes on this one (tests: a GPU's record trace on PoCL must give the same records).
-  void set_groups(const GroupSizes& groups) { groups_ = groups; }
 
-  // Every kernel of every program built so far, and for each kernel launched whether its last launch set all its
-  // parameters by name in the kernel's own order (tests/kernel_args_test.cpp).
-  std::set<std::string> built_kernel_names() const;
-  const std::map<std::string, bool>& launched_kernels() const { return launched_; }
+  // Notes whether a kernel's launch set all its parameters by name in the kernel's own order (NamedKernel::launch;
+  // tests/kernel_args_test.cpp reads it through test::PassProbe).
   void note_launch(const std::string& kernel, bool all_in_order) { launched_[kernel] = all_in_order; }
 
   // A device buffer of `bytes`; running out of device memory (or asking for more than one buffer may hold) throws
@@ -111,8 +104,6 @@ class GpuContext {
                size_t most = SIZE_MAX) {
     reserve(buffer, capacity, count, sizeof(T), what, keep_contents, most);
   }
-  // How many buffers buffer() has made so far (tests: a later frame through a Renderer makes none).
-  size_t buffers_made() const { return buffers_made_; }
   // The most device memory this context's buffers may hold at once (--max-device-memory); 0: what the device has.
   void set_memory_budget(uint64_t bytes) { memory_budget_ = bytes; }
 
@@ -153,6 +144,9 @@ class GpuContext {
   }
 
  private:
+  // The programs asked for and built ahead, the kernels built and launched, the buffers made, and another device's
+  // group sizes: what tests read and set through test::PassProbe (tests/pass_probe.h).
+  friend struct test::PassProbe;
   using ProgramFuture = std::shared_future<std::shared_ptr<cl::Program>>;
   // The program under `key`, built now in this thread unless build_ahead started it: waits for it, timing the wait.
   cl::Program& wait_for(const std::string& key, const std::string& file, const std::function<std::string()>& source,

@@ -7,6 +7,7 @@
 #include "kernels/hsh.h"
 #include "render/bounce_choice.h"
 #include "render/frame_plan.h"
+#include "render/pixel_samples.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -40,9 +41,11 @@ void EnvironmentFlags::add(CLI::App* cmd, EnvironmentSettings& e) {
     cmd->add_option("--environment", e.file,
                     "Equirectangular environment map (.exr, .hdr): +Y up, its centre column toward -Z; its bright "
                     "peak (a sun) is importance-sampled by shadow rays, the rest gathered with the indirect light");
-    cmd->add_option("--environment-intensity", e.intensity, "Multiplies the environment map (default 1)");
+    cmd->add_option("--environment-intensity", e.intensity,
+                    "Multiplies the environment map (default " + shortest(EnvironmentSettings{}.intensity) + ")");
     cmd->add_option("--environment-rotation", e.rotation_degrees,
-                    "Rotates the environment map about +Y by this many degrees (default 0)");
+                    "Rotates the environment map about +Y by this many degrees (default " +
+                        shortest(EnvironmentSettings{}.rotation_degrees) + ")");
 }
 
 void EnvironmentFlags::apply(EnvironmentSettings& e) const { e.sky = as_vec3(sky); }
@@ -90,8 +93,11 @@ void add_frame_options(CLI::App* cmd, RenderJob& o, std::string& json_path, bool
   cmd->add_option("--seed", o.settings.seed, "Seed of the sample pattern");
   cmd->add_option("--pixel-samples", o.settings.pixel_samples,
                   "Primary samples per pixel, a square number (4: a 2x2 sub-pixel grid) for anti-aliased edges; light "
-                  "and path samples are per pixel, records are those of one sample; default 4 for render, 16 for "
-                  "reference (a finer grid, so compare counts a render's edge aliasing as error), fewer where --spp "
+                  "and path samples are per pixel, records are those of one sample; default " +
+                      std::to_string(RenderSettings{}.preferred_pixel_samples) + " for render, " +
+                      std::to_string(kReferencePixelSamples) +
+                      " for reference (a finer grid, so compare counts a render's edge aliasing as error), fewer "
+                      "where --spp "
                   "does not divide by them or the frame is very large; path tracing takes each sample at a random "
                   "point of its cell of the grid, so it integrates over the pixel's area");
   cmd->add_flag("!--sub-pixel-grid", o.settings.path.pixel_area,

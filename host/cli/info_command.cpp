@@ -103,7 +103,7 @@ nlohmann::json plan_report(const Scene& scene, const std::string& device) {
                                                         : "by path continuation");
     std::printf("plan         render's defaults: %d x %d, %u pixel samples (%ux%u sub-pixels), %u light samples, "
                 "accuracy %g, %ux%u rays a record",
-                plan.width, plan.height, plan.settings.pixel_samples, plan.side, plan.side,
+                plan.settings.width, plan.settings.height, plan.settings.pixel_samples, plan.side, plan.side,
                 plan.settings.light_samples, double(plan.settings.cache.accuracy), plan.settings.cache.theta_strata,
                 plan.settings.cache.phi_strata);
     if (plan.settings.hsh_order)
@@ -117,7 +117,7 @@ nlohmann::json plan_report(const Scene& scene, const std::string& device) {
     std::printf("passes       render's defaults run: %s\n", pass_list.c_str());
     nlohmann::json report = {{"chosen", bounces}, {"kept_per_bounce", plan.kept_per_bounce},
                              {"cache_method", bounce_method_name(method)}, {"device", gpu.device_info().name}};
-    report["plan"] = {{"width", plan.width}, {"height", plan.height}, {"pixel_samples", plan.settings.pixel_samples},
+    report["plan"] = {{"width", plan.settings.width}, {"height", plan.settings.height}, {"pixel_samples", plan.settings.pixel_samples},
                       {"light_samples", plan.settings.light_samples}, {"accuracy", plan.settings.cache.accuracy},
                       {"hsh_order", plan.settings.hsh_order}, {"radiance_accuracy", plan.radiance_accuracy},
                       {"passes", passes}};

@@ -9,6 +9,10 @@
 
 namespace rcsplat {
 
+RenderSettings FramePlan::frame_settings() const {
+  return side > 1 ? sub_pixel_settings(settings, settings.width, settings.height, side) : settings;
+}
+
 void check_request(const RenderSettings& r) {
   auto range = [](const char* option, long long value, long long lo, long long hi, const char* zero) {
     if (value < lo || value > hi)

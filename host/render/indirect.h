@@ -133,7 +133,8 @@ struct IndirectFrame {
   DirectPass& direct;
   // The frame's plan, passes included (render/frame_passes.h): what runs is read there, never decided again.
   const FramePlan& plan;
-  // plan.frame, or a round's share of it (path tracing over the pixel's area: Renderer::path_trace_pixel_area).
+  // plan.frame_settings() for this frame, or a round's share of it (path tracing over the pixel's area:
+  // Renderer::path_trace_pixel_area).
   const RenderSettings& settings;
   // Output-resolution layers (G-buffer's, direct light, colour = emission + direct) already filled; the passes run on
   // the G-buffer's frame, layers.side() times as wide and high with sub-pixels, and `layers` gathers their images.

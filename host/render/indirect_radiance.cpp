@@ -88,12 +88,13 @@ const RadianceSplatPass* radiance_cached_lobes(IndirectFrame& f) {
 
   // The order's table and passes; the lobe table itself counts where the plan computed it.
   StageTimer table_timing(st.radiance.lobe_table_s, f.gpu, st.program_s);
-  const unsigned order = f.settings.hsh_order;
+  const FrameRadiance radiance = f.plan.radiance();
+  const unsigned order = radiance.order;
   st.radiance.order = order;
-  st.radiance.captured_energy = f.plan.hsh_captured_energy;
+  st.radiance.captured_energy = radiance.captured_energy;
 
   CacheSettings cs = f.settings.cache;
-  cs.accuracy = f.plan.radiance_accuracy;
+  cs.accuracy = radiance.accuracy;
   st.radiance.accuracy = cs.accuracy;
 
   MethodPasses& passes = f.passes;

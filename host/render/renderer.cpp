@@ -152,7 +152,7 @@ void Renderer::build_programs_ahead(const FramePlan& plan) {
   if (passes.light_guide) GuideClusterPass::build_ahead(gpu_);
   if (passes.photon_map) PhotonMapPass::build_ahead(gpu_);
   if (passes.caustic_map) CausticMapPass::build_ahead(gpu_);
-  const unsigned theta_strata = largest_theta_strata(plan.frame.cache);
+  const unsigned theta_strata = largest_theta_strata(plan.cache());
   RecordPass::build_ahead(gpu_, scene, theta_strata, false, passes.photon_map, passes.caustic_map);
   if (passes.record_trace == RecordTrace::wavefront) RayQueue::build_ahead(gpu_, scene);  // its queued rays
   if (passes.device_placement) {
@@ -200,23 +200,17 @@ FramePlan Renderer::plan(const RenderSettings& request) {
   p.settings = request;
   RenderSettings& s = p.settings;
   p.camera = choose_camera(scene_, s.camera, s.camera_overrides);
-  p.width = s.width;
-  p.height = s.height;
-  resolve_resolution(p.camera, p.width, p.height);
-  s.width = p.width;
-  s.height = p.height;
-  if (s.pixel_samples == 0) s.pixel_samples = default_pixel_samples(s, p.width, p.height);
+  resolve_resolution(p.camera, s.width, s.height);
+  if (s.pixel_samples == 0) s.pixel_samples = default_pixel_samples(s, s.width, s.height);
   const unsigned side = pixel_sample_side(s.pixel_samples);
   // Path tracing over the pixel's area traces rounds of the image's frame itself.
   const bool rounds = s.gi == GiMethod::path && s.path.pixel_area;
   p.side = rounds ? 1 : side;
   p.rounds = rounds ? side * side : 1;
-  if (std::max(p.width, p.height) * int(p.side) > 16384)
-    throw Error("--pixel-samples " + std::to_string(s.pixel_samples) + " at " + std::to_string(p.width) + "x" +
-                std::to_string(p.height) + " needs a sub-pixel frame above 16384 pixels wide or high");
-  p.frame_width = p.width * int(p.side);
-  p.frame_height = p.height * int(p.side);
-  check_frame_fits(p.frame_width, p.frame_height, p.side, gpu_.device_info());
+  if (std::max(s.width, s.height) * int(p.side) > 16384)
+    throw Error("--pixel-samples " + std::to_string(s.pixel_samples) + " at " + std::to_string(s.width) + "x" +
+                std::to_string(s.height) + " needs a sub-pixel frame above 16384 pixels wide or high");
+  check_frame_fits(p.frame_width(), p.frame_height(), p.side, gpu_.device_info());
 
   const bool cache = s.gi == GiMethod::splat || s.gi == GiMethod::octree;
   if (s.bounce_method == BounceMethod::photons && s.bounces != 1 && cache && scene_.environment.present())
@@ -238,9 +232,10 @@ FramePlan Renderer::plan(const RenderSettings& request) {
     p.radiance_accuracy = radiance_accuracy(lobes, s.cache.accuracy);
   }
 
-  if (cache) scale_placement_to_image(s.cache, p.height);
-  p.frame = p.side > 1 ? sub_pixel_settings(s, p.width, p.height, p.side) : s;
-  const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : p.frame.light_samples;
+  if (cache) scale_placement_to_image(s.cache, s.height);
+  // Derived again by each frame; here once to refuse what cannot be divided among the sub-pixels (--spp).
+  const RenderSettings frame = p.frame_settings();
+  const unsigned light_samples = rounds ? samples_per_sub_pixel(s, p.rounds).light_samples : frame.light_samples;
   p.light_strata = light_sample_strata(light_samples);
   return p;
 }
@@ -368,7 +363,7 @@ void Renderer::surface_layers(RenderedImage& img, bool colour_on_host) {
 // share of the light and path samples, averaged. The position, depth and triangle layers are those of the round whose
 // cell holds the pixel's centre. The BVH, the kernels and the buffers serve every round.
 void Renderer::path_trace_pixel_area(const FramePlan& plan, const CameraParams& camera, RenderedImage& img) {
-  const RenderSettings& settings = plan.frame;
+  const RenderSettings settings = plan.frame_settings();
   const unsigned rounds = plan.rounds, side = pixel_sample_side(rounds);
   RenderSettings round_settings = samples_per_sub_pixel(settings, rounds);
   const unsigned centre_round = (side / 2) * side + side / 2;
@@ -431,16 +426,18 @@ RenderedImage Renderer::render(const FramePlan& plan) {
 
   st.device = gpu_.device_info().name;
   st.gi = plan.settings.gi;
-  st.bounces.count = plan.settings.bounces;
-  st.bounces.method = plan.settings.bounce_method;
-  st.bounces.chosen = plan.bounces_chosen;
-  st.bounces.kept_per_bounce = plan.kept_per_bounce;
+  const FrameBounces bounces = plan.bounces();
+  st.bounces.count = bounces.count;
+  st.bounces.method = bounces.method;
+  st.bounces.chosen = bounces.chosen;
+  st.bounces.kept_per_bounce = bounces.kept_per_bounce;
   st.primary.light_samples = plan.light_strata * plan.light_strata;
-  img.width = plan.width;
-  img.height = plan.height;
+  const FrameImage image = plan.image();
+  img.width = image.width;
+  img.height = image.height;
 
-  CameraParams params = camera_params(scene_frame_.device_camera(plan.camera), plan.frame_width, plan.frame_height);
-  params.sub_pixel_side = int(plan.side);
+  CameraParams params = camera_params(scene_frame_.device_camera(plan.camera), image.frame_width, image.frame_height);
+  params.sub_pixel_side = int(image.side);
   // One method's passes at a time: another method's frame frees them before making its own.
   if (passes_->method != plan.settings.gi) {
     passes_ = std::make_unique<MethodPasses>();
@@ -453,16 +450,16 @@ RenderedImage Renderer::render(const FramePlan& plan) {
     gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
     direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
   }
-  if (!layers_ || layers_->side() != plan.side || layers_->out_width() != plan.width ||
-      layers_->out_height() != plan.height)
-    layers_ = std::make_unique<LayerPass>(gpu_, plan.side, plan.width, plan.height);
+  if (!layers_ || layers_->side() != image.side || layers_->out_width() != image.width ||
+      layers_->out_height() != image.height)
+    layers_ = std::make_unique<LayerPass>(gpu_, image.side, image.width, image.height);
   layers_->set_piece_pixels(plan.settings.layer_piece_pixels);
   builds.stop();
 
   if (plan.rounds > 1)
     path_trace_pixel_area(plan, params, img);
   else
-    shade_frame(plan, params, plan.frame, img);
+    shade_frame(plan, params, plan.frame_settings(), img);
   for (CacheRecord& r : img.records) r = scene_frame_.world_record(r);
   if (plan.side > 1) {
     const unsigned n = plan.side * plan.side;

@@ -57,13 +57,13 @@ void check_cache_files(const RenderJob& o) {
 
 namespace {
 CacheFileIdentity cache_identity(const GpuContext& gpu, const Scene& scene, const FramePlan& plan) {
-  return {scene_fingerprint(scene), settings_fingerprint(kept_records_key(plan.frame)), gpu.device_info().name};
+  return {scene_fingerprint(scene), settings_fingerprint(kept_records_key(plan.frame_settings())), gpu.device_info().name};
 }
 }  // namespace
 
 void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
                      const std::string& path) {
-  read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame), cache_file_limits(plan.frame),
+  read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame_settings()), cache_file_limits(plan.frame_settings()),
                   kept);
   log_info(path + ": " + std::to_string(kept.irradiance.size()) + " irradiance records, " +
            std::to_string(kept.radiance.size()) + " radiance records, " + std::to_string(kept.light.photons.size()) +

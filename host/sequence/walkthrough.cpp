@@ -220,7 +220,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
       parts.push_back({o.cache_merge[i], &caches[i]});
     }
     KeptCache merged(capacity);
-    result.merge = merge_cache_parts(parts, kept_records_key(plan.frame), capacity, merged);
+    result.merge = merge_cache_parts(parts, kept_records_key(plan.frame_settings()), capacity, merged);
     save_cache_file(gpu, merged, scene, plan, o.render.cache_out);
     return result;
   }
@@ -276,7 +276,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
 
   if (pre_pass) {
     const KeptCache written =
-        part.cache(renderers.current().kept_records(), kept_records_key(last_plan.frame), request.kept_records_capacity);
+        part.cache(renderers.current().kept_records(), kept_records_key(last_plan.frame_settings()), request.kept_records_capacity);
     save_cache_file(gpu, written, scene, last_plan, o.render.cache_out);
     result.pre_pass_irradiance = part.irradiance_records();
     result.pre_pass_radiance = part.radiance_records();
