@@ -68,7 +68,10 @@ message(STATUS "${count} headers of host/cache, host/scene, host/image and the f
 # Last, the build's own fence (CMakeLists.txt): each layer compiles against build/layers/<layer>/, which holds its own
 # and the lower layers' folders only, so that an upward include fails to compile. Each layer is tried with a header of
 # every layer it may not see.
-if(LAYERS_DIR)
+if(LAYERS_DIR AND NOT IS_DIRECTORY ${LAYERS_DIR})
+  message(STATUS "no layer folders: a one-library build (RCSPLAT_LAYER_LIBRARIES OFF, scripts/sanitize.sh); the plain "
+                 "build tries the upward includes")
+elseif(LAYERS_DIR)
   file(GLOB layer_dirs LIST_DIRECTORIES true ${LAYERS_DIR}/*)
   set(all_layers "")
   foreach(dir ${layer_dirs})
