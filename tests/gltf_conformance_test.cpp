@@ -333,20 +333,34 @@ TEST(GltfConformance, OrthographicCameraRaysAreParallel) {
 }
 
 TEST(GltfConformance, FeaturesNotSimulatedAreNamedOnce) {
+  const std::string dir = test::scratch_dir();
+  {
+    unsigned char texels[] = {128, 128, 255, 255};
+    auto out = OIIO::ImageOutput::create(dir + "/flat.png");
+    ASSERT_TRUE(out && out->open(dir + "/flat.png", OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels));
+    out->close();
+  }
   GltfBuilder b;
-  add_quad(b, json::object(), 0);
+  float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const int t = b.add_accessor(b.add_view(uv, sizeof uv), kFloat, 4, "VEC2");
+  add_quad(b, {{"TEXCOORD_0", t}}, 0);
   b.doc["meshes"].push_back(b.doc["meshes"][0]);
   b.doc["meshes"][1]["primitives"][0]["material"] = 1;
   json coloured_specular = {{"KHR_materials_specular", {{"specularColorFactor", {1.0, 0.5, 0.5}}}}};
   b.doc["materials"] = json::array(
-      {{{"pbrMetallicRoughness", {{"metallicFactor", 1.0}}}, {"alphaMode", "BLEND"}, {"extensions", coloured_specular}},
-       {{"pbrMetallicRoughness", {{"metallicFactor", 0.5}}}, {"alphaMode", "BLEND"}, {"extensions", coloured_specular}}});
+      {{{"pbrMetallicRoughness", {{"metallicFactor", 1.0}}}, {"alphaMode", "BLEND"}, {"extensions", coloured_specular},
+        {"normalTexture", {{"index", 0}}}, {"occlusionTexture", {{"index", 0}}}},
+       {{"pbrMetallicRoughness", {{"metallicFactor", 0.5}}}, {"alphaMode", "BLEND"}, {"extensions", coloured_specular},
+        {"normalTexture", {{"index", 0}}}}});
+  b.doc["images"] = json::array({{{"uri", "flat.png"}}});
+  b.doc["textures"] = json::array({{{"source", 0}}});
   b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_specular"};
   b.doc["animations"] = json::array({{{"channels", json::array()}, {"samplers", json::array()}}});
   b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"mesh", 1}}});
-  Scene scene = load(b, "unsupported");
+  Scene scene = load_gltf(b.write(dir, "unsupported"));
   std::vector<std::string> keys = {"KHR_materials_specular colour", "alphaMode BLEND", "KHR_materials_transmission",
-                                   "animation"};
+                                   "animation", "normalTexture", "occlusionTexture"};
   for (const std::string& key : keys) {
     size_t found = 0;
     for (const std::string& line : scene.unsupported) found += line.find(key) != std::string::npos;

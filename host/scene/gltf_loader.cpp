@@ -723,6 +723,10 @@ class GltfReader {
       for (int i = 0; i < 3; ++i)
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail(material_label(src) + ": invalid emission");
       if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
+      // Named, never dropped silently: a normal map's detail, and a baked occlusion that light transport computes.
+      if (src.normalTexture.index >= 0) note_unsupported("normalTexture", "the interpolated vertex normals shade");
+      if (src.occlusionTexture.index >= 0)
+        note_unsupported("occlusionTexture", "not applied: the indirect light's occlusion is traced, not baked");
       if (src.alphaMode == "MASK") {
         // A cutoff of 0 would make every hit solid: keep the smallest positive one instead.
         m.alpha_cutoff = std::max(float(src.alphaCutoff), 1e-6f);
