@@ -66,7 +66,7 @@ void print_merge(const AnimateOptions& options, const WalkthroughResult& result)
 int run_animate(const AnimateOptions& options) {
   set_progress_lines(options.progress_lines);
   const WalkthroughRequest& o = options.walk;
-  check_walkthrough(o);
+  // The command's own output, before any work; render_walkthrough checks the request itself (check_walkthrough).
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
   const WalkthroughResult result = render_walkthrough(o);
   report_progress(1.0);

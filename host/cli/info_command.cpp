@@ -47,7 +47,8 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
               plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)");
   std::printf("switches    ");
-  for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth)) std::printf(" %s=%s", name.c_str(), value.c_str());
+  for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth))
+    std::printf(" %s=%s", name.c_str(), value.c_str());
   std::printf("\n");
 }
 
@@ -91,35 +92,36 @@ nlohmann::json plan_report(const Scene& scene, const std::string& device) {
     GpuContext gpu(select_device(device));
     Renderer renderer(gpu, scene);
     const FramePlan plan = renderer.plan(RenderSettings{});  // the library's defaults are the command line's
-    const unsigned bounces = plan.settings.bounces;
-    const BounceMethod method = plan.settings.bounce_method;
+    const FrameBounces bounces = plan.bounces();
+    const FrameImage image = plan.image();
+    const FrameRadiance radiance = plan.radiance();
     std::printf("bounces      %u when --bounces is left out: each reflection keeps %.0f%% of the light it receives "
                 "(photons measured it on %s), so the bounces left out carry at most %.0f%% of the indirect light; "
                 "the cache takes the bounces after the first %s\n",
-                bounces, 100.0 * plan.kept_per_bounce, gpu.device_info().name.c_str(),
+                bounces.count, 100.0 * bounces.kept_per_bounce, gpu.device_info().name.c_str(),
                 100.0 * kMissingIndirectShare,
-                bounces == 1 ? "(none)"
-                : method == BounceMethod::photons ? "from a photon map"
+                bounces.count == 1 ? "(none)"
+                : bounces.method == BounceMethod::photons ? "from a photon map"
                                                         : "by path continuation");
     std::printf("plan         render's defaults: %d x %d, %u pixel samples (%ux%u sub-pixels), %u light samples, "
                 "accuracy %g, %ux%u rays a record",
-                plan.settings.width, plan.settings.height, plan.settings.pixel_samples, plan.side, plan.side,
+                image.width, image.height, plan.settings.pixel_samples, image.side, image.side,
                 plan.settings.light_samples, double(plan.settings.cache.accuracy), plan.settings.cache.theta_strata,
                 plan.settings.cache.phi_strata);
-    if (plan.settings.hsh_order)
+    if (radiance.order)
       std::printf(", HSH order %u for the radiance-cached lobes (it holds %.0f%% of the sharpest; their records at "
                   "accuracy %g)",
-                  plan.settings.hsh_order, 100.0 * plan.hsh_captured_energy, double(plan.radiance_accuracy));
+                  radiance.order, 100.0 * radiance.captured_energy, double(radiance.accuracy));
     std::printf("\n");
     const std::vector<std::string> passes = frame_pass_names(plan.passes);
     std::string pass_list;
     for (const std::string& name : passes) pass_list += (pass_list.empty() ? "" : ", ") + name;
     std::printf("passes       render's defaults run: %s\n", pass_list.c_str());
-    nlohmann::json report = {{"chosen", bounces}, {"kept_per_bounce", plan.kept_per_bounce},
-                             {"cache_method", bounce_method_name(method)}, {"device", gpu.device_info().name}};
-    report["plan"] = {{"width", plan.settings.width}, {"height", plan.settings.height}, {"pixel_samples", plan.settings.pixel_samples},
+    nlohmann::json report = {{"chosen", bounces.count}, {"kept_per_bounce", bounces.kept_per_bounce},
+                             {"cache_method", bounce_method_name(bounces.method)}, {"device", gpu.device_info().name}};
+    report["plan"] = {{"width", image.width}, {"height", image.height}, {"pixel_samples", plan.settings.pixel_samples},
                       {"light_samples", plan.settings.light_samples}, {"accuracy", plan.settings.cache.accuracy},
-                      {"hsh_order", plan.settings.hsh_order}, {"radiance_accuracy", plan.radiance_accuracy},
+                      {"hsh_order", radiance.order}, {"radiance_accuracy", radiance.accuracy},
                       {"passes", passes}};
     return report;
   } catch (const std::exception& e) {  // no OpenCL platform or device, or one that cannot run the probe

@@ -322,9 +322,7 @@ int run_render(const RenderOptions& options) {
   if (!options.json_path.empty()) check_writable_destination(options.json_path);
   // Loaded before the scene, so that a missing library stops the run before any work and with no file written.
   std::unique_ptr<Denoiser> denoiser = options.denoise ? Denoiser::load() : nullptr;
-  Scene scene =
-      load_scene(options.scene_path, options.settings.camera, options.settings.camera_overrides, options.environment,
-                 options.limits);
+  Scene scene = load_scene(options);  // the job's scene (sequence/render_job.h)
   DeviceInfo device = select_device(options.device);
   log_info("device: " + device.name + " (" + device.platform_name + ")");
   GpuContext gpu(device);

@@ -158,10 +158,7 @@ int run_sweep(const SweepOptions& o) {
   csv << "\n";
 
   std::printf("%-34s %9s %12s %12s %8s\n", "config", "seconds", "ind relMSE", "ind block", "FLIP");
-  set_progress_shown(false);  // a line a run instead of each pass's progress (and of its Progress lines)
-  struct ShowProgressAgain {
-    ~ShowProgressAgain() { set_progress_shown(true); }
-  } show_progress_again;
+  const ProgressHidden hidden;  // a line a run instead of each pass's progress (and of its Progress lines)
   const bool was_quiet = is_quiet();
   // A small frame of each method first: drivers that compile at first launch (PoCL) would otherwise charge the first
   // timed run of each method for it.

@@ -45,8 +45,9 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:pixel_points", pixel_points_name(settings)}};
 }
 
-Scene load_scene(const RenderJob& job) {
-  return load_scene(job.scene_path, job.settings.camera, job.settings.camera_overrides, job.environment, job.limits);
+Scene load_scene(const RenderJob& job, const ScenePose& pose) {
+  return load_scene(job.scene_path, job.settings.camera, job.settings.camera_overrides, job.environment, job.limits,
+                    pose);
 }
 
 void check_cache_files(const RenderJob& o) {

@@ -37,8 +37,8 @@ struct RenderJob {
 Scene load_scene(const std::string& path, int camera = 0, const CameraOverrides& overrides = {},
                  const EnvironmentSettings& environment = {}, const SceneLimits& limits = {},
                  const ScenePose& pose = {});
-// The job's scene, in its rest pose.
-Scene load_scene(const RenderJob& job);
+// The job's scene, in `pose` (its rest pose by default).
+Scene load_scene(const RenderJob& job, const ScenePose& pose = {});
 
 // --cache-in / --cache-out (sequence/cache_file.h): checked before any work (the splat only; --cache-out writable);
 // then read into the renderer's kept records (or another KeptCache) for the plan's settings, or written from them.

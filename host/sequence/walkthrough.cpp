@@ -62,11 +62,9 @@ class FrameRenderers {
   Renderer& for_frame(long long frame) {
     if (!moves_) return *renderer_;
     renderer_.reset();  // before the scene it renders from
-    const RenderSettings& s = o_.render.settings;
-    posed_ = std::make_unique<Scene>(load_scene(o_.render.scene_path, s.camera, s.camera_overrides,
-                                                o_.render.environment, o_.render.limits,
-                                                ScenePose{path_.moves_scene_animation, double(frame) / o_.fps}));
-    renderer_ = std::make_unique<Renderer>(gpu_, *posed_, s.forced_switches);
+    posed_ = std::make_unique<Scene>(
+        load_scene(o_.render, ScenePose{path_.moves_scene_animation, double(frame) / o_.fps}));
+    renderer_ = std::make_unique<Renderer>(gpu_, *posed_, o_.render.settings.forced_switches);
     return *renderer_;
   }
   Renderer& current() { return *renderer_; }
@@ -192,10 +190,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   GpuContext gpu(device);
   gpu.set_memory_budget(o.render.limits.device_memory_bytes);
   FrameRenderers renderers(gpu, o, scene, path);
-  set_progress_shown(false);  // a line a frame instead of each pass's progress
-  struct ShowProgressAgain {
-    ~ShowProgressAgain() { set_progress_shown(true); }
-  } show_progress_again;
+  const ProgressHidden hidden;  // a line a frame instead of each pass's progress
 
   auto frame_settings = [&](long long frame) {
     RenderSettings settings = request;

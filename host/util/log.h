@@ -14,6 +14,13 @@ void log_warning(const std::string& message);
 void set_quiet(bool quiet);
 // Whether Progress lines are drawn (a command that prints its own progress, a line a frame, turns them off).
 void set_progress_shown(bool shown);
+// Progress lines hidden while it lives, shown again when it goes (an exception included).
+struct ProgressHidden {
+  ProgressHidden() { set_progress_shown(false); }
+  ~ProgressHidden() { set_progress_shown(true); }
+  ProgressHidden(const ProgressHidden&) = delete;
+  ProgressHidden& operator=(const ProgressHidden&) = delete;
+};
 bool is_quiet();
 // Render-farm managers (Deadline and others) read a task's progress from stdout lines "Progress: NN%". With these on
 // (--progress-lines), report_progress prints one whenever the whole percentage grows (never going back, whatever
