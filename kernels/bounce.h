@@ -36,7 +36,7 @@ inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, 
     return false;
   }
   *distance = hit.t;
-  *h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
+  *h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
   return true;
 }
 
@@ -50,7 +50,7 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
     return direct_reflected(SCENE, &brdf, lobe, h->s.position, h->ns, h->ng, -dir, u, v, u_lobe, rays);
   }
 #endif
-  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
+  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, EMITTERS, scene_counts.emitter_count,
                                h->s.position, h->ns, h->ng, u, v, rays);
 #if HAS_ENVIRONMENT
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
@@ -77,7 +77,7 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h));
   ShadingFrame frame = shading_frame(h->ns);
   float3 wo = view_local(frame, -dir);
-  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, emitters, scene_counts.emitter_count,
+  float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, EMITTERS, scene_counts.emitter_count,
                                h->s.position, h->ns, h->ng, u, v, rays);
   float3 l = (float3)(0.0f);
 #if HAS_ENVIRONMENT

@@ -7,6 +7,7 @@
 // or, with RADIANCE_CACHED, a radiance-cached lobe (LOBE_HSH) the light its records reflect toward the pixel's view
 // (radiance_splat.cl), plus, with a light guide, the guide's share sampled per pixel (glossy.cl guide_share).
 #include "sampling.h"
+#include "shading_normal.h"
 #include "scene_args.h"
 #if HAS_SPECULAR_BRDF
 #include "brdf_frame.h"
@@ -25,7 +26,7 @@ __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global 
 #if HAS_SPECULAR_BRDF
   if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
     BrdfInputs in = gbuffer_brdf(g);
-    ShadingFrame frame = shading_frame(vload3(0, g.normal));
+    ShadingFrame frame = shading_frame(gbuffer_shading_normal(g));
     float3 wo = view_local(frame, camera_view_direction(camera, vload3(0, g.position)));
     indirect = brdf_eval_diffuse(in, wo.z) * e;
     if (g.lobe == LOBE_ROUGH) indirect += specular_albedo(in, wo) * RC_INV_PI * e;

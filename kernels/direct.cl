@@ -5,6 +5,7 @@
 // camera per light sample, glossy ones adding a BRDF sample per light sample (kernels/reflected_light.h). Emission
 // itself is not included. Writes RGB = reflected direct radiance, A = the number of shadow rays the pixel cast.
 #include "counter_random.h"
+#include "shading_normal.h"
 #include "environment.h"
 #include "lighting.h"
 #include "pixel_rounds.h"
@@ -29,7 +30,7 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
 // glossy.
 inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world, uint strata_per_axis, uint key,
                                     RayTally* rays) {
-  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
   ShadingFrame frame = shading_frame(n);
@@ -83,7 +84,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
   }
 #endif
   if (g.triangle >= 0) {
-    float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+    float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
     float3 origin = offset_ray_origin(p, ng);
     float3 irradiance = (float3)(0.0f);
 #if HAS_PUNCTUAL_LIGHTS
@@ -100,7 +101,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
           float2 uv = light_stratum_sample(key, i, j, strata_per_axis);
           float3 wi;
           float pdf;
-          sum += emitter_sample(BVH, emitters, emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, &rays);
+          sum += emitter_sample(BVH, EMITTERS, emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, &rays);
         }
       }
       irradiance += sum * (inv * inv);
@@ -134,7 +135,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
 // punctual light; direct_sums its samples' sum (RGB) and count; direct_moments their luminance sum and sum of squares,
 // their count and the rays cast. Later rounds add; average_direct_samples makes direct_out what direct_light writes.
 inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, float3 wo_world, RayTally* rays) {
-  const float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  const float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   const float3 origin = offset_ray_origin(p, ng);
 #if HAS_SPECULAR_BRDF
   if (g.lobe != LOBE_NONE) {
@@ -154,7 +155,7 @@ inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, float3 wo_world, RayT
 
 inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, float3 wo_world, float2 uv, float2 uv_environment,
                              float u_lobe, RayTally* rays) {
-  const float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  const float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   const float3 origin = offset_ray_origin(p, ng);
   float3 light = (float3)(0.0f);
 #if HAS_SPECULAR_BRDF
@@ -178,7 +179,7 @@ inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, float3 wo_world, float
 #if HAS_EMITTERS
   if (scene_counts.emitter_count > 0) {
     float pdf;
-    light += emitter_sample(BVH, emitters, scene_counts.emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, rays);
+    light += emitter_sample(BVH, EMITTERS, scene_counts.emitter_count, uv.x, uv.y, p, origin, n, ng, &wi, &pdf, rays);
   }
 #endif
 #if HAS_ENVIRONMENT

@@ -4,6 +4,7 @@
 #include "environment.h"
 #include "scene_args.h"
 #include "surface.h"
+#include "shading_normal.h"
 #include "counter_random.h"
 
 // Where in pixel (x, y) its camera ray passes, in pixels from its top-left corner: the centre of the camera's jitter
@@ -47,7 +48,8 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   RayPrecomp r = ray_precompute(org, dir);
   TraceHit hit;
   GBufferSample g;
-  g.pad[0] = g.pad[1] = 0.0f;
+  g.mapped_normal[0] = NO_MAPPED_NORMAL;
+  g.mapped_normal[1] = 0.0f;
   g.metallic = 0.0f;
   g.roughness = 1.0f;
   g.specular = 0.0f;
@@ -66,14 +68,19 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.material = -1;
     g.depth = INFINITY;
   } else {
-    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
+    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
     SurfacePoint s = h.s;
     const float3 ng = h.ng, ns = h.ns;
     bool back = dot(s.geometric_normal, dir) > 0.0f;
     __global const Material* m = materials + s.material;
-    float3 emission = (!back || m->double_sided) ? vload3(0, m->emission) : (float3)(0.0f);
+    float3 emission = (!back || m->double_sided) ? surface_emission(materials, textures, texels, &s) : (float3)(0.0f);
     vstore3(s.position, 0, g.position);
+#if HAS_NORMAL_MAPS
+    vstore3(h.ns_interpolated, 0, g.normal);
+    if (m->normal_texture >= 0) vstore2(octahedral_encode(ns), 0, g.mapped_normal);
+#else
     vstore3(ns, 0, g.normal);
+#endif
     vstore3(ng, 0, g.geometric_normal);
     vstore3(surface_albedo(materials, textures, texels, &s), 0, g.albedo);
     vstore3(emission, 0, g.emission);

@@ -10,6 +10,7 @@
 // radiance-cache them; without it, and with a light guide, the LOBE_HSH pixels get the share of their light that their
 // radiance records leave to the guide (guide_share), in the first round.
 #include "bounce.h"
+#include "shading_normal.h"
 #include "brdf_frame.h"
 #include "caustic_map.h"
 #include "counter_random.h"
@@ -252,7 +253,7 @@ inline void glossy_sub_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __gl
     return;
   }
   float3 p = vload3(0, g.position), ng = vload3(0, g.geometric_normal);
-  ShadingFrame frame = shading_frame(vload3(0, g.normal));
+  ShadingFrame frame = shading_frame(gbuffer_shading_normal(g));
   BrdfInputs in = gbuffer_brdf(g);
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
@@ -396,7 +397,7 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams par
   if (hit.prim < 0) {
     l = miss_radiance(SCENE, dir);
   } else {
-    HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
+    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
     const float u = random01(key, s, 2u), v = random01(key, s, 3u), u_lobe = random01(key, s, 4u);
     if (!world_grid.record_count) {
       l = first_bounce_from_hit(SCENE, &h, dir, hit.t, u, v, u_lobe, more, &rays, &after);
@@ -435,7 +436,7 @@ __kernel void step_glossy_paths(SCENE_ARGS, WORLD_RECORD_ARGS, CAUSTIC_MAP_ARGS,
   PathContinuation more;
   RayTally rays = queued_rays(RAY_QUEUE, i, 0u);
   if (i >= *path_count ||
-      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
+      !load_queued_path(HIT_SURFACE, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
     return;
   bool goes_on =
       glossy_path_bounce(SCENE CACHED_LIGHT, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
@@ -491,7 +492,7 @@ __kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance
       if (g.lobe == LOBE_NONE) {
         light += vload3(0, g.albedo) * RC_INV_PI * e;
       } else {
-        const float3 wo = view_local(shading_frame(vload3(0, g.normal)),
+        const float3 wo = view_local(shading_frame(gbuffer_shading_normal(g)),
                                      camera_view_direction(camera, vload3(0, g.position)));
         light += brdf_eval_diffuse(gbuffer_brdf(g), wo.z) * e;
       }

@@ -4,6 +4,7 @@
 // (benchmarks/RESULTS.md, issue 13 on the H200). Sums run in a fixed order: same input, same bits.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "shared_types.h"
+#include "shading_normal.h"
 #include "cache_math.h"
 
 // The first sub-pixel of output pixel (x, y), in a sub-pixel frame side times as wide.
@@ -29,7 +30,7 @@ __kernel void resolve_surface(__global const GBufferSample* gbuffer, __global co
       const GBufferSample g = gbuffer[k];
       emission += vload3(0, g.emission);
       albedo += vload3(0, g.albedo);
-      normal += vload3(0, g.normal);
+      normal += gbuffer_shading_normal(g);
       light += direct[k].xyz;
       shadow_rays += direct[k].w;
       const uint shift = lobe_count_shift(g.lobe);

@@ -139,7 +139,14 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     tangent_frame(n, &t, &b);
     dir = (r * cos_p) * t + (r * sin_p) * b + sqrt(fmax(1.0f - u2, 0.0f)) * n;
     origin = offset_ray_origin(y, n);
-    power = vload3(0, e.radiance) * (RC_PI * e.area * sides);
+    float3 radiance = vload3(0, e.radiance);
+#if HAS_EMISSIVE_TEXTURES
+    if (e.emissive_texture >= 0) {  // the texel where the photon leaves, as the light sampler reads it
+      SurfacePoint at = surface_at(triangles, e.triangle, su * (1.0f - v), su * v);
+      radiance = surface_emission(materials, textures, texels, &at);
+    }
+#endif
+    power = radiance * (RC_PI * e.area * sides);
   }
   // Landing 0 is the first surface (the light guide reads only it); with params.landings > 1 the photon goes on,
   // reflected by the surface's BRDF (scatter_photon), and lands params.landings times at most (the photon map,

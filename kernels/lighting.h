@@ -17,6 +17,18 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
   return !bvh_trace(BVH, &r, 0.0f, tmax, true, &h);
 }
 
+// What sampling the emitters reads: the emitters, and where some emission is textured, the triangles' texture
+// coordinates and the texels (named apart from BVH_ARGS's, which an alpha mask adds).
+#if HAS_EMISSIVE_TEXTURES
+#define EMITTER_ARGS                                                                                                 \
+  __global const EmissiveTriangle *emitters, __global const TriangleShading *emitter_triangles,                    \
+      __global const TextureInfo *emitter_textures, __global const uint *emitter_texels
+#define EMITTERS emitters, triangles, textures, texels
+#else
+#define EMITTER_ARGS __global const EmissiveTriangle *emitters
+#define EMITTERS emitters
+#endif
+
 #if HAS_PUNCTUAL_LIGHTS
 // Irradiance at p (normal n, geometric normal ng) from one punctual light, shadowed; *wi is the unit direction
 // toward the light.
@@ -75,8 +87,7 @@ inline float emitter_solid_angle_pdf(EmissiveTriangle e, float d2, float cos_y) 
 // One light sample's irradiance estimate at p from the point the stratified pair (u, v) picks on the emitters;
 // *wi is the sample's direction and *pdf its density per solid angle (0 where the estimate is 0), for weighing it
 // against BRDF samples.
-inline float3 emitter_sample(BVH_ARGS,
-                             __global const EmissiveTriangle* emitters, uint count, float u, float v, float3 p,
+inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float v, float3 p,
                              float3 origin, float3 n, float3 ng, float3* wi_out, float* pdf, RayTally* rays) {
   *pdf = 0.0f;
   *wi_out = n;
@@ -102,14 +113,23 @@ inline float3 emitter_sample(BVH_ARGS,
   if (!visible(BVH, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
   *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
-  return vload3(0, e.radiance) * (cos_x * cos_y / (d2 * pdf_area));
+  float3 radiance = vload3(0, e.radiance);
+#if HAS_EMISSIVE_TEXTURES
+  if (e.emissive_texture >= 0) {
+    __global const TriangleShading* t = emitter_triangles + e.triangle;
+    float2 uv0 = vload2(0, t->uv0);
+    float2 uv = uv0 + (su * (1.0f - v)) * (vload2(0, t->uv1) - uv0) + (su * v) * (vload2(0, t->uv2) - uv0);
+    radiance *= sample_texture(emitter_textures, emitter_texels, e.emissive_texture, uv).xyz;
+  }
+#endif
+  return radiance * (cos_x * cos_y / (d2 * pdf_area));
 }
 #endif
 
 // Irradiance at p from every punctual light plus one emitter sample at the uniform pair (u, v).
 inline float3 direct_irradiance(BVH_ARGS,
                                 __global const PunctualLight* lights, uint light_count,
-                                __global const EmissiveTriangle* emitters, uint emitter_count, float3 p, float3 n,
+                                EMITTER_ARGS, uint emitter_count, float3 p, float3 n,
                                 float3 ng, float u, float v, RayTally* rays) {
   float3 origin = offset_ray_origin(p, ng);
   float3 irradiance = (float3)(0.0f);
@@ -119,7 +139,7 @@ inline float3 direct_irradiance(BVH_ARGS,
 #endif
 #if HAS_EMITTERS
   float pdf;
-  if (emitter_count > 0) irradiance += emitter_sample(BVH, emitters, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, rays);
+  if (emitter_count > 0) irradiance += emitter_sample(BVH, EMITTERS, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, rays);
 #endif
   return irradiance;
 }

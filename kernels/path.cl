@@ -6,6 +6,7 @@
 // Stratified mode draws sample s of a pixel from cell s of a sqrt(spp) x sqrt(spp) grid over the hemisphere.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "bounce.h"
+#include "shading_normal.h"
 #include "counter_random.h"
 
 __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* sum,
@@ -15,7 +16,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
   const uint first_sample = params.first_sample, sample_count = params.sample_count, grid_side = params.grid_side;
   GBufferSample g = gbuffer[pixel];
   if (g.triangle < 0) return;
-  float3 p = vload3(0, g.position), n = vload3(0, g.normal), ng = vload3(0, g.geometric_normal);
+  float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   float3 albedo = vload3(0, g.albedo);
   float3 origin = offset_ray_origin(p, ng);
   float3 t, b;

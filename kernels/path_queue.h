@@ -36,7 +36,7 @@ inline void queue_path(__global QueuedPath* paths, volatile __global uint* path_
 }
 
 // A queued path's state for its next bounce; false: it has ended.
-inline bool load_queued_path(__global const TriangleShading* triangles, __global const QueuedPath* path,
+inline bool load_queued_path(HIT_SURFACE_ARGS, __global const QueuedPath* path,
                              uint later_bounces, HitSurface* h, float3* dir, float3* throughput, float3* sum,
                              PathContinuation* more, uint* rays) {
   if (path->mode & PATH_ENDED) return false;
@@ -46,7 +46,7 @@ inline bool load_queued_path(__global const TriangleShading* triangles, __global
   *dir = vload3(0, path->dir);
   *throughput = vload3(0, path->throughput);
   *sum = vload3(0, path->sum);
-  *h = hit_surface(triangles, path->prim, path->u, path->v, *dir);
+  *h = hit_surface(HIT_SURFACE, path->prim, path->u, path->v, *dir);
   *rays = path->rays;
   return true;
 }

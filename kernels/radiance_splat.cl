@@ -5,6 +5,7 @@
 // Also the G-buffer copy placement works on: only the radiance-cached pixels see geometry there.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "brdf_frame.h"
+#include "shading_normal.h"
 #include "footprint.h"
 #include "hsh_frame.h"
 #include "scene_args.h"
@@ -44,7 +45,7 @@ inline float3 record_lobe_radiance(__global const CameraParams* camera, __global
                                    __global const float* lobe_table, int row, RadianceSplatParams params) {
   const int n2 = order * order;
   float lobe_a[HSH_MAX_COEFFICIENTS], lobe_b[HSH_MAX_COEFFICIENTS];
-  float3 p = vload3(0, g->position), n = vload3(0, g->normal);
+  float3 p = vload3(0, g->position), n = gbuffer_shading_normal(*g);
   float3 view = camera_view_direction(camera, p);
   HshFrameChange change = hsh_frame_change(nk, tk, bk, n, view);
   float3 delta = p - pk;

@@ -207,7 +207,7 @@ inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemi
   rays->cast = ray.cast ? 1u : 0u;
   *after = PATH_DONE;
   if (hit.prim < 0) return ray.cast ? miss_radiance(SCENE, ray.dir) : (float3)(0.0f);
-  HitSurface h = hit_surface(triangles, hit.prim, hit.u, hit.v, ray.dir);
+  HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, ray.dir);
   const PathContinuation more = path_continuation(site.key, s, hp.bounces);
   const float u = random01(site.key, s, 2u), v = random01(site.key, s, 3u), u_lobe = random01(site.key, s, 4u);
   if (queues_paths) return first_bounce_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays, after);
@@ -307,7 +307,7 @@ __kernel void step_record_paths(SCENE_ARGS GATHER_MAP_ARGS, __global QueuedPath*
   PathContinuation more;
   RayTally rays = queued_rays(RAY_QUEUE, i, 0u);
   if (i >= *path_count ||
-      !load_queued_path(triangles, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
+      !load_queued_path(HIT_SURFACE, paths + i, later_bounces, &h, &dir, &throughput, &sum, &more, &rays.cast))
     return;
   bool goes_on = path_bounce(SCENE GATHER_MAP, &h, &dir, &throughput, more, bounce, paths[i].mode, &sum, &rays);
   if (rays_answered(&rays))

@@ -69,6 +69,12 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   if (e.double_sided) cos_y = fabs(cos_y);
   if (!(cos_y > 0.0f)) return (float3)(0.0f);
   *light_pdf = emitter_solid_angle_pdf(e, hit.t * hit.t, cos_y);
+#if HAS_EMISSIVE_TEXTURES
+  if (e.emissive_texture >= 0) {
+    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    return surface_emission(materials, textures, texels, &s);
+  }
+#endif
   return vload3(0, e.radiance);
 }
 #endif
@@ -100,7 +106,7 @@ inline float3 emitters_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, ShadingFr
   if (scene_counts.emitter_count == 0) return sum;
   float3 wi;
   float light_pdf;
-  float3 e = emitter_sample(BVH, emitters, scene_counts.emitter_count, u, v, p, origin, frame.n, ng, &wi, &light_pdf,
+  float3 e = emitter_sample(BVH, EMITTERS, scene_counts.emitter_count, u, v, p, origin, frame.n, ng, &wi, &light_pdf,
                             rays);
   if (light_pdf > 0.0f) {
     float3 wi_local = to_local(frame, wi);

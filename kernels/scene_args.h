@@ -5,16 +5,17 @@
 #include "shared_types.h"
 
 // Everything a ray-tracing kernel may read about the scene: the BVH (nodes as rows of float8, Bvh8Node), per-triangle
-// shading data, materials, textures, lights, emissive triangles, the environment (kernels/environment.h) and their
-// counts.
+// shading data (with normal maps, three tangents a triangle), materials, textures, lights, emissive triangles, the
+// environment (kernels/environment.h) and their counts.
 #define SCENE_ARGS                                                                                                   \
   __global const float8 *nodes, __global const float8 *blocks, __global const TriangleShading *triangles,           \
-      __global const Material *materials, __global const TextureInfo *textures, __global const uint *texels,        \
-      __global const PunctualLight *lights, __global const EmissiveTriangle *emitters,                              \
+      __global const float4 *tangents, __global const Material *materials, __global const TextureInfo *textures,    \
+      __global const uint *texels, __global const PunctualLight *lights, __global const EmissiveTriangle *emitters, \
       __global const float4 *environment, __global const float *environment_cdf, SceneCounts scene_counts
 // Forwards SCENE_ARGS to a function that takes them.
 #define SCENE \
-  nodes, blocks, triangles, materials, textures, texels, lights, emitters, environment, environment_cdf, scene_counts
+  nodes, blocks, triangles, tangents, materials, textures, texels, lights, emitters, environment, environment_cdf,   \
+      scene_counts
 
 // The G-buffer (what the primary ray through each pixel's centre sees) and its camera, as every pass reads them.
 #define GBUFFER_ARGS __global const GBufferSample *gbuffer, __global const CameraParams *camera

@@ -95,7 +95,10 @@ typedef struct {
   float specular;      // KHR_materials_specular's specularFactor: weight of a dielectric's specular layer (glTF: 1)
   rc_int metallic_roughness_texture;  // glTF's metallicRoughnessTexture (B: metallic, G: roughness) or TEXTURE_NONE
   rc_int lobe;         // LOBE_* for the factors; a texture's roughness is classified again per pixel
-  rc_int pad;
+  rc_int emissive_texture;  // glTF's emissiveTexture (sRGB), times emission; TEXTURE_NONE: emission is uniform
+  rc_int normal_texture;    // glTF's normalTexture (tangent space, linear) or TEXTURE_NONE (kernels/surface.h)
+  float normal_scale;       // glTF's normalTexture.scale: multiplies the map's x and y
+  rc_int pad[2];
 } Material;
 
 #define WRAP_REPEAT 0
@@ -128,7 +131,7 @@ typedef struct {
   float pad[3];
 } PunctualLight;
 
-// One emissive triangle, sampled as an area light in proportion to its emitted power.
+// One emissive triangle, sampled as an area light in proportion to its emitted power (half; half by area).
 typedef struct {
   float v0[3];
   float area;
@@ -136,8 +139,12 @@ typedef struct {
   float cdf;  // inclusive cumulative selection probability
   float edge2[3];
   float pdf_select;  // probability of choosing this triangle
-  float radiance[3];
+  float radiance[3];  // the material's emission (emissiveFactor x strength); with a texture, times its texels
   rc_int double_sided;
+  rc_int triangle;          // the TriangleShading it is: its texture coordinates for emissive_texture
+  rc_int emissive_texture;  // TEXTURE_NONE, or the texture whose texels (sRGB) multiply radiance where a sample lands
+  float mean_luminance;     // the emitted luminance averaged over the triangle (with its texture): its power's share
+  float pad;
 } EmissiveTriangle;
 
 // Perspective: rays from eye through the image plane at distance 1 (half height tan_half_fov_y). Orthographic: parallel
@@ -179,8 +186,12 @@ typedef struct {
   float roughness;    // at the pixel
   float specular;     // the material's specular layer weight
   rc_int lobe;        // LOBE_* at the pixel
-  float pad[2];
+  // With normal maps (HAS_NORMAL_MAPS), the mapped shading normal, octahedral-encoded (kernels/surface.h); `normal`
+  // stays the interpolated one, which the cache's weights and records use. NO_MAPPED_NORMAL in [0]: the pixel's
+  // surface has no normal map, and `normal` shades.
+  float mapped_normal[2];
 } GBufferSample;
+#define NO_MAPPED_NORMAL 2.0f
 
 // One output pixel's surface layers (kernels/layers.cl) from its s x s sub-pixels (1 x 1 without anti-aliasing):
 // emission, direct light, albedo and normal are means; position, depth and triangle the centre sub-pixel's (a single
@@ -595,10 +606,10 @@ typedef struct {
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
 static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
 static_assert(sizeof(TriangleShading) == 128);
-static_assert(sizeof(Material) == 64);
+static_assert(sizeof(Material) == 80);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
-static_assert(sizeof(EmissiveTriangle) == 64);
+static_assert(sizeof(EmissiveTriangle) == 80);
 static_assert(sizeof(CameraParams) == 96);
 static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(PixelSurface) == 80);

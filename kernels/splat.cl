@@ -3,6 +3,7 @@
 // Then the normalisation divides (kernels/compose.cl composes).
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "footprint.h"
+#include "shading_normal.h"
 #include "sampling.h"
 #include "scene_args.h"
 
@@ -41,7 +42,8 @@ __kernel void splat_records(GBUFFER_ARGS, __global const CacheRecord* records, S
       float3 p = vload3(0, g->position), n = vload3(0, g->normal);
       float w = ward_weight(p, n, pk, nk, radius);
       if (!record_reaches(rec, tk, bk, w, params.accuracy, p, n, pk, nk, radius)) continue;
-      float3 e = fmin(extrapolated_irradiance(rec, p, n), (float3)(params.irradiance_scale));
+      // Weighed by the interpolated normal, turned to the normal map's by the rotation gradient.
+      float3 e = fmin(extrapolated_irradiance(rec, p, gbuffer_shading_normal(*g)), (float3)(params.irradiance_scale));
       add_weighted_fixed_point(sums + 4 * (size_t)pixel, w, e, to_fixed);
       atomic_inc(counts + pixel);
     }

@@ -1,6 +1,7 @@
 // What a ray hit: the surface point's normals, texture coordinates and material, and base-colour texture lookups.
 #ifndef RCSPLAT_SURFACE_H
 #define RCSPLAT_SURFACE_H
+#include "host_device.h"
 #include "shared_types.h"
 
 typedef struct {
@@ -46,7 +47,10 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
   return s;
 }
 
-#if HAS_TEXTURES
+// Texture lookups: base colour and metallic-roughness (HAS_TEXTURES), normal maps, textured emission.
+#define TEXTURE_LOOKUPS (HAS_TEXTURES || HAS_NORMAL_MAPS || HAS_EMISSIVE_TEXTURES)
+
+#if TEXTURE_LOOKUPS
 #include "srgb_table.h"
 
 inline int wrap_texel(int i, int n, uint mode) {
@@ -103,6 +107,53 @@ inline float4 sample_texture(__global const TextureInfo* infos, __global const u
 }
 #endif
 
+#if HAS_NORMAL_MAPS
+// The normal map's normal at s on triangle prim (barycentrics u, v), unit, in world space, on the side the
+// interpolated normal faces (glTF: n = normalize(T x + B y + N z) with (x, y, z) = (2 rgb - 1) * (scale, scale, 1) and
+// B = cross(N, T) * w). The vertices' tangents are interpolated and made orthogonal to N; a zero one (a triangle
+// without texture-coordinate gradients) takes any frame. s's own normal where its material has no map.
+inline float3 mapped_normal(__global const float4* tangents, __global const Material* materials,
+                            __global const TextureInfo* textures, __global const uint* texels, const SurfacePoint* s,
+                            int prim, float u, float v) {
+  __global const Material* m = materials + s->material;
+  const float3 n = s->shading_normal;
+  if (m->normal_texture < 0) return n;
+  const float4 tw = (1.0f - u - v) * tangents[3 * prim] + u * tangents[3 * prim + 1] + v * tangents[3 * prim + 2];
+  float3 t = tw.xyz - dot(tw.xyz, n) * n, b;
+  const float t_length = length(t);
+  if (t_length > 1e-6f) {
+    t /= t_length;
+    b = cross(n, t) * (tw.w < 0.0f ? -1.0f : 1.0f);
+  } else {
+    tangent_frame(n, &t, &b);
+  }
+  const float3 texel = sample_texture_encoded(textures, texels, m->normal_texture, s->uv, false).xyz * 2.0f - 1.0f;
+  const float3 bent = (texel.x * m->normal_scale) * t + (texel.y * m->normal_scale) * b + texel.z * n;
+  const float bent_length = length(bent);
+  return bent_length > 0.0f && isfinite(bent_length) ? bent / bent_length : n;
+}
+#endif
+
+#if HAS_EMISSIVE_TEXTURES
+// The emission of s's material: its factor times its emissive texture (sRGB) at s.
+inline float3 textured_emission(__global const Material* m, __global const TextureInfo* textures,
+                                __global const uint* texels, float2 uv) {
+  float3 emission = vload3(0, m->emission);
+  if (m->emissive_texture >= 0) emission *= sample_texture(textures, texels, m->emissive_texture, uv).xyz;
+  return emission;
+}
+#endif
+
+// The radiance the front of s emits (the factor, times its texture where it has one).
+inline float3 surface_emission(__global const Material* materials, __global const TextureInfo* textures,
+                               __global const uint* texels, const SurfacePoint* s) {
+#if HAS_EMISSIVE_TEXTURES
+  return textured_emission(materials + s->material, textures, texels, s->uv);
+#else
+  return vload3(0, materials[s->material].emission);
+#endif
+}
+
 inline float3 surface_albedo(__global const Material* materials, __global const TextureInfo* textures,
                              __global const uint* texels, const SurfacePoint* s) {
   __global const Material* m = materials + s->material;
@@ -149,14 +200,23 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
 // of Sponza's record pass when every hit read them.
 typedef struct {
   SurfacePoint s;
-  float3 ns, ng, albedo;
+  float3 ns, ng, albedo;  // ns: the shading normal (the normal map's, where there is one)
+#if HAS_NORMAL_MAPS
+  float3 ns_interpolated;  // the interpolated normal, oriented as ns: what the cache weighs records by
+#endif
   SurfaceLobe lobe;
   int albedo_read, lobe_read;
   HitDesc hit;  // the trace's hit it was built from (a queued path keeps it: kernels/path_queue.h)
 } HitSurface;
 
+// What hit_surface reads: the triangles, and for normal maps their tangents, materials and texels.
+#define HIT_SURFACE_ARGS                                                                                              \
+  __global const TriangleShading *triangles, __global const float4 *tangents, __global const Material *materials, \
+      __global const TextureInfo *textures, __global const uint *texels
+#define HIT_SURFACE triangles, tangents, materials, textures, texels
+
 // The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
-inline HitSurface hit_surface(__global const TriangleShading* triangles, int prim, float u, float v, float3 dir) {
+inline HitSurface hit_surface(HIT_SURFACE_ARGS, int prim, float u, float v, float3 dir) {
   HitSurface h;
   h.s = surface_at(triangles, prim, u, v);
   h.hit.t = 0.0f;  // not known here, and not needed to build the surface again
@@ -167,6 +227,14 @@ inline HitSurface hit_surface(__global const TriangleShading* triangles, int pri
   h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
   h.ns = back ? -h.s.shading_normal : h.s.shading_normal;
   if (dot(h.ns, h.ng) <= 0.0f) h.ns = h.ng;  // inconsistent vertex normals: trust the geometry
+#if HAS_NORMAL_MAPS
+  h.ns_interpolated = h.ns;
+  if (materials[h.s.material].normal_texture >= 0) {
+    float3 bent = mapped_normal(tangents, materials, textures, texels, &h.s, prim, u, v);
+    if (back) bent = -bent;
+    if (dot(bent, h.ng) > 0.0f) h.ns = bent;  // a map that bends below the surface: the interpolated normal shades
+  }
+#endif
   h.albedo_read = h.lobe_read = 0;
   return h;
 }

@@ -12,6 +12,8 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
     : bvh_(gpu, bvh), frame_(frame) {
   PackedScene p = pack_scene(scene, frame);
   triangles_ = gpu.upload(p.triangles, CL_MEM_READ_ONLY, "triangles");
+  // One float4 a vertex with normal maps; else one unread float4, for the argument.
+  tangents_ = gpu.upload(p.tangents.empty() ? std::vector<float>(4, 0.0f) : p.tangents, CL_MEM_READ_ONLY, "triangles");
   materials_ = gpu.upload(p.materials, CL_MEM_READ_ONLY, "materials");
   materials_host_ = p.materials;
   textures_ = gpu.upload(p.textures, CL_MEM_READ_ONLY, "textures");
@@ -41,6 +43,7 @@ void DeviceScene::bind(NamedKernel& kernel) const {
   kernel.set_buffer<cl_float8>("nodes", bvh_.nodes())
       .set_buffer<cl_float8>("blocks", bvh_.blocks())
       .set_buffer<TriangleShading>("triangles", triangles_)
+      .set_buffer<cl_float4>("tangents", tangents_)
       .set_buffer<Material>("materials", materials_)
       .set_buffer<TextureInfo>("textures", textures_)
       .set_buffer<cl_uint>("texels", texels_)

@@ -53,7 +53,7 @@ class DeviceScene {
 
  private:
   DeviceBvh bvh_;
-  cl::Buffer triangles_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
+  cl::Buffer triangles_, tangents_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
   SceneCounts counts_{};
   double environment_smooth_power_ = 0.0;
   KernelDefines defines_;

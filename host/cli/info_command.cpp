@@ -24,11 +24,19 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.lobe_counts[LOBE_NONE], plan.lobe_counts[LOBE_ROUGH], plan.lobe_counts[LOBE_HSH],
               plan.lobe_counts[LOBE_GLOSSY]);
   for (const MaterialPlan& m : plan.materials)
-    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
+    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
+                m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
                 lobe_treatment(m.lobe));
   std::printf("textures     %zu%s%s\n", plan.textures, plan.vertex_colors ? ", vertex colours" : "",
               plan.alpha_mask ? ", alpha-masked cutouts" : "");
+  if (plan.normal_mapped_materials)
+    std::printf("normal maps  %u material(s): the mapped normal shades (direct light, BRDF, glossy and path); the cache "
+                "weighs records by the interpolated normal and turns their irradiance to the mapped one by its rotation "
+                "gradient\n", plan.normal_mapped_materials);
+  if (plan.emissive_textured_materials)
+    std::printf("emission     %u material(s) textured: seen and sampled at their texels, emitters chosen by their "
+                "textured power\n", plan.emissive_textured_materials);
   std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,
               plan.spot_lights, plan.directional_lights, plan.emissive_triangles);
   if (plan.environment.empty())
@@ -39,13 +47,15 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 plan.environment.c_str(), 100.0 * plan.environment_peak_fraction, kEnvironmentPeakOverMean);
   for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
   std::printf("compiles     BRDF code %s, HSH code %s, texture code %s, area-light sampling %s, punctual lights %s, "
-              "environment %s\n",
+              "environment %s, normal maps %s, emissive textures %s\n",
               plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
               plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
               plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no texture)",
               plan.switches.at("HAS_EMITTERS") == "1" ? "yes" : "no (no emissive triangle)",
               plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
-              plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)");
+              plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)",
+              plan.switches.at("HAS_NORMAL_MAPS") == "1" ? "yes" : "no",
+              plan.switches.at("HAS_EMISSIVE_TEXTURES") == "1" ? "yes" : "no");
   std::printf("switches    ");
   for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth))
     std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -57,6 +67,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
   for (const MaterialPlan& m : plan.materials)
     materials.push_back({{"name", m.name}, {"kind", lobe_name(m.lobe)}, {"roughness", m.roughness},
                          {"metallic", m.metallic}, {"emissive", m.emissive}, {"textured", m.textured},
+                         {"normal_map", m.normal_mapped}, {"emissive_texture", m.emissive_textured},
                          {"shading", lobe_treatment(m.lobe)}});
   nlohmann::json environment = nullptr;
   if (!plan.environment.empty())

@@ -22,7 +22,8 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
     } else power.push_back(intensity * 4.0 * pi);
   }
   for (const EmissiveTriangle& e : emitters)
-    power.push_back(std::max(luminance(e.radiance), 0.0) * pi * double(e.area) * (e.double_sided ? 2.0 : 1.0));
+    power.push_back(std::max(e.emissive_texture >= 0 ? double(e.mean_luminance) : luminance(e.radiance), 0.0) * pi *
+                    double(e.area) * (e.double_sided ? 2.0 : 1.0));
   for (double& p : power)
     if (!std::isfinite(p)) p = 0.0;
   return power;

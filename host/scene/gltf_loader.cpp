@@ -22,6 +22,7 @@
 
 #include "kernels/shared_types.h"
 #include "scene/gltf_checks.h"
+#include "scene/tangents.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -565,17 +566,62 @@ class GltfReader {
       if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() / 2 != vertex_count) ||
           (!color.empty() && color.size() != pos.size()))
         fail(what + ": attributes have different vertex counts");
+      std::vector<glm::vec4> tangents;
+      if (normal_mapped(int(material))) {
+        if (uv.empty())
+          note_unsupported("normalTexture on a primitive without texture coordinates", "its interpolated normals shade it");
+        else
+          tangents = primitive_tangents(prim, node, morph_weights, what, idx, pos, nrm, uv, world, normal_matrix, mirrored);
+        // Triangles added before the first normal map get zero tangents: w = 0 says "no map here" to the kernels.
+        if (scene_.tangents.empty()) scene_.tangents.assign(scene_.positions.size(), glm::vec4(0.0f));
+      }
       size_t first = scene_.positions.size();
       for (size_t t = 0; t < idx.size(); t += 3)
-        add_triangle(t, idx, {pos, nrm, uv, color}, world, normal_matrix, mirrored, material);
+        add_triangle(t, idx, {pos, nrm, uv, color, tangents}, world, normal_matrix, mirrored, material);
       for (size_t i = first; i < scene_.positions.size(); ++i)
         if (!std::isfinite(scene_.positions[i].x + scene_.positions[i].y + scene_.positions[i].z))
           fail(what + ": the node's transform takes a vertex beyond the range of single precision");
     }
   }
 
+  // The tangents of a normal-mapped primitive's vertices in world space (Scene::tangents), w = +-1: the file's TANGENT
+  // where it has one and nothing deforms the mesh; otherwise made from the posed positions and texture coordinates
+  // (generate_tangents).
+  std::vector<glm::vec4> primitive_tangents(const tinygltf::Primitive& prim, const tinygltf::Node& node,
+                                            const std::vector<double>& morph_weights, const std::string& what,
+                                            const std::vector<uint32_t>& idx, const std::vector<float>& pos,
+                                            const std::vector<float>& nrm, const std::vector<float>& uv,
+                                            const glm::mat4& world, const glm::mat3& normal_matrix, bool mirrored) {
+    const size_t vertices = pos.size() / 3;
+    bool morphed = false;
+    for (size_t t = 0; t < prim.targets.size() && t < morph_weights.size(); ++t) morphed |= morph_weights[t] != 0.0;
+    auto it = prim.attributes.find("TANGENT");
+    if (it != prim.attributes.end() && node.skin < 0 && !morphed) {
+      std::vector<float> file = read_floats(it->second, 4, what + ".TANGENT", false, vertices);
+      if (file.size() / 4 != vertices) fail(what + ": TANGENT has fewer elements than POSITION");
+      std::vector<glm::vec4> out(vertices);
+      // A mirroring transform turns the bitangent the other way relative to cross(normal, tangent).
+      const float handedness = mirrored ? -1.0f : 1.0f;
+      for (size_t v = 0; v < vertices; ++v) {
+        glm::vec3 t = glm::mat3(world) * glm::vec3(file[4 * v], file[4 * v + 1], file[4 * v + 2]);
+        float len = glm::length(t), w = file[4 * v + 3];
+        if (!std::isfinite(len) || !std::isfinite(w)) fail(what + ": vertex " + std::to_string(v) + " has a non-finite TANGENT");
+        out[v] = glm::vec4(len > 0.0f ? t / len : glm::vec3(0.0f), (w < 0.0f ? -1.0f : 1.0f) * handedness);
+      }
+      return out;
+    }
+    std::vector<glm::vec3> world_pos(vertices), world_nrm;
+    for (size_t v = 0; v < vertices; ++v) world_pos[v] = glm::vec3(world * glm::vec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0f));
+    if (!nrm.empty()) {
+      world_nrm.resize(vertices);
+      for (size_t v = 0; v < vertices; ++v) world_nrm[v] = normal_matrix * glm::vec3(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
+    }
+    return generate_tangents(idx, world_pos, world_nrm, uv);
+  }
+
   struct VertexArrays {
     const std::vector<float>&pos, &nrm, &uv, &color;  // color: linear RGB, empty when the primitive has none
+    const std::vector<glm::vec4>& tangents;          // world space, per vertex; empty without a normal map
   };
 
   void add_triangle(size_t t, const std::vector<uint32_t>& idx, const VertexArrays& v, const glm::mat4& world,
@@ -600,6 +646,7 @@ class GltfReader {
         glm::vec2 u(uv[2 * order[k]], uv[2 * order[k] + 1]);
         scene_.uvs[base + size_t(k)] = (std::isfinite(u.x) && std::isfinite(u.y)) ? u : glm::vec2(0.0f);
       }
+      if (!v.tangents.empty()) scene_.tangents[base + size_t(k)] = v.tangents[order[k]];
       if (!v.color.empty()) {
         glm::vec3 c(v.color[3 * order[k]], v.color[3 * order[k] + 1], v.color[3 * order[k] + 2]);
         scene_.colors[base + size_t(k)] = (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) ? c : glm::vec3(1.0f);
@@ -630,7 +677,8 @@ class GltfReader {
     glm::mat3 transform{1.0f};
   };
   // The mapping a texture reference asks for: its TEXCOORD set and KHR_texture_transform.
-  static UvMapping uv_mapping_of(const tinygltf::TextureInfo& info) {
+  template <typename Info>  // tinygltf's TextureInfo, NormalTextureInfo or OcclusionTextureInfo
+  static UvMapping uv_mapping_of(const Info& info) {
     UvMapping m;
     m.tex_coord = info.texCoord;
     auto ext = info.extensions.find("KHR_texture_transform");
@@ -659,10 +707,19 @@ class GltfReader {
   // metallic-roughness texture's (a metallic-roughness texture mapped differently is dropped in read_materials).
   UvMapping base_color_uv_mapping(int index) const {
     if (index < 0 || size_t(index) >= model_.materials.size()) return UvMapping{};
-    const auto& pbr = model_.materials[size_t(index)].pbrMetallicRoughness;
-    if (pbr.baseColorTexture.index < 0 && pbr.metallicRoughnessTexture.index >= 0)
-      return uv_mapping_of(pbr.metallicRoughnessTexture);
-    return uv_mapping_of(pbr.baseColorTexture);
+    const tinygltf::Material& m = model_.materials[size_t(index)];
+    const auto& pbr = m.pbrMetallicRoughness;
+    // The first texture the material has, in this order, sets the mapping; textures mapped otherwise are named and
+    // dropped in read_materials.
+    if (pbr.baseColorTexture.index >= 0) return uv_mapping_of(pbr.baseColorTexture);
+    if (pbr.metallicRoughnessTexture.index >= 0) return uv_mapping_of(pbr.metallicRoughnessTexture);
+    if (m.normalTexture.index >= 0) return uv_mapping_of(m.normalTexture);
+    return uv_mapping_of(m.emissiveTexture);
+  }
+
+  // Whether material `index` keeps a normal map (read_materials decided): its primitives then carry tangents.
+  bool normal_mapped(int index) const {
+    return index >= 0 && size_t(index) < scene_.materials.size() && scene_.materials[size_t(index)].normal_texture >= 0;
   }
 
   static bool same_mapping(const UvMapping& a, const UvMapping& b) {
@@ -722,9 +779,23 @@ class GltfReader {
         if (!std::isfinite(m.base_color[i]) || m.base_color[i] < 0.0f) fail(material_label(src) + ": invalid baseColorFactor");
       for (int i = 0; i < 3; ++i)
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail(material_label(src) + ": invalid emission");
-      if (src.emissiveTexture.index >= 0) note_unsupported("emissiveTexture", "emissiveFactor alone is used");
-      // Named, never dropped silently: a normal map's detail, and a baked occlusion that light transport computes.
-      if (src.normalTexture.index >= 0) note_unsupported("normalTexture", "the interpolated vertex normals shade");
+      // Triangles carry one texture-coordinate mapping (base_color_uv_mapping): a texture mapped otherwise is named
+      // and left out.
+      const UvMapping mapping = base_color_uv_mapping(int(&src - model_.materials.data()));
+      auto same_mapped = [&](const auto& info, const std::string& what, const char* instead) {
+        if (info.index < 0) return -1;
+        if (!same_mapping(uv_mapping_of(info), mapping)) {
+          note_unsupported(what + " mapped unlike the material's other textures", instead);
+          return -1;
+        }
+        return texture_slot(info.index, src.name);
+      };
+      m.emissive_texture = same_mapped(src.emissiveTexture, "emissiveTexture", "emissiveFactor alone is used");
+      m.normal_texture = same_mapped(src.normalTexture, "normalTexture", "the interpolated vertex normals shade");
+      m.normal_scale = float(src.normalTexture.scale);
+      if (m.normal_texture >= 0 && !std::isfinite(m.normal_scale))
+        fail(material_label(src) + ": normalTexture.scale is not finite");
+      // Named, never dropped silently: a baked occlusion that light transport computes.
       if (src.occlusionTexture.index >= 0)
         note_unsupported("occlusionTexture", "not applied: the indirect light's occlusion is traced, not baked");
       if (src.alphaMode == "MASK") {

@@ -48,6 +48,41 @@ PunctualLight pack_light(const SceneLight& l) {
   return out;
 }
 
+// The emitted luminance of material m averaged over triangle t: its factor's, times its texture's mean over the
+// triangle where it has one. Texels are read at up to kSamples stratified points (enough to weigh emitters against one
+// another: an estimate only moves the light sampler's choice, never its result), nearest, so the work is bounded.
+double mean_emitted_luminance(const Scene& scene, size_t t, const SceneMaterial& m) {
+  const glm::vec3 factor = m.emission;
+  if (m.emissive_texture < 0 || size_t(m.emissive_texture) >= scene.textures.size())
+    return luminance_f(factor.x, factor.y, factor.z);
+  const SceneTexture& tex = scene.textures[size_t(m.emissive_texture)];
+  const glm::vec2 uv0 = scene.uvs[3 * t], e1 = scene.uvs[3 * t + 1] - uv0, e2 = scene.uvs[3 * t + 2] - uv0;
+  // Texels the triangle covers, for how many points to read (at least 1, at most kSide^2).
+  constexpr int kSide = 8;
+  const double texels = 0.5 * std::fabs(double(e1.x) * e2.y - double(e1.y) * e2.x) * tex.width * tex.height;
+  const int side = std::clamp(int(std::ceil(std::sqrt(std::max(texels, 1.0)))), 1, kSide);
+  auto wrap = [](long i, long n, int mode) {
+    if (mode == WRAP_CLAMP) return std::clamp(i, 0L, n - 1);
+    long m2 = ((i % (2 * n)) + 2 * n) % (2 * n);
+    if (mode == WRAP_MIRROR) return m2 < n ? m2 : 2 * n - 1 - m2;
+    return ((i % n) + n) % n;
+  };
+  double sum = 0.0;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      // The centre of stratum (i, j) of the unit square, taken onto the triangle as the light sampler does.
+      double su = std::sqrt((i + 0.5) / side), v = (j + 0.5) / side;
+      glm::dvec2 uv = glm::dvec2(uv0) + su * (1.0 - v) * glm::dvec2(e1) + su * v * glm::dvec2(e2);
+      double fx = std::floor(uv.x * tex.width), fy = std::floor(uv.y * tex.height);
+      if (!std::isfinite(fx) || !std::isfinite(fy) || std::fabs(fx) > 1e8 || std::fabs(fy) > 1e8) fx = fy = 0.0;
+      size_t x = size_t(wrap(long(fx), tex.width, tex.wrap_s)), y = size_t(wrap(long(fy), tex.height, tex.wrap_t));
+      const uint8_t* texel = &tex.rgba[4 * (y * size_t(tex.width) + x)];
+      sum += luminance(factor.x * srgb_to_linear(texel[0] / 255.0), factor.y * srgb_to_linear(texel[1] / 255.0),
+                       factor.z * srgb_to_linear(texel[2] / 255.0));
+    }
+  return sum / (side * side);
+}
+
 }  // namespace
 
 PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
@@ -79,8 +114,8 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
       s.uv2[k] = scene.uvs[3 * t + 2][k];
     }
     const SceneMaterial& m = scene.materials[s.material];
-    float luminance = luminance_f(m.emission.x, m.emission.y, m.emission.z);
-    if (luminance > 0.0f && twice_area > 0.0f) {
+    if (luminance_f(m.emission.x, m.emission.y, m.emission.z) > 0.0f && twice_area > 0.0f) {
+      const double emitted = mean_emitted_luminance(scene, t, m);
       EmissiveTriangle e{};
       put3(e.v0, v[0]);
       put3(e.edge1, v[1] - v[0]);
@@ -88,8 +123,11 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
       e.area = 0.5f * twice_area;
       put3(e.radiance, m.emission);
       e.double_sided = m.double_sided ? 1 : 0;
+      e.triangle = int(t);
+      e.emissive_texture = m.emissive_texture;
+      e.mean_luminance = float(emitted);
       const double sides = m.double_sided ? 2.0 : 1.0;
-      emitter_power.push_back(double(luminance) * e.area * sides);
+      emitter_power.push_back(emitted * e.area * sides);
       emitter_area.push_back(double(e.area) * sides);
       s.emitter = int(p.emitters.size());
       p.emitters.push_back(e);
@@ -104,7 +142,9 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     total_area += emitter_area[i];
   }
   for (size_t i = 0; i < p.emitters.size(); ++i) {
-    double select = 0.5 * emitter_power[i] / total_power + 0.5 * emitter_area[i] / total_area;
+    // A textured emitter may be black all over (its texture's mean is 0): then area alone chooses.
+    double select = total_power > 0.0 ? 0.5 * emitter_power[i] / total_power + 0.5 * emitter_area[i] / total_area
+                                       : emitter_area[i] / total_area;
     running += select;
     p.emitters[i].pdf_select = float(select);
     p.emitters[i].cdf = float(running);
@@ -122,6 +162,9 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     out.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular, 0.0f, 1.0f);
     out.metallic_roughness_texture = m.metallic_roughness_texture;
+    out.emissive_texture = m.emissive_texture;
+    out.normal_texture = m.normal_texture;
+    out.normal_scale = std::isfinite(m.normal_scale) ? m.normal_scale : 1.0f;
     out.lobe = material_lobe(out.metallic, out.roughness, out.specular);
     // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
     if (out.lobe != LOBE_NONE && m.metallic_roughness_texture >= 0) out.lobe = material_lobe(out.metallic, 0.0f, out.specular);
@@ -137,6 +180,10 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     p.texels.resize(start + t.rgba.size() / 4);
     std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());
     p.textures.push_back(info);
+  }
+  if (scene.tangents.size() == 3 * n) {
+    p.tangents.reserve(4 * scene.tangents.size());
+    for (const glm::vec4& t : scene.tangents) p.tangents.insert(p.tangents.end(), {t.x, t.y, t.z, t.w});
   }
   for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(frame.device_light(l)));
   p.environment = pack_environment(scene.environment);  // directions: the frame only translates and scales

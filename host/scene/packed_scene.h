@@ -13,6 +13,7 @@ namespace rcsplat {
 // Host-side arrays in the shared layout, ready to upload; also used by the host reference renderers.
 struct PackedScene {
   std::vector<TriangleShading> triangles;
+  std::vector<float> tangents;  // with normal maps, 4 floats (Scene::tangents) per triangle vertex; else empty
   std::vector<Material> materials;
   std::vector<TextureInfo> textures;
   std::vector<uint32_t> texels;  // RGBA8, sRGB-encoded

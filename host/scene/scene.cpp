@@ -44,6 +44,7 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   normals.insert(normals.end(), {n, n, n});
   uvs.insert(uvs.end(), {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
   colors.insert(colors.end(), {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)});
+  if (!tangents.empty()) tangents.insert(tangents.end(), 3, glm::vec4(0.0f));
   triangle_material.push_back(material);
 }
 

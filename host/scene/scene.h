@@ -25,6 +25,11 @@ struct SceneMaterial {
   float roughness = 1.0f;
   float specular = 0.0f;  // KHR_materials_specular's specularFactor: the dielectric's specular layer
   int metallic_roughness_texture = -1;  // B: metallic, G: roughness (linear), times the factors
+  int emissive_texture = -1;  // glTF's emissiveTexture (sRGB): multiplies emission; its triangles need uvs
+  // glTF's normalTexture (linear, tangent space: x, y, z = 2 rgb - 1) and its scale (multiplies x and y); its
+  // triangles need uvs and Scene::tangents.
+  int normal_texture = -1;
+  float normal_scale = 1.0f;
 };
 
 struct SceneTexture {
@@ -62,6 +67,9 @@ struct Scene {
   std::vector<glm::vec3> normals;    // three per triangle (unit)
   std::vector<glm::vec2> uvs;        // three per triangle
   std::vector<glm::vec3> colors;     // three per triangle: vertex colour (glTF COLOR_0), linear, multiplies the base colour
+  // Three per triangle, or empty when no material has a normal map: the tangent (xyz, unit, along +u) and in w the
+  // bitangent's sign (glTF TANGENT: bitangent = cross(normal, tangent) * w). A zero tangent: the kernels make a frame.
+  std::vector<glm::vec4> tangents;
   std::vector<uint32_t> triangle_material;
   std::vector<SceneMaterial> materials;
   std::vector<SceneTexture> textures;

@@ -4,12 +4,14 @@ namespace rcsplat {
 
 std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
                                                   const std::set<std::string>& forced) {
-  bool textured = false, masked = false, specular = false;
+  bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false;
   for (const Material& m : p.materials) {
     textured |= m.base_color_texture >= 0;
     masked |= m.alpha_cutoff > 0.0f;
     specular |= m.lobe != LOBE_NONE;
+    normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
   }
+  for (const EmissiveTriangle& e : p.emitters) emissive_textures |= e.emissive_texture >= 0;
   std::map<std::string, std::string> switches;
   auto set = [&](const char* name, bool on) { switches[name] = on || forced.count(name) ? "1" : "0"; };
   set("HAS_TEXTURES", textured);
@@ -19,6 +21,8 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   set("HAS_PUNCTUAL_LIGHTS", !p.lights.empty());
   set("HAS_EMITTERS", !p.emitters.empty());
   set("HAS_ENVIRONMENT", p.environment.width > 0);
+  set("HAS_NORMAL_MAPS", normal_maps);
+  set("HAS_EMISSIVE_TEXTURES", emissive_textures);
   // Tests only: the environment's peak sampled uniformly over the sphere, to check its importance sampling against.
   if (forced.count("ENVIRONMENT_UNIFORM_SAMPLING")) switches["ENVIRONMENT_UNIFORM_SAMPLING"] = "1";
   return switches;
@@ -62,6 +66,10 @@ ScenePlan plan_scene(const Scene& scene) {
     mp.roughness = m.roughness;
     mp.emissive = m.emission[0] > 0.0f || m.emission[1] > 0.0f || m.emission[2] > 0.0f;
     mp.textured = m.base_color_texture >= 0 || source.metallic_roughness_texture >= 0;
+    mp.normal_mapped = m.normal_texture >= 0 && !packed.tangents.empty();
+    mp.emissive_textured = mp.emissive && m.emissive_texture >= 0;
+    plan.normal_mapped_materials += mp.normal_mapped;
+    plan.emissive_textured_materials += mp.emissive_textured;
     plan.alpha_mask |= m.alpha_cutoff > 0.0f;
     ++plan.lobe_counts[size_t(m.lobe)];
     plan.materials.push_back(mp);

@@ -158,6 +158,8 @@ uint64_t scene_fingerprint(const Scene& s) {
   h.array(s.normals);
   h.array(s.uvs);
   h.array(s.colors);
+  // Features added later enter only where a scene has them, so that older scenes keep their fingerprints.
+  if (!s.tangents.empty()) h.array(s.tangents);
   h.array(s.triangle_material);
   h.value(uint64_t(s.materials.size()));
   for (const SceneMaterial& m : s.materials) {
@@ -170,6 +172,11 @@ uint64_t scene_fingerprint(const Scene& s) {
     h.value(m.roughness);
     h.value(m.specular);
     h.value(m.metallic_roughness_texture);
+    if (m.emissive_texture >= 0 || m.normal_texture >= 0) {
+      h.value(m.emissive_texture);
+      h.value(m.normal_texture);
+      h.value(m.normal_scale);
+    }
   }
   h.value(uint64_t(s.textures.size()));
   for (const SceneTexture& t : s.textures) {
