@@ -24,9 +24,11 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
   __global const EmissiveTriangle *emitters, __global const TriangleShading *emitter_triangles,                    \
       __global const TextureInfo *emitter_textures, __global const uint *emitter_texels
 #define EMITTERS emitters, triangles, textures, texels
+#define EMITTERS_PASSED_ON emitters, emitter_triangles, emitter_textures, emitter_texels  // within EMITTER_ARGS
 #else
 #define EMITTER_ARGS __global const EmissiveTriangle *emitters
 #define EMITTERS emitters
+#define EMITTERS_PASSED_ON emitters
 #endif
 
 #if HAS_PUNCTUAL_LIGHTS
@@ -139,7 +141,8 @@ inline float3 direct_irradiance(BVH_ARGS,
 #endif
 #if HAS_EMITTERS
   float pdf;
-  if (emitter_count > 0) irradiance += emitter_sample(BVH, EMITTERS, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, rays);
+  if (emitter_count > 0)
+    irradiance += emitter_sample(BVH, EMITTERS_PASSED_ON, emitter_count, u, v, p, origin, n, ng, &wi, &pdf, rays);
 #endif
   return irradiance;
 }

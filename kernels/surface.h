@@ -110,14 +110,15 @@ inline float4 sample_texture(__global const TextureInfo* infos, __global const u
 #if HAS_NORMAL_MAPS
 // The normal map's normal at s on triangle prim (barycentrics u, v), unit, in world space, on the side the
 // interpolated normal faces (glTF: n = normalize(T x + B y + N z) with (x, y, z) = (2 rgb - 1) * (scale, scale, 1) and
-// B = cross(N, T) * w). The vertices' tangents are interpolated and made orthogonal to N; a zero one (a triangle
-// without texture-coordinate gradients) takes any frame. s's own normal where its material has no map.
+// B = cross(N, T) * w). The vertices' tangents are interpolated and made orthogonal to N; one along N takes any
+// frame. s's own normal where its material has no map, or where the triangle has none (w = 0: the loader found no
+// texture coordinates or no gradient of them).
 inline float3 mapped_normal(__global const float4* tangents, __global const Material* materials,
                             __global const TextureInfo* textures, __global const uint* texels, const SurfacePoint* s,
                             int prim, float u, float v) {
   __global const Material* m = materials + s->material;
   const float3 n = s->shading_normal;
-  if (m->normal_texture < 0) return n;
+  if (m->normal_texture < 0 || tangents[3 * prim].w == 0.0f) return n;  // w = 0: no map on this triangle
   const float4 tw = (1.0f - u - v) * tangents[3 * prim] + u * tangents[3 * prim + 1] + v * tangents[3 * prim + 2];
   float3 t = tw.xyz - dot(tw.xyz, n) * n, b;
   const float t_length = length(t);

@@ -8,6 +8,8 @@
 
 #include "brdf_reference.h"
 #include "render/renderer.h"
+#include "scene/packed_scene.h"
+#include "util/colour.h"
 #include "test_support.h"
 
 namespace rcsplat {
@@ -240,6 +242,150 @@ TEST(DirectLight, RoughDielectricIsAsBrightAsGltfAppendixB) {
                 rendered / appendix_b, view_fresnel / appendix_b);
     EXPECT_NEAR(rendered / appendix_b, 1.0, 0.05) << "roughness " << roughness;
   }
+}
+
+// A normal map bends the shading normal (glTF: n = normalize(T x + B y + N z), (x, y, z) = (2 rgb - 1) * (scale,
+// scale, 1), B = cross(N, T) * w): the plane's one texel tilts it toward +x and -y. Every pixel's direct light must be
+// the BRDF evaluated in double about that normal, for a Lambertian and a rough dielectric plane, and its normal layer
+// that normal. A kernel that shades with the interpolated normal, or swaps T and B, or ignores w or the scale, fails.
+TEST(DirectLight, NormalMappedPlaneShadesWithTheMappedNormal) {
+  using brdf_reference::Vec;
+  const unsigned char texel[4] = {205, 96, 214, 255};
+  const float scale = 0.8f;
+  // Which way the bitangent points: w = -1 mirrors the map's y.
+  for (float w : {1.0f, -1.0f}) {
+    for (float roughness : {1.0f, 0.75f}) {
+      Scene s = plane_scene();
+      SceneTexture t;
+      t.width = t.height = 1;
+      t.rgba.assign(texel, texel + 4);
+      s.textures.push_back(t);
+      s.materials[0].normal_texture = 0;
+      s.materials[0].normal_scale = scale;
+      s.materials[0].roughness = roughness;
+      s.materials[0].specular = roughness < 1.0f ? 1.0f : 0.0f;
+      s.tangents.assign(s.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, w));
+      s.cameras[0].eye = {0.0f, -5.0f, 3.0f};
+      SceneLight l;
+      l.position = {0.7f, -0.3f, 2.0f};
+      l.intensity = glm::vec3(10.0f, 20.0f, 30.0f);
+      s.lights.push_back(l);
+      RenderedImage img = render(s, 64, 0);
+      const dvec3 mapped = glm::normalize(dvec3((2.0 * texel[0] / 255.0 - 1.0) * scale,
+                                                (2.0 * texel[1] / 255.0 - 1.0) * scale * w, 2.0 * texel[2] / 255.0 - 1.0));
+      // Any frame about the mapped normal: the BRDF is isotropic.
+      const dvec3 tangent = glm::normalize(glm::cross(dvec3(0.0, 1.0, 0.0), mapped)), bitangent = glm::cross(mapped, tangent);
+      auto local = [&](dvec3 v) { return Vec{glm::dot(v, tangent), glm::dot(v, bitangent), glm::dot(v, mapped)}; };
+      const brdf_reference::Material m{{kAlbedo.x, kAlbedo.y, kAlbedo.z}, 0.0, double(roughness), roughness < 1.0f ? 1.0 : 0.0};
+      size_t checked = 0, lit = 0;
+      for (size_t i = 0; i < img.triangle.size(); ++i) {
+        if (img.triangle[i] < 0) continue;
+        const dvec3 x = position_of(img, i), to_light = dvec3(l.position) - x;
+        const double d2 = glm::dot(to_light, to_light);
+        const dvec3 wi = to_light / std::sqrt(d2), wo = glm::normalize(dvec3(s.cameras[0].eye) - x);
+        const double cos_mapped = glm::dot(mapped, wi);
+        for (int k = 0; k < 3; ++k)
+          ASSERT_NEAR(img.normal[3 * i + size_t(k)], mapped[k], 2e-6) << "pixel " << i << " w " << w;
+        for (int c = 0; c < 3; ++c) {
+          const double irradiance = double(l.intensity[c]) * std::max(cos_mapped, 0.0) / d2;
+          double expected = roughness == 1.0f ? double(kAlbedo[c]) / kPi * irradiance : 0.0;
+          double weight_error = 0.0;
+          if (roughness < 1.0f) {
+            // A view below the mapped normal is taken just above its horizon (kernels/brdf_frame.h view_local).
+            Vec o = local(wo);
+            if (o.z < 1e-4) {
+              const double norm = std::sqrt(o.x * o.x + o.y * o.y + 1e-8);
+              o = Vec{o.x / norm, o.y / norm, 1e-4 / norm};
+            }
+            const Vec in = local(wi);
+            expected = cos_mapped > 0.0 ? brdf_reference::reference_brdf(m, o, in, true, true)[size_t(c)] * irradiance : 0.0;
+            weight_error = (o.z < 0.1 ? 0.04 : 2e-3) * double(kAlbedo[c]) / kPi * irradiance;  // as the test above
+          }
+          ASSERT_NEAR(direct_of(img, i)[c], expected, 1e-4 * expected + weight_error + 1e-7)
+              << "pixel " << i << " channel " << c << " w " << w << " roughness " << roughness;
+        }
+        ++checked;
+        lit += cos_mapped > 0.0;
+      }
+      EXPECT_GT(checked, img.triangle.size() / 2);
+      EXPECT_GT(lit, checked / 2);
+    }
+  }
+}
+
+// An emissive quad whose texture is bright on its left half and dim on its right (NEAREST, so the halves are
+// crisp): the irradiance at each plane point is the polygon formula's for each half times that half's radiance, within
+// the estimator's own noise (its variance computed in double from the emitters' selection probabilities). The
+// triangle that holds more of the bright half must be chosen more often (emitters by textured power).
+TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
+  Scene s = plane_scene();
+  const glm::vec3 factor(2.0f, 4.0f, 8.0f);
+  const float h = 1.5f, half = 0.75f;
+  SceneTexture t;
+  t.width = 2;
+  t.height = 1;
+  t.nearest = true;
+  t.rgba = {255, 255, 255, 255, 60, 60, 60, 255};
+  s.textures.push_back(t);
+  const double bright = 1.0, dim = srgb_to_linear(60.0 / 255.0);
+  s.materials.push_back({"emitter", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), -1, factor, false});
+  s.materials.back().emissive_texture = 0;
+  // Facing down (-z), u along +x: u < 0.5 (x < 0) is the bright texel. Triangle 2 holds 3/4 of the bright half.
+  s.add_triangle({-half, -half, h}, {-half, half, h}, {half, half, h}, 1);
+  s.add_triangle({-half, -half, h}, {half, half, h}, {half, -half, h}, 1);
+  const glm::vec2 uv[6] = {{0, 1}, {0, 0}, {1, 0}, {0, 1}, {1, 0}, {1, 1}};
+  for (int k = 0; k < 6; ++k) s.uvs[6 + size_t(k)] = uv[k];
+  const PackedScene packed = pack_scene(s);
+  ASSERT_EQ(packed.emitters.size(), 2u);
+  const double mean_first = 0.75 * bright + 0.25 * dim, mean_second = 0.25 * bright + 0.75 * dim;
+  // The host's estimate of each triangle's mean reads 4 x 4 points or more: within 15% here.
+  EXPECT_NEAR(packed.emitters[0].mean_luminance / packed.emitters[1].mean_luminance, mean_first / mean_second,
+              0.15 * mean_first / mean_second);
+  EXPECT_GT(packed.emitters[0].pdf_select, packed.emitters[1].pdf_select);
+  const unsigned samples = 64;
+  RenderedImage img = render(s, 64, samples);
+  const std::vector<dvec3> left = {{-half, -half, h}, {-half, half, h}, {0.0, half, h}, {0.0, -half, h}};
+  const std::vector<dvec3> right = {{0.0, -half, h}, {0.0, half, h}, {half, half, h}, {half, -half, h}};
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double area = 2.0 * half * half;  // each triangle's
+  double sum_error = 0.0, sum_variance = 0.0;
+  size_t checked = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (img.triangle[i] < 0 || img.triangle[i] > 1) continue;
+    const dvec3 x = position_of(img, i);
+    const double e_bright = polygon_irradiance(x, left), e_dim = polygon_irradiance(x, right);
+    // The estimator in double: a triangle by its selection probability, a uniform point on it.
+    double m1 = 0.0, m2 = 0.0;
+    const int probes = 4000;
+    for (int k = 0; k < probes; ++k) {
+      const bool first = uni(rng) < packed.emitters[0].pdf_select;
+      double a = uni(rng), b = uni(rng);
+      if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+      const dvec3 v0(-half, -half, h), e1 = first ? dvec3(0.0, 2.0 * half, 0.0) : dvec3(2.0 * half, 2.0 * half, 0.0),
+                                     e2 = first ? dvec3(2.0 * half, 2.0 * half, 0.0) : dvec3(2.0 * half, 0.0, 0.0);
+      const dvec3 y = v0 + a * e1 + b * e2, to = y - x;
+      const double d2 = glm::dot(to, to), cos = to.z / std::sqrt(d2);
+      const double pdf_area = (first ? packed.emitters[0].pdf_select : packed.emitters[1].pdf_select) / area;
+      const double f = (y.x < 0.0 ? bright : dim) * cos * cos / d2 / pdf_area;
+      m1 += f;
+      m2 += f * f;
+    }
+    m1 /= probes;
+    const double variance = std::max(0.0, m2 / probes - m1 * m1) / samples;
+    for (int c = 0; c < 3; ++c) {
+      const double scale = kAlbedo[c] / kPi * factor[c];
+      const double expected = scale * (bright * e_bright + dim * e_dim), sigma = scale * std::sqrt(variance);
+      ASSERT_NEAR(direct_of(img, i)[c], expected, 5.5 * sigma + 1e-4 * expected) << "pixel " << i;
+      if (c == 1) {
+        sum_error += direct_of(img, i)[c] - expected;
+        sum_variance += sigma * sigma;
+      }
+    }
+    ++checked;
+  }
+  ASSERT_GT(checked, 1000u);
+  EXPECT_LT(std::fabs(sum_error), 4.0 * std::sqrt(sum_variance)) << "summed error " << sum_error;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "passes/ray_cast_pass.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "scene/tangents.h"
 #include "util/error.h"
 
 namespace rcsplat {
@@ -360,13 +361,91 @@ TEST(GltfConformance, FeaturesNotSimulatedAreNamedOnce) {
   b.doc["nodes"] = json::array({{{"mesh", 0}}, {{"mesh", 1}}});
   Scene scene = load_gltf(b.write(dir, "unsupported"));
   std::vector<std::string> keys = {"KHR_materials_specular colour", "alphaMode BLEND", "KHR_materials_transmission",
-                                   "animation", "normalTexture", "occlusionTexture"};
+                                   "animation", "occlusionTexture"};
   for (const std::string& key : keys) {
     size_t found = 0;
     for (const std::string& line : scene.unsupported) found += line.find(key) != std::string::npos;
     EXPECT_EQ(found, 1u) << key;
   }
   EXPECT_EQ(scene.unsupported.size(), keys.size());
+  EXPECT_EQ(scene.materials[0].normal_texture, 0) << "normal maps are simulated";
+}
+
+// Tangents where the file has none: the per-vertex average of the texture-coordinate gradients, orthogonal to the
+// normal, with w saying which way the image's up runs. Checked against gradients worked out by hand: a quad whose u
+// runs along a rotated axis, and the same quad with its image mirrored (w flips).
+TEST(GltfConformance, GeneratedTangentsFollowTheTextureCoordinates) {
+  const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  const double angle = 0.3;
+  const glm::dvec2 u_axis(std::cos(angle), std::sin(angle));  // u grows along this world direction
+  for (double mirror : {1.0, -1.0}) {
+    std::vector<float> uvs;
+    for (const glm::vec3& p : positions) {
+      glm::dvec2 q(p.x, p.y);
+      uvs.push_back(float(glm::dot(q, u_axis)));
+      // v grows along mirror times the perpendicular (and glTF's v grows down the image).
+      uvs.push_back(float(mirror * glm::dot(q, glm::dvec2(-u_axis.y, u_axis.x))));
+    }
+    const std::vector<glm::vec4> t = generate_tangents(indices, positions, {}, uvs);
+    ASSERT_EQ(t.size(), 4u);
+    for (const glm::vec4& v : t) {
+      EXPECT_NEAR(v.x, u_axis.x, 1e-6);
+      EXPECT_NEAR(v.y, u_axis.y, 1e-6);
+      EXPECT_NEAR(v.z, 0.0, 1e-6);
+      // Image up is -dP/dv = -mirror * perpendicular; cross(n, t) = +perpendicular.
+      EXPECT_EQ(v.w, float(-mirror));
+    }
+  }
+  // A triangle whose texture coordinates are all equal has no gradient: w = 0, no normal map there.
+  const std::vector<glm::vec4> flat = generate_tangents({0, 1, 2}, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, std::vector<float>(6, 0.5f));
+  for (const glm::vec4& v : flat) EXPECT_EQ(v.w, 0.0f);
+}
+
+// A normal-mapped quad: tangents come from TANGENT when the file has it (turned by the node's transform; a mirroring
+// one flips w) and are made otherwise; a primitive without texture coordinates is named and shaded without its map.
+TEST(GltfConformance, NormalMapTangentsFromTheFileOrMade) {
+  const std::string dir = test::scratch_dir();
+  write_png_display(dir + "/bump.png", 1, 1, {0.7f, 0.5f, 1.0f});
+  auto quad_scene = [&](bool with_tangents, bool with_uvs, json node) {
+    GltfBuilder b;
+    json attributes = json::object();
+    float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+    if (with_uvs) attributes["TEXCOORD_0"] = b.add_accessor(b.add_view(uv, sizeof uv), kFloat, 4, "VEC2");
+    float tangent[] = {0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1};
+    if (with_tangents) attributes["TANGENT"] = b.add_accessor(b.add_view(tangent, sizeof tangent), kFloat, 4, "VEC4");
+    add_quad(b, attributes, 0);
+    b.doc["materials"] = json::array({{{"normalTexture", {{"index", 0}, {"scale", 0.5}}}}});
+    b.doc["images"] = json::array({{{"uri", "bump.png"}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    node["mesh"] = 0;
+    b.doc["nodes"] = json::array({node});
+    return load_gltf(b.write(dir, "bump"));
+  };
+  const Scene made = quad_scene(false, true, json::object());
+  ASSERT_EQ(made.tangents.size(), made.positions.size());
+  EXPECT_EQ(made.materials[0].normal_texture, 0);
+  EXPECT_FLOAT_EQ(made.materials[0].normal_scale, 0.5f);
+  // u grows along +x; v grows along +y, so the image's up is -y: cross(+z, +x) = +y, w = -1.
+  for (const glm::vec4& t : made.tangents) {
+    expect_vec3(glm::vec3(t), {1, 0, 0}, 1e-6f, "made tangent");
+    EXPECT_EQ(t.w, -1.0f);
+  }
+  const Scene from_file = quad_scene(true, true, json::object());
+  for (const glm::vec4& t : from_file.tangents) {
+    expect_vec3(glm::vec3(t), {0, 1, 0}, 1e-6f, "file tangent");
+    EXPECT_EQ(t.w, 1.0f);
+  }
+  const Scene mirrored = quad_scene(true, true, {{"scale", {1.0, -1.0, 1.0}}});
+  for (const glm::vec4& t : mirrored.tangents) {
+    expect_vec3(glm::vec3(t), {0, -1, 0}, 1e-6f, "mirrored tangent");
+    EXPECT_EQ(t.w, -1.0f);
+  }
+  const Scene no_uvs = quad_scene(false, false, json::object());
+  for (const glm::vec4& t : no_uvs.tangents) EXPECT_EQ(t.w, 0.0f);
+  size_t named = 0;
+  for (const std::string& line : no_uvs.unsupported) named += line.find("without texture coordinates") != std::string::npos;
+  EXPECT_EQ(named, 1u);
 }
 
 }  // namespace

@@ -31,6 +31,20 @@ Scene cornell_with(const std::string& feature) {
     t.rgba.assign(16, 200);
     s.textures.push_back(t);
     s.materials[0].base_color_texture = 0;
+  } else if (feature == "normal map") {
+    SceneTexture t;
+    t.width = t.height = 2;
+    t.rgba = {160, 128, 240, 255, 128, 160, 240, 255, 100, 128, 240, 255, 128, 100, 240, 255};
+    s.textures.push_back(t);
+    s.materials[0].normal_texture = 0;
+    s.tangents.assign(s.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+  } else if (feature == "emissive texture") {
+    SceneTexture t;
+    t.width = t.height = 2;
+    t.rgba = {255, 255, 255, 255, 40, 40, 40, 255, 200, 100, 50, 255, 255, 255, 255, 255};
+    s.textures.push_back(t);
+    for (SceneMaterial& m : s.materials)
+      if (m.emission != glm::vec3(0.0f)) m.emissive_texture = 0;
   } else if (feature == "glossy material") {
     s.materials[0].metallic = 1.0f;
     s.materials[0].roughness = 0.5f;
@@ -49,8 +63,10 @@ Scene cornell_with(const std::string& feature) {
 TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
   const ScenePlan base = plan_scene(cornell_with(""));
   EXPECT_EQ(base.switches, (std::map<std::string, std::string>{{"HAS_ALPHA_MASK", "0"},
+                                                                {"HAS_EMISSIVE_TEXTURES", "0"},
                                                                 {"HAS_EMITTERS", "1"},
                                                                 {"HAS_ENVIRONMENT", "0"},
+                                                                {"HAS_NORMAL_MAPS", "0"},
                                                                 {"HAS_PUNCTUAL_LIGHTS", "0"},
                                                                 {"HAS_SPECULAR_BRDF", "0"},
                                                                 {"HAS_TEXTURES", "0"},
@@ -63,6 +79,8 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
                                                        {"glossy material", "HAS_SPECULAR_BRDF"},
                                                        {"alpha mask", "HAS_ALPHA_MASK"},
                                                        {"sky", "HAS_ENVIRONMENT"},
+                                                       {"normal map", "HAS_NORMAL_MAPS"},
+                                                       {"emissive texture", "HAS_EMISSIVE_TEXTURES"},
                                                        {"no emitter", "HAS_EMITTERS"}};
   for (const auto& [feature, flipped] : cases) {
     const ScenePlan plan = plan_scene(cornell_with(feature));
@@ -79,7 +97,8 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
 // What `info` reports is what a render compiles: the device scene's defines are the plan's switches and the BVH's
 // stack size.
 TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
-  for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "sky", "no emitter"}) {
+  for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "sky", "no emitter",
+                              "normal map", "emissive texture"}) {
     const Scene scene = cornell_with(feature);
     const Bvh8 bvh = build_bvh8(scene.positions);
     DeviceScene device(test::gpu(), scene, bvh);
@@ -96,8 +115,11 @@ TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
 // (GlobalIllumination.BrdfCodeChangesNoBitOfALambertianScene).
 TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
   const std::pair<std::set<std::string>, const char*> cases[] = {
-      {{"HAS_TEXTURES", "HAS_ALPHA_MASK", "HAS_VERTEX_COLORS", "HAS_PUNCTUAL_LIGHTS", "HAS_ENVIRONMENT"}, ""},
-      {{"HAS_EMITTERS", "HAS_TEXTURES", "HAS_ALPHA_MASK", "HAS_VERTEX_COLORS", "HAS_ENVIRONMENT"},
+      {{"HAS_TEXTURES", "HAS_ALPHA_MASK", "HAS_VERTEX_COLORS", "HAS_PUNCTUAL_LIGHTS", "HAS_ENVIRONMENT",
+        "HAS_NORMAL_MAPS", "HAS_EMISSIVE_TEXTURES"},
+       ""},
+      {{"HAS_EMITTERS", "HAS_TEXTURES", "HAS_ALPHA_MASK", "HAS_VERTEX_COLORS", "HAS_ENVIRONMENT", "HAS_NORMAL_MAPS",
+        "HAS_EMISSIVE_TEXTURES"},
        "lit by a point light"}};
   for (const auto& [forced, variant] : cases) {
     std::string names;

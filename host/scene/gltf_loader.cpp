@@ -572,8 +572,6 @@ class GltfReader {
           note_unsupported("normalTexture on a primitive without texture coordinates", "its interpolated normals shade it");
         else
           tangents = primitive_tangents(prim, node, morph_weights, what, idx, pos, nrm, uv, world, normal_matrix, mirrored);
-        // Triangles added before the first normal map get zero tangents: w = 0 says "no map here" to the kernels.
-        if (scene_.tangents.empty()) scene_.tangents.assign(scene_.positions.size(), glm::vec4(0.0f));
       }
       size_t first = scene_.positions.size();
       for (size_t t = 0; t < idx.size(); t += 3)
@@ -646,7 +644,11 @@ class GltfReader {
         glm::vec2 u(uv[2 * order[k]], uv[2 * order[k] + 1]);
         scene_.uvs[base + size_t(k)] = (std::isfinite(u.x) && std::isfinite(u.y)) ? u : glm::vec2(0.0f);
       }
-      if (!v.tangents.empty()) scene_.tangents[base + size_t(k)] = v.tangents[order[k]];
+      if (!v.tangents.empty()) {
+        // Triangles added before the first normal map get zero tangents: w = 0 says "no map here" to the kernels.
+        if (scene_.tangents.size() < scene_.positions.size()) scene_.tangents.resize(scene_.positions.size(), glm::vec4(0.0f));
+        scene_.tangents[base + size_t(k)] = v.tangents[order[k]];
+      }
       if (!v.color.empty()) {
         glm::vec3 c(v.color[3 * order[k]], v.color[3 * order[k] + 1], v.color[3 * order[k] + 2]);
         scene_.colors[base + size_t(k)] = (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) ? c : glm::vec3(1.0f);

@@ -49,7 +49,7 @@ PunctualLight pack_light(const SceneLight& l) {
 }
 
 // The emitted luminance of material m averaged over triangle t: its factor's, times its texture's mean over the
-// triangle where it has one. Texels are read at up to kSamples stratified points (enough to weigh emitters against one
+// triangle where it has one. Texels are read at 16 to 64 stratified points (enough to weigh emitters against one
 // another: an estimate only moves the light sampler's choice, never its result), nearest, so the work is bounded.
 double mean_emitted_luminance(const Scene& scene, size_t t, const SceneMaterial& m) {
   const glm::vec3 factor = m.emission;
@@ -57,10 +57,10 @@ double mean_emitted_luminance(const Scene& scene, size_t t, const SceneMaterial&
     return luminance_f(factor.x, factor.y, factor.z);
   const SceneTexture& tex = scene.textures[size_t(m.emissive_texture)];
   const glm::vec2 uv0 = scene.uvs[3 * t], e1 = scene.uvs[3 * t + 1] - uv0, e2 = scene.uvs[3 * t + 2] - uv0;
-  // Texels the triangle covers, for how many points to read (at least 1, at most kSide^2).
-  constexpr int kSide = 8;
+  // Texels the triangle covers, for how many points to read (4^2 to 8^2: a few a texel edge it may cross).
+  constexpr int kMinSide = 4, kMaxSide = 8;
   const double texels = 0.5 * std::fabs(double(e1.x) * e2.y - double(e1.y) * e2.x) * tex.width * tex.height;
-  const int side = std::clamp(int(std::ceil(std::sqrt(std::max(texels, 1.0)))), 1, kSide);
+  const int side = std::clamp(int(std::ceil(4.0 * std::sqrt(std::min(texels, 1e4)))), kMinSide, kMaxSide);
   auto wrap = [](long i, long n, int mode) {
     if (mode == WRAP_CLAMP) return std::clamp(i, 0L, n - 1);
     long m2 = ((i % (2 * n)) + 2 * n) % (2 * n);
