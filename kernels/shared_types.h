@@ -98,7 +98,8 @@ typedef struct {
   rc_int emissive_texture;  // glTF's emissiveTexture (sRGB), times emission; TEXTURE_NONE: emission is uniform
   rc_int normal_texture;    // glTF's normalTexture (tangent space, linear) or TEXTURE_NONE (kernels/surface.h)
   float normal_scale;       // glTF's normalTexture.scale: multiplies the map's x and y
-  rc_int pad[2];
+  rc_int alpha_blend;       // glTF alpha mode BLEND: a point is a hole with probability 1 - alpha (kernels/traverse.h)
+  rc_int pad;
 } Material;
 
 #define WRAP_REPEAT 0

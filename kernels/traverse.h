@@ -165,12 +165,17 @@ typedef struct {
 } TraceHit;
 
 #if HAS_ALPHA_MASK
+#include "counter_random.h"
+
 // glTF's alpha mode MASK: a surface whose alpha (base colour factor times texture) is below its material's cutoff is
-// a hole, for every kind of ray (a leaf is a leaf, not a quad).
+// a hole, for every kind of ray (a leaf is a leaf, not a quad). Alpha mode BLEND is made unbiased by hashed
+// transparency: each point of the surface is a hole with probability 1 - alpha, by a hash of where it is (triangle
+// and barycentrics), so every ray that reaches a point (camera, shadow, record, path) agrees on it and the same input
+// gives the same bits; over a pixel's samples, a light's area or a record's rays, a fraction alpha is seen.
 inline bool is_hole(BVH_ARGS, int prim, float u, float v) {
   __global const TriangleShading* t = triangles + prim;
   __global const Material* m = materials + t->material;
-  if (!(m->alpha_cutoff > 0.0f)) return false;
+  if (!(m->alpha_cutoff > 0.0f) && !m->alpha_blend) return false;
   float alpha = m->base_color[3];
 #if HAS_TEXTURES
   if (m->base_color_texture >= 0) {
@@ -179,6 +184,7 @@ inline bool is_hole(BVH_ARGS, int prim, float u, float v) {
     alpha *= sample_texture(textures, texels, m->base_color_texture, uv).w;
   }
 #endif
+  if (m->alpha_blend) return random01((uint)prim, as_uint(u), as_uint(v)) >= alpha;
   return alpha < m->alpha_cutoff;
 }
 

@@ -388,5 +388,44 @@ TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
   EXPECT_LT(std::fabs(sum_error), 4.0 * std::sqrt(sum_variance)) << "summed error " << sum_error;
 }
 
+// Alpha mode BLEND, by hashed transparency: a quad of alpha 0.3 over the lit plane, both under a directional light.
+// A pixel sees the quad with probability alpha (then lit), else the plane, which the quad shadows with probability
+// alpha. The mean direct light over the plane's pixels must be alpha L_quad + (1 - alpha)^2 L_plane within five
+// standard errors of that three-valued mixture, and the share of pixels that see the quad alpha within five binomial
+// standard errors. Blending ignored (opaque, or a hole everywhere) misses by hundreds of standard errors.
+TEST(DirectLight, AlphaBlendIsSeenAndCastsShadowWithItsAlpha) {
+  Scene s = plane_scene();
+  const double alpha = 0.3;
+  SceneMaterial veil{"veil", glm::vec4(1.0f, 1.0f, 1.0f, float(alpha)), -1, glm::vec3(0.0f), true};
+  veil.alpha_blend = true;
+  s.materials.push_back(veil);
+  s.add_triangle({-30, -30, 1}, {30, -30, 1}, {30, 30, 1}, 1);
+  s.add_triangle({-30, -30, 1}, {30, 30, 1}, {-30, 30, 1}, 1);
+  SceneLight l;
+  l.type = LightType::directional;
+  l.direction = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
+  l.intensity = glm::vec3(3.0f);
+  s.lights.push_back(l);
+  const RenderedImage img = render(s, 96, 0);
+  const double cos = -l.direction.z;
+  const double plane = double(kAlbedo.y) / kPi * 3.0 * cos, quad = 1.0 / kPi * 3.0 * cos;
+  const double mean = alpha * quad + (1.0 - alpha) * (1.0 - alpha) * plane;
+  const double second = alpha * quad * quad + (1.0 - alpha) * (1.0 - alpha) * plane * plane;
+  double sum = 0.0;
+  size_t pixels = 0, on_quad = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (img.triangle[i] < 0) continue;
+    ++pixels;
+    on_quad += img.triangle[i] >= 2;
+    sum += direct_of(img, i).y;
+  }
+  ASSERT_GT(pixels, 5000u);
+  const double n = double(pixels), measured = sum / n, sigma = std::sqrt((second - mean * mean) / n);
+  std::printf("blend: %.5f against %.5f (sigma %.1e); %.4f of the pixels see the veil\n", measured, mean, sigma,
+              double(on_quad) / n);
+  EXPECT_NEAR(measured, mean, 5.0 * sigma);
+  EXPECT_NEAR(double(on_quad) / n, alpha, 5.0 * std::sqrt(alpha * (1.0 - alpha) / n));
+}
+
 }  // namespace
 }  // namespace rcsplat

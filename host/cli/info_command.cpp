@@ -28,8 +28,9 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
                 m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
                 lobe_treatment(m.lobe));
-  std::printf("textures     %zu%s%s\n", plan.textures, plan.vertex_colors ? ", vertex colours" : "",
-              plan.alpha_mask ? ", alpha-masked cutouts" : "");
+  std::printf("textures     %zu%s%s%s\n", plan.textures, plan.vertex_colors ? ", vertex colours" : "",
+              plan.alpha_mask ? ", alpha-masked cutouts" : "",
+              plan.alpha_blend ? ", alpha-blended surfaces (hashed transparency: seen with probability alpha)" : "");
   if (plan.normal_mapped_materials)
     std::printf("normal maps  %u material(s): the mapped normal shades (direct light, BRDF, glossy and path); the cache "
                 "weighs records by the interpolated normal and turns their irradiance to the mapped one by its rotation "
@@ -86,6 +87,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
           {"textures", plan.textures},
           {"vertex_colors", plan.vertex_colors},
           {"alpha_mask", plan.alpha_mask},
+          {"alpha_blend", plan.alpha_blend},
           {"lights",
            {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
           {"environment", environment},

@@ -805,7 +805,7 @@ class GltfReader {
         m.alpha_cutoff = std::max(float(src.alphaCutoff), 1e-6f);
         if (!std::isfinite(m.alpha_cutoff)) fail(material_label(src) + ": invalid alphaCutoff");
       } else if (src.alphaMode == "BLEND") {
-        note_unsupported("alphaMode BLEND", "surfaces are opaque (no transparency)");
+        m.alpha_blend = true;
       }
       scene_.materials.push_back(m);
     }

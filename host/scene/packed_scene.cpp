@@ -158,6 +158,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     out.base_color_texture = m.base_color_texture;
     out.double_sided = m.double_sided ? 1 : 0;
     out.alpha_cutoff = m.alpha_cutoff;
+    out.alpha_blend = m.alpha_blend ? 1 : 0;
     out.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
     out.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular, 0.0f, 1.0f);

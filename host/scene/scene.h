@@ -19,6 +19,7 @@ struct SceneMaterial {
   glm::vec3 emission{0.0f};  // emissiveFactor x strength: linear radiance
   bool double_sided = false;
   float alpha_cutoff = 0.0f;  // glTF alpha mode MASK: where alpha is below it the surface is a hole; 0: opaque
+  bool alpha_blend = false;   // glTF alpha mode BLEND: a point is seen with probability alpha (hashed transparency)
   // The BRDF (kernels/brdf.h). A scene built in code is Lambertian unless it says otherwise; the glTF loader sets
   // glTF's defaults (metallic 1, roughness 1, specular 1).
   float metallic = 0.0f;

@@ -7,7 +7,7 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false;
   for (const Material& m : p.materials) {
     textured |= m.base_color_texture >= 0;
-    masked |= m.alpha_cutoff > 0.0f;
+    masked |= m.alpha_cutoff > 0.0f || m.alpha_blend;
     specular |= m.lobe != LOBE_NONE;
     normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
   }
@@ -71,6 +71,7 @@ ScenePlan plan_scene(const Scene& scene) {
     plan.normal_mapped_materials += mp.normal_mapped;
     plan.emissive_textured_materials += mp.emissive_textured;
     plan.alpha_mask |= m.alpha_cutoff > 0.0f;
+    plan.alpha_blend |= m.alpha_blend != 0;
     ++plan.lobe_counts[size_t(m.lobe)];
     plan.materials.push_back(mp);
   }

@@ -34,7 +34,7 @@ struct MaterialPlan {
 struct ScenePlan {
   std::string source;
   size_t triangles = 0, emissive_triangles = 0, textures = 0;
-  bool vertex_colors = false, alpha_mask = false;
+  bool vertex_colors = false, alpha_mask = false, alpha_blend = false;
   unsigned normal_mapped_materials = 0, emissive_textured_materials = 0;
   std::vector<MaterialPlan> materials;
   std::array<unsigned, LOBE_KINDS> lobe_counts{};
