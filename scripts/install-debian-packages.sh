@@ -5,6 +5,7 @@ packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libembree-dev libopenimageio-dev libtinygltf-dev libstb-dev libglm-dev libcli11-dev nlohmann-json3-dev
+  libwebp-dev  # EXT_texture_webp images
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer
   ffmpeg  # rcsplat animate --mp4: the walkthrough's preview

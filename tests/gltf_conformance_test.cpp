@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
+#include <webp/encode.h>
 
 #include <cmath>
 
@@ -370,6 +371,44 @@ TEST(GltfConformance, FeaturesNotSimulatedAreNamedOnce) {
   EXPECT_EQ(scene.unsupported.size(), keys.size());
   EXPECT_EQ(scene.materials[0].normal_texture, 0) << "normal maps are simulated";
   EXPECT_TRUE(scene.materials[0].alpha_blend) << "alpha mode BLEND is simulated";
+}
+
+// EXT_texture_webp: a texture whose image is WebP (lossless here, so its texels come back exactly) is read through
+// libwebp; a damaged one is refused naming the image.
+TEST(GltfConformance, WebPTexturesAreRead) {
+  const std::string dir = test::scratch_dir();
+  const uint8_t rgba[8] = {10, 200, 30, 255, 250, 128, 0, 90};
+  uint8_t* encoded = nullptr;
+  const size_t bytes = WebPEncodeLosslessRGBA(rgba, 2, 1, 8, &encoded);
+  ASSERT_GT(bytes, 0u);
+  test::write_file(dir + "/two.webp", std::string(reinterpret_cast<const char*>(encoded), bytes));
+  test::write_file(dir + "/broken.webp", std::string(reinterpret_cast<const char*>(encoded), bytes / 2));
+  WebPFree(encoded);
+  auto scene_with = [&](const std::string& image) {
+    GltfBuilder b;
+    float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+    add_quad(b, {{"TEXCOORD_0", b.add_accessor(b.add_view(uv, sizeof uv), kFloat, 4, "VEC2")}}, 0);
+    b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    b.doc["images"] = json::array({{{"uri", image}}});
+    b.doc["textures"] = json::array({{{"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}});
+    b.doc["extensionsUsed"] = {"EXT_texture_webp"};
+    b.doc["extensionsRequired"] = {"EXT_texture_webp"};
+    b.doc["nodes"] = json::array({{{"mesh", 0}}});
+    return b.write(dir, "webp");
+  };
+  const Scene scene = load_gltf(scene_with("two.webp"));
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0].width, 2);
+  EXPECT_EQ(scene.textures[0].height, 1);
+  EXPECT_EQ(scene.textures[0].rgba, std::vector<uint8_t>(rgba, rgba + 8));
+  EXPECT_EQ(scene.materials[0].base_color_texture, 0);
+  EXPECT_TRUE(scene.unsupported.empty());
+  try {
+    load_gltf(scene_with("broken.webp"));
+    ADD_FAILURE() << "a truncated WebP was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.webp"), std::string::npos) << e.what();
+  }
 }
 
 // Tangents where the file has none: the per-vertex average of the texture-coordinate gradients, orthogonal to the

@@ -19,6 +19,7 @@
 #include <set>
 
 #include <stb/stb_image.h>
+#include <webp/decode.h>
 
 #include "kernels/shared_types.h"
 #include "scene/gltf_checks.h"
@@ -31,7 +32,8 @@ namespace rcsplat {
 namespace {
 
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                    "KHR_materials_specular", "KHR_texture_transform"};
+                                                    "KHR_materials_specular", "KHR_texture_transform",
+                                                    "EXT_texture_webp"};
 
 class GltfReader {
  public:
@@ -817,14 +819,27 @@ class GltfReader {
     return WRAP_REPEAT;
   }
 
+  // The image a texture reads: EXT_texture_webp's source where it names one (rcsplat decodes WebP), else "source"
+  // (the fallback the extension lets a file give for readers without WebP).
+  int texture_source(const tinygltf::Texture& tex, size_t index) const {
+    auto ext = tex.extensions.find("EXT_texture_webp");
+    if (ext == tex.extensions.end() || !ext->second.Has("source")) return tex.source;
+    const tinygltf::Value& v = ext->second.Get("source");
+    const double source = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    if (!(source >= 0.0) || source >= double(model_.images.size()) || source != std::floor(source))
+      fail("textures[" + std::to_string(index) + "]: EXT_texture_webp's source is not an image of the file");
+    return int(source);
+  }
+
   // glTF textures become scene textures (RGBA8). A texture without an image (valid glTF: an extension may supply
   // one) leaves its materials untextured, with a warning; an image that did not decode was refused by the loader.
   void read_textures() {
     for (size_t t = 0; t < model_.textures.size(); ++t) {
       const tinygltf::Texture& tex = model_.textures[t];
       int slot = -1;
-      if (tex.source >= 0 && size_t(tex.source) < model_.images.size()) {
-        const tinygltf::Image& img = model_.images[size_t(tex.source)];
+      const int source = texture_source(tex, t);
+      if (source >= 0 && size_t(source) < model_.images.size()) {
+        const tinygltf::Image& img = model_.images[size_t(source)];
         if (img.width > 0 && img.height > 0 && (img.bits == 8 || img.bits == 16) && img.component >= 1 &&
             img.component <= 4 && img.image.size() >= size_t(img.width) * size_t(img.height) * size_t(img.component) * size_t(img.bits / 8)) {
           SceneTexture out;
@@ -856,9 +871,9 @@ class GltfReader {
         }
       }
       if (slot < 0) {
-        if (tex.source >= 0) {
-          const tinygltf::Image& img = model_.images[size_t(tex.source)];
-          fail("textures[" + std::to_string(t) + "]: images[" + std::to_string(tex.source) + "] '" +
+        if (source >= 0) {
+          const tinygltf::Image& img = model_.images[size_t(source)];
+          fail("textures[" + std::to_string(t) + "]: images[" + std::to_string(source) + "] '" +
                (img.uri.empty() ? img.name : img.uri.substr(0, 80)) + "' holds no pixels rcsplat can use");
         }
         warn("textures[" + std::to_string(t) + "] has no image (\"source\"); materials that use it are untextured");
@@ -1111,7 +1126,15 @@ bool decode_image(tinygltf::Image* image, const int index, std::string* err, std
     return false;
   };
   int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
+  const bool webp = size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
+  if (webp) {
+    // EXT_texture_webp: libwebp reads the size from the header, then decodes to RGBA.
+    WebPBitstreamFeatures features;
+    if (WebPGetFeatures(bytes, size_t(size), &features) != VP8_STATUS_OK) return refuse("its WebP header is damaged");
+    width = features.width;
+    height = features.height;
+    channels = 4;
+  } else if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
     // The decoder refuses a header whose pixels would pass 1 GiB before saying its size: read a PNG's here.
     if (size >= 24 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0) {
       auto big_endian = [&](int at) { return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3]; };
@@ -1120,7 +1143,7 @@ bool decode_image(tinygltf::Image* image, const int index, std::string* err, std
         return refuse("is " + std::to_string(w) + " x " + std::to_string(h) + " pixels; rcsplat reads textures of at most " +
                       std::to_string(context.limits->max_texture_side) + " pixels a side");
     }
-    return refuse("not an image rcsplat reads (PNG, JPEG, BMP, GIF, TGA, PSD, HDR, PNM), or its header is damaged");
+    return refuse("not an image rcsplat reads (PNG, JPEG, WebP, BMP, GIF, TGA, PSD, HDR, PNM), or its header is damaged");
   }
   const int side = context.limits->max_texture_side;
   if (width <= 0 || height <= 0 || width > side || height > side)
@@ -1132,6 +1155,20 @@ bool decode_image(tinygltf::Image* image, const int index, std::string* err, std
   } catch (const Error& e) {
     if (context.refusal.empty()) context.refusal = e.what();
     return false;
+  }
+  if (webp) {
+    image->image.resize(pixels * 4);
+    if (!WebPDecodeRGBAInto(bytes, size_t(size), image->image.data(), image->image.size(), width * 4)) {
+      image->image.clear();
+      return refuse("its WebP pixel data is damaged or truncated (" + std::to_string(width) + " x " +
+                    std::to_string(height) + " in its header)");
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    return true;
   }
   int w = 0, h = 0, n = 0;
   unsigned char* decoded = stbi_load_from_memory(bytes, size, &w, &h, &n, 0);
