@@ -8,6 +8,7 @@
 // The watertight test needs its edge functions evaluated exactly as written: a fused multiply-add would round a*b - c*d
 // differently from its mirror image on the neighbouring triangle (cracks), and would make the empty lanes' zero
 // determinant non-zero. Every program is built without contraction (GpuContext's kProgramPrologue).
+#include "counter_random.h"
 #include "surface.h"
 
 // The traversal's view of the scene: the BVH, and with alpha-masked materials (HAS_ALPHA_MASK) what a hit needs to
@@ -165,8 +166,6 @@ typedef struct {
 } TraceHit;
 
 #if HAS_ALPHA_MASK
-#include "counter_random.h"
-
 // glTF's alpha mode MASK: a surface whose alpha (base colour factor times texture) is below its material's cutoff is
 // a hole, for every kind of ray (a leaf is a leaf, not a quad). Alpha mode BLEND is made unbiased by hashed
 // transparency: each point of the surface is a hole with probability 1 - alpha, by a hash of where it is (triangle

@@ -46,8 +46,21 @@ std::vector<GBufferSample> random_gbuffer(size_t count, std::mt19937& rng) {
     s.depth = unit(rng);
     s.triangle = triangle(rng);
     s.lobe = lobe(rng);
+    // Half the samples carry a normal map's normal: any point of the octahedral square encodes one.
+    s.mapped_normal[0] = unit(rng) < 0.5f ? NO_MAPPED_NORMAL : 2.0f * unit(rng) - 1.0f;
+    s.mapped_normal[1] = 2.0f * unit(rng) - 1.0f;
   }
   return g;
+}
+
+// The normal a sample shades with, in double: its octahedral-encoded mapped normal (the square's outer triangles fold
+// onto the lower hemisphere), else the interpolated one.
+glm::dvec3 shading_normal(const GBufferSample& s) {
+  if (s.mapped_normal[0] == NO_MAPPED_NORMAL) return glm::dvec3(s.normal[0], s.normal[1], s.normal[2]);
+  const double x = s.mapped_normal[0], y = s.mapped_normal[1], z = 1.0 - std::fabs(x) - std::fabs(y);
+  glm::dvec3 n(x, y, z);
+  if (z < 0.0) n = glm::dvec3((1.0 - std::fabs(y)) * (x >= 0.0 ? 1.0 : -1.0), (1.0 - std::fabs(x)) * (y >= 0.0 ? 1.0 : -1.0), z);
+  return glm::normalize(n);
 }
 
 std::vector<cl_float4> random_rgba(size_t count, std::mt19937& rng, bool whole_alpha) {
@@ -102,7 +115,7 @@ TEST_P(LayerPassTest, SurfaceIsTheSubPixelsMeansCentreAndCounts) {
             emission[c] += g[k].emission[c];
             light[c] += direct[k].s[c];
             albedo[c] += g[k].albedo[c];
-            normal[c] += g[k].normal[c];
+            normal[c] += shading_normal(g[k])[c];
           }
           shadow_rays += direct[k].s[3];
           if (g[k].triangle >= 0) ++by_lobe[g[k].lobe];
