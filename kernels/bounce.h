@@ -29,14 +29,16 @@
 #define GATHER_MAP
 #endif
 
-inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, HitSurface* h, float* distance, RayTally* rays) {
+// cone_angle: the ray cone's angle, for filtering the textures the hit reads (0: texel-sized lookups).
+inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, float cone_angle, HitSurface* h, float* distance,
+                          RayTally* rays) {
   TraceHit hit;
   if (!closest_hit(BVH, rays, origin, dir, &hit)) {
     *distance = INFINITY;
     return false;
   }
   *distance = hit.t;
-  *h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
+  *h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, hit.t * cone_angle);
   return true;
 }
 
@@ -137,7 +139,8 @@ inline bool path_extend(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughp
   if (!(throughput->x > 0.0f || throughput->y > 0.0f || throughput->z > 0.0f) || dot(next, h->ng) <= 0.0f)
     return false;
   float distance;
-  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, next_hit, &distance, rays)) return false;
+  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, 0.0f, next_hit, &distance, rays))
+    return false;
   *dir = next;
   return true;
 }
@@ -291,7 +294,7 @@ inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float
 inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
                               PathContinuation more, float* distance, RayTally* rays) {
   HitSurface h;
-  if (!trace_surface(SCENE, origin, dir, &h, distance, rays)) return miss_radiance(SCENE, dir);
+  if (!trace_surface(SCENE, origin, dir, 0.0f, &h, distance, rays)) return miss_radiance(SCENE, dir);
   return radiance_from_hit(SCENE GATHER_MAP, &h, dir, *distance, u, v, u_lobe, more, rays);
 }
 

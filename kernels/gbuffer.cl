@@ -38,6 +38,14 @@ inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, i
   return vload3(0, cam->eye) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up);
 }
 
+// The width of a camera ray's cone at distance t: the spacing of the frame's samples (a pixel, or the jitter cell of
+// a path-traced round's strata) seen from the eye, which its texture lookups are filtered to (kernels/surface.h).
+inline float primary_cone_width(__global const CameraParams* cam, float t) {
+  const float cell = cam->jitter_cell > 0.0f ? cam->jitter_cell : 1.0f;
+  if (cam->orthographic) return 2.0f * cam->half_height / (float)cam->height * cell;
+  return t * 2.0f * cam->tan_half_fov_y / (float)cam->height * cell;
+}
+
 // Writes the G-buffer the other passes read through GBUFFER_ARGS.
 __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera) {
   int x = get_global_id(0), y = get_global_id(1);
@@ -68,7 +76,7 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.material = -1;
     g.depth = INFINITY;
   } else {
-    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
+    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, primary_cone_width(camera, hit.t));
     SurfacePoint s = h.s;
     const float3 ng = h.ng, ns = h.ns;
     bool back = dot(s.geometric_normal, dir) > 0.0f;

@@ -98,7 +98,7 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
                               PathContinuation more, RayTally* rays) {
   HitSurface h;
   float distance;
-  if (!trace_surface(SCENE, origin, dir, &h, &distance, rays)) return miss_radiance(SCENE, dir);
+  if (!trace_surface(SCENE, origin, dir, SECONDARY_CONE_ANGLE, &h, &distance, rays)) return miss_radiance(SCENE, dir);
   if (!world_grid.record_count) return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays);
   float3 sum = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays), throughput = (float3)(1.0f), cached;
   for (uint k = 0; k < more.bounces; ++k) {
@@ -397,7 +397,7 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams par
   if (hit.prim < 0) {
     l = miss_radiance(SCENE, dir);
   } else {
-    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir);
+    HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, hit.t * SECONDARY_CONE_ANGLE);
     const float u = random01(key, s, 2u), v = random01(key, s, 3u), u_lobe = random01(key, s, 4u);
     if (!world_grid.record_count) {
       l = first_bounce_from_hit(SCENE, &h, dir, hit.t, u, v, u_lobe, more, &rays, &after);

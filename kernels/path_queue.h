@@ -46,7 +46,7 @@ inline bool load_queued_path(HIT_SURFACE_ARGS, __global const QueuedPath* path,
   *dir = vload3(0, path->dir);
   *throughput = vload3(0, path->throughput);
   *sum = vload3(0, path->sum);
-  *h = hit_surface(HIT_SURFACE, path->prim, path->u, path->v, *dir);
+  *h = hit_surface(HIT_SURFACE, path->prim, path->u, path->v, *dir, 0.0f);  // a later bounce: texel-sized lookups
   *rays = path->rays;
   return true;
 }

@@ -207,7 +207,9 @@ inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemi
   rays->cast = ray.cast ? 1u : 0u;
   *after = PATH_DONE;
   if (hit.prim < 0) return ray.cast ? miss_radiance(SCENE, ray.dir) : (float3)(0.0f);
-  HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, ray.dir);
+  // The ray's cone: the solid angle of its stratum, 2 pi / (M N), as an angle (ray cones: kernels/surface.h).
+  const float cone = sqrt(2.0f * RC_PI / (float)(hp.theta_strata * hp.phi_strata));
+  HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, ray.dir, hit.t * cone);
   const PathContinuation more = path_continuation(site.key, s, hp.bounces);
   const float u = random01(site.key, s, 2u), v = random01(site.key, s, 3u), u_lobe = random01(site.key, s, 4u);
   if (queues_paths) return first_bounce_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays, after);

@@ -73,6 +73,10 @@ typedef struct {
 // metals and dielectrics. Sharper lobes are sampled per pixel (LOBE_GLOSSY).
 #define HSH_MIN_ROUGHNESS 0.45f
 
+// The cone angle (radians) of a glossy sample's ray, for filtering the textures it finds (kernels/surface.h): the
+// default 16 x 32 record strata's, sqrt(2 pi / 512).
+#define SECONDARY_CONE_ANGLE 0.1108f
+
 // The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at i / (size - 1).
 #define SPECULAR_ALBEDO_TABLE_SIZE 32
 
@@ -106,16 +110,20 @@ typedef struct {
 #define WRAP_CLAMP 1
 #define WRAP_MIRROR 2
 #define TEXTURE_NEAREST (1u << 16)  // in TextureInfo.wrap: the nearest texel instead of bilinear filtering
+#define TEXTURE_LEVELS_SHIFT 20     // in TextureInfo.wrap: how many mip levels follow each other from first_texel
 // TextureInfo.wrap, packed by the host and read by kernels/surface.h.
-inline rc_uint texture_wrap(rc_uint wrap_s, rc_uint wrap_t, int nearest) {
-  return wrap_s | wrap_t << 8 | (nearest ? TEXTURE_NEAREST : 0u);
+inline rc_uint texture_wrap(rc_uint wrap_s, rc_uint wrap_t, int nearest, rc_uint levels) {
+  return wrap_s | wrap_t << 8 | (nearest ? TEXTURE_NEAREST : 0u) | levels << TEXTURE_LEVELS_SHIFT;
 }
 inline rc_uint texture_wrap_s(rc_uint wrap) { return wrap & 255u; }
 inline rc_uint texture_wrap_t(rc_uint wrap) { return (wrap >> 8) & 255u; }
+inline rc_uint texture_levels(rc_uint wrap) { return wrap >> TEXTURE_LEVELS_SHIFT; }
+// A mip level's side: the level above's halved, rounded down, at least 1.
+inline rc_uint texture_level_side(rc_uint side, rc_uint level) { return side >> level > 0u ? side >> level : 1u; }
 typedef struct {
-  rc_uint first_texel;  // offset into the RGBA8 (sRGB-encoded) texel array
-  rc_uint width, height;
-  rc_uint wrap;  // texture_wrap(): wrap_s | wrap_t << 8, | TEXTURE_NEAREST
+  rc_uint first_texel;  // offset into the RGBA8 (sRGB-encoded) texel array: level 0, then each smaller level
+  rc_uint width, height;  // level 0's
+  rc_uint wrap;  // texture_wrap(): wrap_s | wrap_t << 8, | TEXTURE_NEAREST, | levels << TEXTURE_LEVELS_SHIFT
 } TextureInfo;
 
 #define LIGHT_POINT 0

@@ -10,6 +10,8 @@ typedef struct {
   float3 shading_normal;    // unit, interpolated
   float2 uv;
   uint material;
+  // log2 of the texture-coordinate width of the ray's footprint here (-INFINITY: none known, texel-sized lookups).
+  float uv_width_log2;
 #if HAS_VERTEX_COLORS
   float3 color;  // interpolated vertex colour
 #endif
@@ -37,6 +39,7 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
   s.shading_normal = len > 0.0f ? n / len : s.geometric_normal;
   s.uv = w * vload2(0, t->uv0) + u * vload2(0, t->uv1) + v * vload2(0, t->uv2);
   s.material = t->material;
+  s.uv_width_log2 = -INFINITY;
 #if HAS_VERTEX_COLORS
   // A triangle of one colour takes it as it is: barycentric weights need not sum to exactly 1 in float.
   if (t->color[0] == t->color[1] && t->color[1] == t->color[2]) s.color = unpack_vertex_color(t->color[0]);
@@ -74,15 +77,9 @@ inline float4 texel_value(__global const uint* texels, TextureInfo info, int x, 
                   (float)(p >> 24) * to_unit);
 }
 
-inline float4 texel_linear(__global const uint* texels, TextureInfo info, int x, int y) {
-  return texel_value(texels, info, x, y, true);
-}
-
-// Bilinear (or, as the sampler says, nearest) lookup; texture coordinates wrap as the sampler says. Colour textures
-// (srgb) are filtered in linear space.
-inline float4 sample_texture_encoded(__global const TextureInfo* infos, __global const uint* texels, int index,
-                                     float2 uv, bool srgb) {
-  TextureInfo info = infos[index];
+// Bilinear (or, as the sampler says, nearest) lookup in one level (`info` describing that level); texture coordinates
+// wrap as the sampler says. Colour textures (srgb) are filtered in linear space.
+inline float4 sample_level(__global const uint* texels, TextureInfo info, float2 uv, bool srgb) {
   int w = (int)info.width, h = (int)info.height;
   uint ws = texture_wrap_s(info.wrap), wt = texture_wrap_t(info.wrap);
   if (info.wrap & TEXTURE_NEAREST) {
@@ -102,8 +99,49 @@ inline float4 sample_texture_encoded(__global const TextureInfo* infos, __global
   return mix(top, bottom, ay);
 }
 
+// Mip level `level` of a texture as a TextureInfo of its own: the levels follow each other from first_texel.
+inline TextureInfo texture_level(TextureInfo info, uint level) {
+  for (uint k = 0; k < level; ++k) {
+    info.first_texel += info.width * info.height;
+    info.width = texture_level_side(info.width, 1u);
+    info.height = texture_level_side(info.height, 1u);
+  }
+  return info;
+}
+
+// A lookup filtered to a footprint 2^uv_width_log2 wide in texture coordinates (a ray cone's: uv_width_log2 below):
+// trilinear between the two mip levels whose texels are nearest that width. A footprint below a
+// texel (or none: -INFINITY) reads level 0 alone, bilinear, exactly as a lookup without footprint.
+inline float4 sample_texture_footprint(__global const TextureInfo* infos, __global const uint* texels, int index,
+                                       float2 uv, float uv_width_log2, bool srgb) {
+  TextureInfo info = infos[index];
+  const uint levels = texture_levels(info.wrap);
+  float lod = uv_width_log2 + 0.5f * log2((float)info.width * (float)info.height);
+  if (!(lod > 0.0f) || levels <= 1u) return sample_level(texels, info, uv, srgb);
+  lod = fmin(lod, (float)(levels - 1u));
+  const uint finer = (uint)lod;
+  const float f = lod - (float)finer;
+  const float4 a = sample_level(texels, texture_level(info, finer), uv, srgb);
+  if (f == 0.0f || finer + 1u >= levels) return a;
+  return mix(a, sample_level(texels, texture_level(info, finer + 1u), uv, srgb), f);
+}
+
 inline float4 sample_texture(__global const TextureInfo* infos, __global const uint* texels, int index, float2 uv) {
-  return sample_texture_encoded(infos, texels, index, uv, true);
+  return sample_level(texels, infos[index], uv, true);
+}
+
+// log2 of the width, in texture coordinates, that a ray cone `width` wide (world units) covers where it meets the
+// triangle along dir: the width over the cosine (the cone's section stretched across the surface), times the
+// triangle's texture-coordinate scale sqrt(uv area / world area) (Akenine-Moller et al., "Texture Level of Detail
+// Strategies for Real-Time Ray Tracing", 2019). -INFINITY where the triangle has no texture-coordinate area.
+inline float uv_width_log2(__global const TriangleShading* t, float width, float3 dir) {
+  const float3 v0 = vload3(0, t->v0);
+  const float world_area = length(cross(vload3(0, t->v1) - v0, vload3(0, t->v2) - v0));
+  const float2 uv0 = vload2(0, t->uv0), d1 = vload2(0, t->uv1) - uv0, d2 = vload2(0, t->uv2) - uv0;
+  const float uv_area = fabs(d1.x * d2.y - d2.x * d1.y);
+  const float cos_theta = fmax(fabs(dot(dir, vload3(0, t->geometric_normal))), 0.05f);  // grazing: 20x at most
+  if (!(world_area > 0.0f) || !(uv_area > 0.0f) || !(width > 0.0f)) return -INFINITY;
+  return log2(width / cos_theta) + 0.5f * log2(uv_area / world_area);
 }
 #endif
 
@@ -128,7 +166,8 @@ inline float3 mapped_normal(__global const float4* tangents, __global const Mate
   } else {
     tangent_frame(n, &t, &b);
   }
-  const float3 texel = sample_texture_encoded(textures, texels, m->normal_texture, s->uv, false).xyz * 2.0f - 1.0f;
+  const float3 texel =
+      sample_texture_footprint(textures, texels, m->normal_texture, s->uv, s->uv_width_log2, false).xyz * 2.0f - 1.0f;
   const float3 bent = (texel.x * m->normal_scale) * t + (texel.y * m->normal_scale) * b + texel.z * n;
   const float bent_length = length(bent);
   return bent_length > 0.0f && isfinite(bent_length) ? bent / bent_length : n;
@@ -138,9 +177,10 @@ inline float3 mapped_normal(__global const float4* tangents, __global const Mate
 #if HAS_EMISSIVE_TEXTURES
 // The emission of s's material: its factor times its emissive texture (sRGB) at s.
 inline float3 textured_emission(__global const Material* m, __global const TextureInfo* textures,
-                                __global const uint* texels, float2 uv) {
+                                __global const uint* texels, float2 uv, float uv_width_log2) {
   float3 emission = vload3(0, m->emission);
-  if (m->emissive_texture >= 0) emission *= sample_texture(textures, texels, m->emissive_texture, uv).xyz;
+  if (m->emissive_texture >= 0)
+    emission *= sample_texture_footprint(textures, texels, m->emissive_texture, uv, uv_width_log2, true).xyz;
   return emission;
 }
 #endif
@@ -149,7 +189,7 @@ inline float3 textured_emission(__global const Material* m, __global const Textu
 inline float3 surface_emission(__global const Material* materials, __global const TextureInfo* textures,
                                __global const uint* texels, const SurfacePoint* s) {
 #if HAS_EMISSIVE_TEXTURES
-  return textured_emission(materials + s->material, textures, texels, s->uv);
+  return textured_emission(materials + s->material, textures, texels, s->uv, s->uv_width_log2);
 #else
   return vload3(0, materials[s->material].emission);
 #endif
@@ -160,7 +200,8 @@ inline float3 surface_albedo(__global const Material* materials, __global const 
   __global const Material* m = materials + s->material;
   float3 albedo = vload3(0, m->base_color);
 #if HAS_TEXTURES
-  if (m->base_color_texture >= 0) albedo *= sample_texture(textures, texels, m->base_color_texture, s->uv).xyz;
+  if (m->base_color_texture >= 0)
+    albedo *= sample_texture_footprint(textures, texels, m->base_color_texture, s->uv, s->uv_width_log2, true).xyz;
 #endif
 #if HAS_VERTEX_COLORS
   albedo *= s->color;
@@ -185,7 +226,7 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
   l.lobe = m->lobe;
 #if HAS_TEXTURES
   if (m->lobe != LOBE_NONE && m->metallic_roughness_texture >= 0) {
-    float4 mr = sample_texture_encoded(textures, texels, m->metallic_roughness_texture, s->uv, false);
+    float4 mr = sample_texture_footprint(textures, texels, m->metallic_roughness_texture, s->uv, s->uv_width_log2, false);
     l.metallic *= mr.z;
     l.roughness *= mr.y;
     l.lobe = material_lobe(l.metallic, l.roughness, l.specular);
@@ -217,9 +258,13 @@ typedef struct {
 #define HIT_SURFACE triangles, tangents, materials, textures, texels
 
 // The surface a ray along dir landed on (triangle prim at barycentrics u, v), its normals turned to face the ray.
-inline HitSurface hit_surface(HIT_SURFACE_ARGS, int prim, float u, float v, float3 dir) {
+// `width`: the ray cone's width there (world units), which filters its texture lookups; 0: texel-sized lookups.
+inline HitSurface hit_surface(HIT_SURFACE_ARGS, int prim, float u, float v, float3 dir, float width) {
   HitSurface h;
   h.s = surface_at(triangles, prim, u, v);
+#if TEXTURE_LOOKUPS
+  if (width > 0.0f) h.s.uv_width_log2 = uv_width_log2(triangles + prim, width, dir);
+#endif
   h.hit.t = 0.0f;  // not known here, and not needed to build the surface again
   h.hit.u = u;
   h.hit.v = v;

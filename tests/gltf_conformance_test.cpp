@@ -411,6 +411,63 @@ TEST(GltfConformance, WebPTexturesAreRead) {
   }
 }
 
+// Texture filtering by ray footprint: a floor of a one-texel checker (black and white, linear mean 1/2) running away
+// from the camera. Where a pixel's cone covers several texels its albedo is the checker's mean (the mip chain is
+// averaged in linear light), whatever texel its centre lands on; sampled at full resolution (the sampler's minFilter
+// LINEAR, no mipmaps) the same pixels alias between black and white.
+TEST(GltfConformance, DistantTexturesAreFilteredByTheRaysFootprint) {
+  Scene s;
+  s.source = "checker floor";
+  SceneTexture checker;
+  checker.width = checker.height = 64;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const uint8_t v = (x + y) % 2 ? 255 : 0;
+      checker.rgba.insert(checker.rgba.end(), {v, v, v, 255});
+    }
+  s.textures.push_back(checker);
+  SceneMaterial floor{"floor", glm::vec4(1.0f), 0, glm::vec3(0.0f), false};
+  s.materials.push_back(floor);
+  s.add_quad({-50, 0, 10}, {50, 0, 10}, {50, 0, -400}, {-50, 0, -400}, 0);
+  for (size_t k = 0; k < s.positions.size(); ++k) s.uvs[k] = glm::vec2(s.positions[k].x, s.positions[k].z) / 8.0f;
+  SceneCamera cam;
+  cam.eye = {0, 2, 0};
+  cam.target = {0, 0, -20};
+  cam.yfov = 1.0f;
+  s.cameras.push_back(cam);
+  SceneLight light;
+  light.type = LightType::directional;
+  light.direction = {0, -1, 0};
+  s.lights.push_back(light);
+  RenderSettings settings = test::one_bounce_one_sample();
+  settings.gi = GiMethod::none;
+  settings.width = settings.height = 64;
+  auto far_spread = [&](bool mipmaps, size_t* pixels) {
+    Scene scene = s;
+    scene.textures[0].mipmaps = mipmaps;
+    const RenderedImage img = render(test::gpu(), scene, settings);
+    double worst = 0.0, mean_deviation = 0.0;
+    *pixels = 0;
+    for (size_t i = 0; i < img.triangle.size(); ++i) {
+      if (img.triangle[i] < 0 || img.depth[i] < 20.0f) continue;  // far: a pixel covers 3 texels or more
+      const double deviation = std::fabs(double(img.albedo[3 * i + 1]) - 0.5);
+      worst = std::max(worst, deviation);
+      mean_deviation += deviation;
+      ++*pixels;
+    }
+    std::printf("mipmaps %d: %zu far pixels, albedo off the checker's mean by %.3f at most, %.3f on average\n",
+                int(mipmaps), *pixels, worst, mean_deviation / double(std::max<size_t>(*pixels, 1)));
+    return std::pair{worst, mean_deviation / double(std::max<size_t>(*pixels, 1))};
+  };
+  size_t pixels = 0;
+  const auto filtered = far_spread(true, &pixels);
+  ASSERT_GT(pixels, 250u);
+  // The mip level's own rounding (an 8-bit sRGB code for 1/2) and the trilinear blend's: a few thousandths.
+  EXPECT_LT(filtered.first, 0.02);
+  const auto aliased = far_spread(false, &pixels);
+  EXPECT_GT(aliased.first, 0.2) << "without mipmaps the far floor must alias (else the test proves nothing)";
+}
+
 // Tangents where the file has none: the per-vertex average of the texture-coordinate gradients, orthogonal to the
 // normal, with w saying which way the image's up runs. Checked against gradients worked out by hand: a quad whose u
 // runs along a rotated axis, and the same quad with its image mirrored (w flips).

@@ -861,10 +861,9 @@ class GltfReader {
             out.wrap_s = wrap_mode(sampler.wrapS);
             out.wrap_t = wrap_mode(sampler.wrapT);
             out.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-            int min = sampler.minFilter;
-            if (min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST || min == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST ||
-                min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR || min == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
-              note_unsupported("mipmapped minification", "textures are sampled at full resolution, one sample per pixel");
+            // Minified through the mip chain by each ray's footprint, unless the sampler asks for no mipmaps.
+            const int min = sampler.minFilter;
+            out.mipmaps = min != TINYGLTF_TEXTURE_FILTER_NEAREST && min != TINYGLTF_TEXTURE_FILTER_LINEAR;
           }
           slot = int(scene_.textures.size());
           scene_.textures.push_back(std::move(out));

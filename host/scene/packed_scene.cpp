@@ -83,6 +83,48 @@ double mean_emitted_luminance(const Scene& scene, size_t t, const SceneMaterial&
   return sum / (side * side);
 }
 
+// The next mip level of a w x h RGBA8 level: each texel the mean of the 2 x 2 block above it (the block's last row or
+// column repeated where a side is odd), colour decoded from sRGB and encoded again where `srgb`, alpha and data
+// textures (normal and metallic-roughness maps) averaged as stored.
+std::vector<uint8_t> next_mip_level(const uint8_t* level, uint32_t w, uint32_t h, bool srgb) {
+  const uint32_t nw = texture_level_side(w, 1), nh = texture_level_side(h, 1);
+  std::vector<uint8_t> out(size_t(nw) * nh * 4);
+  auto encode = [](double linear) {
+    linear = std::clamp(linear, 0.0, 1.0);
+    double c = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+    return uint8_t(std::lround(c * 255.0));
+  };
+  for (uint32_t y = 0; y < nh; ++y)
+    for (uint32_t x = 0; x < nw; ++x)
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0.0;
+        for (uint32_t dy = 0; dy < 2; ++dy)
+          for (uint32_t dx = 0; dx < 2; ++dx) {
+            const uint32_t sx = std::min(2 * x + dx, w - 1), sy = std::min(2 * y + dy, h - 1);
+            const double v = level[(size_t(sy) * w + sx) * 4 + size_t(c)] / 255.0;
+            sum += srgb && c < 3 ? srgb_to_linear(v) : v;
+          }
+        out[(size_t(y) * nw + x) * 4 + size_t(c)] = srgb && c < 3 ? encode(0.25 * sum) : uint8_t(std::lround(0.25 * sum * 255.0));
+      }
+  return out;
+}
+
+// Appends texture t's texels, level 0 then (with mipmaps) each smaller level down to 1 x 1, and returns its levels.
+uint32_t append_texels(const SceneTexture& t, bool srgb, std::vector<uint32_t>& texels) {
+  std::vector<uint8_t> level = t.rgba;
+  uint32_t w = uint32_t(t.width), h = uint32_t(t.height), levels = 1;
+  for (;;) {
+    const size_t start = texels.size();
+    texels.resize(start + level.size() / 4);
+    std::memcpy(texels.data() + start, level.data(), level.size());
+    if (!t.mipmaps || (w == 1 && h == 1)) return levels;
+    level = next_mip_level(level.data(), w, h, srgb);
+    w = texture_level_side(w, 1);
+    h = texture_level_side(h, 1);
+    ++levels;
+  }
+}
+
 }  // namespace
 
 PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
@@ -171,15 +213,19 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     if (out.lobe != LOBE_NONE && m.metallic_roughness_texture >= 0) out.lobe = material_lobe(out.metallic, 0.0f, out.specular);
     p.materials.push_back(out);
   }
-  for (const SceneTexture& t : scene.textures) {
+  // Colour textures (base colour, emission) are averaged in linear light down their mip chain; data ones as stored.
+  std::vector<bool> colour(scene.textures.size(), false);
+  for (const SceneMaterial& m : scene.materials)
+    for (int t : {m.base_color_texture, m.emissive_texture})
+      if (t >= 0 && size_t(t) < colour.size()) colour[size_t(t)] = true;
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    const SceneTexture& t = scene.textures[i];
     TextureInfo info{};
     info.first_texel = uint32_t(p.texels.size());
     info.width = uint32_t(t.width);
     info.height = uint32_t(t.height);
-    info.wrap = texture_wrap(uint32_t(t.wrap_s), uint32_t(t.wrap_t), t.nearest);
-    size_t start = p.texels.size();
-    p.texels.resize(start + t.rgba.size() / 4);
-    std::memcpy(p.texels.data() + start, t.rgba.data(), t.rgba.size());
+    const uint32_t levels = append_texels(t, colour[i], p.texels);
+    info.wrap = texture_wrap(uint32_t(t.wrap_s), uint32_t(t.wrap_t), t.nearest, levels);
     p.textures.push_back(info);
   }
   if (scene.tangents.size() == 3 * n) {

@@ -39,6 +39,9 @@ struct SceneTexture {
   std::vector<uint8_t> rgba;  // sRGB-encoded RGBA8, rows top to bottom
   int wrap_s = 0, wrap_t = 0;  // WRAP_REPEAT, WRAP_CLAMP or WRAP_MIRROR (shared_types.h)
   bool nearest = false;        // the sampler's NEAREST magnification filter: no bilinear interpolation
+  // Minified by its footprint through a mip chain (trilinear), unless the sampler's minFilter is plain NEAREST or
+  // LINEAR: glTF leaves an absent minFilter to the renderer, and rcsplat filters.
+  bool mipmaps = true;
 };
 
 enum class LightType { point, spot, directional };

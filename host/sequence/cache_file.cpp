@@ -187,6 +187,7 @@ uint64_t scene_fingerprint(const Scene& s) {
     h.value(t.wrap_s);
     h.value(t.wrap_t);
     h.value(t.nearest);
+    if (!t.mipmaps) h.value(t.mipmaps);  // a later field: hashed where it differs from its default
   }
   h.value(uint64_t(s.lights.size()));
   for (const SceneLight& l : s.lights) {
