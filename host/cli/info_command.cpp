@@ -28,7 +28,9 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
                 m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
                 lobe_treatment(m.lobe));
-  std::printf("textures     %zu%s%s%s\n", plan.textures, plan.vertex_colors ? ", vertex colours" : "",
+  std::printf("textures     %zu%s%s%s%s\n", plan.textures,
+              plan.textures ? " (filtered by each ray's footprint through mip chains where the sampler allows)" : "",
+              plan.vertex_colors ? ", vertex colours" : "",
               plan.alpha_mask ? ", alpha-masked cutouts" : "",
               plan.alpha_blend ? ", alpha-blended surfaces (hashed transparency: seen with probability alpha)" : "");
   if (plan.normal_mapped_materials)
