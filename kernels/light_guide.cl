@@ -130,8 +130,8 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     float3 e1 = vload3(0, e.edge1), e2 = vload3(0, e.edge2);
     float3 y = vload3(0, e.v0) + (su * (1.0f - v)) * e1 + (su * v) * e2;
     float3 n = normalize(cross(e1, e2));
-    float sides = e.double_sided ? 2.0f : 1.0f;
-    if (e.double_sided && random01(key, 0u, 3u) < 0.5f) n = -n;
+    float sides = emitter_double_sided(e) ? 2.0f : 1.0f;
+    if (emitter_double_sided(e) && random01(key, 0u, 3u) < 0.5f) n = -n;
     // Cosine-weighted: the emitted power per photon is then pi L area per side.
     float u2 = random01(key, 0u, 4u), v2 = random01(key, 0u, 5u);
     float r = sqrt(u2), cos_p, sin_p = sincos(2.0f * RC_PI * v2, &cos_p);
@@ -141,8 +141,8 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     origin = offset_ray_origin(y, n);
     float3 radiance = vload3(0, e.radiance);
 #if HAS_EMISSIVE_TEXTURES
-    if (e.emissive_texture >= 0) {  // the texel where the photon leaves, as the light sampler reads it
-      SurfacePoint at = surface_at(triangles, e.triangle, su * (1.0f - v), su * v);
+    if (emitter_textured_triangle(e) >= 0) {  // the texel where the photon leaves, as the light sampler reads it
+      SurfacePoint at = surface_at(triangles, emitter_textured_triangle(e), su * (1.0f - v), su * v);
       radiance = surface_emission(materials, textures, texels, &at);
     }
 #endif

@@ -22,9 +22,10 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
 #if HAS_EMISSIVE_TEXTURES
 #define EMITTER_ARGS                                                                                                 \
   __global const EmissiveTriangle *emitters, __global const TriangleShading *emitter_triangles,                    \
-      __global const TextureInfo *emitter_textures, __global const uint *emitter_texels
-#define EMITTERS emitters, triangles, textures, texels
-#define EMITTERS_PASSED_ON emitters, emitter_triangles, emitter_textures, emitter_texels  // within EMITTER_ARGS
+      __global const Material *emitter_materials, __global const TextureInfo *emitter_textures,                     \
+      __global const uint *emitter_texels
+#define EMITTERS emitters, triangles, materials, textures, texels
+#define EMITTERS_PASSED_ON emitters, emitter_triangles, emitter_materials, emitter_textures, emitter_texels
 #else
 #define EMITTER_ARGS __global const EmissiveTriangle *emitters
 #define EMITTERS emitters
@@ -108,7 +109,7 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
   *wi_out = wi;
   float cos_x = dot(n, wi);
   float cos_y = -dot(nl, wi);
-  if (e.double_sided) cos_y = fabs(cos_y);
+  if (emitter_double_sided(e)) cos_y = fabs(cos_y);
   if (cos_x <= 0.0f || cos_y <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
   float3 toward_p = dot(nl, wi) < 0.0f ? nl : -nl;
   float3 target = offset_ray_origin(y, toward_p);
@@ -117,11 +118,12 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
   *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
   float3 radiance = vload3(0, e.radiance);
 #if HAS_EMISSIVE_TEXTURES
-  if (e.emissive_texture >= 0) {
-    __global const TriangleShading* t = emitter_triangles + e.triangle;
+  const int textured = emitter_textured_triangle(e);
+  if (textured >= 0) {
+    __global const TriangleShading* t = emitter_triangles + textured;
     float2 uv0 = vload2(0, t->uv0);
     float2 uv = uv0 + (su * (1.0f - v)) * (vload2(0, t->uv1) - uv0) + (su * v) * (vload2(0, t->uv2) - uv0);
-    radiance *= sample_texture(emitter_textures, emitter_texels, e.emissive_texture, uv).xyz;
+    radiance *= sample_texture(emitter_textures, emitter_texels, emitter_materials[t->material].emissive_texture, uv).xyz;
   }
 #endif
   return radiance * (cos_x * cos_y / (d2 * pdf_area));

@@ -66,11 +66,11 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   if (index < 0) return (float3)(0.0f);
   EmissiveTriangle e = emitters[index];
   float cos_y = -dot(vload3(0, triangles[hit.prim].geometric_normal), dir);
-  if (e.double_sided) cos_y = fabs(cos_y);
+  if (emitter_double_sided(e)) cos_y = fabs(cos_y);
   if (!(cos_y > 0.0f)) return (float3)(0.0f);
   *light_pdf = emitter_solid_angle_pdf(e, hit.t * hit.t, cos_y);
 #if HAS_EMISSIVE_TEXTURES
-  if (e.emissive_texture >= 0) {
+  if (emitter_textured_triangle(e) >= 0) {
     SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
     return surface_emission(materials, textures, texels, &s);
   }

@@ -149,12 +149,13 @@ typedef struct {
   float edge2[3];
   float pdf_select;  // probability of choosing this triangle
   float radiance[3];  // the material's emission (emissiveFactor x strength); with a texture, times its texels
-  rc_int double_sided;
-  rc_int triangle;          // the TriangleShading it is: its texture coordinates for emissive_texture
-  rc_int emissive_texture;  // TEXTURE_NONE, or the texture whose texels (sRGB) multiply radiance where a sample lands
-  float mean_luminance;     // the emitted luminance averaged over the triangle (with its texture): its power's share
-  float pad;
+  // Bit 0: double-sided. Above it, textured_triangle + 1: the TriangleShading whose material's emissive texture
+  // multiplies radiance where a sample lands (0: untextured). Packed so that the struct stays four rows.
+  rc_int sides_and_texture;
 } EmissiveTriangle;
+inline rc_int emitter_double_sided(EmissiveTriangle e) { return e.sides_and_texture & 1; }
+// The emitter's triangle where its emission is textured, else -1.
+inline rc_int emitter_textured_triangle(EmissiveTriangle e) { return (e.sides_and_texture >> 1) - 1; }
 
 // Perspective: rays from eye through the image plane at distance 1 (half height tan_half_fov_y). Orthographic: parallel
 // rays along forward from the plane through eye, half_height world units above and below the centre.
@@ -618,7 +619,7 @@ static_assert(sizeof(TriangleShading) == 128);
 static_assert(sizeof(Material) == 80);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
-static_assert(sizeof(EmissiveTriangle) == 80);
+static_assert(sizeof(EmissiveTriangle) == 64);
 static_assert(sizeof(CameraParams) == 96);
 static_assert(sizeof(GBufferSample) == 96);
 static_assert(sizeof(PixelSurface) == 80);

@@ -339,7 +339,7 @@ TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
   ASSERT_EQ(packed.emitters.size(), 2u);
   const double mean_first = 0.75 * bright + 0.25 * dim, mean_second = 0.25 * bright + 0.75 * dim;
   // The host's estimate of each triangle's mean reads 4 x 4 points or more: within 15% here.
-  EXPECT_NEAR(packed.emitters[0].mean_luminance / packed.emitters[1].mean_luminance, mean_first / mean_second,
+  EXPECT_NEAR(packed.emitter_mean_luminance[0] / packed.emitter_mean_luminance[1], mean_first / mean_second,
               0.15 * mean_first / mean_second);
   EXPECT_GT(packed.emitters[0].pdf_select, packed.emitters[1].pdf_select);
   const unsigned samples = 64;

@@ -22,6 +22,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
   lights_host_ = p.lights;
   emitters_host_ = p.emitters;
+  emitter_mean_luminance_ = p.emitter_mean_luminance;
   counts_.light_count = cl_uint(p.lights.size());
   counts_.emitter_count = cl_uint(p.emitters.size());
   environment_ = gpu.upload(p.environment.texels, CL_MEM_READ_ONLY, "environment");  // float4 per texel

@@ -44,6 +44,7 @@ class DeviceScene {
   // The lights as uploaded (device frame): the light guide weighs them by power.
   const std::vector<PunctualLight>& lights() const { return lights_host_; }
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_host_; }
+  const std::vector<float>& emitter_mean_luminance() const { return emitter_mean_luminance_; }
   const SceneFrame& frame() const { return frame_; }
   // The environment's peak: the sum of its luminance times solid angle (0: none; kernels/environment.h).
   float environment_peak_power() const { return counts_.environment_peak_power; }
@@ -61,6 +62,7 @@ class DeviceScene {
   std::vector<Material> materials_host_;
   std::vector<PunctualLight> lights_host_;
   std::vector<EmissiveTriangle> emitters_host_;
+  std::vector<float> emitter_mean_luminance_;
   SceneFrame frame_;
 };
 

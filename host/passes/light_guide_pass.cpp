@@ -10,7 +10,8 @@ namespace rcsplat {
 void LightGuidePass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
-                                        const std::vector<EmissiveTriangle>& emitters) {
+                                        const std::vector<EmissiveTriangle>& emitters,
+                                        const std::vector<float>& emitter_mean_luminance) {
   constexpr double pi = std::numbers::pi;
   std::vector<double> power;
   for (const PunctualLight& l : lights) {
@@ -21,9 +22,12 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
       power.push_back(intensity * 2.0 * pi * (1.0 - cos_outer));
     } else power.push_back(intensity * 4.0 * pi);
   }
-  for (const EmissiveTriangle& e : emitters)
-    power.push_back(std::max(e.emissive_texture >= 0 ? double(e.mean_luminance) : luminance(e.radiance), 0.0) * pi *
-                    double(e.area) * (e.double_sided ? 2.0 : 1.0));
+  for (size_t i = 0; i < emitters.size(); ++i) {
+    const EmissiveTriangle& e = emitters[i];
+    // A textured emitter's power is its texture's mean; an untextured one's its radiance's luminance, in double.
+    const double emitted = emitter_textured_triangle(e) >= 0 ? double(emitter_mean_luminance.at(i)) : luminance(e.radiance);
+    power.push_back(std::max(emitted, 0.0) * pi * double(e.area) * (emitter_double_sided(e) ? 2.0 : 1.0));
+  }
   for (double& p : power)
     if (!std::isfinite(p)) p = 0.0;
   return power;
@@ -31,7 +35,7 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
 
 LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power)
     : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "shoot_photons", scene.defines())) {
-  std::vector<double> power = light_source_powers(scene.lights(), scene.emitters());
+  std::vector<double> power = light_source_powers(scene.lights(), scene.emitters(), scene.emitter_mean_luminance());
   // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
   if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);
   // The sky's smooth part last, for the bounce probe.

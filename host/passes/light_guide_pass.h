@@ -41,6 +41,7 @@ class LightGuidePass {
 // numbers them. A spot counts the whole solid angle of its outer cone, a directional light the unit disc the photons
 // cross (the device frame fits the scene in the unit sphere).
 std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights,
-                                        const std::vector<EmissiveTriangle>& emitters);
+                                        const std::vector<EmissiveTriangle>& emitters,
+                                        const std::vector<float>& emitter_mean_luminance);
 
 }  // namespace rcsplat

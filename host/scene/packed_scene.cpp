@@ -164,10 +164,9 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
       put3(e.edge2, v[2] - v[0]);
       e.area = 0.5f * twice_area;
       put3(e.radiance, m.emission);
-      e.double_sided = m.double_sided ? 1 : 0;
-      e.triangle = int(t);
-      e.emissive_texture = m.emissive_texture;
-      e.mean_luminance = float(emitted);
+      const bool textured = m.emissive_texture >= 0 && size_t(m.emissive_texture) < scene.textures.size();
+      e.sides_and_texture = (m.double_sided ? 1 : 0) | (textured ? int(t) + 1 : 0) << 1;
+      p.emitter_mean_luminance.push_back(float(emitted));
       const double sides = m.double_sided ? 2.0 : 1.0;
       emitter_power.push_back(emitted * e.area * sides);
       emitter_area.push_back(double(e.area) * sides);

@@ -19,6 +19,7 @@ struct PackedScene {
   std::vector<uint32_t> texels;  // RGBA8, sRGB-encoded
   std::vector<PunctualLight> lights;
   std::vector<EmissiveTriangle> emitters;  // with a power-proportional selection CDF
+  std::vector<float> emitter_mean_luminance;  // each emitter's luminance averaged over it (with its texture)
   PackedEnvironment environment;
 };
 

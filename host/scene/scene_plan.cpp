@@ -11,7 +11,7 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
     specular |= m.lobe != LOBE_NONE;
     normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
   }
-  for (const EmissiveTriangle& e : p.emitters) emissive_textures |= e.emissive_texture >= 0;
+  for (const EmissiveTriangle& e : p.emitters) emissive_textures |= emitter_textured_triangle(e) >= 0;
   std::map<std::string, std::string> switches;
   auto set = [&](const char* name, bool on) { switches[name] = on || forced.count(name) ? "1" : "0"; };
   set("HAS_TEXTURES", textured);

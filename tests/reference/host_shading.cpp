@@ -110,7 +110,7 @@ glm::dvec3 HostShading::direct_irradiance(const dvec3& p, const dvec3& n, const 
     if (d2 > 0.0) {
       dvec3 wi = to / std::sqrt(d2);
       double cos_x = glm::dot(n, wi), cos_y = -glm::dot(nl, wi);
-      if (t.double_sided) cos_y = std::abs(cos_y);
+      if (emitter_double_sided(t)) cos_y = std::abs(cos_y);
       if (cos_x > 0.0 && cos_y > 0.0 && glm::dot(ng, wi) > 0.0) {
         glm::vec3 target = offset_ray_origin(glm::vec3(y), glm::vec3(glm::dot(nl, wi) < 0.0 ? nl : -nl));
         if (visible(origin, target - origin, 1.0f))
