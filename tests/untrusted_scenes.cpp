@@ -480,6 +480,50 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.renders = true;
     cases.push_back(c);
   }
+  // Normal maps, textured emission, blending and WebP (issue 61): the quad with texture coordinates (bytes 60..91)
+  // and one material using them all.
+  auto mapped_quad = [](json& d, std::string& bin) {
+    for (float f : {0.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f}) append(bin, f);
+    d["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 32}});
+    d["buffers"][0]["byteLength"] = bin.size();
+    d["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
+    d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+    d["images"] = json::array({{{"uri", kTwoPixelPng}}});
+    d["textures"] = json::array({{{"source", 0}}});
+    d["materials"] = json::array({{{"normalTexture", {{"index", 0}, {"scale", 3.0}}},
+                                   {"emissiveTexture", {{"index", 0}}},
+                                   {"emissiveFactor", {1.0, 0.5, 0.25}},
+                                   {"alphaMode", "BLEND"},
+                                   {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 0.5}}}}}});
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+  };
+  {  // valid: tangents made from the texture coordinates, every feature on
+    UntrustedCase c = quad_case("NormalMappedBlendedEmitterRenders");
+    json d = json::parse(c.files["scene/scene.gltf"]);
+    mapped_quad(d, c.files["scene/quad.bin"]);
+    c.files["scene/scene.gltf"] = d.dump();
+    c.renders = true;
+    cases.push_back(c);
+  }
+  {  // a TANGENT accessor that runs past its buffer view
+    UntrustedCase c = quad_case("TangentsPastTheirView");
+    json d = json::parse(c.files["scene/scene.gltf"]);
+    mapped_quad(d, c.files["scene/quad.bin"]);
+    d["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}});
+    d["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = 3;
+    c.files["scene/scene.gltf"] = d.dump();
+    c.key_words = {"accessors[3]"};
+    cases.push_back(c);
+  }
+  {  // EXT_texture_webp naming an image the file does not have
+    UntrustedCase c = quad_case("WebPSourceOutOfRange");
+    json d = json::parse(c.files["scene/scene.gltf"]);
+    mapped_quad(d, c.files["scene/quad.bin"]);
+    d["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 7}}}};
+    c.files["scene/scene.gltf"] = d.dump();
+    c.key_words = {"textures[0]", "EXT_texture_webp"};
+    cases.push_back(c);
+  }
   return cases;
 }
 
