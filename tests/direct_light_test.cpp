@@ -144,6 +144,30 @@ double polygon_irradiance(dvec3 x, const std::vector<dvec3>& polygon) {
   return 0.5 * std::fabs(sum);
 }
 
+// Pixels whose direct light is a sampled estimate: each within 5.5 standard errors of scale[c] * irradiance (the
+// estimator's standard error scale[c] * sqrt(variance), z = 5.5 keeping the family-wise false-failure rate below 1e-4
+// over all pixels), and the green channel's errors summed over the image within 4 of their standard errors: a bias of
+// a fraction of a percent shows there.
+struct SampledPixels {
+  double sum_error = 0.0, sum_variance = 0.0;
+  size_t checked = 0;
+  void check(const RenderedImage& img, size_t i, const dvec3& scale, double irradiance, double variance) {
+    for (int c = 0; c < 3; ++c) {
+      const double expected = scale[c] * irradiance, sigma = scale[c] * std::sqrt(variance);
+      ASSERT_NEAR(direct_of(img, i)[c], expected, 5.5 * sigma + 1e-4 * expected) << "pixel " << i;
+      if (c == 1) {
+        sum_error += direct_of(img, i)[c] - expected;
+        sum_variance += sigma * sigma;
+      }
+    }
+    ++checked;
+  }
+  void expect_unbiased() const {
+    ASSERT_GT(checked, 1000u);
+    EXPECT_LT(std::fabs(sum_error), 4.0 * std::sqrt(sum_variance)) << "summed error " << sum_error;
+  }
+};
+
 TEST(DirectLight, EmissiveQuadMatchesPolygonFormula) {
   Scene s = plane_scene();
   const glm::vec3 radiance(2.0f, 4.0f, 8.0f);
@@ -156,13 +180,11 @@ TEST(DirectLight, EmissiveQuadMatchesPolygonFormula) {
   RenderedImage img = render(s, 64, samples);
   std::vector<dvec3> quad = {{-half, -half, h}, {-half, half, h}, {half, half, h}, {half, -half, h}};
   // The estimator's per-sample variance, by Monte Carlo in double: stratified sampling can only lower it, so
-  // sigma / sqrt(samples) bounds the render's standard error. z = 5.5 keeps the family-wise false-failure rate
-  // below 1e-4 over all pixels.
+  // sigma / sqrt(samples) bounds the render's standard error.
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   double area = 4.0 * half * half;
-  double sum_error = 0.0, sum_variance = 0.0;
-  size_t checked = 0;
+  SampledPixels pixels;
   for (size_t i = 0; i < img.triangle.size(); ++i) {
     if (img.triangle[i] < 0 || img.triangle[i] > 1) continue;
     dvec3 x = position_of(img, i);
@@ -178,21 +200,9 @@ TEST(DirectLight, EmissiveQuadMatchesPolygonFormula) {
       m2 += f * f;
     }
     m1 /= probes;
-    double variance = std::max(0.0, m2 / probes - m1 * m1) / samples;
-    for (int c = 0; c < 3; ++c) {
-      double scale = kAlbedo[c] / kPi * radiance[c];
-      double expected = scale * e, sigma = scale * std::sqrt(variance);
-      ASSERT_NEAR(direct_of(img, i)[c], expected, 5.5 * sigma + 1e-4 * expected) << "pixel " << i;
-      if (c == 1) {
-        sum_error += direct_of(img, i)[c] - expected;
-        sum_variance += sigma * sigma;
-      }
-    }
-    ++checked;
+    pixels.check(img, i, dvec3(kAlbedo) / kPi * dvec3(radiance), e, std::max(0.0, m2 / probes - m1 * m1) / samples);
   }
-  ASSERT_GT(checked, 1000u);
-  // The mean over all pixels: a bias of a fraction of a percent would show here.
-  EXPECT_LT(std::fabs(sum_error), 4.0 * std::sqrt(sum_variance)) << "summed error " << sum_error;
+  pixels.expect_unbiased();
 }
 
 // A rough dielectric (glTF's defaults with metallic 0: roughness 0.5 to 1, specular 1) seen from near its plane, as
@@ -349,8 +359,7 @@ TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   const double area = 2.0 * half * half;  // each triangle's
-  double sum_error = 0.0, sum_variance = 0.0;
-  size_t checked = 0;
+  SampledPixels pixels;
   for (size_t i = 0; i < img.triangle.size(); ++i) {
     if (img.triangle[i] < 0 || img.triangle[i] > 1) continue;
     const dvec3 x = position_of(img, i);
@@ -372,20 +381,10 @@ TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
       m2 += f * f;
     }
     m1 /= probes;
-    const double variance = std::max(0.0, m2 / probes - m1 * m1) / samples;
-    for (int c = 0; c < 3; ++c) {
-      const double scale = kAlbedo[c] / kPi * factor[c];
-      const double expected = scale * (bright * e_bright + dim * e_dim), sigma = scale * std::sqrt(variance);
-      ASSERT_NEAR(direct_of(img, i)[c], expected, 5.5 * sigma + 1e-4 * expected) << "pixel " << i;
-      if (c == 1) {
-        sum_error += direct_of(img, i)[c] - expected;
-        sum_variance += sigma * sigma;
-      }
-    }
-    ++checked;
+    pixels.check(img, i, dvec3(kAlbedo) / kPi * dvec3(factor), bright * e_bright + dim * e_dim,
+                 std::max(0.0, m2 / probes - m1 * m1) / samples);
   }
-  ASSERT_GT(checked, 1000u);
-  EXPECT_LT(std::fabs(sum_error), 4.0 * std::sqrt(sum_variance)) << "summed error " << sum_error;
+  pixels.expect_unbiased();
 }
 
 // Alpha mode BLEND, by hashed transparency: a quad of alpha 0.3 over the lit plane, both under a directional light.

@@ -468,8 +468,9 @@ TEST(GltfConformance, DistantTexturesAreFilteredByTheRaysFootprint) {
   EXPECT_GT(aliased.first, 0.2) << "without mipmaps the far floor must alias (else the test proves nothing)";
 }
 
-// Tangents where the file has none: the per-vertex average of the texture-coordinate gradients, orthogonal to the
-// normal, with w saying which way the image's up runs. Checked against gradients worked out by hand: a quad whose u
+// Tangents where the file has none (after MikkTSpace): the angle-weighted sum of the texture-coordinate gradients of
+// the corners sharing a vertex and a handedness, orthogonal to the normal, with w saying which way the image's up
+// runs. Checked against gradients worked out by hand: a quad whose u
 // runs along a rotated axis, and the same quad with its image mirrored (w flips).
 TEST(GltfConformance, GeneratedTangentsFollowTheTextureCoordinates) {
   const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -485,7 +486,7 @@ TEST(GltfConformance, GeneratedTangentsFollowTheTextureCoordinates) {
       uvs.push_back(float(mirror * glm::dot(q, glm::dvec2(-u_axis.y, u_axis.x))));
     }
     const std::vector<glm::vec4> t = generate_tangents(indices, positions, {}, uvs);
-    ASSERT_EQ(t.size(), 4u);
+    ASSERT_EQ(t.size(), 6u);
     for (const glm::vec4& v : t) {
       EXPECT_NEAR(v.x, u_axis.x, 1e-6);
       EXPECT_NEAR(v.y, u_axis.y, 1e-6);
@@ -493,6 +494,16 @@ TEST(GltfConformance, GeneratedTangentsFollowTheTextureCoordinates) {
       // Image up is -dP/dv = -mirror * perpendicular; cross(n, t) = +perpendicular.
       EXPECT_EQ(v.w, float(-mirror));
     }
+  }
+  // A quad whose two triangles are mirrored in texture space (the second's v runs the other way): each corner keeps
+  // its own triangle's handedness, and the shared corners do not average the two frames away.
+  {
+    const std::vector<float> folded = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::vector<glm::vec3> quad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, -1, 0}};
+    const std::vector<glm::vec4> t = generate_tangents({0, 1, 2, 0, 3, 1}, quad, {}, folded);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(t[size_t(k)].w, -1.0f) << "corner " << k;
+    for (int k = 3; k < 6; ++k) EXPECT_EQ(t[size_t(k)].w, 1.0f) << "corner " << k;
+    for (const glm::vec4& v : t) EXPECT_NEAR(v.x, 1.0, 1e-6);
   }
   // A triangle whose texture coordinates are all equal has no gradient: w = 0, no normal map there.
   const std::vector<glm::vec4> flat = generate_tangents({0, 1, 2}, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, std::vector<float>(6, 0.5f));

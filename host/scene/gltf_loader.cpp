@@ -584,9 +584,9 @@ class GltfReader {
     }
   }
 
-  // The tangents of a normal-mapped primitive's vertices in world space (Scene::tangents), w = +-1: the file's TANGENT
-  // where it has one and nothing deforms the mesh; otherwise made from the posed positions and texture coordinates
-  // (generate_tangents).
+  // The tangents of a normal-mapped primitive's triangle corners (in `idx`'s order) in world space (Scene::tangents),
+  // w = +-1: the file's TANGENT where it has one and nothing deforms the mesh; otherwise made from the posed positions
+  // and texture coordinates (generate_tangents).
   std::vector<glm::vec4> primitive_tangents(const tinygltf::Primitive& prim, const tinygltf::Node& node,
                                             const std::vector<double>& morph_weights, const std::string& what,
                                             const std::vector<uint32_t>& idx, const std::vector<float>& pos,
@@ -599,15 +599,17 @@ class GltfReader {
     if (it != prim.attributes.end() && node.skin < 0 && !morphed) {
       std::vector<float> file = read_floats(it->second, 4, what + ".TANGENT", false, vertices);
       if (file.size() / 4 != vertices) fail(what + ": TANGENT has fewer elements than POSITION");
-      std::vector<glm::vec4> out(vertices);
+      std::vector<glm::vec4> per_vertex(vertices);
       // A mirroring transform turns the bitangent the other way relative to cross(normal, tangent).
       const float handedness = mirrored ? -1.0f : 1.0f;
       for (size_t v = 0; v < vertices; ++v) {
         glm::vec3 t = glm::mat3(world) * glm::vec3(file[4 * v], file[4 * v + 1], file[4 * v + 2]);
         float len = glm::length(t), w = file[4 * v + 3];
         if (!std::isfinite(len) || !std::isfinite(w)) fail(what + ": vertex " + std::to_string(v) + " has a non-finite TANGENT");
-        out[v] = glm::vec4(len > 0.0f ? t / len : glm::vec3(0.0f), (w < 0.0f ? -1.0f : 1.0f) * handedness);
+        per_vertex[v] = glm::vec4(len > 0.0f ? t / len : glm::vec3(0.0f), (w < 0.0f ? -1.0f : 1.0f) * handedness);
       }
+      std::vector<glm::vec4> out(idx.size());
+      for (size_t c = 0; c < idx.size(); ++c) out[c] = per_vertex[idx[c]];
       return out;
     }
     std::vector<glm::vec3> world_pos(vertices), world_nrm;
@@ -621,14 +623,18 @@ class GltfReader {
 
   struct VertexArrays {
     const std::vector<float>&pos, &nrm, &uv, &color;  // color: linear RGB, empty when the primitive has none
-    const std::vector<glm::vec4>& tangents;          // world space, per vertex; empty without a normal map
+    const std::vector<glm::vec4>& tangents;          // world space, per corner (idx's order); empty without a map
   };
 
   void add_triangle(size_t t, const std::vector<uint32_t>& idx, const VertexArrays& v, const glm::mat4& world,
                     const glm::mat3& normal_matrix, bool mirrored, uint32_t material) {
     const std::vector<float>&pos = v.pos, &nrm = v.nrm, &uv = v.uv;
     uint32_t order[3] = {idx[t], idx[t + 1], idx[t + 2]};
-    if (mirrored) std::swap(order[1], order[2]);
+    size_t corner[3] = {t, t + 1, t + 2};
+    if (mirrored) {
+      std::swap(order[1], order[2]);
+      std::swap(corner[1], corner[2]);
+    }
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::vec4(pos[3 * order[k]], pos[3 * order[k] + 1], pos[3 * order[k] + 2], 1.0f));
     scene_.add_triangle(p[0], p[1], p[2], material);
@@ -649,7 +655,7 @@ class GltfReader {
       if (!v.tangents.empty()) {
         // Triangles added before the first normal map get zero tangents: w = 0 says "no map here" to the kernels.
         if (scene_.tangents.size() < scene_.positions.size()) scene_.tangents.resize(scene_.positions.size(), glm::vec4(0.0f));
-        scene_.tangents[base + size_t(k)] = v.tangents[order[k]];
+        scene_.tangents[base + size_t(k)] = v.tangents[corner[k]];
       }
       if (!v.color.empty()) {
         glm::vec3 c(v.color[3 * order[k]], v.color[3 * order[k] + 1], v.color[3 * order[k] + 2]);

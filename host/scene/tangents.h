@@ -1,7 +1,9 @@
-// Tangents for normal maps where a glTF file gives none. The glTF specification asks for MikkTSpace's; this is the
-// per-vertex average of the triangles' texture-coordinate gradients (Lengyel's method), which gives the same frame as
-// MikkTSpace wherever a vertex's triangles agree on it (flat and smoothly curved patches away from UV seams; a seam's
-// vertices are split in the file, so each side keeps its own). docs/NOTES.md "Normal maps" says what differs.
+// Tangents for normal maps where a glTF file gives none, after MikkTSpace, which the glTF specification names: each
+// triangle's texture-coordinate gradient along u, projected onto each corner's tangent plane, weighted by the corner's
+// angle and summed over the corners that share a vertex and a handedness (triangles mirrored in texture space keep
+// their own frames), then made orthogonal to the normal. What MikkTSpace does beyond this (splitting a vertex's
+// corners whose tangents differ by more than a threshold angle, its degenerate-triangle repairs) is not done;
+// docs/NOTES.md "Normal maps" says when that shows.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -10,11 +12,11 @@
 
 namespace rcsplat {
 
-// One tangent per vertex for the triangle list `indices` over `positions` (and `normals`, per vertex, or empty: then
-// each triangle's own normal), texture coordinates `uvs` (2 floats a vertex, glTF's: v grows down the image). xyz: the
-// unit direction of growing u, made orthogonal to the normal; w: +-1, the bitangent cross(normal, tangent) * w
-// pointing up the image (glTF's green channel). A vertex no triangle with a texture-coordinate gradient touches gets
-// w = 0: "no normal map here" (kernels/surface.h).
+// One tangent per corner of the triangle list `indices` (three a triangle, in its order) over `positions` (and
+// `normals`, per vertex, or empty: then each triangle's own normal), texture coordinates `uvs` (2 floats a vertex,
+// glTF's: v grows down the image). xyz: the unit direction of growing u, orthogonal to the corner's normal; w: +-1, the
+// bitangent cross(normal, tangent) * w pointing up the image (glTF's green channel). A triangle without a
+// texture-coordinate gradient gets w = 0: "no normal map here" (kernels/surface.h).
 std::vector<glm::vec4> generate_tangents(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
                                          const std::vector<glm::vec3>& normals, const std::vector<float>& uvs);
 
