@@ -103,17 +103,26 @@ TEST(DirectLight, SpotLightConeFollowsGltfFalloff) {
   });
 }
 
-TEST(DirectLight, DirectionalLightAndShadow) {
+// The plane with a square of `material` (half side `half`) at z = 1 above it, and a directional light of intensity 3
+// travelling along `direction`.
+Scene plane_under_square(const SceneMaterial& material, float half, const glm::vec3& direction) {
   Scene s = plane_scene();
-  // A small occluding square at z = 1 casts a shadow that the analytic answer includes as a projection test.
-  s.materials.push_back({"blocker", glm::vec4(kAlbedo, 1.0f), -1, glm::vec3(0.0f), false});
-  s.add_triangle({-0.5f, -0.5f, 1}, {0.5f, -0.5f, 1}, {0.5f, 0.5f, 1}, 1);
-  s.add_triangle({-0.5f, -0.5f, 1}, {0.5f, 0.5f, 1}, {-0.5f, 0.5f, 1}, 1);
+  s.materials.push_back(material);
+  s.add_triangle({-half, -half, 1}, {half, -half, 1}, {half, half, 1}, 1);
+  s.add_triangle({-half, -half, 1}, {half, half, 1}, {-half, half, 1}, 1);
   SceneLight l;
   l.type = LightType::directional;
-  l.direction = glm::normalize(glm::vec3(0.6f, 0.0f, -0.8f));
+  l.direction = glm::normalize(direction);
   l.intensity = glm::vec3(3.0f);
   s.lights.push_back(l);
+  return s;
+}
+
+TEST(DirectLight, DirectionalLightAndShadow) {
+  // A small occluding square at z = 1 casts a shadow that the analytic answer includes as a projection test.
+  const Scene s = plane_under_square({"blocker", glm::vec4(kAlbedo, 1.0f), -1, glm::vec3(0.0f), false}, 0.5f,
+                                     glm::vec3(0.6f, 0.0f, -0.8f));
+  const SceneLight& l = s.lights[0];
   RenderedImage img = render(s, 64, 0);
   size_t shadowed = 0, checked = 0;
   for (size_t i = 0; i < img.triangle.size(); ++i) {
@@ -393,18 +402,11 @@ TEST(DirectLight, TexturedEmitterIsSampledAtItsTexels) {
 // standard errors of that three-valued mixture, and the share of pixels that see the quad alpha within five binomial
 // standard errors. Blending ignored (opaque, or a hole everywhere) misses by hundreds of standard errors.
 TEST(DirectLight, AlphaBlendIsSeenAndCastsShadowWithItsAlpha) {
-  Scene s = plane_scene();
   const double alpha = 0.3;
   SceneMaterial veil{"veil", glm::vec4(1.0f, 1.0f, 1.0f, float(alpha)), -1, glm::vec3(0.0f), true};
   veil.alpha_blend = true;
-  s.materials.push_back(veil);
-  s.add_triangle({-30, -30, 1}, {30, -30, 1}, {30, 30, 1}, 1);
-  s.add_triangle({-30, -30, 1}, {30, 30, 1}, {-30, 30, 1}, 1);
-  SceneLight l;
-  l.type = LightType::directional;
-  l.direction = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
-  l.intensity = glm::vec3(3.0f);
-  s.lights.push_back(l);
+  const Scene s = plane_under_square(veil, 30.0f, glm::vec3(0.2f, 0.1f, -1.0f));
+  const SceneLight& l = s.lights[0];
   const RenderedImage img = render(s, 96, 0);
   const double cos = -l.direction.z;
   const double plane = double(kAlbedo.y) / kPi * 3.0 * cos, quad = 1.0 / kPi * 3.0 * cos;
