@@ -49,11 +49,11 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 "sampled by shadow rays, the rest gathered by the rays that leave the scene\n",
                 plan.environment.c_str(), 100.0 * plan.environment_peak_fraction, kEnvironmentPeakOverMean);
   for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
-  std::printf("compiles     BRDF code %s, HSH code %s, texture code %s, area-light sampling %s, punctual lights %s, "
+  std::printf("compiles     BRDF code %s, HSH code %s, base-colour texture code %s, area-light sampling %s, punctual lights %s, "
               "environment %s, normal maps %s, emissive textures %s\n",
               plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
               plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
-              plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no texture)",
+              plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no base-colour texture)",
               plan.switches.at("HAS_EMITTERS") == "1" ? "yes" : "no (no emissive triangle)",
               plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
               plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)",
