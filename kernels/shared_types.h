@@ -103,7 +103,7 @@ typedef struct {
   rc_int normal_texture;    // glTF's normalTexture (tangent space, linear) or TEXTURE_NONE (kernels/surface.h)
   float normal_scale;       // glTF's normalTexture.scale: multiplies the map's x and y
   rc_int alpha_blend;       // glTF alpha mode BLEND: a point is a hole with probability 1 - alpha (kernels/traverse.h)
-  rc_int pad;
+  rc_int specular_texture;  // KHR_materials_specular's specularTexture (its A multiplies specular) or TEXTURE_NONE
 } Material;
 
 #define WRAP_REPEAT 0

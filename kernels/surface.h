@@ -225,13 +225,19 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
   l.specular = m->specular;
   l.lobe = m->lobe;
 #if HAS_TEXTURES
-  if (m->lobe != LOBE_NONE && m->metallic_roughness_texture >= 0) {
-    float4 mr = sample_texture_footprint(textures, texels, m->metallic_roughness_texture, s->uv, s->uv_width_log2, false);
-    l.metallic *= mr.z;
-    l.roughness *= mr.y;
+  if (m->lobe != LOBE_NONE && (m->metallic_roughness_texture >= 0 || m->specular_texture >= 0)) {
+    if (m->metallic_roughness_texture >= 0) {
+      float4 mr =
+          sample_texture_footprint(textures, texels, m->metallic_roughness_texture, s->uv, s->uv_width_log2, false);
+      l.metallic *= mr.z;
+      l.roughness *= mr.y;
+    }
+    if (m->specular_texture >= 0)  // KHR_materials_specular: the texture's alpha times specularFactor
+      l.specular *= sample_texture_footprint(textures, texels, m->specular_texture, s->uv, s->uv_width_log2, false).w;
     l.lobe = material_lobe(l.metallic, l.roughness, l.specular);
     // The HSH table is the material's, at its roughness factor: a lobe whose roughness a texture varies is sampled.
-    if (l.lobe == LOBE_HSH) l.lobe = LOBE_GLOSSY;
+    // (A specular weight varies only the Fresnel terms, which each pixel applies to the table itself.)
+    if (l.lobe == LOBE_HSH && m->metallic_roughness_texture >= 0) l.lobe = LOBE_GLOSSY;
   }
 #endif
   return l;
@@ -303,12 +309,13 @@ inline SurfaceLobe hit_lobe(__global const Material* materials, __global const T
   return h->lobe;
 }
 
-// The lobe kind at a hit: the material's, unless its metallic-roughness texture may change it there.
+// The lobe kind at a hit: the material's, unless its metallic-roughness or specular texture may change it there.
 inline int hit_lobe_kind(__global const Material* materials, __global const TextureInfo* textures,
                          __global const uint* texels, HitSurface* h) {
   __global const Material* m = materials + h->s.material;
 #if HAS_TEXTURES
-  if (m->lobe != LOBE_NONE && m->metallic_roughness_texture >= 0) return hit_lobe(materials, textures, texels, h).lobe;
+  if (m->lobe != LOBE_NONE && (m->metallic_roughness_texture >= 0 || m->specular_texture >= 0))
+    return hit_lobe(materials, textures, texels, h).lobe;
 #endif
   return m->lobe;
 }

@@ -263,6 +263,47 @@ TEST(DirectLight, RoughDielectricIsAsBrightAsGltfAppendixB) {
   }
 }
 
+// KHR_materials_specular's specularTexture: its alpha multiplies specularFactor. A rough dielectric plane whose one
+// texel's alpha is 100 must shade as rcsplat's model in double (tests/brdf_reference.h) with specular 100 / 255, and
+// differ from the factor's own (specular 1) by more than the tolerance. Planted: the texture ignored; it fails.
+TEST(DirectLight, SpecularTextureScalesTheSpecularLayer) {
+  Scene s = plane_scene();
+  SceneTexture t;
+  t.width = t.height = 1;
+  t.rgba = {255, 255, 255, 100};
+  s.textures.push_back(t);
+  s.materials[0].base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  s.materials[0].roughness = 0.75f;
+  s.materials[0].specular = 1.0f;
+  s.materials[0].specular_texture = 0;
+  s.cameras[0].eye = {0.0f, -6.0f, 1.0f};
+  s.cameras[0].target = {0.0f, 6.0f, 0.0f};
+  SceneLight l;
+  l.position = {0.0f, 3.0f, 1.5f};
+  l.intensity = glm::vec3(10.0f);
+  s.lights.push_back(l);
+  const RenderedImage img = render(s, 64, 0);
+  const dvec3 eye(s.cameras[0].eye);
+  const brdf_reference::Material textured{{0.8, 0.8, 0.8}, 0.0, 0.75, 100.0 / 255.0}, factor{{0.8, 0.8, 0.8}, 0.0, 0.75, 1.0};
+  size_t checked = 0, distinguished = 0;
+  for (size_t i = 0; i < img.triangle.size(); i += 4) {
+    if (img.triangle[i] < 0) continue;
+    const dvec3 x = position_of(img, i), to_light = dvec3(l.position) - x, to_eye = glm::normalize(eye - x);
+    const double d2 = glm::dot(to_light, to_light);
+    const dvec3 wl = to_light / std::sqrt(d2);
+    const brdf_reference::Vec wo{to_eye.x, to_eye.y, to_eye.z}, wi{wl.x, wl.y, wl.z};
+    const double irradiance = 10.0 * wl.z / d2;
+    const double expected = brdf_reference::reference_brdf(textured, wo, wi, true, true)[0] * irradiance;
+    const double tolerance = 1e-4 * expected + (wo.z < 0.1 ? 0.04 : 2e-3) * 0.8 / kPi * irradiance + 1e-7;
+    ASSERT_NEAR(direct_of(img, i).x, expected, tolerance) << "pixel " << i << " cos(theta_o) " << wo.z;
+    const double untextured = brdf_reference::reference_brdf(factor, wo, wi, true, true)[0] * irradiance;
+    distinguished += std::fabs(untextured - expected) > tolerance;
+    ++checked;
+  }
+  ASSERT_GT(checked, 400u);
+  EXPECT_GT(distinguished, checked / 2) << "the texture must matter where it is tested";
+}
+
 // A normal map bends the shading normal (glTF: n = normalize(T x + B y + N z), (x, y, z) = (2 rgb - 1) * (scale,
 // scale, 1), B = cross(N, T) * w): the plane's one texel tilts it toward +x and -y. Every pixel's direct light must be
 // the BRDF evaluated in double about that normal, for a Lambertian and a rough dielectric plane, and its normal layer

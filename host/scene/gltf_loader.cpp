@@ -747,6 +747,25 @@ class GltfReader {
     return "materials[" + std::to_string(&src - model_.materials.data()) + "] '" + src.name + "'";
   }
 
+  // KHR_materials_specular's specularTexture (its alpha multiplies specularFactor), where it is mapped as the
+  // material's other textures; -1 otherwise (a texture mapped otherwise is named).
+  int specular_texture_slot(const tinygltf::Material& src, const tinygltf::Value& extension) {
+    if (!extension.Has("specularTexture")) return -1;
+    const tinygltf::Value& info = extension.Get("specularTexture");
+    if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsNumber())
+      fail(material_label(src) + ": KHR_materials_specular's specularTexture has no texture index");
+    const double index = info.Get("index").GetNumberAsDouble();
+    if (!(index >= 0.0) || index != std::floor(index) || index >= double(model_.textures.size()))
+      fail(material_label(src) + ": KHR_materials_specular's specularTexture names no texture of the file");
+    UvMapping mapping;
+    if (info.Has("texCoord") && info.Get("texCoord").IsNumber()) mapping.tex_coord = int(info.Get("texCoord").GetNumberAsDouble());
+    if (info.Has("extensions") || !same_mapping(mapping, base_color_uv_mapping(int(&src - model_.materials.data())))) {
+      note_unsupported("specularTexture mapped unlike the material's other textures", "specularFactor alone is used");
+      return -1;
+    }
+    return texture_slot(int(index), src.name);
+  }
+
   // metallicFactor, roughnessFactor (glTF defaults 1 and 1), their texture, and KHR_materials_specular's factor.
   void read_brdf(const tinygltf::Material& src, SceneMaterial& m) {
     const auto& pbr = src.pbrMetallicRoughness;
@@ -757,8 +776,9 @@ class GltfReader {
     if (ext != src.extensions.end()) {
       const tinygltf::Value& v = ext->second;
       if (v.Has("specularFactor")) m.specular = float(v.Get("specularFactor").GetNumberAsDouble());
-      if (v.Has("specularColorFactor") || v.Has("specularColorTexture") || v.Has("specularTexture"))
-        note_unsupported("KHR_materials_specular colour and textures", "specularFactor alone is used");
+      if (v.Has("specularColorFactor") || v.Has("specularColorTexture"))
+        note_unsupported("KHR_materials_specular colour", "specularFactor and specularTexture alone are used");
+      m.specular_texture = specular_texture_slot(src, v);
     }
     for (float f : {m.metallic, m.roughness, m.specular})
       if (!std::isfinite(f) || f < 0.0f || f > 1.0f)

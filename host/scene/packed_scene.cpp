@@ -204,11 +204,13 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
     out.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular, 0.0f, 1.0f);
     out.metallic_roughness_texture = m.metallic_roughness_texture;
+    out.specular_texture = m.specular_texture;
     out.emissive_texture = m.emissive_texture;
     out.normal_texture = m.normal_texture;
     out.normal_scale = std::isfinite(m.normal_scale) ? m.normal_scale : 1.0f;
     out.lobe = material_lobe(out.metallic, out.roughness, out.specular);
     // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
+    // (A specular texture can only lower the weight: the factor's lobe stands.)
     if (out.lobe != LOBE_NONE && m.metallic_roughness_texture >= 0) out.lobe = material_lobe(out.metallic, 0.0f, out.specular);
     p.materials.push_back(out);
   }

@@ -26,6 +26,7 @@ struct SceneMaterial {
   float roughness = 1.0f;
   float specular = 0.0f;  // KHR_materials_specular's specularFactor: the dielectric's specular layer
   int metallic_roughness_texture = -1;  // B: metallic, G: roughness (linear), times the factors
+  int specular_texture = -1;  // KHR_materials_specular's specularTexture: its A (linear) times specular
   int emissive_texture = -1;  // glTF's emissiveTexture (sRGB): multiplies emission; its triangles need uvs
   // glTF's normalTexture (linear, tangent space: x, y, z = 2 rgb - 1) and its scale (multiplies x and y); its
   // triangles need uvs and Scene::tangents.

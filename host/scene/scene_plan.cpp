@@ -6,7 +6,8 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
                                                   const std::set<std::string>& forced) {
   bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false;
   for (const Material& m : p.materials) {
-    textured |= m.base_color_texture >= 0;
+    // Every texture a material reads through HAS_TEXTURES's code: base colour, metallic-roughness, specular.
+    textured |= m.base_color_texture >= 0 || m.metallic_roughness_texture >= 0 || m.specular_texture >= 0;
     masked |= m.alpha_cutoff > 0.0f || m.alpha_blend;
     specular |= m.lobe != LOBE_NONE;
     normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
@@ -65,7 +66,7 @@ ScenePlan plan_scene(const Scene& scene) {
     mp.metallic = m.metallic;
     mp.roughness = m.roughness;
     mp.emissive = m.emission[0] > 0.0f || m.emission[1] > 0.0f || m.emission[2] > 0.0f;
-    mp.textured = m.base_color_texture >= 0 || source.metallic_roughness_texture >= 0;
+    mp.textured = m.base_color_texture >= 0 || source.metallic_roughness_texture >= 0 || source.specular_texture >= 0;
     mp.normal_mapped = m.normal_texture >= 0 && !packed.tangents.empty();
     mp.emissive_textured = mp.emissive && m.emissive_texture >= 0;
     plan.normal_mapped_materials += mp.normal_mapped;

@@ -172,8 +172,9 @@ uint64_t scene_fingerprint(const Scene& s) {
     h.value(m.roughness);
     h.value(m.specular);
     h.value(m.metallic_roughness_texture);
-    if (m.emissive_texture >= 0 || m.normal_texture >= 0 || m.alpha_blend) {
+    if (m.emissive_texture >= 0 || m.normal_texture >= 0 || m.alpha_blend || m.specular_texture >= 0) {
       h.value(m.alpha_blend);
+      h.value(m.specular_texture);
       h.value(m.emissive_texture);
       h.value(m.normal_texture);
       h.value(m.normal_scale);
