@@ -139,13 +139,8 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     tangent_frame(n, &t, &b);
     dir = (r * cos_p) * t + (r * sin_p) * b + sqrt(fmax(1.0f - u2, 0.0f)) * n;
     origin = offset_ray_origin(y, n);
-    float3 radiance = vload3(0, e.radiance);
-#if HAS_EMISSIVE_TEXTURES
-    if (emitter_textured_triangle(e) >= 0) {  // the texel where the photon leaves, as the light sampler reads it
-      SurfacePoint at = surface_at(triangles, emitter_textured_triangle(e), su * (1.0f - v), su * v);
-      radiance = surface_emission(materials, textures, texels, &at);
-    }
-#endif
+    // Where the photon leaves, as the light sampler reads it.
+    const float3 radiance = emitter_radiance_at(e, su * (1.0f - v), su * v, triangles, materials, textures, texels);
     power = radiance * (RC_PI * e.area * sides);
   }
   // Landing 0 is the first surface (the light guide reads only it); with params.landings > 1 the photon goes on,

@@ -116,15 +116,11 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
   if (!visible(BVH, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
   *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
-  float3 radiance = vload3(0, e.radiance);
 #if HAS_EMISSIVE_TEXTURES
-  const int textured = emitter_textured_triangle(e);
-  if (textured >= 0) {
-    __global const TriangleShading* t = emitter_triangles + textured;
-    float2 uv0 = vload2(0, t->uv0);
-    float2 uv = uv0 + (su * (1.0f - v)) * (vload2(0, t->uv1) - uv0) + (su * v) * (vload2(0, t->uv2) - uv0);
-    radiance *= sample_texture(emitter_textures, emitter_texels, emitter_materials[t->material].emissive_texture, uv).xyz;
-  }
+  const float3 radiance = emitter_radiance_at(e, su * (1.0f - v), su * v, emitter_triangles, emitter_materials,
+                                              emitter_textures, emitter_texels);
+#else
+  const float3 radiance = vload3(0, e.radiance);
 #endif
   return radiance * (cos_x * cos_y / (d2 * pdf_area));
 }

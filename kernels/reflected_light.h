@@ -69,13 +69,7 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   if (emitter_double_sided(e)) cos_y = fabs(cos_y);
   if (!(cos_y > 0.0f)) return (float3)(0.0f);
   *light_pdf = emitter_solid_angle_pdf(e, hit.t * hit.t, cos_y);
-#if HAS_EMISSIVE_TEXTURES
-  if (emitter_textured_triangle(e) >= 0) {
-    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-    return surface_emission(materials, textures, texels, &s);
-  }
-#endif
-  return vload3(0, e.radiance);
+  return emitter_radiance_at(e, hit.u, hit.v, triangles, materials, textures, texels);  // e is triangle hit.prim
 }
 #endif
 

@@ -195,6 +195,20 @@ inline float3 surface_emission(__global const Material* materials, __global cons
 #endif
 }
 
+// The radiance emitter e sends from its point at barycentrics (u, v): its texels' there where its emission is
+// textured, else its (uniform) radiance. The light sampler, BRDF samples that land on it and its photons read this.
+inline float3 emitter_radiance_at(EmissiveTriangle e, float u, float v, __global const TriangleShading* triangles,
+                                  __global const Material* materials, __global const TextureInfo* textures,
+                                  __global const uint* texels) {
+#if HAS_EMISSIVE_TEXTURES
+  if (emitter_textured_triangle(e) >= 0) {
+    SurfacePoint at = surface_at(triangles, emitter_textured_triangle(e), u, v);
+    return surface_emission(materials, textures, texels, &at);
+  }
+#endif
+  return vload3(0, e.radiance);
+}
+
 inline float3 surface_albedo(__global const Material* materials, __global const TextureInfo* textures,
                              __global const uint* texels, const SurfacePoint* s) {
   __global const Material* m = materials + s->material;

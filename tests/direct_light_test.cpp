@@ -214,6 +214,42 @@ TEST(DirectLight, EmissiveQuadMatchesPolygonFormula) {
   pixels.expect_unbiased();
 }
 
+// A grey (0.8) rough dielectric floor of this roughness, seen from near its plane as floors are, under a point light
+// of intensity 10 at (0, 3, 1.5).
+Scene rough_floor(float roughness) {
+  Scene s = plane_scene();
+  s.materials[0].base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  s.materials[0].roughness = roughness;
+  s.materials[0].specular = 1.0f;
+  s.cameras[0].eye = {0.0f, -6.0f, 1.0f};
+  s.cameras[0].target = {0.0f, 6.0f, 0.0f};
+  SceneLight l;
+  l.position = {0.0f, 3.0f, 1.5f};
+  l.intensity = glm::vec3(10.0f);
+  s.lights.push_back(l);
+  return s;
+}
+
+// What the BRDF reference needs at pixel i of a rough_floor render: the local view and light directions (the plane's
+// normal is +z) and the irradiance from the scene's one light.
+struct FloorPixel {
+  brdf_reference::Vec wo, wi;
+  double irradiance;
+};
+FloorPixel floor_pixel(const Scene& s, const RenderedImage& img, size_t i) {
+  const dvec3 x = position_of(img, i), to_light = dvec3(s.lights[0].position) - x;
+  const dvec3 to_eye = glm::normalize(dvec3(s.cameras[0].eye) - x);
+  const double d2 = glm::dot(to_light, to_light);
+  const dvec3 wl = to_light / std::sqrt(d2);
+  return {{to_eye.x, to_eye.y, to_eye.z}, {wl.x, wl.y, wl.z}, double(s.lights[0].intensity.x) * wl.z / d2};
+}
+
+// The tolerance of a rough_floor pixel against rcsplat's model in double: the float BRDF's 1e-4, and the tabulated
+// weight's bilinear error (at most 2e-3 where cos > 0.1, 0.04 below) on the floor's 0.8 / pi.
+double floor_tolerance(const FloorPixel& p, double expected) {
+  return 1e-4 * expected + (p.wo.z < 0.1 ? 0.04 : 2e-3) * 0.8 / kPi * p.irradiance + 1e-7;
+}
+
 // A rough dielectric (glTF's defaults with metallic 0: roughness 0.5 to 1, specular 1) seen from near its plane, as
 // floors are, under a point light. glTF's appendix B weights the diffuse base by 1 - F(v.h) per light direction;
 // rcsplat by one less the lobe's albedo toward the view (kernels/brdf.h says why). Each pixel must match rcsplat's
@@ -222,36 +258,20 @@ TEST(DirectLight, EmissiveQuadMatchesPolygonFormula) {
 TEST(DirectLight, RoughDielectricIsAsBrightAsGltfAppendixB) {
   using brdf_reference::DiffuseWeight;
   for (float roughness : {0.5f, 0.75f, 1.0f}) {
-    Scene s = plane_scene();
-    s.materials[0].base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-    s.materials[0].roughness = roughness;
-    s.materials[0].specular = 1.0f;
-    s.cameras[0].eye = {0.0f, -6.0f, 1.0f};
-    s.cameras[0].target = {0.0f, 6.0f, 0.0f};
-    SceneLight l;
-    l.position = {0.0f, 3.0f, 1.5f};
-    l.intensity = glm::vec3(10.0f);
-    s.lights.push_back(l);
+    const Scene s = rough_floor(roughness);
     RenderedImage img = render(s, 64, 0);
-    const dvec3 eye(s.cameras[0].eye);
     const brdf_reference::Material m{{0.8, 0.8, 0.8}, 0.0, double(roughness), 1.0};
     double rendered = 0.0, appendix_b = 0.0, view_fresnel = 0.0;
     size_t checked = 0;
     for (size_t i = 0; i < img.triangle.size(); ++i) {
       if (img.triangle[i] < 0) continue;
-      dvec3 x = position_of(img, i), to_light = dvec3(l.position) - x, to_eye = glm::normalize(eye - x);
-      double d2 = glm::dot(to_light, to_light);
-      dvec3 wl = to_light / std::sqrt(d2);
-      brdf_reference::Vec wo{to_eye.x, to_eye.y, to_eye.z}, wi{wl.x, wl.y, wl.z};
-      double irradiance = 10.0 * wl.z / d2;
+      const auto [wo, wi, irradiance] = floor_pixel(s, img, i);
       appendix_b += brdf_reference::reference_brdf(m, wo, wi, true, true, DiffuseWeight::per_microfacet)[0] * irradiance;
       view_fresnel += brdf_reference::reference_brdf(m, wo, wi, true, true, DiffuseWeight::view_fresnel)[0] * irradiance;
       rendered += direct_of(img, i).x;
       if (i % 4 == 0) {  // rcsplat's own model, whose weight costs a quadrature per view
-        double expected = brdf_reference::reference_brdf(m, wo, wi, true, true)[0] * irradiance;
-        // The float BRDF's 1e-4, and the tabulated weight's bilinear error (at most 2e-3 where cos > 0.1, 0.04 below).
-        double weight_error = wo.z < 0.1 ? 0.04 : 2e-3;
-        ASSERT_NEAR(direct_of(img, i).x, expected, 1e-4 * expected + weight_error * 0.8 / kPi * irradiance + 1e-7)
+        const double expected = brdf_reference::reference_brdf(m, wo, wi, true, true)[0] * irradiance;
+        ASSERT_NEAR(direct_of(img, i).x, expected, floor_tolerance({wo, wi, irradiance}, expected))
             << "pixel " << i << " roughness " << roughness << " cos(theta_o) " << wo.z;
         ++checked;
       }
@@ -267,36 +287,22 @@ TEST(DirectLight, RoughDielectricIsAsBrightAsGltfAppendixB) {
 // texel's alpha is 100 must shade as rcsplat's model in double (tests/brdf_reference.h) with specular 100 / 255, and
 // differ from the factor's own (specular 1) by more than the tolerance. Planted: the texture ignored; it fails.
 TEST(DirectLight, SpecularTextureScalesTheSpecularLayer) {
-  Scene s = plane_scene();
+  Scene s = rough_floor(0.75f);
   SceneTexture t;
   t.width = t.height = 1;
   t.rgba = {255, 255, 255, 100};
   s.textures.push_back(t);
-  s.materials[0].base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-  s.materials[0].roughness = 0.75f;
-  s.materials[0].specular = 1.0f;
   s.materials[0].specular_texture = 0;
-  s.cameras[0].eye = {0.0f, -6.0f, 1.0f};
-  s.cameras[0].target = {0.0f, 6.0f, 0.0f};
-  SceneLight l;
-  l.position = {0.0f, 3.0f, 1.5f};
-  l.intensity = glm::vec3(10.0f);
-  s.lights.push_back(l);
   const RenderedImage img = render(s, 64, 0);
-  const dvec3 eye(s.cameras[0].eye);
   const brdf_reference::Material textured{{0.8, 0.8, 0.8}, 0.0, 0.75, 100.0 / 255.0}, factor{{0.8, 0.8, 0.8}, 0.0, 0.75, 1.0};
   size_t checked = 0, distinguished = 0;
   for (size_t i = 0; i < img.triangle.size(); i += 4) {
     if (img.triangle[i] < 0) continue;
-    const dvec3 x = position_of(img, i), to_light = dvec3(l.position) - x, to_eye = glm::normalize(eye - x);
-    const double d2 = glm::dot(to_light, to_light);
-    const dvec3 wl = to_light / std::sqrt(d2);
-    const brdf_reference::Vec wo{to_eye.x, to_eye.y, to_eye.z}, wi{wl.x, wl.y, wl.z};
-    const double irradiance = 10.0 * wl.z / d2;
-    const double expected = brdf_reference::reference_brdf(textured, wo, wi, true, true)[0] * irradiance;
-    const double tolerance = 1e-4 * expected + (wo.z < 0.1 ? 0.04 : 2e-3) * 0.8 / kPi * irradiance + 1e-7;
-    ASSERT_NEAR(direct_of(img, i).x, expected, tolerance) << "pixel " << i << " cos(theta_o) " << wo.z;
-    const double untextured = brdf_reference::reference_brdf(factor, wo, wi, true, true)[0] * irradiance;
+    const FloorPixel p = floor_pixel(s, img, i);
+    const double expected = brdf_reference::reference_brdf(textured, p.wo, p.wi, true, true)[0] * p.irradiance;
+    const double tolerance = floor_tolerance(p, expected);
+    ASSERT_NEAR(direct_of(img, i).x, expected, tolerance) << "pixel " << i << " cos(theta_o) " << p.wo.z;
+    const double untextured = brdf_reference::reference_brdf(factor, p.wo, p.wi, true, true)[0] * p.irradiance;
     distinguished += std::fabs(untextured - expected) > tolerance;
     ++checked;
   }

@@ -89,11 +89,7 @@ double mean_emitted_luminance(const Scene& scene, size_t t, const SceneMaterial&
 std::vector<uint8_t> next_mip_level(const uint8_t* level, uint32_t w, uint32_t h, bool srgb) {
   const uint32_t nw = texture_level_side(w, 1), nh = texture_level_side(h, 1);
   std::vector<uint8_t> out(size_t(nw) * nh * 4);
-  auto encode = [](double linear) {
-    linear = std::clamp(linear, 0.0, 1.0);
-    double c = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-    return uint8_t(std::lround(c * 255.0));
-  };
+  auto encode = [](double linear) { return uint8_t(std::lround(linear_to_srgb(std::clamp(linear, 0.0, 1.0)) * 255.0)); };
   for (uint32_t y = 0; y < nh; ++y)
     for (uint32_t x = 0; x < nw; ++x)
       for (int c = 0; c < 4; ++c) {
@@ -127,7 +123,7 @@ uint32_t append_texels(const SceneTexture& t, bool srgb, std::vector<uint32_t>& 
 
 }  // namespace
 
-PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
+PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texels) {
   PackedScene p;
   size_t n = scene.triangle_count();
   p.triangles.resize(n);
@@ -219,7 +215,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame) {
   for (const SceneMaterial& m : scene.materials)
     for (int t : {m.base_color_texture, m.emissive_texture})
       if (t >= 0 && size_t(t) < colour.size()) colour[size_t(t)] = true;
-  for (size_t i = 0; i < scene.textures.size(); ++i) {
+  for (size_t i = 0; texels == Texels::packed && i < scene.textures.size(); ++i) {
     const SceneTexture& t = scene.textures[i];
     TextureInfo info{};
     info.first_texel = uint32_t(p.texels.size());

@@ -24,7 +24,10 @@ struct PackedScene {
 };
 
 // Positions and lights in `frame`'s coordinates (render() passes the fitted one; the identity keeps world units).
-PackedScene pack_scene(const Scene& scene, const SceneFrame& frame = {});
+// Texels::left_out leaves `textures` and `texels` empty: the scene's plan reads neither, and building every texture's
+// mip chain once more for it would double the work of packing a textured scene.
+enum class Texels { packed, left_out };
+PackedScene pack_scene(const Scene& scene, const SceneFrame& frame = {}, Texels texels = Texels::packed);
 
 // A vertex colour in TriangleShading's 10-bit-per-channel form, and back.
 uint32_t pack_vertex_color(const glm::vec3& color);

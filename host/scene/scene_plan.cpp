@@ -50,7 +50,7 @@ const char* lobe_treatment(int lobe) {
 }
 
 ScenePlan plan_scene(const Scene& scene) {
-  const PackedScene packed = pack_scene(scene);
+  const PackedScene packed = pack_scene(scene, {}, Texels::left_out);
   ScenePlan plan;
   plan.source = scene.source;
   plan.triangles = scene.triangle_count();
