@@ -29,16 +29,27 @@
 #define GATHER_MAP
 #endif
 
-// cone_angle: the ray cone's angle, for filtering the textures the hit reads (0: texel-sized lookups).
-inline bool trace_surface(SCENE_ARGS, float3 origin, float3 dir, float cone_angle, HitSurface* h, float* distance,
-                          RayTally* rays) {
+// The surface a ray from origin along *dir lands on, and its distance. Through glass (kernels/glass.h) the ray goes on
+// to the first surface that is not glass, reflected or passed at each crossing: *dir becomes the direction it arrives
+// along, *distance the chain's length, and *weight what the glass kept (1 without glass). false: the ray left the
+// scene (along *dir). cone_angle: the ray cone's angle, for filtering the textures the hit reads (0: texel-sized).
+inline bool trace_surface(SCENE_ARGS, float3 origin, float3* dir, float cone_angle, HitSurface* h, float* distance,
+                          float3* weight, RayTally* rays) {
   TraceHit hit;
-  if (!closest_hit(BVH, rays, origin, dir, &hit)) {
+  *weight = (float3)(1.0f);
+  if (!closest_hit(BVH, rays, origin, *dir, &hit)) {
     *distance = INFINITY;
     return false;
   }
   *distance = hit.t;
-  *h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, hit.t * cone_angle);
+#if HAS_TRANSMISSION
+  *weight = pass_glass(BVH, rays, &hit, dir, distance);
+  if (hit.prim < 0) {
+    *distance = INFINITY;
+    return false;
+  }
+#endif
+  *h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, *dir, *distance * cone_angle);
   return true;
 }
 
@@ -88,8 +99,10 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float2 lobe_u = environment_extra_randoms(u, v, 2u);
   float3 wi = ggx_sample_reflection(wo, in.alpha, lobe_u.x, lobe_u.y), toward = to_world(frame, wi);
   float3 origin = offset_ray_origin(h->s.position, h->ng);
-  if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f && escapes(BVH, origin, toward, rays))
-    l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward);
+  if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f) {
+    const float3 passes = escapes(BVH, origin, toward, rays);
+    if (nonzero3(passes)) l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
+  }
 #endif
   return finite_or_zero(l + brdf_eval_diffuse(in, wo.z) * e);
 }
@@ -139,8 +152,11 @@ inline bool path_extend(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughp
   if (!(throughput->x > 0.0f || throughput->y > 0.0f || throughput->z > 0.0f) || dot(next, h->ng) <= 0.0f)
     return false;
   float distance;
-  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), next, 0.0f, next_hit, &distance, rays))
+  float3 through_glass;
+  if (!trace_surface(SCENE, offset_ray_origin(h->s.position, h->ng), &next, 0.0f, next_hit, &distance, &through_glass,
+                     rays))
     return false;
+  *throughput *= through_glass;
   *dir = next;
   return true;
 }
@@ -294,8 +310,10 @@ inline float3 radiance_from_hit(SCENE_ARGS GATHER_MAP_ARGS, HitSurface* h, float
 inline float3 bounce_radiance(SCENE_ARGS GATHER_MAP_ARGS, float3 origin, float3 dir, float u, float v, float u_lobe,
                               PathContinuation more, float* distance, RayTally* rays) {
   HitSurface h;
-  if (!trace_surface(SCENE, origin, dir, 0.0f, &h, distance, rays)) return miss_radiance(SCENE, dir);
-  return radiance_from_hit(SCENE GATHER_MAP, &h, dir, *distance, u, v, u_lobe, more, rays);
+  float3 through_glass;
+  if (!trace_surface(SCENE, origin, &dir, 0.0f, &h, distance, &through_glass, rays))
+    return miss_radiance(SCENE, dir) * through_glass;
+  return radiance_from_hit(SCENE GATHER_MAP, &h, dir, *distance, u, v, u_lobe, more, rays) * through_glass;
 }
 
 #endif

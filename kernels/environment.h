@@ -93,10 +93,12 @@ inline float3 environment_peak_sample(__global const float4* environment, __glob
 #endif
 }
 
-// Whether a ray from origin along dir leaves the scene.
-inline bool escapes(BVH_ARGS, float3 origin, float3 dir, RayTally* rays) {
-  return visible(BVH, origin, dir, INFINITY, rays);
+// What of the light from the scene's outside reaches origin along dir: 1 or 0, and through glass its transmittance.
+inline float3 escapes(BVH_ARGS, float3 origin, float3 dir, RayTally* rays) {
+  return light_passes(BVH, origin, dir, INFINITY, rays);
 }
+
+inline bool nonzero3(float3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
 
 // One shadow-ray estimate of the peak's irradiance at p (normal n, geometric normal ng) from uniform (u1, u2); *wi
 // the sample's direction.
@@ -106,8 +108,9 @@ inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, f
   float3 l = environment_peak_sample(environment, environment_cdf, scene_counts, u1, u2, wi, &pdf);
   float cos_x = dot(n, *wi);
   if (!(pdf > 0.0f) || cos_x <= 0.0f || dot(ng, *wi) <= 0.0f) return (float3)(0.0f);
-  if (!escapes(BVH, origin, *wi, rays)) return (float3)(0.0f);
-  return l * cos_x;
+  const float3 passes = escapes(BVH, origin, *wi, rays);
+  if (!nonzero3(passes)) return (float3)(0.0f);
+  return l * cos_x * passes;
 }
 
 // The environment's irradiance at a Lambertian point that a gathering ray found (its direct light): the smooth part
@@ -120,8 +123,11 @@ inline float3 environment_irradiance(SCENE_ARGS, float3 p, float3 n, float3 ng, 
   tangent_frame(n, &t, &b);
   float3 dir = cosine_direction(t, b, n, u1, u2);
   float3 e = (float3)(0.0f);
-  if (dot(dir, ng) > 0.0f && escapes(BVH, origin, dir, rays))
-    e += RC_PI * environment_smooth(environment, scene_counts, dir);  // cosine-weighted: L cos / pdf = pi L
+  if (dot(dir, ng) > 0.0f) {
+    const float3 passes = escapes(BVH, origin, dir, rays);
+    if (nonzero3(passes))
+      e += RC_PI * environment_smooth(environment, scene_counts, dir) * passes;  // cosine-weighted: L cos / pdf = pi L
+  }
   e += environment_peak_irradiance(SCENE, origin, n, ng, u3, u4, &wi, rays);
   return e;
 }

@@ -6,6 +6,7 @@
 #include "surface.h"
 #include "shading_normal.h"
 #include "counter_random.h"
+#include "glass.h"
 
 // Where in pixel (x, y) its camera ray passes, in pixels from its top-left corner: the centre of the camera's jitter
 // cell, a random point of it, or, in the s-times larger frame of s x s pixel samples, a point of a rotated grid.
@@ -46,8 +47,70 @@ inline float primary_cone_width(__global const CameraParams* cam, float t) {
   return t * 2.0f * cam->tan_half_fov_y / (float)cam->height * cell;
 }
 
-// Writes the G-buffer the other passes read through GBUFFER_ARGS.
-__kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera) {
+#if HAS_TRANSMISSION
+// What the mirror image in glass shows along dir from origin: the sky where the ray leaves the scene, an emitter's
+// light where it meets one. Lit surfaces seen in glass are left out: their light is not known when the G-buffer is made.
+inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
+  RayPrecomp r = ray_precompute(origin, dir);
+  TraceHit hit;
+  if (!found) {
+#if HAS_ENVIRONMENT
+    return environment_radiance(environment, scene_counts, dir);
+#else
+    return (float3)(0.0f);
+#endif
+  }
+  SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+  if (dot(s.geometric_normal, dir) > 0.0f && !materials[s.material].double_sided) return (float3)(0.0f);
+  return surface_emission(materials, textures, texels, &s);
+}
+
+// A camera ray that met glass looks through it (kernels/glass.h): at each glass point it passes (straight, or
+// refracted into or out of a volume) keeping 1 - R times the glass's tint, or where glass reflects all (total internal
+// reflection) follows the reflection, so every pixel sees one surface the cache can shade, never the glass. The first
+// glass point adds to *reflection R times what its mirror image shows (mirrored_sources). Returns the weight of the
+// light from *hit, the first surface that is not glass (prim -1: none, the ray leaves along *dir); *distance is the
+// chain's length. A ray still in glass after GLASS_MAX_CROSSINGS sees nothing (weight 0).
+inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float* distance, float3* reflection) {
+  float3 weight = (float3)(1.0f);
+  *reflection = (float3)(0.0f);
+  *distance = hit->t;
+  for (uint k = 0u; hit->prim >= 0 && is_glass(triangles, materials, textures, texels, hit->prim, hit->u, hit->v); ++k) {
+    if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
+    SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
+    float3 through, mirror, tint;
+    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, &through, &mirror, &tint);
+    const float3 toward = dot(*dir, s.geometric_normal) > 0.0f ? -s.geometric_normal : s.geometric_normal;
+    if (k == 0u && r > 0.0f && r < 1.0f)
+      *reflection = r * mirrored_sources(SCENE, offset_ray_origin(s.position, toward), mirror);
+    if (r < 1.0f) {
+      weight *= (1.0f - r) * tint;
+      *dir = through;
+    } else {
+      *dir = mirror;
+    }
+    const float3 side = dot(*dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal;
+    RayPrecomp next = ray_precompute(offset_ray_origin(s.position, side), *dir);
+    if (!bvh_trace(BVH, &next, 0.0f, INFINITY, false, hit)) hit->prim = -1;
+    else *distance += hit->t;
+  }
+  return weight;
+}
+#endif
+
+// Multiplies each pixel's light (RGB) by what the glass its camera ray looked through kept (see_through), in scenes
+// with glass; the direct light's pass runs it on its result.
+__kernel void weigh_through_glass(__global const float4* see_through, uint pixel_count, __global float4* light) {
+  const uint i = get_global_id(0);
+  if (i >= pixel_count) return;
+  light[i] = (float4)(light[i].xyz * see_through[i].xyz, light[i].w);
+}
+
+// Writes the G-buffer the other passes read through GBUFFER_ARGS, and in scenes with glass (HAS_TRANSMISSION) what the
+// glass each camera ray looked through kept (see_through: RGB, 1 without glass), which weighs the pixel's direct and
+// indirect light; what the glass mirrors is added to the pixel's emission.
+__kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera,
+                      __global float4* see_through) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
   float2 offset = pixel_offset(camera, x, y);
@@ -55,6 +118,17 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   float3 dir = camera->orthographic ? vload3(0, camera->forward) : camera_ray_direction(camera, x, y, offset);
   RayPrecomp r = ray_precompute(org, dir);
   TraceHit hit;
+  bool found = bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit);
+  float3 through_glass = (float3)(1.0f), mirrored = (float3)(0.0f);
+  float distance = hit.t;
+#if HAS_TRANSMISSION
+  if (found) {
+    through_glass = camera_through_glass(SCENE, &hit, &dir, &distance, &mirrored);
+    found = hit.prim >= 0;
+    hit.t = distance;
+  }
+  see_through[y * camera->width + x] = (float4)(through_glass, 1.0f);
+#endif
   GBufferSample g;
   g.mapped_normal[0] = NO_MAPPED_NORMAL;
   g.mapped_normal[1] = 0.0f;
@@ -62,15 +136,15 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   g.roughness = 1.0f;
   g.specular = 0.0f;
   g.lobe = LOBE_NONE;
-  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+  if (!found) {
     vstore3((float3)(0.0f), 0, g.position);
     vstore3((float3)(0.0f), 0, g.normal);
     vstore3((float3)(0.0f), 0, g.geometric_normal);
     vstore3((float3)(0.0f), 0, g.albedo);
 #if HAS_ENVIRONMENT
-    vstore3(environment_radiance(environment, scene_counts, dir), 0, g.emission);  // the sky, seen
+    vstore3(environment_radiance(environment, scene_counts, dir) * through_glass + mirrored, 0, g.emission);  // the sky
 #else
-    vstore3((float3)(0.0f), 0, g.emission);
+    vstore3(mirrored, 0, g.emission);
 #endif
     g.triangle = -1;
     g.material = -1;
@@ -82,6 +156,7 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     bool back = dot(s.geometric_normal, dir) > 0.0f;
     __global const Material* m = materials + s.material;
     float3 emission = (!back || m->double_sided) ? surface_emission(materials, textures, texels, &s) : (float3)(0.0f);
+    emission = emission * through_glass + mirrored;
     vstore3(s.position, 0, g.position);
 #if HAS_NORMAL_MAPS
     vstore3(h.ns_interpolated, 0, g.normal);

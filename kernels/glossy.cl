@@ -98,8 +98,11 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
                               PathContinuation more, RayTally* rays) {
   HitSurface h;
   float distance;
-  if (!trace_surface(SCENE, origin, dir, SECONDARY_CONE_ANGLE, &h, &distance, rays)) return miss_radiance(SCENE, dir);
-  if (!world_grid.record_count) return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays);
+  float3 through_glass;
+  if (!trace_surface(SCENE, origin, &dir, SECONDARY_CONE_ANGLE, &h, &distance, &through_glass, rays))
+    return miss_radiance(SCENE, dir) * through_glass;
+  if (!world_grid.record_count)
+    return radiance_from_hit(SCENE, &h, dir, distance, u, v, u_lobe, more, rays) * through_glass;
   float3 sum = hit_direct(SCENE, &h, dir, u, v, u_lobe, rays), throughput = (float3)(1.0f), cached;
   for (uint k = 0; k < more.bounces; ++k) {
     if (cached_light(SCENE CACHED_LIGHT, &h, dir, &cached)) {
@@ -108,7 +111,7 @@ inline float3 sample_radiance(SCENE_ARGS CACHED_LIGHT_ARGS, float3 origin, float
     }
     if (!glossy_path_step(SCENE CACHED_LIGHT, &h, &dir, &throughput, more, k, &sum, rays)) break;
   }
-  return finite_or_zero(sum);
+  return finite_or_zero(sum * through_glass);
 }
 
 // Where a pixel's samples take their light (glossy_sub_pixel): GLOSSY_WHOLE traces each sample's path there and then (one
@@ -384,25 +387,36 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams par
                                       RAY_QUEUE_ARGS) {
   size_t i = get_global_id(0);
   if (i >= glossy_launch_slots(camera, params, item_count)) return;
-  const HitDesc hit = hits[i];
+  HitDesc hit = hits[i];
   if (hit.prim == -2) return;
   const float4 slot = sample_slots[i];
-  const float3 dir = slot.xyz;
+  float3 dir = slot.xyz;
   const uint s = as_uint(slot.w) - 1u;
   const uint key = glossy_key(slot_sub_pixel(camera, params, pixel_list, first_item, i), params.seed);
   const PathContinuation more = path_continuation(key, s, params.bounces);
   RayTally rays = queued_rays(RAY_QUEUE, i, 1u);
   uint after = PATH_DONE;
-  float3 l;
+  float3 l, through_glass = (float3)(1.0f);
+#if HAS_TRANSMISSION
+  if (hit.prim >= 0) {  // on through glass, as trace_surface goes (kernels/bounce.h)
+    TraceHit chain = {hit.t, hit.u, hit.v, hit.prim};
+    float distance;
+    through_glass = pass_glass(BVH, &rays, &chain, &dir, &distance);
+    hit.t = distance;
+    hit.u = chain.u;
+    hit.v = chain.v;
+    hit.prim = chain.prim;
+  }
+#endif
   if (hit.prim < 0) {
-    l = miss_radiance(SCENE, dir);
+    l = miss_radiance(SCENE, dir) * through_glass;
   } else {
     HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, hit.t * SECONDARY_CONE_ANGLE);
     const float u = random01(key, s, 2u), v = random01(key, s, 3u), u_lobe = random01(key, s, 4u);
     if (!world_grid.record_count) {
-      l = first_bounce_from_hit(SCENE, &h, dir, hit.t, u, v, u_lobe, more, &rays, &after);
+      l = first_bounce_from_hit(SCENE, &h, dir, hit.t, u, v, u_lobe, more, &rays, &after) * through_glass;
     } else {
-      l = hit_direct(SCENE, &h, dir, u, v, u_lobe, &rays);
+      l = hit_direct(SCENE, &h, dir, u, v, u_lobe, &rays) * through_glass;
       if (more.bounces) after = PATH_READS_RECORDS;
       else l = finite_or_zero(l);
     }
@@ -411,7 +425,7 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams par
   sample_slots[i] = (float4)(l, as_float(rays.cast));
   if (after != PATH_DONE)
     queue_path(paths, path_count, (uint)i, (uint)i, more, after, hit, dir,
-               after == PATH_READS_RECORDS ? l : (float3)(0.0f), 1.0f, rays.cast);
+               after == PATH_READS_RECORDS ? l : (float3)(0.0f), through_glass, 1.0f, rays.cast);
 }
 
 // Bounce k of a glossy sample's path: where it reads the records (PATH_READS_RECORDS), the records' light where they

@@ -158,7 +158,16 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     vstore3((float3)(0.0f), 0, out.incident);
     RayPrecomp r = ray_precompute(origin, dir);
     TraceHit hit;
-    if (alive && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+    bool landed = alive && bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit);
+#if HAS_TRANSMISSION
+    if (landed) {  // glass is no landing: the photon goes on through it (kernels/glass.h), keeping what it passes
+      RayTally glass_rays = traced_rays(0u);
+      float chain;
+      power *= pass_glass(BVH, &glass_rays, &hit, &dir, &chain);
+      landed = hit.prim >= 0;
+    }
+#endif
+    if (landed) {
       HitSurface h;
       h.s = surface_at(triangles, hit.prim, hit.u, hit.v);
       h.ng = dot(h.s.geometric_normal, dir) > 0.0f ? -h.s.geometric_normal : h.s.geometric_normal;

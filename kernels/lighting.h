@@ -5,6 +5,7 @@
 #include "ray_queue.h"
 #include "sampling.h"
 #include "traverse.h"
+#include "glass.h"
 
 // Whether nothing blocks the segment from `from` along to_offset up to tmax (1: a point, INFINITY: a direction).
 // Counts the shadow ray in *rays; in the wavefront trace the queue may answer it (kernels/ray_queue.h).
@@ -15,6 +16,16 @@ inline bool visible(BVH_ARGS, float3 from, float3 to_offset,
   RayPrecomp r = ray_precompute(from, to_offset);
   TraceHit h;
   return !bvh_trace(BVH, &r, 0.0f, tmax, true, &h);
+}
+
+// What of the light along a shadow ray (as visible() takes it) arrives: 1 or 0, and through glass its transmittance
+// (kernels/glass.h). Multiplying by 1 changes no bit, so a scene without glass keeps its image.
+inline float3 light_passes(BVH_ARGS, float3 from, float3 to_offset, float tmax, RayTally* rays) {
+#if HAS_TRANSMISSION
+  return light_transmittance(BVH, from, to_offset, tmax, rays);
+#else
+  return visible(BVH, from, to_offset, tmax, rays) ? (float3)(1.0f) : (float3)(0.0f);
+#endif
 }
 
 // What sampling the emitters reads: the emitters, and where some emission is textured, the triangles' texture
@@ -43,7 +54,7 @@ inline float3 punctual_irradiance(BVH_ARGS, PunctualLight light,
     *wi_out = wi;
     float cos_n = dot(n, wi);
     if (cos_n <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
-    return visible(BVH, origin, wi, INFINITY, rays) ? intensity * cos_n : (float3)(0.0f);
+    return intensity * cos_n * light_passes(BVH, origin, wi, INFINITY, rays);
   }
   float3 to_light = vload3(0, light.position) - p;
   float d2 = dot(to_light, to_light);
@@ -66,7 +77,7 @@ inline float3 punctual_irradiance(BVH_ARGS, PunctualLight light,
   }
   if (attenuation <= 0.0f) return (float3)(0.0f);
   float3 to = vload3(0, light.position) - origin;
-  return visible(BVH, origin, to, 1.0f, rays) ? intensity * (attenuation * cos_n) : (float3)(0.0f);
+  return intensity * (attenuation * cos_n) * light_passes(BVH, origin, to, 1.0f, rays);
 }
 #endif
 
@@ -113,7 +124,8 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
   if (cos_x <= 0.0f || cos_y <= 0.0f || dot(ng, wi) <= 0.0f) return (float3)(0.0f);
   float3 toward_p = dot(nl, wi) < 0.0f ? nl : -nl;
   float3 target = offset_ray_origin(y, toward_p);
-  if (!visible(BVH, origin, target - origin, 1.0f, rays)) return (float3)(0.0f);
+  const float3 passes = light_passes(BVH, origin, target - origin, 1.0f, rays);
+  if (!(passes.x > 0.0f || passes.y > 0.0f || passes.z > 0.0f)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
   *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
 #if HAS_EMISSIVE_TEXTURES
@@ -122,7 +134,7 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
 #else
   const float3 radiance = vload3(0, e.radiance);
 #endif
-  return radiance * (cos_x * cos_y / (d2 * pdf_area));
+  return radiance * (cos_x * cos_y / (d2 * pdf_area)) * passes;
 }
 #endif
 

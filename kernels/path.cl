@@ -9,7 +9,8 @@
 #include "shading_normal.h"
 #include "counter_random.h"
 
-__kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __global float4* sum,
+__kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, __global const float4* see_through, PathParams params,
+                            __global float4* sum,
                             __global float4* sum_squares, __global ulong* ray_total) {
   uint pixel = get_global_id(0);
   if (pixel >= (uint)(camera->width * camera->height)) return;
@@ -53,6 +54,9 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, PathParams params, __globa
                                        random01(key, s, 5u), path_continuation(key, s, params.bounces), &r,
                                        &rays);
     }
+#if HAS_TRANSMISSION
+    c *= see_through[pixel].xyz;  // what the glass the camera looked through kept (kernels/gbuffer.cl)
+#endif
     s1 += c;
     s2 += c * c;
   }

@@ -15,10 +15,12 @@
 // hit's light and is its whole light.
 #define PATH_READS_RECORDS 4u
 
-// Queues a path from the hit `hit` reached along dir, its sum starting at `sum`; sample: where its first hit's light
-// waits, launch_sample where its rays are counted.
+// Queues a path from the hit `hit` reached along dir, its sum starting at `sum` and its throughput at `throughput` (what
+// glass on the way kept: kernels/glass.h); sample: where its first hit's light waits, launch_sample where its rays are
+// counted.
 inline void queue_path(__global QueuedPath* paths, volatile __global uint* path_count, uint sample, uint launch_sample,
-                       PathContinuation more, uint mode, HitDesc hit, float3 dir, float3 sum, float weight, uint rays) {
+                       PathContinuation more, uint mode, HitDesc hit, float3 dir, float3 sum, float3 throughput,
+                       float weight, uint rays) {
   __global QueuedPath* path = paths + atomic_inc(path_count);
   path->sample = sample;
   path->launch_sample = launch_sample;
@@ -30,7 +32,7 @@ inline void queue_path(__global QueuedPath* paths, volatile __global uint* path_
   path->u = hit.u;
   path->v = hit.v;
   vstore3(dir, 0, path->dir);
-  vstore3((float3)(1.0f), 0, path->throughput);
+  vstore3(throughput, 0, path->throughput);
   vstore3(sum, 0, path->sum);
   path->weight = weight;
 }

@@ -200,27 +200,45 @@ inline HitDesc trace_record_hit(SCENE_ARGS, RecordSite site, RecordRay ray) {
 }
 
 // The light sample s's ray brings from `hit` (kernels/bounce.h), unweighted; *rays counts the rays cast, its own
-// included. queues_paths (the wavefront trace): only the first hit's light, *after saying what path must still go on
-// from there (PATH_DONE ..); otherwise the whole path's.
+// included. A hit on glass (kernels/glass.h) goes on through it first: *hit becomes the first hit that is not glass
+// (its t the chain's length), ray->dir the direction it arrives along, and *through_glass what the glass kept, which the
+// light returned includes. queues_paths (the wavefront trace): only the first hit's light, *after saying what path
+// must still go on from there (PATH_DONE ..); otherwise the whole path's.
 inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
-                               RecordRay ray, HitDesc hit, bool queues_paths, uint* after, RayTally* rays) {
-  rays->cast = ray.cast ? 1u : 0u;
+                               RecordRay* ray, HitDesc* hit, bool queues_paths, uint* after, float3* through_glass,
+                               RayTally* rays) {
+  rays->cast = ray->cast ? 1u : 0u;
   *after = PATH_DONE;
-  if (hit.prim < 0) return ray.cast ? miss_radiance(SCENE, ray.dir) : (float3)(0.0f);
+  *through_glass = (float3)(1.0f);
+#if HAS_TRANSMISSION
+  if (hit->prim >= 0) {
+    TraceHit chain = {hit->t, hit->u, hit->v, hit->prim};
+    float distance;
+    *through_glass = pass_glass(BVH, rays, &chain, &ray->dir, &distance);
+    hit->t = chain.prim >= 0 ? distance : INFINITY;
+    hit->u = chain.u;
+    hit->v = chain.v;
+    hit->prim = chain.prim;
+  }
+#endif
+  if (hit->prim < 0) return ray->cast ? miss_radiance(SCENE, ray->dir) * *through_glass : (float3)(0.0f);
   // The ray's cone: the solid angle of its stratum, 2 pi / (M N), as an angle (ray cones: kernels/surface.h).
   const float cone = sqrt(2.0f * RC_PI / (float)(hp.theta_strata * hp.phi_strata));
-  HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, ray.dir, hit.t * cone);
+  HitSurface h = hit_surface(HIT_SURFACE, hit->prim, hit->u, hit->v, ray->dir, hit->t * cone);
   const PathContinuation more = path_continuation(site.key, s, hp.bounces);
   const float u = random01(site.key, s, 2u), v = random01(site.key, s, 3u), u_lobe = random01(site.key, s, 4u);
-  if (queues_paths) return first_bounce_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays, after);
-  return radiance_from_hit(SCENE GATHER_MAP, &h, ray.dir, hit.t, u, v, u_lobe, more, rays);
+  if (queues_paths)
+    return first_bounce_from_hit(SCENE GATHER_MAP, &h, ray->dir, hit->t, u, v, u_lobe, more, rays, after) *
+           *through_glass;
+  return radiance_from_hit(SCENE GATHER_MAP, &h, ray->dir, hit->t, u, v, u_lobe, more, rays) * *through_glass;
 }
 
 // Sample s from the light its ray brings from `hit`, its whole path's.
 inline float4 shade_record_hit(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, HemisphereParams hp, uint s,
                                RecordRay ray, HitDesc hit, RayTally* rays) {
   uint after;
-  float3 l = record_hit_light(SCENE GATHER_MAP, site, hp, s, ray, hit, false, &after, rays);
+  float3 through_glass;
+  float3 l = record_hit_light(SCENE GATHER_MAP, site, hp, s, &ray, &hit, false, &after, &through_glass, rays);
   return record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
 }
 
@@ -282,10 +300,12 @@ __kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, 
   for (uint s = item.first; s < item.end; ++s) {
     RecordRay ray = record_ray(item.site, batch.hemisphere, s, record_guides + item.q);
     const size_t at = record_samples_at(batch, item) + s, launch_at = record_launch_at(item) + s;
-    const HitDesc hit = hits[launch_at];
+    HitDesc hit = hits[launch_at];
     uint after;
+    float3 through_glass;
     RayTally rays = queued_rays(RAY_QUEUE, launch_at, 0u);
-    float3 l = record_hit_light(SCENE GATHER_MAP, item.site, batch.hemisphere, s, ray, hit, true, &after, &rays);
+    float3 l = record_hit_light(SCENE GATHER_MAP, item.site, batch.hemisphere, s, &ray, &hit, true, &after,
+                                &through_glass, &rays);
     if (!rays_answered(&rays)) continue;
     float4 sample = record_sample(ray, l, hit.prim >= 0 ? hit.t : INFINITY);
     if (after == PATH_DONE) {
@@ -294,8 +314,8 @@ __kernel void shade_record_first_hits(SCENE_ARGS GATHER_MAP_ARGS, GBUFFER_ARGS, 
     } else {
       samples[at] = (float4)(l, sample.w);
       const PathContinuation more = path_continuation(item.site.key, s, batch.hemisphere.bounces);
-      queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, (float3)(0.0f), ray.weight,
-                 rays.cast);
+      queue_path(paths, path_count, (uint)at, (uint)launch_at, more, after, hit, ray.dir, (float3)(0.0f), through_glass,
+                 ray.weight, rays.cast);
     }
   }
 }

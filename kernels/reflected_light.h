@@ -62,6 +62,15 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   *light_pdf = 0.0f;
   TraceHit hit;
   if (!closest_hit(BVH, rays, origin, dir, &hit)) return (float3)(0.0f);
+#if HAS_TRANSMISSION
+  // Through glass: the emitter the chain reaches, at the chain's length (exact for thin-walled glass).
+  float distance;
+  const float3 passes = pass_glass(BVH, rays, &hit, &dir, &distance);
+  if (hit.prim < 0) return (float3)(0.0f);
+  hit.t = distance;
+#else
+  const float3 passes = (float3)(1.0f);
+#endif
   int index = triangles[hit.prim].emitter;
   if (index < 0) return (float3)(0.0f);
   EmissiveTriangle e = emitters[index];
@@ -69,7 +78,7 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   if (emitter_double_sided(e)) cos_y = fabs(cos_y);
   if (!(cos_y > 0.0f)) return (float3)(0.0f);
   *light_pdf = emitter_solid_angle_pdf(e, hit.t * hit.t, cos_y);
-  return emitter_radiance_at(e, hit.u, hit.v, triangles, materials, textures, texels);  // e is triangle hit.prim
+  return emitter_radiance_at(e, hit.u, hit.v, triangles, materials, textures, texels) * passes;  // e: hit.prim's
 }
 #endif
 
@@ -146,8 +155,10 @@ inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame fra
   float3 throughput = brdf_sample(BRDF_IN, wo_local, environment_extra_randoms(u, v, 2u).x, lobe_u.x, lobe_u.y, &wi_local,
                                   &pdf);
   float3 dir = to_world(frame, wi_local);
-  if (pdf > 0.0f && dot(dir, ng) > 0.0f && escapes(BVH, origin, dir, rays))
-    sum += throughput * environment_smooth(environment, scene_counts, dir);
+  if (pdf > 0.0f && dot(dir, ng) > 0.0f) {
+    const float3 passes = escapes(BVH, origin, dir, rays);
+    if (nonzero3(passes)) sum += throughput * environment_smooth(environment, scene_counts, dir) * passes;
+  }
   return sum;
 }
 #endif

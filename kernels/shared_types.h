@@ -104,6 +104,16 @@ typedef struct {
   float normal_scale;       // glTF's normalTexture.scale: multiplies the map's x and y
   rc_int alpha_blend;       // glTF alpha mode BLEND: a point is a hole with probability 1 - alpha (kernels/traverse.h)
   rc_int specular_texture;  // KHR_materials_specular's specularTexture (its A multiplies specular) or TEXTURE_NONE
+  // Glass (kernels/glass.h): KHR_materials_transmission's factor (0: opaque) and texture (its R multiplies it);
+  // KHR_materials_ior; KHR_materials_volume's thicknessFactor (0: thin-walled, rays pass straight; above 0 the mesh
+  // bounds a volume and rays refract) and its Beer-Lambert coefficient per unit length, -ln(attenuationColor) /
+  // attenuationDistance (0: clear).
+  float transmission;
+  rc_int transmission_texture;
+  float ior;
+  float thickness;
+  float attenuation[3];
+  float glass_pad;
 } Material;
 
 #define WRAP_REPEAT 0
@@ -616,7 +626,7 @@ typedef struct {
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
 static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
 static_assert(sizeof(TriangleShading) == 128);
-static_assert(sizeof(Material) == 80);
+static_assert(sizeof(Material) == 112);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);

@@ -11,9 +11,10 @@
 #include "counter_random.h"
 #include "surface.h"
 
-// The traversal's view of the scene: the BVH, and with alpha-masked materials (HAS_ALPHA_MASK) what a hit needs to
-// know whether it landed in a hole. Every function that traces takes BVH_ARGS and passes BVH on.
-#if HAS_ALPHA_MASK
+// The traversal's view of the scene: the BVH, and with alpha-masked materials (HAS_ALPHA_MASK) or glass
+// (HAS_TRANSMISSION, kernels/glass.h) what a hit needs to know whether it landed in a hole or on glass. Every function
+// that traces takes BVH_ARGS and passes BVH on.
+#if HAS_ALPHA_MASK || HAS_TRANSMISSION
 #define BVH_ARGS                                                                                                     \
   __global const float8 *nodes, __global const float8 *blocks, __global const TriangleShading *triangles,           \
       __global const Material *materials, __global const TextureInfo *textures, __global const uint *texels

@@ -40,6 +40,11 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
   if (plan.emissive_textured_materials)
     std::printf("emission     %u material(s) textured: seen and sampled at their texels, emitters chosen by their "
                 "textured power\n", plan.emissive_textured_materials);
+  if (plan.glass_materials)
+    std::printf("glass        %u material(s): camera rays see through it (its colour and Fresnel) and see the sky and "
+                "lights it mirrors; every other ray reflects or passes by Fresnel; shadow rays pass it with its colour "
+                "(thin-walled: exact; a volume: straight through, its caustics not focused); records never sit on it\n",
+                plan.glass_materials);
   std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,
               plan.spot_lights, plan.directional_lights, plan.emissive_triangles);
   if (plan.environment.empty())
@@ -50,7 +55,7 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 plan.environment.c_str(), 100.0 * plan.environment_peak_fraction, kEnvironmentPeakOverMean);
   for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
   std::printf("compiles     BRDF code %s, HSH code %s, base-colour texture code %s, area-light sampling %s, punctual lights %s, "
-              "environment %s, normal maps %s, emissive textures %s\n",
+              "environment %s, normal maps %s, emissive textures %s, glass %s\n",
               plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
               plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
               plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no base-colour texture)",
@@ -58,7 +63,8 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.switches.at("HAS_PUNCTUAL_LIGHTS") == "1" ? "yes" : "no (no punctual light)",
               plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)",
               plan.switches.at("HAS_NORMAL_MAPS") == "1" ? "yes" : "no",
-              plan.switches.at("HAS_EMISSIVE_TEXTURES") == "1" ? "yes" : "no");
+              plan.switches.at("HAS_EMISSIVE_TEXTURES") == "1" ? "yes" : "no",
+              plan.switches.at("HAS_TRANSMISSION") == "1" ? "yes" : "no");
   std::printf("switches    ");
   for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth))
     std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -71,6 +77,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
     materials.push_back({{"name", m.name}, {"kind", lobe_name(m.lobe)}, {"roughness", m.roughness},
                          {"metallic", m.metallic}, {"emissive", m.emissive}, {"textured", m.textured},
                          {"normal_map", m.normal_mapped}, {"emissive_texture", m.emissive_textured},
+                         {"glass", m.glass ? (m.thin_walled ? "thin-walled" : "volume") : "no"},
                          {"shading", lobe_treatment(m.lobe)}});
   nlohmann::json environment = nullptr;
   if (!plan.environment.empty())

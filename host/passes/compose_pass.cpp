@@ -23,6 +23,7 @@ void ComposePass::run(const GBufferView& gbuffer, const cl::Buffer& irradiance, 
       .set_buffer<cl_float4>("glossy", glossy ? *glossy : irradiance)
       .set_buffer<cl_float4>("cached_lobes", cached_lobes ? *cached_lobes : irradiance)
       .set("glossy_holds_guide_share", cl_uint(glossy && glossy_holds_guide_share))
+      .set_buffer<cl_float4>("see_through", gbuffer.see_through)
       .set_buffer<cl_float4>("indirect_out", indirect_)
       .set_buffer<cl_float4>("color_out", color_);
   kernel_.launch(pixels_, gpu_.groups().per_item);

@@ -9,21 +9,38 @@ void GBufferView::bind(NamedKernel& kernel) const {
   kernel.set_buffer<GBufferSample>("gbuffer", samples).set_buffer<CameraParams>("camera", camera);
 }
 
+void GBufferView::bind_see_through(NamedKernel& kernel) const { kernel.set_buffer<cl_float4>("see_through", see_through); }
+
 GBufferPass::GBufferPass(GpuContext& gpu, const DeviceScene& scene)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "gbuffer", scene.defines())) {}
+    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "gbuffer", scene.defines())) {
+  if (scene.has_glass()) weigh_ = gpu.kernel(kProgram, "weigh_through_glass", scene.defines());
+}
 
 void GBufferPass::run(const CameraParams& camera) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);
-  if (pixels != view_.pixel_count() || !view_.samples())
+  if (pixels != view_.pixel_count() || !view_.samples()) {
     view_.samples = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample), "G-buffer");
+    const size_t weights = scene_.has_glass() ? std::max<size_t>(pixels, 1) : 1;
+    view_.see_through = gpu_.buffer(CL_MEM_READ_WRITE, weights * sizeof(cl_float4), "G-buffer");
+  }
   view_.width = camera.width;
   view_.height = camera.height;
   view_.sub_pixel_side = std::max(camera.sub_pixel_side, 1);
   gpu_.upload_into(view_.camera, camera_capacity_, std::vector<CameraParams>{camera}, CL_MEM_READ_ONLY, "G-buffer");
   scene_.bind(kernel_);
   view_.bind(kernel_);
+  view_.bind_see_through(kernel_);
   // Square tiles: neighbouring rays in one group, as the traversal prefers.
   kernel_.launch_2d(size_t(camera.width), size_t(camera.height), gpu_.groups().tile_side);
+  gpu_.queue().finish();
+}
+
+void GBufferPass::weigh_through_glass(const cl::Buffer& light) {
+  if (!scene_.has_glass()) return;
+  weigh_.set_buffer<cl_float4>("see_through", view_.see_through)
+      .set("pixel_count", cl_uint(view_.pixel_count()))
+      .set_buffer<cl_float4>("light", light);
+  weigh_.launch(view_.pixel_count(), gpu_.groups().per_item);
   gpu_.queue().finish();
 }
 

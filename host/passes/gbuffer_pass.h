@@ -13,11 +13,16 @@ struct GBufferView {
   cl::Buffer camera;   // one CameraParams
   int width = 0, height = 0;
   int sub_pixel_side = 1;  // the frame's output pixels are sub_pixel_side^2 of these (CameraParams::sub_pixel_side)
+  // Per pixel, what the glass its camera ray looked through kept (RGB; kernels/gbuffer.cl): the pixel's direct and
+  // indirect light are weighed by it. One unread float4 in a scene without glass.
+  cl::Buffer see_through;
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
   size_t output_pixel_count() const { return pixel_count() / size_t(sub_pixel_side * sub_pixel_side); }
   // Sets a kernel's GBUFFER_ARGS ("gbuffer" and "camera").
   void bind(NamedKernel& kernel) const;
+  // Sets a kernel's "see_through".
+  void bind_see_through(NamedKernel& kernel) const;
 };
 
 class GBufferPass {
@@ -28,12 +33,16 @@ class GBufferPass {
   void run(const CameraParams& camera);  // blocks until done
   const GBufferView& view() const { return view_; }
   std::vector<GBufferSample> download();
+  // Weighs per-pixel light (RGB of a float4 a pixel) by what the glass its camera ray looked through kept; nothing to
+  // do in a scene without glass.
+  void weigh_through_glass(const cl::Buffer& light);
 
  private:
   static constexpr const char* kProgram = "gbuffer.cl";  // its kernels' file
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;
+  NamedKernel weigh_;  // weigh_through_glass, in scenes with glass
   GBufferView view_;
   size_t camera_capacity_ = 0;
 };

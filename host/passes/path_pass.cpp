@@ -44,6 +44,7 @@ void PathPass::add_samples(unsigned count) {
   params.bounces = bounces_;
   scene_.bind(kernel_);
   gbuffer_.bind(kernel_);
+  gbuffer_.bind_see_through(kernel_);
   kernel_.set("params", params)
       .set_buffer<cl_float4>("sum", sum_)
       .set_buffer<cl_float4>("sum_squares", sum_squares_)

@@ -265,6 +265,7 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
                                       double(sub_pixels);
       st.primary.light_refined_pixels = run.refined_pixels;
     }
+    gbuffer.weigh_through_glass(direct.radiance());  // a pixel that looks through glass sees its light through it
   }
 
   StageTimer layers_timing(st.primary.layers_s);

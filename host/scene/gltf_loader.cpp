@@ -33,7 +33,8 @@ namespace {
 
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
                                                     "KHR_materials_specular", "KHR_texture_transform",
-                                                    "EXT_texture_webp"};
+                                                    "EXT_texture_webp", "KHR_materials_transmission",
+                                                    "KHR_materials_ior", "KHR_materials_volume"};
 
 class GltfReader {
  public:
@@ -747,23 +748,85 @@ class GltfReader {
     return "materials[" + std::to_string(&src - model_.materials.data()) + "] '" + src.name + "'";
   }
 
-  // KHR_materials_specular's specularTexture (its alpha multiplies specularFactor), where it is mapped as the
-  // material's other textures; -1 otherwise (a texture mapped otherwise is named).
-  int specular_texture_slot(const tinygltf::Material& src, const tinygltf::Value& extension) {
-    if (!extension.Has("specularTexture")) return -1;
-    const tinygltf::Value& info = extension.Get("specularTexture");
+  // A texture an extension names (`key` in `extension`, e.g. KHR_materials_specular's specularTexture), where it is
+  // mapped as the material's other textures; -1 where it has none, or is mapped otherwise (named: `instead` is used).
+  int extension_texture_slot(const tinygltf::Material& src, const tinygltf::Value& extension, const std::string& name,
+                             const char* key, const char* instead) {
+    if (!extension.Has(key)) return -1;
+    const tinygltf::Value& info = extension.Get(key);
     if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsNumber())
-      fail(material_label(src) + ": KHR_materials_specular's specularTexture has no texture index");
+      fail(material_label(src) + ": " + name + "'s " + key + " has no texture index");
     const double index = info.Get("index").GetNumberAsDouble();
     if (!(index >= 0.0) || index != std::floor(index) || index >= double(model_.textures.size()))
-      fail(material_label(src) + ": KHR_materials_specular's specularTexture names no texture of the file");
+      fail(material_label(src) + ": " + name + "'s " + key + " names no texture of the file");
     UvMapping mapping;
     if (info.Has("texCoord") && info.Get("texCoord").IsNumber()) mapping.tex_coord = int(info.Get("texCoord").GetNumberAsDouble());
     if (info.Has("extensions") || !same_mapping(mapping, base_color_uv_mapping(int(&src - model_.materials.data())))) {
-      note_unsupported("specularTexture mapped unlike the material's other textures", "specularFactor alone is used");
+      note_unsupported(std::string(key) + " mapped unlike the material's other textures", instead);
       return -1;
     }
     return texture_slot(int(index), src.name);
+  }
+
+  // A number an extension gives, or `fallback` where it gives none; a value that is not a number is refused.
+  double extension_number(const tinygltf::Material& src, const tinygltf::Value& extension, const std::string& name,
+                          const char* key, double fallback) const {
+    if (!extension.Has(key)) return fallback;
+    const tinygltf::Value& v = extension.Get(key);
+    if (!v.IsNumber()) fail(material_label(src) + ": " + name + "'s " + key + " is not a number");
+    return v.GetNumberAsDouble();
+  }
+
+  // Glass: KHR_materials_transmission, KHR_materials_ior and KHR_materials_volume (kernels/glass.h simulates them).
+  void read_glass(const tinygltf::Material& src, SceneMaterial& m) {
+    auto transmission = src.extensions.find("KHR_materials_transmission");
+    if (transmission != src.extensions.end()) {
+      const std::string name = "KHR_materials_transmission";
+      const double factor = extension_number(src, transmission->second, name, "transmissionFactor", 0.0);
+      if (!std::isfinite(factor) || factor < 0.0 || factor > 1.0)
+        fail(material_label(src) + ": " + name + "'s transmissionFactor must lie in [0, 1]");
+      m.transmission = float(factor);
+      m.transmission_texture = extension_texture_slot(src, transmission->second, name, "transmissionTexture",
+                                                      "transmissionFactor alone is used");
+    }
+    auto ior = src.extensions.find("KHR_materials_ior");
+    if (ior != src.extensions.end()) {
+      const double value = extension_number(src, ior->second, "KHR_materials_ior", "ior", 1.5);
+      if (!std::isfinite(value) || value < 1.0)
+        fail(material_label(src) + ": KHR_materials_ior's ior is " + std::to_string(value) +
+             "; an index of refraction must be a finite number of at least 1");
+      m.ior = float(value);
+    }
+    auto volume = src.extensions.find("KHR_materials_volume");
+    if (volume != src.extensions.end()) {
+      const std::string name = "KHR_materials_volume";
+      const tinygltf::Value& v = volume->second;
+      const double thickness = extension_number(src, v, name, "thicknessFactor", 0.0);
+      const double distance = extension_number(src, v, name, "attenuationDistance", INFINITY);
+      if (!std::isfinite(thickness) || thickness < 0.0)
+        fail(material_label(src) + ": " + name + "'s thicknessFactor must be a finite number of at least 0");
+      if (std::isnan(distance) || distance <= 0.0)
+        fail(material_label(src) + ": " + name + "'s attenuationDistance must be above 0");
+      m.thickness = float(thickness);
+      m.attenuation_distance = float(distance);
+      if (v.Has("attenuationColor")) {
+        const tinygltf::Value& c = v.Get("attenuationColor");
+        if (!c.IsArray() || c.ArrayLen() != 3) fail(material_label(src) + ": " + name + "'s attenuationColor is not three numbers");
+        for (int i = 0; i < 3; ++i) {
+          const double x = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : NAN;
+          if (!std::isfinite(x) || x < 0.0 || x > 1.0)
+            fail(material_label(src) + ": " + name + "'s attenuationColor must be three numbers in [0, 1]");
+          m.attenuation_color[i] = float(x);
+        }
+      }
+      // A rasterizer's stand-in for the volume it cannot trace; rcsplat traces the mesh's own.
+      if (v.Has("thicknessTexture"))
+        note_unsupported("KHR_materials_volume thicknessTexture", "not read: rays cross the mesh's own volume");
+    }
+    if (m.transmission == 0.0f && m.ior != 1.5f)
+      note_unsupported("KHR_materials_ior on opaque materials", "their specular layer keeps ior 1.5's reflectance (0.04)");
+    if (m.transmission > 0.0f && m.roughness > 0.0f)
+      note_unsupported("rough transmission (frosted glass)", "light passes glass as through a smooth surface");
   }
 
   // metallicFactor, roughnessFactor (glTF defaults 1 and 1), their texture, and KHR_materials_specular's factor.
@@ -778,7 +841,8 @@ class GltfReader {
       if (v.Has("specularFactor")) m.specular = float(v.Get("specularFactor").GetNumberAsDouble());
       if (v.Has("specularColorFactor") || v.Has("specularColorTexture"))
         note_unsupported("KHR_materials_specular colour", "specularFactor and specularTexture alone are used");
-      m.specular_texture = specular_texture_slot(src, v);
+      m.specular_texture = extension_texture_slot(src, v, "KHR_materials_specular", "specularTexture",
+                                                  "specularFactor alone is used");
     }
     for (float f : {m.metallic, m.roughness, m.specular})
       if (!std::isfinite(f) || f < 0.0f || f > 1.0f)
@@ -799,6 +863,7 @@ class GltfReader {
       for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) m.base_color[i] = float(pbr.baseColorFactor[size_t(i)]);
       m.base_color_texture = texture_slot(pbr.baseColorTexture.index, src.name);
       read_brdf(src, m);
+      read_glass(src, m);
       float strength = 1.0f;
       auto ext = src.extensions.find("KHR_materials_emissive_strength");
       if (ext != src.extensions.end() && ext->second.Has("emissiveStrength"))

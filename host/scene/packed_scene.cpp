@@ -204,6 +204,15 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     out.emissive_texture = m.emissive_texture;
     out.normal_texture = m.normal_texture;
     out.normal_scale = std::isfinite(m.normal_scale) ? m.normal_scale : 1.0f;
+    out.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+    out.transmission_texture = out.transmission > 0.0f ? m.transmission_texture : TEXTURE_NONE;
+    out.ior = std::isfinite(m.ior) && m.ior >= 1.0f ? m.ior : 1.5f;
+    out.thickness = std::isfinite(m.thickness) && m.thickness > 0.0f ? m.thickness : 0.0f;
+    for (int i = 0; i < 3; ++i) {
+      // Beer-Lambert: a colour c left after distance d is exp(-sigma d) = c.
+      const float c = std::clamp(m.attenuation_color[i], 1e-6f, 1.0f), d = m.attenuation_distance;
+      out.attenuation[i] = std::isfinite(d) && d > 0.0f ? -std::log(c) / d : 0.0f;
+    }
     out.lobe = material_lobe(out.metallic, out.roughness, out.specular);
     // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
     // (A specular texture can only lower the weight: the factor's lobe stands.)

@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,15 @@ struct SceneMaterial {
   // triangles need uvs and Scene::tangents.
   int normal_texture = -1;
   float normal_scale = 1.0f;
+  // Glass (kernels/glass.h): KHR_materials_transmission (factor, and a texture whose R multiplies it), KHR_materials_ior
+  // and KHR_materials_volume (thickness 0: thin-walled; above 0 rays refract into the mesh's volume, attenuated by
+  // attenuation_color at attenuation_distance, infinite: clear).
+  float transmission = 0.0f;
+  int transmission_texture = -1;
+  float ior = 1.5f;
+  float thickness = 0.0f;
+  glm::vec3 attenuation_color{1.0f};
+  float attenuation_distance = std::numeric_limits<float>::infinity();
 };
 
 struct SceneTexture {

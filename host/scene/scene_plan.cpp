@@ -4,13 +4,15 @@ namespace rcsplat {
 
 std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
                                                   const std::set<std::string>& forced) {
-  bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false;
+  bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false,
+       glass = false;
   for (const Material& m : p.materials) {
     // Every texture a material reads through HAS_TEXTURES's code: base colour, metallic-roughness, specular.
     textured |= m.base_color_texture >= 0 || m.metallic_roughness_texture >= 0 || m.specular_texture >= 0;
     masked |= m.alpha_cutoff > 0.0f || m.alpha_blend;
     specular |= m.lobe != LOBE_NONE;
     normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
+    glass |= m.transmission > 0.0f && m.metallic < 1.0f;
   }
   for (const EmissiveTriangle& e : p.emitters) emissive_textures |= emitter_textured_triangle(e) >= 0;
   std::map<std::string, std::string> switches;
@@ -24,6 +26,7 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   set("HAS_ENVIRONMENT", p.environment.width > 0);
   set("HAS_NORMAL_MAPS", normal_maps);
   set("HAS_EMISSIVE_TEXTURES", emissive_textures);
+  set("HAS_TRANSMISSION", glass);
   // Tests only: the environment's peak sampled uniformly over the sphere, to check its importance sampling against.
   if (forced.count("ENVIRONMENT_UNIFORM_SAMPLING")) switches["ENVIRONMENT_UNIFORM_SAMPLING"] = "1";
   return switches;
@@ -69,6 +72,9 @@ ScenePlan plan_scene(const Scene& scene) {
     mp.textured = m.base_color_texture >= 0 || source.metallic_roughness_texture >= 0 || source.specular_texture >= 0;
     mp.normal_mapped = m.normal_texture >= 0 && !packed.tangents.empty();
     mp.emissive_textured = mp.emissive && m.emissive_texture >= 0;
+    mp.glass = m.transmission > 0.0f && m.metallic < 1.0f;
+    mp.thin_walled = mp.glass && !(m.thickness > 0.0f);
+    plan.glass_materials += mp.glass;
     plan.normal_mapped_materials += mp.normal_mapped;
     plan.emissive_textured_materials += mp.emissive_textured;
     plan.alpha_mask |= m.alpha_cutoff > 0.0f;

@@ -179,6 +179,14 @@ uint64_t scene_fingerprint(const Scene& s) {
       h.value(m.normal_texture);
       h.value(m.normal_scale);
     }
+    if (m.transmission > 0.0f) {  // glass (older files' scenes had none, and keep their hashes)
+      h.value(m.transmission);
+      h.value(m.transmission_texture);
+      h.value(m.ior);
+      h.value(m.thickness);
+      h.value(m.attenuation_color);
+      h.value(m.attenuation_distance);
+    }
   }
   h.value(uint64_t(s.textures.size()));
   for (const SceneTexture& t : s.textures) {
