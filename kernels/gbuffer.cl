@@ -53,7 +53,7 @@ inline float primary_cone_width(__global const CameraParams* cam, float t) {
 inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
   RayPrecomp r = ray_precompute(origin, dir);
   TraceHit hit;
-  if (!found) {
+  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
 #if HAS_ENVIRONMENT
     return environment_radiance(environment, scene_counts, dir);
 #else

@@ -9,6 +9,7 @@
 #include "brdf_reference.h"
 #include "render/renderer.h"
 #include "scene/packed_scene.h"
+#include "scene/scene_frame.h"
 #include "util/colour.h"
 #include "test_support.h"
 
@@ -473,6 +474,115 @@ TEST(DirectLight, AlphaBlendIsSeenAndCastsShadowWithItsAlpha) {
               double(on_quad) / n);
   EXPECT_NEAR(measured, mean, 5.0 * sigma);
   EXPECT_NEAR(double(on_quad) / n, alpha, 5.0 * std::sqrt(alpha * (1.0 - alpha) / n));
+}
+
+// Fresnel's unpolarised reflectance of a smooth interface from the side of index 1 into index n (n may be below 1:
+// seen from inside), in the angles' form (sin and tan of their difference and sum), independent of the kernel's
+// cosine form: 1 on total internal reflection.
+double fresnel_by_angles(double cos_i, double n) {
+  const double theta_i = std::acos(std::clamp(cos_i, -1.0, 1.0)), sin_t = std::sin(theta_i) / n;
+  if (sin_t >= 1.0) return 1.0;
+  if (theta_i < 1e-6) return std::pow((n - 1.0) / (n + 1.0), 2.0);  // normal incidence, where the angle form is 0 / 0
+  const double theta_t = std::asin(sin_t);
+  const double rs = std::sin(theta_i - theta_t) / std::sin(theta_i + theta_t);
+  const double rp = std::tan(theta_i - theta_t) / std::tan(theta_i + theta_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+SceneMaterial glass(const glm::vec3& tint, float ior) {
+  SceneMaterial m{"glass", glm::vec4(tint, 1.0f), -1, glm::vec3(0.0f), true};
+  m.transmission = 1.0f;
+  m.roughness = 0.0f;
+  m.metallic = 0.0f;
+  m.specular = 1.0f;
+  m.ior = ior;
+  return m;
+}
+
+// Thin-walled glass (KHR_materials_transmission without a volume) over the lit plane, under a directional light, seen
+// by the camera through it: the light reaches the plane through the pane, and the camera sees the plane through it,
+// each keeping (1 - F) times the glass's colour at its own angle. Every plane pixel against albedo / pi E times both
+// in double (Fresnel in its angles' form), at the float kernels' 1e-4. Glass taken as opaque (the shadow ray stops),
+// or its Fresnel or colour dropped, misses by far more.
+TEST(DirectLight, ThinGlassPassesLightAndSightWithItsColourAndFresnel) {
+  const glm::vec3 tint(0.9f, 0.8f, 0.6f);
+  const double ior = 1.5;
+  Scene s = plane_under_square(glass(tint, float(ior)), 30.0f, glm::vec3(0.6f, 0.0f, -0.8f));
+  const RenderedImage img = render(s, 64, 0);
+  const dvec3 eye(s.cameras[0].eye);
+  const double light_pass = 1.0 - fresnel_by_angles(0.8, ior);
+  size_t checked = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (img.triangle[i] < 0) continue;
+    ASSERT_LT(img.triangle[i], 2) << "pixel " << i << " sees the glass itself";
+    const dvec3 x = position_of(img, i), to = glm::normalize(x - eye);
+    const double sight_pass = 1.0 - fresnel_by_angles(-to.z, ior);
+    for (int c = 0; c < 3; ++c) {
+      const double expected = double(kAlbedo[c]) / kPi * 3.0 * 0.8 * light_pass * sight_pass * double(tint[c]) * double(tint[c]);
+      ASSERT_NEAR(direct_of(img, i)[c], expected, 1e-4 * expected + 1e-7) << "pixel " << i << " channel " << c;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 4000u);
+}
+
+// Glass with a volume (KHR_materials_volume): a slab 0.5 thick over an emissive plane, seen by an orthographic camera
+// tilted 40 degrees from the vertical. Each ray refracts into the slab (Snell), crosses it along thickness / cos_t,
+// attenuated by Beer-Lambert (attenuationColor at attenuationDistance), and refracts out; it keeps
+// (1 - F(cos_i, n)) (1 - F(cos_t, 1 / n)) tint^2 exp(-sigma chord) of the plane's radiance, the same at every pixel that
+// sees the plane through the slab. A ray taken straight through (thin), or without attenuation, misses by far more.
+// Tolerance: the float kernels' 1e-4, and the chord that the rays' offsets off each face shorten (at most 1/65536 of a
+// device unit each, host_device.h offset_ray_coordinate), which Beer-Lambert turns into sigma times that length.
+TEST(DirectLight, GlassVolumeRefractsAndAttenuatesTheCamerasRays) {
+  const glm::vec3 tint(0.95f, 0.9f, 0.85f), attenuation_color(0.5f, 0.7f, 0.9f);
+  const double ior = 1.5, thickness = 0.5, attenuation_distance = 0.8, radiance = 2.0;
+  Scene s;
+  s.source = "test slab";
+  s.materials.push_back({"emitter", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), -1, glm::vec3(float(radiance)), false});
+  s.add_triangle({-20, -20, 0}, {20, -20, 0}, {20, 20, 0}, 0);
+  s.add_triangle({-20, -20, 0}, {20, 20, 0}, {-20, 20, 0}, 0);
+  SceneMaterial slab = glass(tint, float(ior));
+  slab.thickness = float(thickness);
+  slab.attenuation_color = attenuation_color;
+  slab.attenuation_distance = float(attenuation_distance);
+  s.materials.push_back(slab);
+  // A closed box from z = 1 to 1.5, its faces wound outward.
+  const float a = 15.0f, z0 = 1.0f, z1 = 1.5f;
+  auto quad = [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3) {
+    s.add_triangle(p0, p1, p2, 1);
+    s.add_triangle(p0, p2, p3, 1);
+  };
+  quad({-a, -a, z1}, {a, -a, z1}, {a, a, z1}, {-a, a, z1});  // top, +z
+  quad({-a, -a, z0}, {-a, a, z0}, {a, a, z0}, {a, -a, z0});  // bottom, -z
+  quad({-a, -a, z0}, {a, -a, z0}, {a, -a, z1}, {-a, -a, z1});  // -y
+  quad({-a, a, z0}, {-a, a, z1}, {a, a, z1}, {a, a, z0});      // +y
+  quad({-a, -a, z0}, {-a, -a, z1}, {-a, a, z1}, {-a, a, z0});  // -x
+  quad({a, -a, z0}, {a, a, z0}, {a, a, z1}, {a, -a, z1});      // +x
+  const double tilt = 40.0 * kPi / 180.0;
+  SceneCamera cam;
+  cam.orthographic = true;
+  cam.eye = {float(-6.0 * std::sin(tilt)), 0.0f, float(1.5 + 6.0 * std::cos(tilt))};
+  cam.target = {0.0f, 0.0f, 1.5f};
+  cam.up = {0, 1, 0};
+  cam.xmag = cam.ymag = 2.0f;
+  s.cameras.push_back(cam);
+  const RenderedImage img = render(s, 48, 0);
+  const double cos_i = std::cos(tilt), sin_t = std::sin(tilt) / ior, cos_t = std::sqrt(1.0 - sin_t * sin_t);
+  const double chord = thickness / cos_t;
+  const double offsets = 2.0 * SceneFrame::fitted(s).scale / 65536.0 / cos_t;  // world units
+  const double kept = (1.0 - fresnel_by_angles(cos_i, ior)) * (1.0 - fresnel_by_angles(cos_t, 1.0 / ior));
+  size_t checked = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    ASSERT_EQ(img.triangle[i] >= 0 && img.triangle[i] < 2, true) << "pixel " << i << " must see the plane";
+    for (int c = 0; c < 3; ++c) {
+      const double sigma = -std::log(double(attenuation_color[c])) / attenuation_distance;
+      const double expected = radiance * kept * double(tint[c]) * double(tint[c]) * std::exp(-sigma * chord);
+      ASSERT_NEAR(img.emission[3 * i + c], expected, (1e-4 + sigma * offsets) * expected)
+          << "pixel " << i << " channel " << c;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, img.triangle.size());
 }
 
 }  // namespace

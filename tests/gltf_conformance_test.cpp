@@ -19,6 +19,7 @@
 #include "passes/ray_cast_pass.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "scene/scene_plan.h"
 #include "scene/tangents.h"
 #include "util/error.h"
 
@@ -408,6 +409,61 @@ TEST(GltfConformance, WebPTexturesAreRead) {
     ADD_FAILURE() << "a truncated WebP was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("broken.webp"), std::string::npos) << e.what();
+  }
+}
+
+// Glass: KHR_materials_transmission, _ior and _volume read as their texts define them (defaults where a field is
+// left out), the scene plan compiling glass code for them and no other, and each malformed value refused by name.
+TEST(GltfConformance, GlassExtensionsAreReadAndChecked) {
+  const std::string dir = test::scratch_dir();
+  auto scene_with = [&](const json& extensions, const std::string& name) {
+    GltfBuilder b;
+    add_quad(b, json::object(), 0);
+    b.doc["materials"] = json::array({{{"name", "pane"},
+                                       {"pbrMetallicRoughness", {{"roughnessFactor", 0.0}, {"metallicFactor", 0.0}}},
+                                       {"extensions", extensions}}});
+    b.doc["nodes"] = json::array({{{"mesh", 0}}});
+    return b.write(dir, name);
+  };
+  const Scene glass = load_gltf(scene_with(
+      {{"KHR_materials_transmission", {{"transmissionFactor", 0.8}}},
+       {"KHR_materials_ior", {{"ior", 1.33}}},
+       {"KHR_materials_volume",
+        {{"thicknessFactor", 0.2}, {"attenuationDistance", 2.0}, {"attenuationColor", {0.5, 0.25, 1.0}}}}},
+      "glass"));
+  const SceneMaterial& m = glass.materials[0];
+  EXPECT_FLOAT_EQ(m.transmission, 0.8f);
+  EXPECT_FLOAT_EQ(m.ior, 1.33f);
+  EXPECT_FLOAT_EQ(m.thickness, 0.2f);
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 2.0f);
+  EXPECT_EQ(m.attenuation_color, glm::vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_TRUE(glass.unsupported.empty()) << glass.unsupported.front();
+  const ScenePlan plan = plan_scene(glass);
+  EXPECT_EQ(plan.switches.at("HAS_TRANSMISSION"), "1");
+  EXPECT_EQ(plan.glass_materials, 1u);
+  EXPECT_FALSE(plan.materials[0].thin_walled);
+  // Defaults: the volume's attenuation infinitely far (clear), ior 1.5, thin-walled without a volume.
+  const Scene thin = load_gltf(scene_with({{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}, "thin"));
+  EXPECT_FLOAT_EQ(thin.materials[0].ior, 1.5f);
+  EXPECT_EQ(thin.materials[0].thickness, 0.0f);
+  EXPECT_TRUE(std::isinf(thin.materials[0].attenuation_distance));
+  EXPECT_TRUE(plan_scene(thin).materials[0].thin_walled);
+  const std::pair<json, const char*> refused[] = {
+      {{{"KHR_materials_ior", {{"ior", 0.9}}}}, "ior"},
+      {{{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}, "transmissionFactor"},
+      {{{"KHR_materials_transmission", {{"transmissionFactor", "all"}}}}, "transmissionFactor"},
+      {{{"KHR_materials_volume", {{"attenuationDistance", -1.0}}}}, "attenuationDistance"},
+      {{{"KHR_materials_volume", {{"attenuationColor", {0.5, 2.0, 0.5}}}}}, "attenuationColor"},
+      {{{"KHR_materials_volume", {{"thicknessFactor", -0.1}}}}, "thicknessFactor"}};
+  for (const auto& [extensions, word] : refused) {
+    try {
+      load_gltf(scene_with(extensions, "refused"));
+      ADD_FAILURE() << extensions.dump() << " was accepted";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("materials[0] 'pane'"), std::string::npos) << what;
+      EXPECT_NE(what.find(word), std::string::npos) << what;
+    }
   }
 }
 

@@ -524,6 +524,45 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.key_words = {"textures[0]", "EXT_texture_webp"};
     cases.push_back(c);
   }
+  {  // glass whose volume names a thickness texture on a primitive without texture coordinates: rendered, the texture
+     // named as not read (rays cross the mesh's own volume)
+    UntrustedCase c = quad_case("GlassThicknessTextureWithoutCoordinates", [](json& d) {
+      d["materials"] = json::array({{{"pbrMetallicRoughness", {{"roughnessFactor", 0.0}}},
+                                     {"extensions",
+                                      {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                       {"KHR_materials_volume",
+                                        {{"thicknessFactor", 0.1}, {"thicknessTexture", {{"index", 0}}}}}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+      d["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+    });
+    c.args = {"--sky", "0.3,0.4,0.6"};
+    c.renders = true;
+    c.key_words = {"thicknessTexture"};
+    cases.push_back(c);
+  }
+  {  // an index of refraction below 1
+    UntrustedCase c = quad_case("GlassIorBelowOne", [](json& d) {
+      d["materials"] = json::array({{{"name", "lens"},
+                                     {"extensions",
+                                      {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                       {"KHR_materials_ior", {{"ior", 0.5}}}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    c.key_words = {"materials[0] 'lens'", "ior"};
+    cases.push_back(c);
+  }
+  {  // attenuation at distance 0: an infinite coefficient
+    UntrustedCase c = quad_case("GlassAttenuationDistanceZero", [](json& d) {
+      d["materials"] = json::array({{{"extensions",
+                                      {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                       {"KHR_materials_volume",
+                                        {{"thicknessFactor", 1.0}, {"attenuationDistance", 0.0},
+                                         {"attenuationColor", {0.5, 0.5, 0.5}}}}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    c.key_words = {"materials[0]", "attenuationDistance"};
+    cases.push_back(c);
+  }
   return cases;
 }
 

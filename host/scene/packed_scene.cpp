@@ -211,7 +211,8 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     for (int i = 0; i < 3; ++i) {
       // Beer-Lambert: a colour c left after distance d is exp(-sigma d) = c.
       const float c = std::clamp(m.attenuation_color[i], 1e-6f, 1.0f), d = m.attenuation_distance;
-      out.attenuation[i] = std::isfinite(d) && d > 0.0f ? -std::log(c) / d : 0.0f;
+      // Per device unit: the device traces in the frame's units (scene/scene_frame.h).
+      out.attenuation[i] = std::isfinite(d) && d > 0.0f ? float(-std::log(double(c)) / double(d) * frame.scale) : 0.0f;
     }
     out.lobe = material_lobe(out.metallic, out.roughness, out.specular);
     // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
