@@ -1,5 +1,5 @@
 // Glass: glTF's KHR_materials_transmission with KHR_materials_ior and KHR_materials_volume (docs/ALGORITHM.md
-// section 11). Where a material transmits, glTF's dielectric base is mix(diffuse, specular BTDF, transmission) under
+// section 12). Where a material transmits, glTF's dielectric base is mix(diffuse, specular BTDF, transmission) under
 // the Fresnel-weighted specular layer; a point is glass with probability transmission x (1 - metallic) (hashed by
 // where it is, as blended alpha: every ray agrees on it, and the mixture's mean is glTF's for a dielectric), and opaque
 // with its BRDF otherwise. A glass point is smooth: it reflects R = specular x F(cos, ior) (unpolarised Fresnel, total

@@ -76,6 +76,13 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     direct_only.color_only = true;
     render(gpu, scene, direct_only);
   }
+  {  // Glass: the G-buffer's weights for pixels that look through it (kernels/gbuffer.cl weigh_through_glass).
+    Scene glass = scene;
+    glass.materials.back().transmission = 1.0f;
+    RenderSettings through = settings;
+    through.gi = GiMethod::splat;
+    render(gpu, glass, through);
+  }
   // Records kept across frames: a second frame fits the first one's to its view (kernels/placement.cl).
   {
     RenderSettings kept = settings;

@@ -111,6 +111,33 @@ TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
   }
 }
 
+// The Cornell box lit by a point light at `position` instead of its ceiling.
+Scene cornell_under_point_light(const glm::vec3& position) {
+  Scene scene = cornell_with("no emitter");
+  SceneLight light;
+  light.type = LightType::point;
+  light.position = position;
+  light.intensity = glm::vec3(2.0f);
+  scene.lights.push_back(light);
+  return scene;
+}
+
+// Renders the scene with the cache and the path tracer, plain and with `forced` compiled on: the same bits expected.
+void expect_forcing_changes_no_bit(const Scene& scene, const std::set<std::string>& forced, const std::string& names) {
+  for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
+    RenderSettings settings = test::one_bounce_one_sample();
+    settings.width = settings.height = 32;
+    settings.gi = gi;
+    settings.path.samples = 4;
+    const RenderedImage plain = render(test::gpu(), scene, settings);
+    settings.forced_switches = forced;
+    const RenderedImage compiled = render(test::gpu(), scene, settings);
+    EXPECT_EQ(plain.direct, compiled.direct) << names << gi_method_name(gi);
+    EXPECT_EQ(plain.indirect, compiled.indirect) << names << gi_method_name(gi);
+    EXPECT_EQ(plain.color, compiled.color) << names << gi_method_name(gi);
+  }
+}
+
 // Simulate only what a scene calls for, and lose nothing by it: compiling a feature's code for a scene that does not use
 // it changes no bit of the image (direct, indirect, colour), for the cache and the path tracer. The unused switches are
 // compiled on together (one set of programs a scene instead of one a switch: a fifth of the suite's kernel builds);
@@ -129,27 +156,9 @@ TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
     std::string names;
     for (const std::string& name : forced) names += name + " ";
     Scene scene = make_cornell_box();
-    if (*variant) {
-      scene = cornell_with("no emitter");
-      SceneLight light;
-      light.type = LightType::point;
-      light.position = glm::vec3(0.0f, scene.bounds_max().y - 0.1f, 0.0f);
-      light.intensity = glm::vec3(2.0f);
-      scene.lights.push_back(light);
-    }
+    if (*variant) scene = cornell_under_point_light(glm::vec3(0.0f, scene.bounds_max().y - 0.1f, 0.0f));
     for (const std::string& name : forced) ASSERT_EQ(plan_scene(scene).switches.at(name), "0") << name << " is already on";
-    for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
-      RenderSettings settings = test::one_bounce_one_sample();
-      settings.width = settings.height = 32;
-      settings.gi = gi;
-      settings.path.samples = 4;
-      const RenderedImage plain = render(test::gpu(), scene, settings);
-      settings.forced_switches = forced;
-      const RenderedImage compiled = render(test::gpu(), scene, settings);
-      EXPECT_EQ(plain.direct, compiled.direct) << names << gi_method_name(gi);
-      EXPECT_EQ(plain.indirect, compiled.indirect) << names << gi_method_name(gi);
-      EXPECT_EQ(plain.color, compiled.color) << names << gi_method_name(gi);
-    }
+    expect_forcing_changes_no_bit(scene, forced, names);
   }
 }
 
@@ -160,24 +169,9 @@ TEST(ScenePlan, CompilingAnUnusedFeatureChangesNoBit) {
 // of three walls and the light fixture's plane, and differed at 6 of 1024 direct values (by at most 6.3e-7), so glass
 // is tried here, under a light in the open. (A scene without glass never compiles it: HAS_TRANSMISSION is off.)
 TEST(ScenePlan, CompilingGlassCodeChangesNoBit) {
-  Scene scene = cornell_with("no emitter");
-  SceneLight light;
-  light.type = LightType::point;
-  light.position = 0.5f * (scene.bounds_min() + scene.bounds_max()) + glm::vec3(0.0f, 150.0f, 0.0f);
-  light.intensity = glm::vec3(2.0f);
-  scene.lights.push_back(light);
-  for (GiMethod gi : {GiMethod::splat, GiMethod::path}) {
-    RenderSettings settings = test::one_bounce_one_sample();
-    settings.width = settings.height = 32;
-    settings.gi = gi;
-    settings.path.samples = 4;
-    const RenderedImage plain = render(test::gpu(), scene, settings);
-    settings.forced_switches = {"HAS_TRANSMISSION"};
-    const RenderedImage compiled = render(test::gpu(), scene, settings);
-    EXPECT_EQ(plain.direct, compiled.direct) << gi_method_name(gi);
-    EXPECT_EQ(plain.indirect, compiled.indirect) << gi_method_name(gi);
-    EXPECT_EQ(plain.color, compiled.color) << gi_method_name(gi);
-  }
+  const Scene probe = cornell_with("no emitter");
+  const glm::vec3 open_air = 0.5f * (probe.bounds_min() + probe.bounds_max()) + glm::vec3(0.0f, 150.0f, 0.0f);
+  expect_forcing_changes_no_bit(cornell_under_point_light(open_air), {"HAS_TRANSMISSION"}, "HAS_TRANSMISSION ");
 }
 
 }  // namespace
