@@ -7,6 +7,7 @@
 # the layers its image needs (path tracing: the colour; its indirect layer, denoised for compare, is not counted). Writes OUT/*.exr, OUT/*.json and
 # OUT/table.md.
 #   SPPS="8 16 32" bash benchmarks/issue59_still_frame.sh SCENE REF.exr OUT [W H]
+# EXTRA="--environment sky.hdr" adds those arguments to every render (the reference must have been made with them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene="$1" ref="$2" out="$3" width="${4:-512}" height="${5:-384}"
@@ -15,6 +16,8 @@ py=benchmarks/.venv/bin/python
 mkdir -p "$out"
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
 size=(--width "$width" --height "$height")
+read -r -a extra <<<"${EXTRA:-}"
+size+=("${extra[@]}")
 row() {  # name, exr, summary json, layer prefix ("" or noisy)
   local name="$1" exr="$2" summary="$3" prefix="$4"
   local img="$exr"

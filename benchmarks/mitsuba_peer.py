@@ -13,8 +13,13 @@ The glTF subset: triangle meshes (node transforms, POSITION, NORMAL, TEXCOORD_0,
 texture (sRGB), metallic and roughness factors (rcsplat's own BRDF as a Mitsuba plugin, benchmarks/
 mitsuba_gltf_bsdf.py: Mitsuba has no glTF material, and its roughplastic and principled differ from it by 15-30% on a
 rough Cornell box), emissive factor and strength (area lights), KHR_lights_punctual point, spot and directional lights (intensity as radiant intensity, as rcsplat reads
-it). Not converted (named when met): textures other than base colour, vertex colours, alpha, transmission, the range
-of punctual lights. A scene without lights gets rcsplat's default light in rcsplat but none here: refused.
+it), glass (KHR_materials_transmission with factor 1: thin-walled as Mitsuba's thindielectric, with a
+KHR_materials_volume as its dielectric, ior from KHR_materials_ior, the base colour as the transmission's tint), and
+a uniform sky (--sky) as a constant emitter. Not converted (named when met): textures other than base colour, vertex
+colours, alpha, a transmission factor below 1, a volume's attenuation, environment maps, the range of punctual lights.
+A scene without lights gets rcsplat's default light in rcsplat but none here: refused. The two thin-walled models
+differ by design: glTF's (rcsplat's) is one interface, passing 1 - R; Mitsuba's thindielectric is a slab's two,
+passing (1 - R) / (1 + R) with the light bouncing between them.
 
   bash benchmarks/setup_python.sh          # once
   benchmarks/.venv/bin/python benchmarks/mitsuba_peer.py SCENE.gltf --reference REF.exr [--cache CACHE.exr] \\
@@ -180,9 +185,21 @@ def bsdf_and_emitter(g, material_index):
         g.skipped.add("metallicRoughnessTexture")
     if m.get("alphaMode", "OPAQUE") != "OPAQUE":
         g.skipped.add("alpha")
-    if "KHR_materials_transmission" in m.get("extensions", {}):
-        g.skipped.add("transmission (opaque here, as in rcsplat)")
     metallic, roughness = pbr.get("metallicFactor", 1.0), pbr.get("roughnessFactor", 1.0)
+    extensions = m.get("extensions", {})
+    transmission = extensions.get("KHR_materials_transmission", {}).get("transmissionFactor", 0.0)
+    if transmission > 0.0:
+        if transmission < 1.0 or metallic > 0.0 or roughness > 0.0:
+            g.skipped.add("glass that is partly opaque, metallic or rough (converted as smooth glass all over)")
+        ior = extensions.get("KHR_materials_ior", {}).get("ior", 1.5)
+        volume = extensions.get("KHR_materials_volume", {})
+        if "attenuationDistance" in volume:
+            g.skipped.add("a volume's attenuation (clear here)")
+        thick = volume.get("thicknessFactor", 0.0) > 0.0
+        glass = {"type": "dielectric" if thick else "thindielectric", "int_ior": ior, "ext_ior": 1.0,
+                 "specular_transmittance": base,
+                 "specular_reflectance": extensions.get("KHR_materials_specular", {}).get("specularFactor", 1.0)}
+        return glass, None
     if DIFFUSE_ONLY:
         bsdf = {"type": "diffuse", "reflectance": base}
     else:
@@ -203,10 +220,12 @@ def parse_camera(text):
     return vec("eye"), vec("target"), vec("up"), float(values["yfov_degrees"])
 
 
-def scene_dict(g, mi, camera, width, height, bounces, work):
+def scene_dict(g, mi, camera, width, height, bounces, work, sky=None, glass_depth=0):
     eye, target, up, yfov = camera
+    # Mitsuba counts a glass crossing as a bounce, rcsplat does not: glass_depth more for the crossings a path makes.
     d = {"type": "scene",
-         "integrator": {"type": "path", "max_depth": bounces + 2, "rr_depth": 1000, "hide_emitters": False},
+         "integrator": {"type": "path", "max_depth": bounces + 2 + glass_depth, "rr_depth": 1000,
+                        "hide_emitters": False},
          "sensor": {"type": "perspective", "fov_axis": "y", "fov": yfov,
                     "to_world": mi.ScalarTransform4f().look_at(origin=eye, target=target, up=up),
                     "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
@@ -242,6 +261,9 @@ def scene_dict(g, mi, camera, width, height, bounces, work):
             d[f"shape_{count}"] = shape
             count += 1
     lights = 0
+    if sky is not None:
+        d["sky"] = {"type": "constant", "radiance": {"type": "rgb", "value": sky}}
+        lights += 1
     for light, world in g.lights():
         colour = np.array(light.get("color", [1, 1, 1])) * light.get("intensity", 1.0)
         position = world[:3, 3].tolist()
@@ -299,6 +321,8 @@ def main():
     ap.add_argument("--spp", default="4,16,64,256")
     ap.add_argument("-o", "--output", default="mitsuba_peer")
     ap.add_argument("--json")
+    ap.add_argument("--glass-depth", type=int, default=0,
+                    help="path depth added for glass crossings, which Mitsuba counts as bounces and rcsplat does not")
     ap.add_argument("--bsdf", default="gltf", choices=["gltf", "diffuse"],
                     help="gltf: rcsplat's BRDF as a Mitsuba plugin (default); diffuse: Mitsuba's Lambertian")
     a = ap.parse_args()
@@ -315,8 +339,12 @@ def main():
     reference = read_layer(a.reference)
     height, width = reference.shape[:2]
     bounces = int(attrs.get("rcsplat:bounces", "1"))
-    if attrs.get("rcsplat:environment", "none") != "none":
-        sys.exit("mitsuba_peer: environment light is not converted")
+    environment = attrs.get("rcsplat:environment", "none")
+    sky = None
+    if environment.startswith("uniform sky ("):
+        sky = [float(v) for v in environment[len("uniform sky ("):].rstrip(")").split(",")]
+    elif environment != "none":
+        sys.exit("mitsuba_peer: environment maps are not converted (a uniform sky is)")
     os.makedirs(a.output, exist_ok=True)
     g = Gltf(a.scene)
     if "rcsplat:camera" in attrs:
@@ -324,7 +352,7 @@ def main():
     else:  # a reference from before rcsplat wrote its view: the scene's first camera, as rcsplat's default
         camera = g.first_camera()
         print(f"{a.reference}: no rcsplat:camera attribute; using the scene's first camera")
-    scene = mi.load_dict(scene_dict(g, mi, camera, width, height, bounces, a.output))
+    scene = mi.load_dict(scene_dict(g, mi, camera, width, height, bounces, a.output, sky, a.glass_depth))
     if g.skipped:
         print("not converted:", "; ".join(sorted(g.skipped)))
 

@@ -68,12 +68,15 @@ inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
 // A camera ray that met glass looks through it (kernels/glass.h): at each glass point it passes (straight, or
 // refracted into or out of a volume) keeping 1 - R times the glass's tint, or where glass reflects all (total internal
 // reflection) follows the reflection, so every pixel sees one surface the cache can shade, never the glass. The first
-// glass point adds to *reflection R times what its mirror image shows (mirrored_sources). Returns the weight of the
-// light from *hit, the first surface that is not glass (prim -1: none, the ray leaves along *dir); *distance is the
-// chain's length. A ray still in glass after GLASS_MAX_CROSSINGS sees nothing (weight 0).
-inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float* distance, float3* reflection) {
+// glass point adds to *reflection R times what its mirror image shows (mirrored_sources), and keeps the mirrored ray
+// for the lit surfaces it meets (*mirror_from: origin and R, *mirror_toward: direction; kernels/glass_mirror.cl).
+// Returns the weight of the light from *hit, the first surface that is not glass (prim -1: none, the ray leaves along
+// *dir); *distance is the chain's length. A ray still in glass after GLASS_MAX_CROSSINGS sees nothing (weight 0).
+inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float* distance, float3* reflection,
+                                   float4* mirror_from, float4* mirror_toward) {
   float3 weight = (float3)(1.0f);
   *reflection = (float3)(0.0f);
+  *mirror_from = *mirror_toward = (float4)(0.0f);
   *distance = hit->t;
   for (uint k = 0u; hit->prim >= 0 && is_glass(triangles, materials, textures, texels, hit->prim, hit->u, hit->v); ++k) {
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
@@ -81,8 +84,12 @@ inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float
     float3 through, mirror, tint;
     const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, &through, &mirror, &tint);
     const float3 toward = dot(*dir, s.geometric_normal) > 0.0f ? -s.geometric_normal : s.geometric_normal;
-    if (k == 0u && r > 0.0f && r < 1.0f)
-      *reflection = r * mirrored_sources(SCENE, offset_ray_origin(s.position, toward), mirror);
+    if (k == 0u && r > 0.0f && r < 1.0f) {
+      const float3 from = offset_ray_origin(s.position, toward);
+      *reflection = r * mirrored_sources(SCENE, from, mirror);
+      *mirror_from = (float4)(from, r);
+      *mirror_toward = (float4)(mirror, 0.0f);
+    }
     if (r < 1.0f) {
       weight *= (1.0f - r) * tint;
       *dir = through;
@@ -108,9 +115,10 @@ __kernel void weigh_through_glass(__global const float4* see_through, uint pixel
 
 // Writes the G-buffer the other passes read through GBUFFER_ARGS, and in scenes with glass (HAS_TRANSMISSION) what the
 // glass each camera ray looked through kept (see_through: RGB, 1 without glass), which weighs the pixel's direct and
-// indirect light; what the glass mirrors is added to the pixel's emission.
+// indirect light; what the glass mirrors of the sky and emitters is added to the pixel's emission, and the mirrored
+// ray kept in glass_mirrors (two float4 a pixel) for the lit surfaces it meets.
 __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera,
-                      __global float4* see_through) {
+                      __global float4* see_through, __global float4* glass_mirrors) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
   float2 offset = pixel_offset(camera, x, y);
@@ -122,12 +130,16 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
   float3 through_glass = (float3)(1.0f), mirrored = (float3)(0.0f);
   float distance = hit.t;
 #if HAS_TRANSMISSION
+  float4 mirror_from = (float4)(0.0f), mirror_toward = (float4)(0.0f);
   if (found) {
-    through_glass = camera_through_glass(SCENE, &hit, &dir, &distance, &mirrored);
+    through_glass = camera_through_glass(SCENE, &hit, &dir, &distance, &mirrored, &mirror_from, &mirror_toward);
     found = hit.prim >= 0;
     hit.t = distance;
   }
-  see_through[y * camera->width + x] = (float4)(through_glass, 1.0f);
+  const size_t pixel = (size_t)y * camera->width + x;
+  see_through[pixel] = (float4)(through_glass, 1.0f);
+  glass_mirrors[2 * pixel] = mirror_from;
+  glass_mirrors[2 * pixel + 1] = mirror_toward;
 #endif
   GBufferSample g;
   g.mapped_normal[0] = NO_MAPPED_NORMAL;

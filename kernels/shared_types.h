@@ -466,6 +466,14 @@ typedef struct {
   rc_uint pad[3];
 } PathParams;
 
+// The lit surfaces camera rays see mirrored in glass (kernels/glass_mirror.cl).
+typedef struct {
+  rc_uint pixel_count;
+  rc_uint samples;  // paths per pixel that looks at glass
+  rc_uint seed;
+  rc_uint bounces;  // the frame's indirect bounces: the mirrored surface's light has as many as a surface seen directly
+} GlassMirrorParams;
+
 // The splat's records found by position in the world (kernels/world_records.h; host/cache/world_record_grid.h): a
 // hashed grid (kernels/photon_grid.h's hash) of cubes of side cell_size, bucket h listing, once each, the records
 // whose reach (a sphere of accuracy x radius about the record: beyond it Ward's weight is below 1/a) meets a cell
@@ -651,6 +659,7 @@ static_assert(sizeof(BrdfTableParams) == 32);
 static_assert(sizeof(SceneCounts) == 32);
 static_assert(sizeof(DirectParams) == 32);
 static_assert(sizeof(PathParams) == 32);
+static_assert(sizeof(GlassMirrorParams) == 16);
 static_assert(sizeof(RecordBatchParams) == 64);
 static_assert(sizeof(StoredGuideCone) == 32);
 static_assert(sizeof(RecordGuideCones) == 32 * GUIDE_MAX_CONES + 32);

@@ -585,5 +585,54 @@ TEST(DirectLight, GlassVolumeRefractsAndAttenuatesTheCamerasRays) {
   EXPECT_EQ(checked, img.triangle.size());
 }
 
+// What glass mirrors at the camera: the thin pane over the plane, seen from above, and a Lambertian ceiling at z = 8
+// lit from below by a point light at z = 7. A plane pixel gets the plane's direct light through the pane (the light
+// and the view each keep (1 - F) tint) plus R(view) times the ceiling's radiance where the mirrored ray meets it,
+// albedo / pi I cos / d^2 (kernels/glass_mirror.cl: its direct light alone in a frame without indirect light). Every
+// value in double against the float kernels' 1e-4; without the mirror pass the pixels miss by the ceiling's share.
+TEST(DirectLight, GlassMirrorsTheLitSurfacesTheCameraSeesInIt) {
+  const glm::vec3 tint(0.9f, 0.8f, 0.6f);
+  const double ior = 1.5, ceiling_albedo = 0.8;
+  Scene s = plane_scene();
+  s.materials.push_back(glass(tint, float(ior)));
+  s.add_triangle({-30, -30, 1}, {30, -30, 1}, {30, 30, 1}, 1);
+  s.add_triangle({-30, -30, 1}, {30, 30, 1}, {-30, 30, 1}, 1);
+  s.materials.push_back({"ceiling", glm::vec4(glm::vec3(float(ceiling_albedo)), 1.0f), -1, glm::vec3(0.0f), false});
+  s.add_triangle({-30, -30, 8}, {30, 30, 8}, {30, -30, 8}, 2);  // facing down
+  s.add_triangle({-30, -30, 8}, {-30, 30, 8}, {30, 30, 8}, 2);
+  SceneLight l;
+  l.position = {0.3f, 0.2f, 7.0f};
+  l.intensity = {10.0f, 20.0f, 30.0f};
+  s.lights.push_back(l);
+  const RenderedImage img = render(s, 48, 0);
+  const dvec3 eye(s.cameras[0].eye), light(l.position), intensity(l.intensity);
+  size_t checked = 0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (img.triangle[i] < 0) continue;
+    ASSERT_LT(img.triangle[i], 2) << "pixel " << i << " sees the glass itself";
+    const dvec3 x = position_of(img, i), view = glm::normalize(x - eye);
+    // The plane's light: the point light through the pane at its own angle.
+    const dvec3 to_light = light - x;
+    const double d2 = glm::dot(to_light, to_light), cos_light = to_light.z / std::sqrt(d2);
+    const double light_pass = 1.0 - fresnel_by_angles(cos_light, ior), view_pass = 1.0 - fresnel_by_angles(-view.z, ior);
+    // The mirrored ray: from where the view crosses the pane, up to the ceiling.
+    const dvec3 on_pane = eye + view * ((1.0 - eye.z) / view.z);
+    const dvec3 mirrored(view.x, view.y, -view.z);
+    const dvec3 on_ceiling = on_pane + mirrored * ((8.0 - on_pane.z) / mirrored.z);
+    const dvec3 ceiling_to_light = light - on_ceiling;
+    const double dc2 = glm::dot(ceiling_to_light, ceiling_to_light), cos_c = -ceiling_to_light.z / std::sqrt(dc2);
+    const double r_view = fresnel_by_angles(-view.z, ior);
+    for (int c = 0; c < 3; ++c) {
+      const double plane = double(kAlbedo[c]) / kPi * intensity[c] * cos_light / d2 * light_pass * view_pass *
+                           double(tint[c]) * double(tint[c]);
+      const double ceiling = ceiling_albedo / kPi * intensity[c] * cos_c / dc2;
+      const double expected = plane + r_view * ceiling;
+      ASSERT_NEAR(direct_of(img, i)[c], expected, 1e-4 * expected + 1e-7) << "pixel " << i << " channel " << c;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000u);
+}
+
 }  // namespace
 }  // namespace rcsplat

@@ -24,10 +24,12 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.lobe_counts[LOBE_NONE], plan.lobe_counts[LOBE_ROUGH], plan.lobe_counts[LOBE_HSH],
               plan.lobe_counts[LOBE_GLOSSY]);
   for (const MaterialPlan& m : plan.materials)
-    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
+    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s%s%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
                 m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
-                lobe_treatment(m.lobe));
+                !m.glass ? "" : m.thin_walled ? ", thin-walled glass" : ", glass with a volume",
+                m.glass ? "seen through and passed by every ray, never cached (the share that is not glass as its kind says)"
+                        : lobe_treatment(m.lobe));
   std::printf("textures     %zu%s%s%s%s\n", plan.textures,
               plan.textures ? " (filtered by each ray's footprint through mip chains where the sampler allows)" : "",
               plan.vertex_colors ? ", vertex colours" : "",
@@ -41,8 +43,8 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
     std::printf("emission     %u material(s) textured: seen and sampled at their texels, emitters chosen by their "
                 "textured power\n", plan.emissive_textured_materials);
   if (plan.glass_materials)
-    std::printf("glass        %u material(s): camera rays see through it (its colour and Fresnel) and see the sky and "
-                "lights it mirrors; every other ray reflects or passes by Fresnel; shadow rays pass it with its colour "
+    std::printf("glass        %u material(s): camera rays see through it (its colour and Fresnel) and see what it "
+                "mirrors; every other ray reflects or passes by Fresnel; shadow rays pass it with its colour "
                 "(thin-walled: exact; a volume: straight through, its caustics not focused); records never sit on it\n",
                 plan.glass_materials);
   std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,

@@ -22,6 +22,7 @@ void GBufferPass::run(const CameraParams& camera) {
     view_.samples = gpu_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(pixels, 1) * sizeof(GBufferSample), "G-buffer");
     const size_t weights = scene_.has_glass() ? std::max<size_t>(pixels, 1) : 1;
     view_.see_through = gpu_.buffer(CL_MEM_READ_WRITE, weights * sizeof(cl_float4), "G-buffer");
+    view_.glass_mirrors = gpu_.buffer(CL_MEM_READ_WRITE, 2 * weights * sizeof(cl_float4), "G-buffer");
   }
   view_.width = camera.width;
   view_.height = camera.height;
@@ -30,6 +31,7 @@ void GBufferPass::run(const CameraParams& camera) {
   scene_.bind(kernel_);
   view_.bind(kernel_);
   view_.bind_see_through(kernel_);
+  kernel_.set_buffer<cl_float4>("glass_mirrors", view_.glass_mirrors);
   // Square tiles: neighbouring rays in one group, as the traversal prefers.
   kernel_.launch_2d(size_t(camera.width), size_t(camera.height), gpu_.groups().tile_side);
   gpu_.queue().finish();

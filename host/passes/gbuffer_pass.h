@@ -16,6 +16,9 @@ struct GBufferView {
   // Per pixel, what the glass its camera ray looked through kept (RGB; kernels/gbuffer.cl): the pixel's direct and
   // indirect light are weighed by it. One unread float4 in a scene without glass.
   cl::Buffer see_through;
+  // Per pixel two float4: the ray its camera ray's first glass point mirrors (origin and R, direction), for
+  // kernels/glass_mirror.cl; one unread pair without glass.
+  cl::Buffer glass_mirrors;
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
   size_t output_pixel_count() const { return pixel_count() / size_t(sub_pixel_side * sub_pixel_side); }

@@ -14,6 +14,7 @@
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/direct_pass.h"
+#include "passes/glass_mirror_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
 #include "passes/guide_cluster_pass.h"
@@ -139,6 +140,7 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   // their passes.
   GBufferPass::build_ahead(gpu_, *device_scene_);
   DirectPass::build_ahead(gpu_, *device_scene_);
+  if (device_scene_->has_glass()) GlassMirrorPass::build_ahead(gpu_, *device_scene_);
 }
 
 void Renderer::build_programs_ahead(const FramePlan& plan) {
@@ -266,6 +268,10 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
       st.primary.light_refined_pixels = run.refined_pixels;
     }
     gbuffer.weigh_through_glass(direct.radiance());  // a pixel that looks through glass sees its light through it
+    if (glass_mirror_)  // and the lit surfaces its glass mirrors, as many paths as light samples
+      glass_mirror_->run(gbuffer.view(), direct.radiance(), std::max(settings.light_samples, 1u),
+                         hash_u32(settings.seed ^ STREAM_GLASS_MIRROR),
+                         settings.gi == GiMethod::none ? 0u : std::max(settings.bounces, 1u));
   }
 
   StageTimer layers_timing(st.primary.layers_s);
@@ -450,6 +456,7 @@ RenderedImage Renderer::render(const FramePlan& plan) {
     log_info("compiling kernels for " + gpu_.device_info().name);
     gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
     direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
+    if (device_scene_->has_glass()) glass_mirror_ = std::make_unique<GlassMirrorPass>(gpu_, *device_scene_);
   }
   if (!layers_ || layers_->side() != image.side || layers_->out_width() != image.width ||
       layers_->out_height() != image.height)

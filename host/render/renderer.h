@@ -24,6 +24,7 @@ namespace rcsplat {
 class DeviceScene;
 class GBufferPass;
 class DirectPass;
+class GlassMirrorPass;
 class LayerPass;
 struct RadianceLobeTable;
 struct ViewIndependentLight;
@@ -71,6 +72,7 @@ class Renderer {
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;
+  std::unique_ptr<GlassMirrorPass> glass_mirror_;  // scenes with glass
   std::unique_ptr<LayerPass> layers_;
   std::unique_ptr<ViewIndependentLight> light_;
   std::unique_ptr<MethodPasses> passes_;  // the last frame's method's

@@ -218,6 +218,9 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     // A texture can only lower the factors: the material's lobe is the sharpest its texels may make.
     // (A specular texture can only lower the weight: the factor's lobe stands.)
     if (out.lobe != LOBE_NONE && m.metallic_roughness_texture >= 0) out.lobe = material_lobe(out.metallic, 0.0f, out.specular);
+    // Glass all over is never a pixel's or a hit's surface (kernels/glass.h): its reflection is the glass code's, and
+    // it needs no BRDF.
+    if (out.transmission >= 1.0f && out.transmission_texture < 0 && out.metallic == 0.0f) out.lobe = LOBE_NONE;
     p.materials.push_back(out);
   }
   // Colour textures (base colour, emission) are averaged in linear light down their mip chain; data ones as stored.
