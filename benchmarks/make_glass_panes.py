@@ -3,6 +3,7 @@
 from above at an angle, with one glass object between the sky and the floor and in the camera's view:
   none.gltf   the floor alone (the control: rcsplat and Mitsuba agree on the sky's light on it)
   thin.gltf   a tinted thin-walled pane (KHR_materials_transmission, ior 1.5)
+  clear.gltf  the same pane untinted
   slab.gltf   a clear slab 0.3 thick (KHR_materials_volume, ior 1.5)
 
     python3 benchmarks/make_glass_panes.py OUT_DIR"""
@@ -75,6 +76,9 @@ def main():
                             "KHR_materials_ior": {"ior": 1.5}, "KHR_materials_volume": {"thicknessFactor": 0.3}}}
     write(out, "none", [(floor, grey)])
     write(out, "thin", [(floor, grey), (pane, thin)])
+    untinted = json.loads(json.dumps(thin))
+    untinted["pbrMetallicRoughness"]["baseColorFactor"] = [1, 1, 1, 1]
+    write(out, "clear", [(floor, grey), (pane, untinted)])
     write(out, "slab", [(floor, grey), (slab, clear)])
 
 

@@ -49,27 +49,41 @@ inline float primary_cone_width(__global const CameraParams* cam, float t) {
 
 #if HAS_TRANSMISSION
 // What the mirror image in glass shows along dir from origin: the sky where the ray leaves the scene, an emitter's
-// light where it meets one. Lit surfaces seen in glass are left out: their light is not known when the G-buffer is made.
+// light where it meets one, through the glass on the way (passed as camera rays pass it: the light inside a slab
+// mirrored by its far face leaves through its near one). Lit surfaces are kernels/glass_mirror.cl's: their light is
+// not known when the G-buffer is made.
 inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
-  RayPrecomp r = ray_precompute(origin, dir);
-  TraceHit hit;
-  if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
+  float3 weight = (float3)(1.0f);
+  for (uint k = 0u; k < GLASS_MAX_CROSSINGS; ++k) {
+    RayPrecomp r = ray_precompute(origin, dir);
+    TraceHit hit;
+    if (!bvh_trace(BVH, &r, 0.0f, INFINITY, false, &hit)) {
 #if HAS_ENVIRONMENT
-    return environment_radiance(environment, scene_counts, dir);
+      return weight * environment_radiance(environment, scene_counts, dir);
 #else
-    return (float3)(0.0f);
+      return (float3)(0.0f);
 #endif
+    }
+    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    if (!is_glass(triangles, materials, textures, texels, hit.prim, hit.u, hit.v)) {
+      if (dot(s.geometric_normal, dir) > 0.0f && !materials[s.material].double_sided) return (float3)(0.0f);
+      return weight * surface_emission(materials, textures, texels, &s);
+    }
+    float3 through, mirror, tint;
+    const float reflectance = glass_crossing(materials, textures, texels, &s, dir, hit.t, false, &through, &mirror, &tint);
+    if (!(reflectance < 1.0f)) return (float3)(0.0f);
+    weight *= (1.0f - reflectance) * tint;
+    dir = through;
+    origin = offset_ray_origin(s.position, dot(dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal);
   }
-  SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-  if (dot(s.geometric_normal, dir) > 0.0f && !materials[s.material].double_sided) return (float3)(0.0f);
-  return surface_emission(materials, textures, texels, &s);
+  return (float3)(0.0f);
 }
 
 // A camera ray that met glass looks through it (kernels/glass.h): at each glass point it passes (straight, or
 // refracted into or out of a volume) keeping 1 - R times the glass's tint, or where glass reflects all (total internal
-// reflection) follows the reflection, so every pixel sees one surface the cache can shade, never the glass. The first
-// glass point adds to *reflection R times what its mirror image shows (mirrored_sources), and keeps the mirrored ray
-// for the lit surfaces it meets (*mirror_from: origin and R, *mirror_toward: direction; kernels/glass_mirror.cl).
+// reflection) follows the reflection, so every pixel sees one surface the cache can shade, never the glass. Each glass
+// point adds to *reflection R times what its mirror image shows (mirrored_sources), weighed by what the glass before it
+// kept; the first keeps the mirrored ray for the lit surfaces it meets (*mirror_from: origin and R, *mirror_toward: direction; kernels/glass_mirror.cl).
 // Returns the weight of the light from *hit, the first surface that is not glass (prim -1: none, the ray leaves along
 // *dir); *distance is the chain's length. A ray still in glass after GLASS_MAX_CROSSINGS sees nothing (weight 0).
 inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float* distance, float3* reflection,
@@ -82,13 +96,15 @@ inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
     float3 through, mirror, tint;
-    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, &through, &mirror, &tint);
+    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
     const float3 toward = dot(*dir, s.geometric_normal) > 0.0f ? -s.geometric_normal : s.geometric_normal;
-    if (k == 0u && r > 0.0f && r < 1.0f) {
+    if (r > 0.0f && r < 1.0f) {  // every face mirrors: a slab's far face too, seen through its near one
       const float3 from = offset_ray_origin(s.position, toward);
-      *reflection = r * mirrored_sources(SCENE, from, mirror);
-      *mirror_from = (float4)(from, r);
-      *mirror_toward = (float4)(mirror, 0.0f);
+      *reflection += weight * r * mirrored_sources(SCENE, from, mirror);
+      if (k == 0u) {
+        *mirror_from = (float4)(from, r);
+        *mirror_toward = (float4)(mirror, 0.0f);
+      }
     }
     if (r < 1.0f) {
       weight *= (1.0f - r) * tint;

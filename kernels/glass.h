@@ -60,24 +60,27 @@ inline float dielectric_reflectance(float cos_i, float eta, float* cos_t) {
 // One crossing of a glass point s, reached along unit dir at distance t from the ray's last point: returns the
 // reflectance R; *through is the direction a passing ray takes and *tint what it keeps of the light besides 1 - R (the
 // base colour, and leaving a volume its attenuation over t); *mirror the reflected direction. The side is the
-// triangle's winding: a ray against the geometric normal enters the volume.
+// triangle's winding: a ray against the geometric normal enters the volume. `straight` (shadow rays, which pass a
+// volume unbent): each face is taken as a refracting ray would meet it, entering at the angle the straight ray makes
+// and leaving at the same angle (exactly so through a slab of parallel faces), so neither face reflects all the light
+// by total internal reflection, and the attenuation runs over the refracted chord, t cos_i / cos_t.
 inline float glass_crossing(__global const Material* materials, __global const TextureInfo* textures,
-                            __global const uint* texels, SurfacePoint* s, float3 dir, float t, float3* through,
-                            float3* mirror, float3* tint) {
+                            __global const uint* texels, SurfacePoint* s, float3 dir, float t, bool straight,
+                            float3* through, float3* mirror, float3* tint) {
   __global const Material* m = materials + s->material;
   const bool entering = dot(s->geometric_normal, dir) < 0.0f;
   float3 n = entering ? s->shading_normal : -s->shading_normal;  // toward the side the ray comes from
   if (dot(n, dir) >= 0.0f) n = entering ? s->geometric_normal : -s->geometric_normal;
   const float cos_i = -dot(n, dir);
   const bool volume = m->thickness > 0.0f;
-  const float eta = volume && !entering ? 1.0f / m->ior : m->ior;
+  const float eta = volume && !entering && !straight ? 1.0f / m->ior : m->ior;
   float cos_t;
   const float r = clamp(m->specular, 0.0f, 1.0f) * dielectric_reflectance(cos_i, eta, &cos_t);
   *mirror = dir + (2.0f * cos_i) * n;
   // Thin-walled glass lets the ray through unbent; a volume bends it by Snell's law (Fresnel's cos_t is its cosine).
-  *through = volume ? normalize(dir / eta + (cos_i / eta - cos_t) * n) : dir;
+  *through = volume && !straight ? normalize(dir / eta + (cos_i / eta - cos_t) * n) : dir;
   *tint = surface_albedo(materials, textures, texels, s);
-  if (volume && !entering) *tint *= exp(-vload3(0, m->attenuation) * t);
+  if (volume && !entering) *tint *= exp(-vload3(0, m->attenuation) * (straight ? t * cos_i / cos_t : t));
   return cos_t > 0.0f || !volume ? r : 1.0f;
 }
 
@@ -93,7 +96,7 @@ inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, f
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
     float3 through, mirror, tint;
-    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, &through, &mirror, &tint);
+    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
     const float u = random01((uint)hit->prim * GLASS_MAX_CROSSINGS + k, as_uint(hit->u) ^ as_uint(dir->x),
                              as_uint(hit->v) ^ as_uint(dir->y));
     if (u < r) {
@@ -111,7 +114,8 @@ inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, f
 
 // What of the light along a shadow ray (from `from` along to_offset up to tmax, as visible() takes it) gets through:
 // 0 where something opaque blocks it, and through glass each crossing's 1 - R times its tint, straight on (exact for
-// thin-walled glass; through a volume, the light a curved one would focus or bend is not followed).
+// thin-walled glass, and for a slab of parallel faces but for the light's sideways shift; the light a curved volume
+// would focus or bend is not followed).
 inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float tmax, RayTally* rays) {
   float3 weight = (float3)(1.0f);
   const bool toward_point = !isinf(tmax);
@@ -135,7 +139,8 @@ inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float
     const float length_per_t = length(to_offset);
     const float3 dir = to_offset / length_per_t;
     float3 through, mirror, tint;
-    const float r = glass_crossing(materials, textures, texels, &s, dir, hit.t * length_per_t, &through, &mirror, &tint);
+    const float r =
+        glass_crossing(materials, textures, texels, &s, dir, hit.t * length_per_t, true, &through, &mirror, &tint);
     weight *= (1.0f - r) * tint;
     if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) return weight;
     from = offset_ray_origin(s.position, dot(dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal);
