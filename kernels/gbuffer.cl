@@ -74,7 +74,7 @@ inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
     if (!(reflectance < 1.0f)) return (float3)(0.0f);
     weight *= (1.0f - reflectance) * tint;
     dir = through;
-    origin = offset_ray_origin(s.position, dot(dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal);
+    origin = leaving_origin(&s, dir);
   }
   return (float3)(0.0f);
 }
@@ -83,7 +83,8 @@ inline float3 mirrored_sources(SCENE_ARGS, float3 origin, float3 dir) {
 // refracted into or out of a volume) keeping 1 - R times the glass's tint, or where glass reflects all (total internal
 // reflection) follows the reflection, so every pixel sees one surface the cache can shade, never the glass. Each glass
 // point adds to *reflection R times what its mirror image shows (mirrored_sources), weighed by what the glass before it
-// kept; the first keeps the mirrored ray for the lit surfaces it meets (*mirror_from: origin and R, *mirror_toward: direction; kernels/glass_mirror.cl).
+// kept; the first keeps the mirrored ray for the lit surfaces it meets (*mirror_from: origin and R, *mirror_toward:
+// its direction; kernels/glass_mirror.cl).
 // Returns the weight of the light from *hit, the first surface that is not glass (prim -1: none, the ray leaves along
 // *dir); *distance is the chain's length. A ray still in glass after GLASS_MAX_CROSSINGS sees nothing (weight 0).
 inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float* distance, float3* reflection,
@@ -97,9 +98,8 @@ inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
     float3 through, mirror, tint;
     const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
-    const float3 toward = dot(*dir, s.geometric_normal) > 0.0f ? -s.geometric_normal : s.geometric_normal;
     if (r > 0.0f && r < 1.0f) {  // every face mirrors: a slab's far face too, seen through its near one
-      const float3 from = offset_ray_origin(s.position, toward);
+      const float3 from = leaving_origin(&s, mirror);
       *reflection += weight * r * mirrored_sources(SCENE, from, mirror);
       if (k == 0u) {
         *mirror_from = (float4)(from, r);
@@ -112,8 +112,7 @@ inline float3 camera_through_glass(SCENE_ARGS, TraceHit* hit, float3* dir, float
     } else {
       *dir = mirror;
     }
-    const float3 side = dot(*dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal;
-    RayPrecomp next = ray_precompute(offset_ray_origin(s.position, side), *dir);
+    RayPrecomp next = ray_precompute(leaving_origin(&s, *dir), *dir);
     if (!bvh_trace(BVH, &next, 0.0f, INFINITY, false, hit)) hit->prim = -1;
     else *distance += hit->t;
   }

@@ -19,6 +19,12 @@
 #define GLASS_MAX_CROSSINGS 8u
 
 #if HAS_TRANSMISSION
+// Where a ray along dir leaves glass point s from: just off its surface on the side dir goes to.
+inline float3 leaving_origin(SurfacePoint* s, float3 dir) {
+  const float3 ng = s->geometric_normal;
+  return offset_ray_origin(s->position, dot(dir, ng) > 0.0f ? ng : -ng);
+}
+
 // The share of a point that is glass: transmission (times its texture's R) times 1 - metallic.
 inline float glass_share(__global const Material* m, __global const TextureInfo* textures, __global const uint* texels,
                          float2 uv) {
@@ -105,8 +111,7 @@ inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, f
       *dir = through;
       weight *= tint;
     }
-    const float3 side = dot(*dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal;
-    if (!closest_hit(BVH, rays, offset_ray_origin(s.position, side), *dir, hit)) hit->prim = -1;
+    if (!closest_hit(BVH, rays, leaving_origin(&s, *dir), *dir, hit)) hit->prim = -1;
     else *distance += hit->t;
   }
   return weight;
@@ -143,7 +148,7 @@ inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float
         glass_crossing(materials, textures, texels, &s, dir, hit.t * length_per_t, true, &through, &mirror, &tint);
     weight *= (1.0f - r) * tint;
     if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) return weight;
-    from = offset_ray_origin(s.position, dot(dir, s.geometric_normal) > 0.0f ? s.geometric_normal : -s.geometric_normal);
+    from = leaving_origin(&s, dir);
     if (toward_point) {  // the rest of the segment: the far point stays where it was
       to_offset = target - from;
       tmax = 1.0f;
