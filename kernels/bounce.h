@@ -69,7 +69,7 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
 #endif
-  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);  // what any albedo times it would give
+  if (!any_positive(e)) return (float3)(0.0f);  // what any albedo times it would give
   return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
 }
 
@@ -101,7 +101,8 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float3 origin = offset_ray_origin(h->s.position, h->ng);
   if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f) {
     const float3 passes = escapes(BVH, origin, toward, rays);
-    if (nonzero3(passes)) l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
+    if (any_positive(passes))
+      l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
   }
 #endif
   return finite_or_zero(l + brdf_eval_diffuse(in, wo.z) * e);
@@ -149,7 +150,7 @@ inline bool path_extend(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughp
     next = cosine_direction(t, b, h->ns, u1, u2);
     *throughput *= hit_albedo(materials, textures, texels, h);  // cosine-weighted: f cos / pdf = albedo
   }
-  if (!(throughput->x > 0.0f || throughput->y > 0.0f || throughput->z > 0.0f) || dot(next, h->ng) <= 0.0f)
+  if (!any_positive(*throughput) || dot(next, h->ng) <= 0.0f)
     return false;
   float distance;
   float3 through_glass;

@@ -98,8 +98,6 @@ inline float3 escapes(BVH_ARGS, float3 origin, float3 dir, RayTally* rays) {
   return light_passes(BVH, origin, dir, INFINITY, rays);
 }
 
-inline bool nonzero3(float3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
-
 // One shadow-ray estimate of the peak's irradiance at p (normal n, geometric normal ng) from uniform (u1, u2); *wi
 // the sample's direction.
 inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, float3 ng, float u1, float u2,
@@ -109,7 +107,7 @@ inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, f
   float cos_x = dot(n, *wi);
   if (!(pdf > 0.0f) || cos_x <= 0.0f || dot(ng, *wi) <= 0.0f) return (float3)(0.0f);
   const float3 passes = escapes(BVH, origin, *wi, rays);
-  if (!nonzero3(passes)) return (float3)(0.0f);
+  if (!any_positive(passes)) return (float3)(0.0f);
   return l * cos_x * passes;
 }
 
@@ -125,7 +123,7 @@ inline float3 environment_irradiance(SCENE_ARGS, float3 p, float3 n, float3 ng, 
   float3 e = (float3)(0.0f);
   if (dot(dir, ng) > 0.0f) {
     const float3 passes = escapes(BVH, origin, dir, rays);
-    if (nonzero3(passes))
+    if (any_positive(passes))
       e += RC_PI * environment_smooth(environment, scene_counts, dir) * passes;  // cosine-weighted: L cos / pdf = pi L
   }
   e += environment_peak_irradiance(SCENE, origin, n, ng, u3, u4, &wi, rays);

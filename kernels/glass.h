@@ -117,6 +117,20 @@ inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, f
   return weight;
 }
 
+// pass_glass for a hit a kernel traced and kept (the split and wavefront record and glossy traces): *hit becomes the
+// first hit that is not glass, its t the chain's length (INFINITY where the ray left the scene), *dir its direction.
+// Returns what the glass kept.
+inline float3 kept_hit_past_glass(BVH_ARGS, RayTally* rays, HitDesc* hit, float3* dir) {
+  TraceHit chain = {hit->t, hit->u, hit->v, hit->prim};
+  float distance;
+  const float3 weight = pass_glass(BVH, rays, &chain, dir, &distance);
+  hit->t = chain.prim >= 0 ? distance : INFINITY;
+  hit->u = chain.u;
+  hit->v = chain.v;
+  hit->prim = chain.prim;
+  return weight;
+}
+
 // What of the light along a shadow ray (from `from` along to_offset up to tmax, as visible() takes it) gets through:
 // 0 where something opaque blocks it, and through glass each crossing's 1 - R times its tint, straight on (exact for
 // thin-walled glass, and for a slab of parallel faces but for the light's sideways shift; the light a curved volume
@@ -147,7 +161,7 @@ inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float
     const float r =
         glass_crossing(materials, textures, texels, &s, dir, hit.t * length_per_t, true, &through, &mirror, &tint);
     weight *= (1.0f - r) * tint;
-    if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) return weight;
+    if (!any_positive(weight)) return weight;
     from = leaving_origin(&s, dir);
     if (toward_point) {  // the rest of the segment: the far point stays where it was
       to_offset = target - from;

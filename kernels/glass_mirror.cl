@@ -2,8 +2,9 @@
 // and adds what the first glass point mirrors of the sky and of emitters (kernels/gbuffer.cl); the light of the
 // surfaces the mirrored ray meets is not known then. This pass traces that ray again, `samples` times a pixel, and
 // adds R times the light the surface it lands on sends back (its direct light and the frame's bounces after it, by
-// path continuation: kernels/bounce.h; direct light alone in a frame without indirect light) to the pixel's direct light, which is light the pixel samples itself. A
-// mirrored ray that passes more glass goes on through it as every secondary ray does (kernels/glass.h).
+// path continuation: kernels/bounce.h; direct light alone in a frame without indirect light) to the pixel's direct
+// light, which is light the pixel samples itself. A mirrored ray that passes more glass goes on through it as every
+// secondary ray does (kernels/glass.h).
 #include "bounce.h"
 #include "counter_random.h"
 

@@ -228,7 +228,7 @@ inline float3 guide_share(SCENE_ARGS CACHED_LIGHT_ARGS, __global const GuideClus
     float3 wi = to_local(frame, dir);
     if (wi.z <= 0.0f || dot(dir, ng) <= 0.0f) continue;
     float3 f = brdf_eval_specular(in, wo, wi);
-    if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f)) continue;
+    if (!any_positive(f)) continue;
     float3 l = glossy_sample_light(SCENE CACHED_LIGHT, phase, slots + s, origin, dir, key, s, params.bounces, rays);
     if (phase == GLOSSY_AIM) continue;  // the direction is all the aim keeps
     float guide_density = guide_pdf_drawn(cones, cone_count, dir, drawn_from);
@@ -398,15 +398,7 @@ __kernel void shade_glossy_first_hits(SCENE_ARGS, GBUFFER_ARGS, GlossyParams par
   uint after = PATH_DONE;
   float3 l, through_glass = (float3)(1.0f);
 #if HAS_TRANSMISSION
-  if (hit.prim >= 0) {  // on through glass, as trace_surface goes (kernels/bounce.h)
-    TraceHit chain = {hit.t, hit.u, hit.v, hit.prim};
-    float distance;
-    through_glass = pass_glass(BVH, &rays, &chain, &dir, &distance);
-    hit.t = distance;
-    hit.u = chain.u;
-    hit.v = chain.v;
-    hit.prim = chain.prim;
-  }
+  if (hit.prim >= 0) through_glass = kept_hit_past_glass(BVH, &rays, &hit, &dir);  // as trace_surface goes
 #endif
   if (hit.prim < 0) {
     l = miss_radiance(SCENE, dir) * through_glass;

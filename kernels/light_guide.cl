@@ -188,7 +188,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
 #endif
           dir = scatter_photon(SCENE, &h, dir, reflected, key, k, &power);
         float3 leaving = finite_or_zero(power / per_photon);
-        alive = dot(dir, h.ng) > 0.0f && (leaving.x > 0.0f || leaving.y > 0.0f || leaving.z > 0.0f);
+        alive = dot(dir, h.ng) > 0.0f && any_positive(leaving);
         origin = offset_ray_origin(h.s.position, h.ng);
       }
     } else {

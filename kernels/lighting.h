@@ -125,7 +125,7 @@ inline float3 emitter_sample(BVH_ARGS, EMITTER_ARGS, uint count, float u, float 
   float3 toward_p = dot(nl, wi) < 0.0f ? nl : -nl;
   float3 target = offset_ray_origin(y, toward_p);
   const float3 passes = light_passes(BVH, origin, target - origin, 1.0f, rays);
-  if (!(passes.x > 0.0f || passes.y > 0.0f || passes.z > 0.0f)) return (float3)(0.0f);
+  if (!any_positive(passes)) return (float3)(0.0f);
   float pdf_area = e.pdf_select / e.area;
   *pdf = emitter_solid_angle_pdf(e, d2, cos_y);
 #if HAS_EMISSIVE_TEXTURES

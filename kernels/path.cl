@@ -48,7 +48,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, __global const float4* see
     }
 #endif
     float3 c = (float3)(0.0f);
-    if (dot(dir, ng) > 0.0f && (throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) {
+    if (dot(dir, ng) > 0.0f && any_positive(throughput)) {
       float r;
       c = throughput * bounce_radiance(SCENE, origin, dir, random01(key, s, 2u), random01(key, s, 3u),
                                        random01(key, s, 5u), path_continuation(key, s, params.bounces), &r,

@@ -211,15 +211,7 @@ inline float3 record_hit_light(SCENE_ARGS GATHER_MAP_ARGS, RecordSite site, Hemi
   *after = PATH_DONE;
   *through_glass = (float3)(1.0f);
 #if HAS_TRANSMISSION
-  if (hit->prim >= 0) {
-    TraceHit chain = {hit->t, hit->u, hit->v, hit->prim};
-    float distance;
-    *through_glass = pass_glass(BVH, rays, &chain, &ray->dir, &distance);
-    hit->t = chain.prim >= 0 ? distance : INFINITY;
-    hit->u = chain.u;
-    hit->v = chain.v;
-    hit->prim = chain.prim;
-  }
+  if (hit->prim >= 0) *through_glass = kept_hit_past_glass(BVH, rays, hit, &ray->dir);
 #endif
   if (hit->prim < 0) return ray->cast ? miss_radiance(SCENE, ray->dir) * *through_glass : (float3)(0.0f);
   // The ray's cone: the solid angle of its stratum, 2 pi / (M N), as an angle (ray cones: kernels/surface.h).

@@ -90,7 +90,7 @@ inline float3 punctual_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame frame,
   for (uint i = 0; i < scene_counts.light_count; ++i) {
     float3 wi;
     float3 e = punctual_irradiance(BVH, lights[i], p, origin, frame.n, ng, &wi, rays);
-    if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) sum += brdf_eval(BRDF_IN, wo_local, to_local(frame, wi)) * e;
+    if (any_positive(e)) sum += brdf_eval(BRDF_IN, wo_local, to_local(frame, wi)) * e;
   }
 #endif
   return sum;
@@ -139,7 +139,7 @@ inline float3 environment_peak_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFram
                                          float3 origin, float3 ng, float u1, float u2, RayTally* rays) {
   float3 wi;
   float3 e = environment_peak_irradiance(SCENE, origin, frame.n, ng, u1, u2, &wi, rays);
-  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return (float3)(0.0f);
+  if (!any_positive(e)) return (float3)(0.0f);
   return brdf_eval(BRDF_IN, wo_local, to_local(frame, wi)) * e;
 }
 
@@ -157,7 +157,7 @@ inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame fra
   float3 dir = to_world(frame, wi_local);
   if (pdf > 0.0f && dot(dir, ng) > 0.0f) {
     const float3 passes = escapes(BVH, origin, dir, rays);
-    if (nonzero3(passes)) sum += throughput * environment_smooth(environment, scene_counts, dir) * passes;
+    if (any_positive(passes)) sum += throughput * environment_smooth(environment, scene_counts, dir) * passes;
   }
   return sum;
 }

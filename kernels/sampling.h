@@ -13,6 +13,9 @@ inline float luminance(float3 c) {
   return RC_FLOAT(RC_LUMINANCE_R) * c.x + RC_FLOAT(RC_LUMINANCE_G) * c.y + RC_FLOAT(RC_LUMINANCE_B) * c.z;
 }
 
+// Whether any channel of c is above 0 (a light, a weight or a throughput that still carries something).
+inline bool any_positive(float3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
+
 inline float3 finite_or_zero(float3 c) {
   return (float3)(isfinite(c.x) ? c.x : 0.0f, isfinite(c.y) ? c.y : 0.0f, isfinite(c.z) ? c.z : 0.0f);
 }
