@@ -36,7 +36,7 @@ pts = [p for p in pts if ".noisy" not in p]
 if pts:
     rows.append((os.path.basename(pts[-1]).split(".")[0].replace("pt", "PT ") + " spp + OIDN", pts[-1]))
 rows.append(("reference", f"{out}/reference.exr"))
-stops = (-2, 0, 2)
+stops = (-4, 0, 2)
 fig, axes = plt.subplots(len(rows), len(stops), figsize=(3.2 * len(stops), 2.5 * len(rows)))
 for r, (name, path) in enumerate(rows):
     img = read_layer(path)
