@@ -87,7 +87,7 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
                                           RayTally* rays) {
   if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY)
     return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
-  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h));
+  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), hit_lobe(materials, textures, texels, h), h->ns);
   ShadingFrame frame = shading_frame(h->ns);
   float3 wo = view_local(frame, -dir);
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, EMITTERS, scene_counts.emitter_count,
@@ -97,15 +97,15 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
   float2 lobe_u = environment_extra_randoms(u, v, 2u);
-  float3 wi = ggx_sample_reflection(wo, in.alpha, lobe_u.x, lobe_u.y), toward = to_world(frame, wi);
+  float3 wi = lobes_sample(in, wo, environment_extra_randoms(u, v, 3u).x, lobe_u.x, lobe_u.y), toward = to_world(frame, wi);
   float3 origin = offset_ray_origin(h->s.position, h->ng);
   if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f) {
     const float3 passes = escapes(BVH, origin, toward, rays);
     if (any_positive(passes))
-      l += brdf_specular_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
+      l += lobes_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
   }
 #endif
-  return finite_or_zero(l + brdf_eval_diffuse(in, wo.z) * e);
+  return finite_or_zero(l + brdf_eval_diffuse(in, wo) * e);
 }
 #endif
 
@@ -138,7 +138,7 @@ inline bool path_extend(SCENE_ARGS, HitSurface* h, float3* dir, float3* throughp
     ShadingFrame frame = shading_frame(h->ns);
     float3 wi;
     float pdf;
-    BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+    BrdfInputs brdf = surface_brdf(hit_albedo(materials, textures, texels, h), lobe, h->ns);
     *throughput *=
         brdf_sample(brdf, view_local(frame, -*dir), random01(more.key, more.sample, d + 2u), u1, u2, &wi, &pdf);
     next = to_world(frame, wi);

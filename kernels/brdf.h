@@ -31,6 +31,16 @@ typedef struct {
   float metallic;
   float alpha;     // GGX a = roughness^2, at least MIN_GGX_ALPHA
   float specular;  // weight of the dielectric's specular layer, 0..1
+#if HAS_LAYERS
+  // The layers (kernels/brdf_layers.h): the dielectric's F0 (DIELECTRIC_F0 times KHR_materials_specular's colour, at
+  // most 1), the coat's weight (0: none), GGX a and frame (its normal as +z, local to the shading frame), the sheen's
+  // colour (0: none) and alpha.
+  float3 f0;
+  float clearcoat, coat_alpha;
+  float3 coat_t, coat_b, coat_n;
+  float3 sheen;
+  float sheen_alpha;
+#endif
 } BrdfInputs;
 
 inline BrdfInputs brdf_inputs(float3 base_color, float metallic, float roughness, float specular) {
@@ -39,6 +49,16 @@ inline BrdfInputs brdf_inputs(float3 base_color, float metallic, float roughness
   in.metallic = clamp(metallic, 0.0f, 1.0f);
   in.alpha = fmax(roughness * roughness, MIN_GGX_ALPHA);
   in.specular = clamp(specular, 0.0f, 1.0f);
+#if HAS_LAYERS
+  in.f0 = (float3)(DIELECTRIC_F0);
+  in.clearcoat = 0.0f;
+  in.coat_alpha = 1.0f;
+  in.coat_t = (float3)(1.0f, 0.0f, 0.0f);
+  in.coat_b = (float3)(0.0f, 1.0f, 0.0f);
+  in.coat_n = (float3)(0.0f, 0.0f, 1.0f);
+  in.sheen = (float3)(0.0f);
+  in.sheen_alpha = 1.0f;
+#endif
   return in;
 }
 
@@ -70,9 +90,9 @@ inline float ggx_visibility(float n_dot_l, float n_dot_v, float a2) {
 // The specular lobe's directional albedo terms (T0, T1) toward a view at cos_o (kernels/specular_albedo_values.h: a
 // lobe whose Fresnel is c0 + c1 (1 - v.h)^5 reflects c0 T0 + c1 T1 of uniform light), read bilinearly by cos_o and
 // roughness = sqrt(a).
-inline float2 specular_albedo_split(BrdfInputs in, float cos_o) {
+inline float2 ggx_albedo_split(float alpha, float cos_o) {
   const int n = SPECULAR_ALBEDO_TABLE_SIZE;
-  float x = clamp(cos_o, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(in.alpha), 0.0f, 1.0f) * (float)(n - 1);
+  float x = clamp(cos_o, 0.0f, 1.0f) * (float)(n - 1), y = clamp(sqrt(alpha), 0.0f, 1.0f) * (float)(n - 1);
   int x0 = min((int)x, n - 2), y0 = min((int)y, n - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
   __constant const float* row0 = specular_albedo_values + 2 * (y0 * n + x0);
@@ -81,11 +101,18 @@ inline float2 specular_albedo_split(BrdfInputs in, float cos_o) {
   float2 top = mix((float2)(row1[0], row1[1]), (float2)(row1[2], row1[3]), fx);
   return mix(bottom, top, fy);
 }
+inline float2 specular_albedo_split(BrdfInputs in, float cos_o) { return ggx_albedo_split(in.alpha, cos_o); }
 
 // The dielectric's diffuse weight 1 - E_d (without the (1 - metallic) factor), from the lobe's albedo terms toward
 // the view (specular_albedo_split): what its specular layer leaves.
 inline float diffuse_weight_from_terms(BrdfInputs in, float2 terms) {
+#if HAS_LAYERS
+  // KHR_materials_specular: a coloured F0 leaves the base what its strongest channel leaves (the extension's max3).
+  const float3 lobe = in.f0 * terms.x + ((float3)(1.0f) - in.f0) * terms.y;
+  return 1.0f - in.specular * fmax(lobe.x, fmax(lobe.y, lobe.z));
+#else
   return 1.0f - in.specular * (DIELECTRIC_F0 * terms.x + (1.0f - DIELECTRIC_F0) * terms.y);
+#endif
 }
 
 inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
@@ -95,9 +122,14 @@ inline float brdf_diffuse_weight(BrdfInputs in, float n_dot_v) {
 // The specular lobe's Fresnel colour is c0 + c1 (1 - v.h)^5: the dielectric layer's and the metal's Schlick terms,
 // mixed by metallic. Split so that the lobe's albedo can be tabulated once for all materials (kernels/brdf_frame.h).
 inline void specular_fresnel_terms(BrdfInputs in, float3* c0, float3* c1) {
+#if HAS_LAYERS
+  *c0 = (1.0f - in.metallic) * in.specular * in.f0 + in.metallic * in.base_color;
+  *c1 = (1.0f - in.metallic) * in.specular * ((float3)(1.0f) - in.f0) + in.metallic * ((float3)(1.0f) - in.base_color);
+#else
   *c0 = (float3)((1.0f - in.metallic) * in.specular * DIELECTRIC_F0) + in.metallic * in.base_color;
   *c1 = (float3)((1.0f - in.metallic) * in.specular * (1.0f - DIELECTRIC_F0)) +
         in.metallic * ((float3)(1.0f) - in.base_color);
+#endif
 }
 
 inline float3 brdf_specular_fresnel(BrdfInputs in, float v_dot_h) {
@@ -111,27 +143,29 @@ inline float ggx_g2_over_g1(float n_dot_l, float n_dot_v, float a2) {
   return 4.0f * n_dot_l * n_dot_v * ggx_visibility(n_dot_l, n_dot_v, a2) / ggx_g1(n_dot_v, a2);
 }
 
-// The diffuse base alone: (1 - metallic) (1 - E_d(n.v)) base / pi, a constant over wi.
-inline float3 brdf_eval_diffuse(BrdfInputs in, float n_dot_v) {
+// The base's diffuse part alone: (1 - metallic) (1 - E_d(n.v)) base / pi, a constant over wi.
+inline float3 base_eval_diffuse(BrdfInputs in, float n_dot_v) {
   return ((1.0f - in.metallic) * brdf_diffuse_weight(in, n_dot_v) * RC_INV_PI) * in.base_color;
 }
 
-// The specular lobe alone, F D V; zero unless both directions lie above the surface.
-inline float3 brdf_eval_specular(BrdfInputs in, float3 wo, float3 wi) {
+// The base's specular lobe alone, F D V; zero unless both directions lie above the surface.
+inline float3 base_eval_specular(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
   float3 h = normalize(wo + wi);
   float a2 = in.alpha * in.alpha;
   return brdf_specular_fresnel(in, fmax(dot(wo, h), 0.0f)) * (ggx_d(h, a2) * ggx_visibility(wi.z, wo.z, a2));
 }
 
-// f(wo, wi), both in the local frame; zero unless both lie above the surface.
-inline float3 brdf_eval(BrdfInputs in, float3 wo, float3 wi) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
-  return brdf_eval_diffuse(in, wo.z) + brdf_eval_specular(in, wo, wi);
+// The base's specular lobe's directional albedo toward wo, c0 T0 + c1 T1 (the table, kernels/brdf.h).
+inline float3 base_specular_albedo(BrdfInputs in, float3 wo) {
+  float2 t = specular_albedo_split(in, wo.z);
+  float3 c0, c1;
+  specular_fresnel_terms(in, &c0, &c1);
+  return c0 * t.x + c1 * t.y;
 }
 
 // f_specular cos(wi) / (density of sampling wi through the visible normals) = F G2 / G1(wo), for wi the reflection of
-// wo about a visible normal: the weight of one sample of the lobe alone.
+// wo about a visible normal: the weight of one sample of the base's lobe alone.
 inline float3 brdf_specular_weight(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
   float3 h = normalize(wo + wi);
@@ -152,18 +186,10 @@ inline float brdf_specular_probability(BrdfInputs in, float3 wo) {
   return clamp(spec / (spec + diffuse), 0.1f, 0.9f);  // neither lobe starved where both contribute
 }
 
-// Density of brdf_sample's directions (solid angle) at wi.
-inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  float p_spec = brdf_specular_probability(in, wo);
-  float pdf = (1.0f - p_spec) * wi.z * RC_INV_PI;
-  if (p_spec > 0.0f) {
-    float3 h = normalize(wo + wi);
-    float a2 = in.alpha * in.alpha;
-    // Visible normals: D(h) G1(wo) (wo.h) / wo.z, times the reflection's Jacobian 1 / (4 wo.h).
-    pdf += p_spec * ggx_d(h, a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
-  }
-  return pdf;
+// The density (solid angle) of reflecting wo about a visible normal of a GGX lobe of alpha: D(h) G1(wo) / (4 wo.z).
+inline float ggx_reflection_pdf(float alpha, float3 wo, float3 wi) {
+  float a2 = alpha * alpha;
+  return ggx_d(normalize(wo + wi), a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
 }
 
 // A direction drawn from the visible normals of the GGX lobe (Heitz 2018), for uniform (u1, u2).
@@ -187,21 +213,115 @@ inline float3 ggx_sample_reflection(float3 wo, float alpha, float u1, float u2) 
   return 2.0f * dot(wo, h) * h - wo;
 }
 
+// A cosine-weighted direction about +z for uniform (u1, u2).
+inline float3 cosine_local_direction(float u1, float u2) {
+  float sin_t = sqrt(u1), phi = 2.0f * RC_PI * u2;
+  return (float3)(cos(phi) * sin_t, sin(phi) * sin_t, sqrt(fmax(1.0f - u1, 0.0f)));
+}
+
+// Clearcoat, sheen and specular colour over the base (HAS_LAYERS; nothing without it).
+#include "brdf_layers.h"
+
+// The BRDF's part that is constant over wi, for a view wo: the base's diffuse part, under the layers where there are
+// any. The irradiance cache is exact for it.
+inline float3 brdf_eval_diffuse(BrdfInputs in, float3 wo) {
+#if HAS_LAYERS
+  return layers_base_share(in, wo) * base_eval_diffuse(in, wo.z);
+#else
+  return base_eval_diffuse(in, wo.z);
+#endif
+}
+
+// The BRDF's lobes: the base's specular lobe, and the coat's and sheen's where there are layers.
+inline float3 brdf_eval_specular(BrdfInputs in, float3 wo, float3 wi) {
+#if HAS_LAYERS
+  return layered_eval_lobes(in, wo, wi);
+#else
+  return base_eval_specular(in, wo, wi);
+#endif
+}
+
+// f(wo, wi), both in the local frame; zero unless both lie above the surface.
+inline float3 brdf_eval(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
+  return brdf_eval_diffuse(in, wo) + brdf_eval_specular(in, wo, wi);
+}
+
+// The lobes' directional albedo toward wo: what they reflect of light even over the hemisphere.
+inline float3 lobes_albedo(BrdfInputs in, float3 wo) {
+#if HAS_LAYERS
+  return layered_lobes_albedo(in, wo);
+#else
+  return base_specular_albedo(in, wo);
+#endif
+}
+
+// Density of brdf_sample's directions (solid angle) at wi.
+inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+#if HAS_LAYERS
+  return layered_pdf(in, wo, wi, true);
+#else
+  float p_spec = brdf_specular_probability(in, wo);
+  float pdf = (1.0f - p_spec) * wi.z * RC_INV_PI;
+  if (p_spec > 0.0f) {
+    float3 h = normalize(wo + wi);
+    float a2 = in.alpha * in.alpha;
+    // Visible normals: D(h) G1(wo) (wo.h) / wo.z, times the reflection's Jacobian 1 / (4 wo.h).
+    pdf += p_spec * ggx_d(h, a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
+  }
+  return pdf;
+#endif
+}
+
 // Draws wi for wo from (u_lobe, u1, u2). Returns f cos(wi) / pdf, or zero when the direction falls below the surface;
 // *pdf is brdf_pdf(wo, wi).
 inline float3 brdf_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, float u2, float3* wi, float* pdf) {
   *pdf = 0.0f;
   if (wo.z <= 0.0f) return (float3)(0.0f);
+#if HAS_LAYERS
+  *wi = layered_sample(in, wo, true, u_lobe, u1, u2);
+#else
   if (u_lobe < brdf_specular_probability(in, wo)) {
     *wi = ggx_sample_reflection(wo, in.alpha, u1, u2);
   } else {
-    float sin_t = sqrt(u1), phi = 2.0f * RC_PI * u2;
-    *wi = (float3)(cos(phi) * sin_t, sin(phi) * sin_t, sqrt(fmax(1.0f - u1, 0.0f)));
+    *wi = cosine_local_direction(u1, u2);
   }
+#endif
   if (wi->z <= 0.0f) return (float3)(0.0f);
   *pdf = brdf_pdf(in, wo, *wi);
   if (!(*pdf > 0.0f)) return (float3)(0.0f);
   return brdf_eval(in, wo, *wi) * (wi->z / *pdf);
+}
+
+// The lobes alone (brdf_eval_specular), sampled where a pass estimates their light per pixel (kernels/glossy.cl) or
+// follows a sharp lobe (caustic photons, the environment's smooth part): the base's visible normals, and with layers
+// a mixture of them, the coat's and a cosine lobe for the sheen (u_lobe chooses; unused without layers).
+inline float3 lobes_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, float u2) {
+#if HAS_LAYERS
+  return layered_sample(in, wo, false, u_lobe, u1, u2);
+#else
+  return ggx_sample_reflection(wo, in.alpha, u1, u2);
+#endif
+}
+
+// The density of lobes_sample at wi.
+inline float lobes_pdf(BrdfInputs in, float3 wo, float3 wi) {
+#if HAS_LAYERS
+  return wo.z > 0.0f && wi.z > 0.0f ? layered_pdf(in, wo, wi, false) : 0.0f;
+#else
+  return ggx_reflection_pdf(in.alpha, wo, wi);
+#endif
+}
+
+// The weight of one lobes_sample: f_lobes cos / pdf (F G2 / G1 without layers).
+inline float3 lobes_weight(BrdfInputs in, float3 wo, float3 wi) {
+#if HAS_LAYERS
+  const float pdf = lobes_pdf(in, wo, wi);
+  return pdf > 0.0f ? brdf_eval_specular(in, wo, wi) * (wi.z / pdf) : (float3)(0.0f);
+#else
+  return brdf_specular_weight(in, wo, wi);
+#endif
 }
 
 #endif

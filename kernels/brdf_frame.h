@@ -36,17 +36,23 @@ inline float3 camera_view_direction(__global const CameraParams* cam, float3 p) 
   return normalize(vload3(0, cam->eye) - p);
 }
 
-// The BRDF at a G-buffer sample.
+// The BRDF at a G-buffer sample: its base alone.
 inline BrdfInputs gbuffer_brdf(GBufferSample g) {
   return brdf_inputs(vload3(0, g.albedo), g.metallic, g.roughness, g.specular);
 }
 
-// The specular lobe's directional albedo toward wo (local frame), from the table (kernels/brdf.h).
-inline float3 specular_albedo(BrdfInputs in, float3 wo) {
-  float2 t = specular_albedo_split(in, wo.z);
-  float3 c0, c1;
-  specular_fresnel_terms(in, &c0, &c1);
-  return c0 * t.x + c1 * t.y;
+// The whole BRDF at a G-buffer sample: its base and, in scenes with layers, its layers (pixel_layers), in the frame
+// of its shading normal n.
+inline BrdfInputs gbuffer_layered_brdf(GBufferSample g, SurfaceLayers layers, float3 n) {
+#if HAS_LAYERS
+  return with_layers(gbuffer_brdf(g), layers, n);
+#else
+  return gbuffer_brdf(g);
+#endif
 }
+
+// The lobes' directional albedo toward wo (local frame): the table's (kernels/brdf.h), and the layers' where there are
+// any.
+inline float3 specular_albedo(BrdfInputs in, float3 wo) { return lobes_albedo(in, wo); }
 
 #endif

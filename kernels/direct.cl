@@ -28,11 +28,11 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
 // Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters
 // with the same stratified light samples as a Lambertian pixel, each paired with a BRDF sample where the lobe is
 // glossy.
-inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, float3 wo_world, uint strata_per_axis, uint key,
+inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, uint strata_per_axis, uint key,
                                     RayTally* rays) {
   float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
-  LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
+  LazyBrdf brdf = built_brdf(gbuffer_layered_brdf(g, layers, n));
   ShadingFrame frame = shading_frame(n);
   float3 wo = view_local(frame, wo_world);
   float3 result = punctual_reflected(SCENE, &brdf, frame, wo, p, origin, ng, rays);
@@ -78,7 +78,7 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
 #if HAS_SPECULAR_BRDF
   if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
     float3 wo = camera_view_direction(camera, vload3(0, g.position));
-    result = direct_specular_pixel(SCENE, g, wo, strata_per_axis, hash_u32(pixel ^ hash_u32(params.seed)), &rays);
+    result = direct_specular_pixel(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, strata_per_axis, hash_u32(pixel ^ hash_u32(params.seed)), &rays);
     direct_out[pixel] = (float4)(result, (float)rays.cast);
     return;
   }
@@ -134,12 +134,12 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
 // its rounds end, stays stratified across its sub-pixels. The first round writes every sub-pixel: direct_out its
 // punctual light; direct_sums its samples' sum (RGB) and count; direct_moments their luminance sum and sum of squares,
 // their count and the rays cast. Later rounds add; average_direct_samples makes direct_out what direct_light writes.
-inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, float3 wo_world, RayTally* rays) {
+inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, RayTally* rays) {
   const float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   const float3 origin = offset_ray_origin(p, ng);
 #if HAS_SPECULAR_BRDF
   if (g.lobe != LOBE_NONE) {
-    LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
+    LazyBrdf brdf = built_brdf(gbuffer_layered_brdf(g, layers, n));
     const ShadingFrame frame = shading_frame(n);
     return finite_or_zero(punctual_reflected(SCENE, &brdf, frame, view_local(frame, wo_world), p, origin, ng, rays));
   }
@@ -153,14 +153,14 @@ inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, float3 wo_world, RayT
   return finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
 }
 
-inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, float3 wo_world, float2 uv, float2 uv_environment,
+inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, float2 uv, float2 uv_environment,
                              float u_lobe, RayTally* rays) {
   const float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   const float3 origin = offset_ray_origin(p, ng);
   float3 light = (float3)(0.0f);
 #if HAS_SPECULAR_BRDF
   if (g.lobe != LOBE_NONE) {
-    LazyBrdf brdf = built_brdf(gbuffer_brdf(g));
+    LazyBrdf brdf = built_brdf(gbuffer_layered_brdf(g, layers, n));
     const ShadingFrame frame = shading_frame(n);
     const float3 wo = view_local(frame, wo_world);
 #if HAS_EMITTERS
@@ -208,7 +208,7 @@ __kernel void direct_light_round(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, 
   const float3 wo = (float3)(0.0f);  // only a specular lobe reads the view
 #endif
   RayTally rays = traced_rays(0u);
-  const float3 punctual = first_round ? direct_punctual(SCENE, g, wo, &rays) : (float3)(0.0f);
+  const float3 punctual = first_round ? direct_punctual(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, &rays) : (float3)(0.0f);
   const uint key = hash_u32(pixel ^ hash_u32(params.seed)), environment_key = key ^ ENVIRONMENT_KEY;
   const uint strata_key = hash_u32(o ^ hash_u32(params.seed ^ STREAM_LIGHT_STRATA));
   float3 sum = (float3)(0.0f);
@@ -218,7 +218,7 @@ __kernel void direct_light_round(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, 
     const float2 uv = nested_stratum_point(t, strata_key, random01(key, s, 0u), random01(key, s, 1u));
     const float2 uv_environment = nested_stratum_point(t, strata_key ^ ENVIRONMENT_KEY, random01(environment_key, s, 0u),
                                                        random01(environment_key, s, 1u));
-    const float3 y = direct_sampled(SCENE, g, wo, uv, uv_environment, random01(key, s, 2u), &rays);
+    const float3 y = direct_sampled(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, uv, uv_environment, random01(key, s, 2u), &rays);
     sum += y;
     const float y_luminance = luminance(y);
     sum_y += y_luminance;

@@ -131,9 +131,11 @@ __kernel void weigh_through_glass(__global const float4* see_through, uint pixel
 // Writes the G-buffer the other passes read through GBUFFER_ARGS, and in scenes with glass (HAS_TRANSMISSION) what the
 // glass each camera ray looked through kept (see_through: RGB, 1 without glass), which weighs the pixel's direct and
 // indirect light; what the glass mirrors of the sky and emitters is added to the pixel's emission, and the mirrored
-// ray kept in glass_mirrors (two float4 a pixel) for the lit surfaces it meets.
+// ray kept in glass_mirrors (two float4 a pixel) for the lit surfaces it meets. In scenes with layers (HAS_LAYERS) each
+// pixel's layers go to gbuffer_layers.
 __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global const CameraParams* camera,
-                      __global float4* see_through, __global float4* glass_mirrors) {
+                      __global SurfaceLayers* gbuffer_layers, __global float4* see_through,
+                      __global float4* glass_mirrors) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= camera->width || y >= camera->height) return;
   float2 offset = pixel_offset(camera, x, y);
@@ -176,6 +178,11 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.triangle = -1;
     g.material = -1;
     g.depth = INFINITY;
+#if HAS_LAYERS
+    SurfaceLayers none;
+    no_layers((float3)(0.0f, 0.0f, 1.0f), &none);
+    gbuffer_layers[y * camera->width + x] = none;
+#endif
   } else {
     HitSurface h = hit_surface(HIT_SURFACE, hit.prim, hit.u, hit.v, dir, primary_cone_width(camera, hit.t));
     SurfacePoint s = h.s;
@@ -197,11 +204,14 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.triangle = hit.prim;
     g.material = (int)s.material;
 #if HAS_SPECULAR_BRDF
-    SurfaceLobe lobe = surface_lobe(materials, textures, texels, &s);
+    SurfaceLobe lobe = hit_lobe(materials, textures, texels, &h);
     g.metallic = lobe.metallic;
     g.roughness = lobe.roughness;
     g.specular = lobe.specular;
     g.lobe = lobe.lobe;
+#endif
+#if HAS_LAYERS
+    gbuffer_layers[y * camera->width + x] = lobe.layers;
 #endif
     g.depth = hit.t;
   }

@@ -40,9 +40,9 @@ inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e)
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
   float3 albedo = hit_albedo(materials, textures, texels, h);
   if (lobe.lobe == LOBE_NONE) return albedo * RC_INV_PI * e;
-  BrdfInputs in = surface_brdf(albedo, lobe);
+  BrdfInputs in = surface_brdf(albedo, lobe, h->ns);
   float3 wo = view_local(shading_frame(h->ns), -dir);
-  return brdf_eval_diffuse(in, wo.z) * e + specular_albedo(in, wo) * RC_INV_PI * e;
+  return brdf_eval_diffuse(in, wo) * e + specular_albedo(in, wo) * RC_INV_PI * e;
 }
 
 // Whether the records reach *h (a Lambertian or rough surface, reached along dir): if so, *l is the light of the
@@ -69,7 +69,10 @@ inline float3 hit_direct_regularized(SCENE_ARGS, HitSurface* h, float3 dir, floa
   if (hit_lobe_kind(materials, textures, texels, h) != LOBE_GLOSSY) return hit_direct(SCENE, h, dir, u, v, u_lobe, rays);
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
   lobe.roughness = fmax(lobe.roughness, GLOSSY_REGULARIZED_ROUGHNESS);
-  LazyBrdf brdf = built_brdf(surface_brdf(hit_albedo(materials, textures, texels, h), lobe));
+#if HAS_LAYERS
+  lobe.layers.clearcoat_roughness = fmax(lobe.layers.clearcoat_roughness, GLOSSY_REGULARIZED_ROUGHNESS);
+#endif
+  LazyBrdf brdf = built_brdf(surface_brdf(hit_albedo(materials, textures, texels, h), lobe, h->ns));
   return direct_reflected(SCENE, &brdf, LOBE_GLOSSY, h->s.position, h->ns, h->ng, -dir, u, v, u_lobe, rays);
 }
 
@@ -177,12 +180,6 @@ inline uint glossy_slots_per_chunk(GlossyParams params) {
 // lobe's own samples would hit GUIDE_MAX_STRATA times or more (a wall beside a glossy floor) is left to them, as the
 // records leave such cones to their strata.
 
-// The density (solid angle) of reflecting wo about a visible normal of the lobe: D(h) G1(wo) / (4 wo.z).
-inline float visible_normal_pdf(BrdfInputs in, float3 wo, float3 wi) {
-  float a2 = in.alpha * in.alpha;
-  return ggx_d(normalize(wo + wi), a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
-}
-
 inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters, float3 p, ShadingFrame frame,
                                BrdfInputs in, float3 wo, float lobe_samples, GuideCone* cones) {
   if (!clusters) return 0u;
@@ -192,7 +189,7 @@ inline uint glossy_guide_cones(__global const GuideCluster* guide, uint clusters
     float3 axis = to_local(frame, cones[c].axis);
     // Small: the lobe's own samples expected in the cone (the share of the lobe it holds, estimated at its axis, at
     // most 1) stay below GUIDE_MAX_STRATA.
-    bool small = axis.z > 0.0f && lobe_samples * fmin(visible_normal_pdf(in, wo, axis) / cones[c].inv_solid_angle,
+    bool small = axis.z > 0.0f && lobe_samples * fmin(lobes_pdf(in, wo, axis) / cones[c].inv_solid_angle,
                                                       1.0f) < GUIDE_MAX_STRATA;
     // The lobe at the cone's direction nearest its peak: a narrow lobe that meets only the cone's rim still counts.
     float cos_to_mirror = dot(mirror, axis), cos_max = cones[c].cos_max;
@@ -257,7 +254,7 @@ inline void glossy_sub_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __gl
   }
   float3 p = vload3(0, g.position), ng = vload3(0, g.geometric_normal);
   ShadingFrame frame = shading_frame(gbuffer_shading_normal(g));
-  BrdfInputs in = gbuffer_brdf(g);
+  BrdfInputs in = gbuffer_layered_brdf(g, pixel_layers(gbuffer_layers, pixel), frame.n);
   float3 wo = view_local(frame, camera_view_direction(camera, p));
   float3 origin = offset_ray_origin(p, ng);
   uint key = glossy_key(pixel, params.seed);
@@ -292,7 +289,7 @@ inline void glossy_sub_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __gl
       uint drawn_from = GUIDE_MAX_CONES;  // a lobe sample: no cone
       if (from_lobe) {
         const float2 cell = nested_stratum_point(s * subs + sub, strata_key, u1, u2);
-        wi = ggx_sample_reflection(wo, in.alpha, cell.x, cell.y);
+        wi = lobes_sample(in, wo, random01(key, s, 6u), cell.x, cell.y);
       } else {
         // Independent numbers, not the net of guide_share: on the corridor with metal walls of roughness 0.3 the net
         // took the median frame's relMSE 0.70x but gave 3 of 32 seeds a frame worse than any of the 32 before (one
@@ -308,10 +305,10 @@ inline void glossy_sub_pixel(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __gl
       if (phase == GLOSSY_AIM) continue;  // the weights wait for the gather
       float3 y = (float3)(0.0f);
       if (!guided) {
-        y = brdf_specular_weight(in, wo, wi) * l;
+        y = lobes_weight(in, wo, wi) * l;
       } else {
         // Balance heuristic within the chunk: f cos L / (n_lobe p_lobe + n_guide p_guide) for either kind.
-        float lobe_density = (float)GLOSSY_CHUNK_LOBE * visible_normal_pdf(in, wo, wi);
+        float lobe_density = (float)GLOSSY_CHUNK_LOBE * lobes_pdf(in, wo, wi);
         float combined = lobe_density + (float)guided * guide_pdf_drawn(cones, cone_count, dir, drawn_from);
         if (combined > 0.0f) y = brdf_eval_specular(in, wo, wi) * l * (wi.z * (float)GLOSSY_CHUNK_LOBE / combined);
       }
@@ -339,7 +336,7 @@ __kernel void glossy_indirect(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, __g
                               __global float4* glossy_sums, __global float4* glossy_moments) {
   const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
   if (i < item_count * subs)
-    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+    glossy_sub_pixel(SCENE, GBUFFER, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
                      round_output_pixel(params, pixel_list, i / subs), i % subs, GLOSSY_WHOLE, glossy_sums,
                      glossy_sums, glossy_moments);
 }
@@ -351,7 +348,7 @@ __kernel void aim_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams params, 
                                  uint item_count, __global float4* sample_slots) {
   const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
   if (i < item_count * subs)
-    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+    glossy_sub_pixel(SCENE, GBUFFER, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
                      round_output_pixel(params, pixel_list, first_item + i / subs), i % subs, GLOSSY_AIM,
                      sample_slots + (size_t)i * params.slots_per_sub_pixel, sample_slots, sample_slots);
 }
@@ -466,7 +463,7 @@ __kernel void gather_glossy_samples(SCENE_ARGS, GBUFFER_ARGS, GlossyParams param
                                     __global float4* glossy_sums, __global float4* glossy_moments) {
   const uint i = get_global_id(0), subs = sub_pixels_per_pixel(camera);
   if (i < item_count * subs)
-    glossy_sub_pixel(SCENE, gbuffer, camera, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
+    glossy_sub_pixel(SCENE, GBUFFER, params, guide, WORLD_RECORDS, CAUSTIC_MAP,
                      round_output_pixel(params, pixel_list, first_item + i / subs), i % subs, GLOSSY_GATHER,
                      sample_slots + (size_t)i * params.slots_per_sub_pixel, glossy_sums, glossy_moments);
 }
@@ -500,7 +497,8 @@ __kernel void glossy_pixel_error(GBUFFER_ARGS, __global const float4* irradiance
       } else {
         const float3 wo = view_local(shading_frame(gbuffer_shading_normal(g)),
                                      camera_view_direction(camera, vload3(0, g.position)));
-        light += brdf_eval_diffuse(gbuffer_brdf(g), wo.z) * e;
+        light += brdf_eval_diffuse(gbuffer_layered_brdf(g, pixel_layers(gbuffer_layers, pixel),
+                                                    gbuffer_shading_normal(g)), wo) * e;
       }
     }
     other += luminance(finite_or_zero(light));

@@ -30,7 +30,7 @@ inline float3 scatter_photon(SCENE_ARGS, HitSurface* h, float3 dir, float3 refle
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
   if (lobe.lobe != LOBE_NONE) {
     ShadingFrame frame = shading_frame(h->ns);
-    BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+    BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe, h->ns);
     float3 arrived = view_local(frame, -dir), next;
     float pdf;
     brdf_sample(in, arrived, random01(key, 0u, PHOTON_LOBE_DIMENSION + k), u1, u2, &next, &pdf);
@@ -56,10 +56,11 @@ inline float3 scatter_caustic_photon(SCENE_ARGS, HitSurface* h, float3 dir, uint
     return dir;
   }
   ShadingFrame frame = shading_frame(h->ns);
-  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe);
+  BrdfInputs in = surface_brdf(hit_albedo(materials, textures, texels, h), lobe, h->ns);
   float3 toward_light = view_local(frame, -dir);
-  float3 next = ggx_sample_reflection(toward_light, in.alpha, random01(key, 0u, 6u), random01(key, 0u, 7u));
-  *power *= brdf_specular_weight(in, toward_light, next);
+  float3 next = lobes_sample(in, toward_light, random01(key, 0u, PHOTON_LOBE_DIMENSION), random01(key, 0u, 6u),
+                             random01(key, 0u, 7u));
+  *power *= lobes_weight(in, toward_light, next);
   return to_world(frame, next);
 }
 #endif

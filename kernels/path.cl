@@ -28,7 +28,7 @@ __kernel void path_indirect(SCENE_ARGS, GBUFFER_ARGS, __global const float4* see
 #if HAS_SPECULAR_BRDF
   bool specular = g.lobe != LOBE_NONE;
   ShadingFrame frame = shading_frame(n);
-  BrdfInputs in = gbuffer_brdf(g);
+  BrdfInputs in = gbuffer_layered_brdf(g, pixel_layers(gbuffer_layers, pixel), n);
   float3 wo = view_local(frame, camera_view_direction(camera, p));
 #endif
   for (uint s = first_sample; s < first_sample + sample_count; ++s) {

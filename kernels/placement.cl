@@ -189,5 +189,5 @@ __kernel void fit_kept_records(GBUFFER_ARGS, __global CacheRecord* records, Plac
   }
   rec->radius = radius;
   rec->pixel_size = pixel_size;
-  rec->pixel = kept_record_pixel(gbuffer, camera, p, pixel_size);
+  rec->pixel = kept_record_pixel(GBUFFER, p, pixel_size);
 }

@@ -10,8 +10,13 @@
 #include "scene_args.h"
 #include "surface.h"
 
-inline BrdfInputs surface_brdf(float3 base_color, SurfaceLobe lobe) {
+// The BRDF of a surface of this base colour and lobe, whose shading normal is n (the local frame's +z).
+inline BrdfInputs surface_brdf(float3 base_color, SurfaceLobe lobe, float3 n) {
+#if HAS_LAYERS
+  return with_layers(brdf_inputs(base_color, lobe.metallic, lobe.roughness, lobe.specular), lobe.layers, n);
+#else
   return brdf_inputs(base_color, lobe.metallic, lobe.roughness, lobe.specular);
+#endif
 }
 
 // The BRDF of a surface, built where a light sample first needs it (lazy_brdf_inputs): from the G-buffer's stored
@@ -42,7 +47,7 @@ inline BrdfInputs lazy_brdf_inputs(__global const Material* materials, __global 
                                    __global const uint* texels, LazyBrdf* b) {
   if (!b->built) {
     b->in = surface_brdf(hit_albedo(materials, textures, texels, b->hit),
-                         hit_lobe(materials, textures, texels, b->hit));
+                         hit_lobe(materials, textures, texels, b->hit), b->hit->ns);
     b->built = 1;
   }
   return b->in;

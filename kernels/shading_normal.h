@@ -40,4 +40,14 @@ inline float3 gbuffer_shading_normal(GBufferSample g) {
   return vload3(0, g.normal);
 }
 
+// The layers the G-buffer kept beside sample i (gbuffer_layers), in scenes with them; nothing is read otherwise.
+inline SurfaceLayers pixel_layers(__global const SurfaceLayers* gbuffer_layers, size_t i) {
+#if HAS_LAYERS
+  return gbuffer_layers[i];
+#else
+  SurfaceLayers none = {{1.0f, 1.0f, 1.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, 1.0f, {0.0f, 0.0f, 0.0f}, 1.0f};
+  return none;
+#endif
+}
+
 #endif

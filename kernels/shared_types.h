@@ -79,6 +79,10 @@ typedef struct {
 
 // The rough lobes' albedo table (kernels/brdf_frame.h): cos(theta_o) and roughness at i / (size - 1).
 #define SPECULAR_ALBEDO_TABLE_SIZE 32
+// The sheen lobe's albedo table (kernels/sheen_albedo_values.h): cos(theta_o) and sheen roughness at i / (size - 1).
+#define SHEEN_ALBEDO_TABLE_SIZE 32
+// The sheen's alpha = roughness^2 is kept above this: the Charlie distribution's exponent is 1 / alpha.
+#define SHEEN_MIN_ALPHA 1.0e-3f
 
 // The LOBE_* of a surface with these parameters (the host for a material's factors, the G-buffer per pixel).
 inline rc_int material_lobe(float metallic, float roughness, float specular) {
@@ -113,8 +117,49 @@ typedef struct {
   float ior;
   float thickness;
   float attenuation[3];
-  float glass_pad;
+  rc_int layered;  // 1: a layer below is present (specular colour not white, clearcoat or sheen): HAS_LAYERS shades it
+  // Layers (kernels/brdf_layers.h, HAS_LAYERS). KHR_materials_specular's colour, which tints the dielectric's F0
+  // (0.04 x colour, at most 1), and its texture (sRGB, RGB multiplies it).
+  float specular_color[3];
+  rc_int specular_color_texture;
+  // KHR_materials_clearcoat: the coat's weight and its texture (R), roughness and its texture (G), and its normal
+  // texture and scale (TEXTURE_NONE: the coat follows the interpolated normal, not the base's normal map).
+  float clearcoat;
+  rc_int clearcoat_texture;
+  float clearcoat_roughness;
+  rc_int clearcoat_roughness_texture;
+  rc_int clearcoat_normal_texture;
+  float clearcoat_normal_scale;
+  // KHR_materials_sheen: roughness and its texture (A), colour (0: no sheen) and its texture (sRGB, RGB).
+  float sheen_roughness;
+  rc_int sheen_roughness_texture;
+  float sheen_color[3];
+  rc_int sheen_color_texture;
 } Material;
+
+// A surface point's layers (kernels/brdf_layers.h): what the material and its textures make there. The G-buffer keeps
+// one a pixel beside its GBufferSample (HAS_LAYERS; one unread element otherwise).
+typedef struct {
+  float specular_color[3];  // the F0 tint, 1 without KHR_materials_specular's colour
+  float clearcoat;          // the coat's weight, 0: none
+  float coat_normal[3];     // world space, facing the viewer as the shading normal
+  float clearcoat_roughness;
+  float sheen_color[3];     // 0: no sheen
+  float sheen_roughness;
+} SurfaceLayers;
+
+// The LOBE_* of a layered surface whose base alone is `base` (material_lobe). The HSH table holds the base lobe alone,
+// so a layered surface is never LOBE_HSH: its lobes are sampled per pixel (LOBE_GLOSSY) unless all are wide
+// (LOBE_ROUGH: a sheen, a coat of roughness ROUGH_MIN_ROUGHNESS or more, and a rough base).
+inline rc_int layered_lobe(rc_int base, float clearcoat, float clearcoat_roughness, float sheen) {
+  rc_int lobe = base == LOBE_HSH ? LOBE_GLOSSY : base;
+  if (sheen > 0.0f && lobe == LOBE_NONE) lobe = LOBE_ROUGH;
+  if (clearcoat > 0.0f) {
+    const rc_int coat = clearcoat_roughness >= ROUGH_MIN_ROUGHNESS ? LOBE_ROUGH : LOBE_GLOSSY;
+    if (coat > lobe) lobe = coat;
+  }
+  return lobe;
+}
 
 #define WRAP_REPEAT 0
 #define WRAP_CLAMP 1
@@ -634,7 +679,8 @@ typedef struct {
 static_assert(sizeof(Bvh8Node) == 224 && alignof(Bvh8Node) == 4);
 static_assert(sizeof(TriangleBlock8) == 320 && alignof(TriangleBlock8) == 4);
 static_assert(sizeof(TriangleShading) == 128);
-static_assert(sizeof(Material) == 112);
+static_assert(sizeof(Material) == 176);
+static_assert(sizeof(SurfaceLayers) == 48);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(PunctualLight) == 64);
 static_assert(sizeof(EmissiveTriangle) == 64);

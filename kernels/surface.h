@@ -151,12 +151,11 @@ inline float uv_width_log2(__global const TriangleShading* t, float width, float
 // B = cross(N, T) * w). The vertices' tangents are interpolated and made orthogonal to N; one along N takes any
 // frame. s's own normal where its material has no map, or where the triangle has none (w = 0: the loader found no
 // texture coordinates or no gradient of them).
-inline float3 mapped_normal(__global const float4* tangents, __global const Material* materials,
-                            __global const TextureInfo* textures, __global const uint* texels, const SurfacePoint* s,
-                            int prim, float u, float v) {
-  __global const Material* m = materials + s->material;
+inline float3 bent_normal(__global const float4* tangents, __global const TextureInfo* textures,
+                          __global const uint* texels, const SurfacePoint* s, int prim, float u, float v, int texture,
+                          float scale) {
   const float3 n = s->shading_normal;
-  if (m->normal_texture < 0 || tangents[3 * prim].w == 0.0f) return n;  // w = 0: no map on this triangle
+  if (texture < 0 || tangents[3 * prim].w == 0.0f) return n;  // w = 0: no map on this triangle
   const float4 tw = (1.0f - u - v) * tangents[3 * prim] + u * tangents[3 * prim + 1] + v * tangents[3 * prim + 2];
   float3 t = tw.xyz - dot(tw.xyz, n) * n, b;
   const float t_length = length(t);
@@ -166,11 +165,18 @@ inline float3 mapped_normal(__global const float4* tangents, __global const Mate
   } else {
     tangent_frame(n, &t, &b);
   }
-  const float3 texel =
-      sample_texture_footprint(textures, texels, m->normal_texture, s->uv, s->uv_width_log2, false).xyz * 2.0f - 1.0f;
-  const float3 bent = (texel.x * m->normal_scale) * t + (texel.y * m->normal_scale) * b + texel.z * n;
+  const float3 texel = sample_texture_footprint(textures, texels, texture, s->uv, s->uv_width_log2, false).xyz * 2.0f - 1.0f;
+  const float3 bent = (texel.x * scale) * t + (texel.y * scale) * b + texel.z * n;
   const float bent_length = length(bent);
   return bent_length > 0.0f && isfinite(bent_length) ? bent / bent_length : n;
+}
+
+// The material's normal map's normal at s (bent_normal).
+inline float3 mapped_normal(__global const float4* tangents, __global const Material* materials,
+                            __global const TextureInfo* textures, __global const uint* texels, const SurfacePoint* s,
+                            int prim, float u, float v) {
+  __global const Material* m = materials + s->material;
+  return bent_normal(tangents, textures, texels, s, prim, u, v, m->normal_texture, m->normal_scale);
 }
 #endif
 
@@ -228,7 +234,49 @@ inline float3 surface_albedo(__global const Material* materials, __global const 
 typedef struct {
   float metallic, roughness, specular;
   int lobe;  // LOBE_*
+#if HAS_LAYERS
+  SurfaceLayers layers;  // the coat's normal is the hit's (hit_lobe) or the pixel's (kernels/gbuffer.cl)
+#endif
 } SurfaceLobe;
+
+#if HAS_LAYERS
+// The layers of s's material there (factors times textures), and the lobe kind they make with the base's `base`. The
+// coat's normal is left as s's interpolated normal: hit_lobe orients it and applies the coat's normal map.
+inline int read_layers(__global const Material* m, __global const TextureInfo* textures, __global const uint* texels,
+                       const SurfacePoint* s, int base, SurfaceLayers* l) {
+  float3 specular_color = vload3(0, m->specular_color), sheen = vload3(0, m->sheen_color);
+  float clearcoat = m->clearcoat, coat_roughness = m->clearcoat_roughness, sheen_roughness = m->sheen_roughness;
+#if HAS_TEXTURES
+  const float2 uv = s->uv;
+  const float w = s->uv_width_log2;
+  if (m->specular_color_texture >= 0)
+    specular_color *= sample_texture_footprint(textures, texels, m->specular_color_texture, uv, w, true).xyz;
+  if (m->clearcoat_texture >= 0) clearcoat *= sample_texture_footprint(textures, texels, m->clearcoat_texture, uv, w, false).x;
+  if (m->clearcoat_roughness_texture >= 0)
+    coat_roughness *= sample_texture_footprint(textures, texels, m->clearcoat_roughness_texture, uv, w, false).y;
+  if (m->sheen_color_texture >= 0) sheen *= sample_texture_footprint(textures, texels, m->sheen_color_texture, uv, w, true).xyz;
+  if (m->sheen_roughness_texture >= 0)
+    sheen_roughness *= sample_texture_footprint(textures, texels, m->sheen_roughness_texture, uv, w, false).w;
+#endif
+  vstore3(specular_color, 0, l->specular_color);
+  l->clearcoat = clearcoat;
+  vstore3(s->shading_normal, 0, l->coat_normal);
+  l->clearcoat_roughness = coat_roughness;
+  vstore3(sheen, 0, l->sheen_color);
+  l->sheen_roughness = sheen_roughness;
+  return layered_lobe(base, clearcoat, coat_roughness, fmax(sheen.x, fmax(sheen.y, sheen.z)));
+}
+
+// No layers: what leaves the base as it is.
+inline void no_layers(float3 n, SurfaceLayers* l) {
+  vstore3((float3)(1.0f), 0, l->specular_color);
+  l->clearcoat = 0.0f;
+  vstore3(n, 0, l->coat_normal);
+  l->clearcoat_roughness = 1.0f;
+  vstore3((float3)(0.0f), 0, l->sheen_color);
+  l->sheen_roughness = 1.0f;
+}
+#endif
 
 inline SurfaceLobe surface_lobe(__global const Material* materials, __global const TextureInfo* textures,
                                 __global const uint* texels, const SurfacePoint* s) {
@@ -254,6 +302,10 @@ inline SurfaceLobe surface_lobe(__global const Material* materials, __global con
     if (l.lobe == LOBE_HSH && m->metallic_roughness_texture >= 0) l.lobe = LOBE_GLOSSY;
   }
 #endif
+#if HAS_LAYERS
+  if (m->layered) l.lobe = read_layers(m, textures, texels, s, material_lobe(l.metallic, l.roughness, l.specular), &l.layers);
+  else no_layers(s->shading_normal, &l.layers);
+#endif
   return l;
 }
 
@@ -265,6 +317,9 @@ typedef struct {
   float3 ns, ng, albedo;  // ns: the shading normal (the normal map's, where there is one)
 #if HAS_NORMAL_MAPS
   float3 ns_interpolated;  // the interpolated normal, oriented as ns: what the cache weighs records by
+#endif
+#if HAS_LAYERS
+  float3 coat_normal;  // the clearcoat's: its own normal map's, else the interpolated normal (not the base's map)
 #endif
   SurfaceLobe lobe;
   int albedo_read, lobe_read;
@@ -293,6 +348,18 @@ inline HitSurface hit_surface(HIT_SURFACE_ARGS, int prim, float u, float v, floa
   h.ng = back ? -h.s.geometric_normal : h.s.geometric_normal;
   h.ns = back ? -h.s.shading_normal : h.s.shading_normal;
   if (dot(h.ns, h.ng) <= 0.0f) h.ns = h.ng;  // inconsistent vertex normals: trust the geometry
+#if HAS_LAYERS
+  h.coat_normal = h.ns;
+#if HAS_NORMAL_MAPS
+  __global const Material* coated = materials + h.s.material;
+  if (coated->layered && coated->clearcoat > 0.0f && coated->clearcoat_normal_texture >= 0) {
+    float3 bent = bent_normal(tangents, textures, texels, &h.s, prim, u, v, coated->clearcoat_normal_texture,
+                              coated->clearcoat_normal_scale);
+    if (back) bent = -bent;
+    if (dot(bent, h.ng) > 0.0f) h.coat_normal = bent;
+  }
+#endif
+#endif
 #if HAS_NORMAL_MAPS
   h.ns_interpolated = h.ns;
   if (materials[h.s.material].normal_texture >= 0) {
@@ -318,6 +385,9 @@ inline SurfaceLobe hit_lobe(__global const Material* materials, __global const T
                             __global const uint* texels, HitSurface* h) {
   if (!h->lobe_read) {
     h->lobe = surface_lobe(materials, textures, texels, &h->s);
+#if HAS_LAYERS
+    vstore3(h->coat_normal, 0, h->lobe.layers.coat_normal);
+#endif
     h->lobe_read = 1;
   }
   return h->lobe;
@@ -330,6 +400,9 @@ inline int hit_lobe_kind(__global const Material* materials, __global const Text
 #if HAS_TEXTURES
   if (m->lobe != LOBE_NONE && (m->metallic_roughness_texture >= 0 || m->specular_texture >= 0))
     return hit_lobe(materials, textures, texels, h).lobe;
+#endif
+#if HAS_LAYERS
+  if (m->layered) return hit_lobe(materials, textures, texels, h).lobe;
 #endif
   return m->lobe;
 }

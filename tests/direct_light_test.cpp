@@ -7,6 +7,7 @@
 #include <random>
 
 #include "brdf_reference.h"
+#include "layers_reference.h"
 #include "render/renderer.h"
 #include "scene/packed_scene.h"
 #include "scene/scene_frame.h"
@@ -632,6 +633,114 @@ TEST(DirectLight, GlassMirrorsTheLitSurfacesTheCameraSeesInIt) {
     ++checked;
   }
   EXPECT_GT(checked, 2000u);
+}
+
+
+// The layers (kernels/brdf_layers.h) on the rough_floor: each pixel's direct light from the point light must be the
+// extension's BRDF in double (tests/layers_reference.h) times the irradiance, within the float BRDF's 1e-4, the
+// tabulated diffuse weight's error (floor_tolerance) and, under a sheen, the sheen albedo table's bilinear error
+// (SheenAlbedo below bounds it by kSheenTableError where cos > 0.1) on what the sheen takes from the base. And the
+// layer must matter: most pixels must differ from the bare base by more than their tolerance.
+constexpr double kSheenTableError = 0.01;
+
+void expect_layered_floor(const layers_reference::Layered& m, void (*layer)(SceneMaterial&)) {
+  Scene s = rough_floor(float(m.roughness));
+  layer(s.materials[0]);
+  const RenderedImage img = render(s, 64, 0);
+  layers_reference::Layered bare = m;
+  bare.specular_color = {1.0, 1.0, 1.0};
+  bare.clearcoat = 0.0;
+  bare.sheen = {0.0, 0.0, 0.0};
+  const double alpha = std::max(m.roughness * m.roughness, 1e-3);
+  size_t checked = 0, distinguished = 0;
+  for (size_t i = 0; i < img.triangle.size(); i += 4) {
+    if (img.triangle[i] < 0) continue;
+    const FloorPixel p = floor_pixel(s, img, i);
+    const auto terms = layers_reference::ggx_albedo_terms(p.wo.z, alpha, 96);
+    const double sheen_e = layers_reference::max3(m.sheen) > 0.0
+                               ? std::min(layers_reference::sheen_albedo(p.wo.z, m.sheen_roughness, 96), 1.0)
+                               : 0.0;
+    const auto f = layers_reference::layered_brdf(m, p.wo, p.wi, terms, sheen_e);
+    const auto f_bare = layers_reference::layered_brdf(bare, p.wo, p.wi, terms, 0.0);
+    bool differs = false;
+    for (size_t c = 0; c < 3; ++c) {
+      const double expected = f[c] * p.irradiance, bare_value = f_bare[c] * p.irradiance;
+      const double sheen_error = (p.wo.z < 0.1 ? 5.0 : 1.0) * kSheenTableError * layers_reference::max3(m.sheen);
+      const double tolerance = floor_tolerance(p, expected) + sheen_error * bare_value;
+      ASSERT_NEAR(direct_of(img, i)[c], expected, tolerance)
+          << "pixel " << i << " channel " << c << " cos(theta_o) " << p.wo.z << " cos(theta_i) " << p.wi.z;
+      differs |= std::fabs(bare_value - expected) > tolerance;
+    }
+    distinguished += differs;
+    ++checked;
+  }
+  ASSERT_GT(checked, 400u);
+  EXPECT_GT(distinguished, checked / 2) << "the layer must matter where it is tested";
+}
+
+// KHR_materials_clearcoat: a coat of roughness 0.3 over the rough dielectric. Planted: the coat's Fresnel taken at
+// v.h instead of n.v (its weight and the base's), or the base left at full weight under it; each fails.
+TEST(DirectLight, ClearcoatMatchesTheExtensionInDouble) {
+  layers_reference::Layered m{{0.8, 0.8, 0.8}};
+  m.roughness = 0.75;
+  m.clearcoat = 1.0;
+  m.clearcoat_roughness = 0.3;
+  expect_layered_floor(m, [](SceneMaterial& material) {
+    material.clearcoat = 1.0f;
+    material.clearcoat_roughness = 0.3f;
+  });
+}
+
+// KHR_materials_sheen: a coloured sheen of roughness 0.5 over the rough dielectric, the base dimmed by
+// 1 - max3(colour) E(n.v). Planted: the base left undimmed; it fails.
+TEST(DirectLight, SheenMatchesTheExtensionInDouble) {
+  layers_reference::Layered m{{0.8, 0.8, 0.8}};
+  m.roughness = 0.75;
+  m.sheen = {0.9, 0.5, 0.2};
+  m.sheen_roughness = 0.5;
+  expect_layered_floor(m, [](SceneMaterial& material) {
+    material.sheen_color = {0.9f, 0.5f, 0.2f};
+    material.sheen_roughness = 0.5f;
+  });
+}
+
+// KHR_materials_specular's colour: F0 = min(0.04 colour, 1) per channel, the diffuse base weighed by what the
+// strongest channel's lobe leaves. Planted: the colour ignored in the diffuse weight (0.04 kept there); it fails.
+TEST(DirectLight, SpecularColourTintsTheDielectricsReflection) {
+  layers_reference::Layered m{{0.8, 0.8, 0.8}};
+  m.roughness = 0.75;
+  m.specular_color = {1.5, 0.5, 12.0};
+  expect_layered_floor(m, [](SceneMaterial& material) { material.specular_color = {1.5f, 0.5f, 12.0f}; });
+}
+
+// The sheen lobe's albedo table (kernels/sheen_albedo_values.h, made by host/tables/make_sheen_albedo.cpp on a
+// cosine-weighted grid) against layers_reference.h's quadrature in (theta, phi), read bilinearly as the kernels read
+// it, at cell centres (the interpolation's worst) and nodes: within kSheenTableError for views above cos 0.1 and
+// sheen roughness 0.2 or more, where the lobe is smooth enough for a 32 x 32 table (the albedo is taken as at most 1).
+TEST(DirectLight, SheenAlbedoTableMatchesAnIndependentQuadrature) {
+#define __constant const
+#include "kernels/sheen_albedo_values.h"
+#undef __constant
+  const int n = SHEEN_ALBEDO_TABLE_SIZE;
+  auto table = [&](double cos_o, double roughness) {
+    const double x = cos_o * (n - 1), y = roughness * (n - 1);
+    const int x0 = std::min(int(x), n - 2), y0 = std::min(int(y), n - 2);
+    const double fx = x - x0, fy = y - y0;
+    auto at = [&](int r, int c) { return double(sheen_albedo_values[r * n + c]); };
+    const double bottom = at(y0, x0) * (1 - fx) + at(y0, x0 + 1) * fx, top = at(y0 + 1, x0) * (1 - fx) + at(y0 + 1, x0 + 1) * fx;
+    return std::min(bottom * (1 - fy) + top * fy, 1.0);
+  };
+  double worst = 0.0;
+  for (double roughness : {0.2, 0.35, 0.5, 0.75, 1.0})
+    for (double cos_o : {0.1, 0.2, 0.35, 0.5, 0.7, 0.9, 1.0}) {
+      for (double shift : {0.0, 0.5 / (n - 1)}) {
+        const double c = std::min(cos_o + shift, 1.0), r = std::min(roughness + shift, 1.0);
+        const double quadrature = std::min(layers_reference::sheen_albedo(c, r, 300), 1.0);
+        worst = std::max(worst, std::fabs(table(c, r) - quadrature));
+        ASSERT_NEAR(table(c, r), quadrature, kSheenTableError) << "cos " << c << " roughness " << r;
+      }
+    }
+  std::printf("sheen albedo table: largest difference %.2e\n", worst);
 }
 
 }  // namespace

@@ -39,6 +39,7 @@ class DeviceScene {
   const std::array<unsigned, LOBE_KINDS>& lobe_counts() const { return lobe_counts_; }
   bool has_specular_brdf() const { return defines_.at("HAS_SPECULAR_BRDF") == "1"; }
   bool has_glass() const { return defines_.at("HAS_TRANSMISSION") == "1"; }
+  bool has_layers() const { return defines_.at("HAS_LAYERS") == "1"; }
   // Radiance caching runs (and its kernels compile) only for a scene with a LOBE_HSH material.
   bool has_radiance_cache() const { return lobe_counts_[LOBE_HSH] > 0; }
   const std::vector<Material>& materials() const { return materials_host_; }

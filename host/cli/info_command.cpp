@@ -24,9 +24,10 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.lobe_counts[LOBE_NONE], plan.lobe_counts[LOBE_ROUGH], plan.lobe_counts[LOBE_HSH],
               plan.lobe_counts[LOBE_GLOSSY]);
   for (const MaterialPlan& m : plan.materials)
-    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s%s%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
+    std::printf("  %-24s %s (roughness %.2f, metallic %.2f%s%s%s%s%s%s%s%s): %s\n", m.name.c_str(), lobe_name(m.lobe),
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
                 m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
+                m.clearcoat ? ", clearcoat" : "", m.sheen ? ", sheen" : "", m.specular_colour ? ", specular colour" : "",
                 !m.glass ? "" : m.thin_walled ? ", thin-walled glass" : ", glass with a volume",
                 m.glass ? "seen through and passed by every ray, never cached (the share that is not glass as its kind says)"
                         : lobe_treatment(m.lobe));
@@ -47,6 +48,11 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 "mirrors; every other ray reflects or passes by Fresnel; shadow rays pass it with its colour "
                 "(thin-walled: exact; a volume: straight through, its caustics not focused); records never sit on it\n",
                 plan.glass_materials);
+  if (plan.layered_materials)
+    std::printf("layers       %u material(s) with clearcoat, sheen or specular colour: in direct light, at every hit, "
+                "in the glossy pass and the path tracer; their lobes are sampled per pixel (glossy) or, where all are "
+                "wide (rough), reflect the cached irradiance by their albedo; never radiance-cached\n",
+                plan.layered_materials);
   std::printf("lights       %u point, %u spot, %u directional; %zu emissive triangles\n", plan.point_lights,
               plan.spot_lights, plan.directional_lights, plan.emissive_triangles);
   if (plan.environment.empty())
@@ -57,7 +63,7 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 plan.environment.c_str(), 100.0 * plan.environment_peak_fraction, kEnvironmentPeakOverMean);
   for (const std::string& line : plan.not_simulated) std::printf("not simulated %s\n", line.c_str());
   std::printf("compiles     BRDF code %s, HSH code %s, base-colour texture code %s, area-light sampling %s, punctual lights %s, "
-              "environment %s, normal maps %s, emissive textures %s, glass %s\n",
+              "environment %s, normal maps %s, emissive textures %s, glass %s, layers %s\n",
               plan.switches.at("HAS_SPECULAR_BRDF") == "1" ? "yes" : "no (every material is Lambertian)",
               plan.radiance_cache() ? "yes" : "no (no radiance-cached material)",
               plan.switches.at("HAS_TEXTURES") == "1" ? "yes" : "no (no base-colour texture)",
@@ -66,7 +72,8 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
               plan.switches.at("HAS_ENVIRONMENT") == "1" ? "yes" : "no (no --sky or --environment)",
               plan.switches.at("HAS_NORMAL_MAPS") == "1" ? "yes" : "no",
               plan.switches.at("HAS_EMISSIVE_TEXTURES") == "1" ? "yes" : "no",
-              plan.switches.at("HAS_TRANSMISSION") == "1" ? "yes" : "no");
+              plan.switches.at("HAS_TRANSMISSION") == "1" ? "yes" : "no",
+              plan.switches.at("HAS_LAYERS") == "1" ? "yes" : "no");
   std::printf("switches    ");
   for (const auto& [name, value] : scene_plan_switches(plan, bvh_depth))
     std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -80,6 +87,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
                          {"metallic", m.metallic}, {"emissive", m.emissive}, {"textured", m.textured},
                          {"normal_map", m.normal_mapped}, {"emissive_texture", m.emissive_textured},
                          {"glass", m.glass ? (m.thin_walled ? "thin-walled" : "volume") : "no"},
+                         {"clearcoat", m.clearcoat}, {"sheen", m.sheen}, {"specular_colour", m.specular_colour},
                          {"shading", lobe_treatment(m.lobe)}});
   nlohmann::json environment = nullptr;
   if (!plan.environment.empty())

@@ -6,7 +6,9 @@ namespace rcsplat {
 void GBufferPass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
 
 void GBufferView::bind(NamedKernel& kernel) const {
-  kernel.set_buffer<GBufferSample>("gbuffer", samples).set_buffer<CameraParams>("camera", camera);
+  kernel.set_buffer<GBufferSample>("gbuffer", samples)
+      .set_buffer<CameraParams>("camera", camera)
+      .set_buffer<SurfaceLayers>("gbuffer_layers", layers);
 }
 
 void GBufferView::bind_see_through(NamedKernel& kernel) const { kernel.set_buffer<cl_float4>("see_through", see_through); }
@@ -23,6 +25,8 @@ void GBufferPass::run(const CameraParams& camera) {
     const size_t weights = scene_.has_glass() ? std::max<size_t>(pixels, 1) : 1;
     view_.see_through = gpu_.buffer(CL_MEM_READ_WRITE, weights * sizeof(cl_float4), "G-buffer");
     view_.glass_mirrors = gpu_.buffer(CL_MEM_READ_WRITE, 2 * weights * sizeof(cl_float4), "G-buffer");
+    const size_t layered = scene_.has_layers() ? std::max<size_t>(pixels, 1) : 1;
+    view_.layers = gpu_.buffer(CL_MEM_READ_WRITE, layered * sizeof(SurfaceLayers), "G-buffer");
   }
   view_.width = camera.width;
   view_.height = camera.height;

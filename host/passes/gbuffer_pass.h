@@ -19,10 +19,13 @@ struct GBufferView {
   // Per pixel two float4: the ray its camera ray's first glass point mirrors (origin and R, direction), for
   // kernels/glass_mirror.cl; one unread pair without glass.
   cl::Buffer glass_mirrors;
+  // Per pixel its surface's layers (SurfaceLayers: clearcoat, sheen, specular colour; kernels/brdf_layers.h) in a
+  // scene with them; one unread element otherwise.
+  cl::Buffer layers;
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
   size_t output_pixel_count() const { return pixel_count() / size_t(sub_pixel_side * sub_pixel_side); }
-  // Sets a kernel's GBUFFER_ARGS ("gbuffer" and "camera").
+  // Sets a kernel's GBUFFER_ARGS ("gbuffer", "camera" and "gbuffer_layers").
   void bind(NamedKernel& kernel) const;
   // Sets a kernel's "see_through".
   void bind_see_through(NamedKernel& kernel) const;

@@ -34,7 +34,8 @@ namespace {
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
                                                     "KHR_materials_specular", "KHR_texture_transform",
                                                     "EXT_texture_webp", "KHR_materials_transmission",
-                                                    "KHR_materials_ior", "KHR_materials_volume"};
+                                                    "KHR_materials_ior", "KHR_materials_volume",
+                                                    "KHR_materials_clearcoat", "KHR_materials_sheen"};
 
 class GltfReader {
  public:
@@ -730,7 +731,9 @@ class GltfReader {
 
   // Whether material `index` keeps a normal map (read_materials decided): its primitives then carry tangents.
   bool normal_mapped(int index) const {
-    return index >= 0 && size_t(index) < scene_.materials.size() && scene_.materials[size_t(index)].normal_texture >= 0;
+    if (index < 0 || size_t(index) >= scene_.materials.size()) return false;
+    const SceneMaterial& m = scene_.materials[size_t(index)];
+    return m.normal_texture >= 0 || (m.clearcoat > 0.0f && m.clearcoat_normal_texture >= 0);
   }
 
   static bool same_mapping(const UvMapping& a, const UvMapping& b) {
@@ -775,6 +778,69 @@ class GltfReader {
     const tinygltf::Value& v = extension.Get(key);
     if (!v.IsNumber()) fail(material_label(src) + ": " + name + "'s " + key + " is not a number");
     return v.GetNumberAsDouble();
+  }
+
+  // Three numbers an extension gives (a colour), each finite and in [0, most]; `fallback` where it gives none.
+  glm::vec3 extension_colour(const tinygltf::Material& src, const tinygltf::Value& extension, const std::string& name,
+                             const char* key, glm::vec3 fallback, double most) const {
+    if (!extension.Has(key)) return fallback;
+    const tinygltf::Value& c = extension.Get(key);
+    if (!c.IsArray() || c.ArrayLen() != 3) fail(material_label(src) + ": " + name + "'s " + key + " is not three numbers");
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      const double x = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : NAN;
+      if (!std::isfinite(x) || x < 0.0 || x > most)
+        fail(material_label(src) + ": " + name + "'s " + key + " must be three finite numbers in [0, " +
+             (std::isfinite(most) ? std::to_string(int(most)) : std::string("infinity")) + ")");
+      out[i] = float(x);
+    }
+    return out;
+  }
+
+  // A factor an extension gives in [0, 1], or `fallback`.
+  float extension_unit(const tinygltf::Material& src, const tinygltf::Value& extension, const std::string& name,
+                       const char* key, double fallback) const {
+    const double x = extension_number(src, extension, name, key, fallback);
+    if (!std::isfinite(x) || x < 0.0 || x > 1.0) fail(material_label(src) + ": " + name + "'s " + key + " must lie in [0, 1]");
+    return float(x);
+  }
+
+  // Layers: KHR_materials_clearcoat and KHR_materials_sheen (kernels/brdf_layers.h simulates them).
+  void read_layers(const tinygltf::Material& src, SceneMaterial& m) {
+    auto coat = src.extensions.find("KHR_materials_clearcoat");
+    if (coat != src.extensions.end()) {
+      const std::string name = "KHR_materials_clearcoat";
+      const tinygltf::Value& v = coat->second;
+      m.clearcoat = extension_unit(src, v, name, "clearcoatFactor", 0.0);
+      m.clearcoat_roughness = extension_unit(src, v, name, "clearcoatRoughnessFactor", 0.0);
+      m.clearcoat_texture = extension_texture_slot(src, v, name, "clearcoatTexture", "clearcoatFactor alone is used");
+      m.clearcoat_roughness_texture = extension_texture_slot(src, v, name, "clearcoatRoughnessTexture",
+                                                             "clearcoatRoughnessFactor alone is used");
+      m.clearcoat_normal_texture = extension_texture_slot(src, v, name, "clearcoatNormalTexture",
+                                                          "the coat follows the interpolated normal");
+      if (m.clearcoat_normal_texture >= 0) {
+        const tinygltf::Value& info = v.Get("clearcoatNormalTexture");
+        m.clearcoat_normal_scale = 1.0f;
+        if (info.Has("scale")) {
+          const tinygltf::Value& scale = info.Get("scale");
+          const double x = scale.IsNumber() ? scale.GetNumberAsDouble() : NAN;
+          if (!std::isfinite(x)) fail(material_label(src) + ": " + name + "'s clearcoatNormalTexture.scale is not finite");
+          m.clearcoat_normal_scale = float(x);
+        }
+      }
+    }
+    auto sheen = src.extensions.find("KHR_materials_sheen");
+    if (sheen != src.extensions.end()) {
+      const std::string name = "KHR_materials_sheen";
+      const tinygltf::Value& v = sheen->second;
+      m.sheen_color = extension_colour(src, v, name, "sheenColorFactor", glm::vec3(0.0f), 1.0);
+      m.sheen_roughness = extension_unit(src, v, name, "sheenRoughnessFactor", 0.0);
+      m.sheen_color_texture = extension_texture_slot(src, v, name, "sheenColorTexture", "sheenColorFactor alone is used");
+      m.sheen_roughness_texture = extension_texture_slot(src, v, name, "sheenRoughnessTexture",
+                                                         "sheenRoughnessFactor alone is used");
+    }
+    if (m.layered() && m.transmission > 0.0f)
+      note_unsupported("clearcoat, sheen or specular colour on glass", "the glass's surface reflects as uncoated glass");
   }
 
   // Glass: KHR_materials_transmission, KHR_materials_ior and KHR_materials_volume (kernels/glass.h simulates them).
@@ -839,10 +905,13 @@ class GltfReader {
     if (ext != src.extensions.end()) {
       const tinygltf::Value& v = ext->second;
       if (v.Has("specularFactor")) m.specular = float(v.Get("specularFactor").GetNumberAsDouble());
-      if (v.Has("specularColorFactor") || v.Has("specularColorTexture"))
-        note_unsupported("KHR_materials_specular colour", "specularFactor and specularTexture alone are used");
+      // The extension allows colours above 1 (F0 = 0.04 x colour is clamped at 1 later): finite and at least 0.
+      m.specular_color = extension_colour(src, v, "KHR_materials_specular", "specularColorFactor", glm::vec3(1.0f),
+                                          std::numeric_limits<double>::infinity());
       m.specular_texture = extension_texture_slot(src, v, "KHR_materials_specular", "specularTexture",
                                                   "specularFactor alone is used");
+      m.specular_color_texture = extension_texture_slot(src, v, "KHR_materials_specular", "specularColorTexture",
+                                                        "specularColorFactor alone is used");
     }
     for (float f : {m.metallic, m.roughness, m.specular})
       if (!std::isfinite(f) || f < 0.0f || f > 1.0f)
@@ -864,6 +933,7 @@ class GltfReader {
       m.base_color_texture = texture_slot(pbr.baseColorTexture.index, src.name);
       read_brdf(src, m);
       read_glass(src, m);
+      read_layers(src, m);
       float strength = 1.0f;
       auto ext = src.extensions.find("KHR_materials_emissive_strength");
       if (ext != src.extensions.end() && ext->second.Has("emissiveStrength"))

@@ -123,6 +123,29 @@ uint32_t append_texels(const SceneTexture& t, bool srgb, std::vector<uint32_t>& 
 
 }  // namespace
 
+// The material's layers (kernels/brdf_layers.h) into `out`, and the lobe kind they make (layered_lobe): a texture can
+// only lower a factor, so a roughness texture classifies the coat at roughness 0, its sharpest. Glass keeps no layers
+// (the loader names that).
+static void pack_layers(const SceneMaterial& m, Material& out) {
+  put3(out.specular_color, glm::max(m.specular_color, glm::vec3(0.0f)));
+  out.specular_color_texture = m.specular_color_texture;
+  out.clearcoat = std::clamp(m.clearcoat, 0.0f, 1.0f);
+  out.clearcoat_texture = m.clearcoat_texture;
+  out.clearcoat_roughness = std::clamp(m.clearcoat_roughness, 0.0f, 1.0f);
+  out.clearcoat_roughness_texture = m.clearcoat_roughness_texture;
+  out.clearcoat_normal_texture = m.clearcoat_normal_texture;
+  out.clearcoat_normal_scale = std::isfinite(m.clearcoat_normal_scale) ? m.clearcoat_normal_scale : 1.0f;
+  put3(out.sheen_color, glm::clamp(m.sheen_color, glm::vec3(0.0f), glm::vec3(1.0f)));
+  out.sheen_color_texture = m.sheen_color_texture;
+  out.sheen_roughness = std::clamp(m.sheen_roughness, 0.0f, 1.0f);
+  out.sheen_roughness_texture = m.sheen_roughness_texture;
+  out.layered = m.layered() && m.transmission == 0.0f ? 1 : 0;
+  if (!out.layered) return;
+  const float sheen = std::max({out.sheen_color[0], out.sheen_color[1], out.sheen_color[2]});
+  const float coat_roughness = out.clearcoat_roughness_texture >= 0 ? 0.0f : out.clearcoat_roughness;
+  out.lobe = layered_lobe(out.lobe, out.clearcoat, coat_roughness, sheen);
+}
+
 PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texels) {
   PackedScene p;
   size_t n = scene.triangle_count();
@@ -221,12 +244,13 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     // Glass all over is never a pixel's or a hit's surface (kernels/glass.h): its reflection is the glass code's, and
     // it needs no BRDF.
     if (out.transmission >= 1.0f && out.transmission_texture < 0 && out.metallic == 0.0f) out.lobe = LOBE_NONE;
+    pack_layers(m, out);
     p.materials.push_back(out);
   }
   // Colour textures (base colour, emission) are averaged in linear light down their mip chain; data ones as stored.
   std::vector<bool> colour(scene.textures.size(), false);
   for (const SceneMaterial& m : scene.materials)
-    for (int t : {m.base_color_texture, m.emissive_texture})
+    for (int t : {m.base_color_texture, m.emissive_texture, m.specular_color_texture, m.sheen_color_texture})
       if (t >= 0 && size_t(t) < colour.size()) colour[size_t(t)] = true;
   for (size_t i = 0; texels == Texels::packed && i < scene.textures.size(); ++i) {
     const SceneTexture& t = scene.textures[i];

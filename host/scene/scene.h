@@ -42,6 +42,27 @@ struct SceneMaterial {
   float thickness = 0.0f;
   glm::vec3 attenuation_color{1.0f};
   float attenuation_distance = std::numeric_limits<float>::infinity();
+  // Layers (kernels/brdf_layers.h): KHR_materials_specular's colour (the dielectric's F0 tint) and its texture (sRGB,
+  // RGB); KHR_materials_clearcoat (weight and texture R, roughness and texture G, normal texture and its scale; the
+  // textures share the base colour's mapping); KHR_materials_sheen (colour and texture sRGB RGB, roughness and texture A).
+  glm::vec3 specular_color{1.0f};
+  int specular_color_texture = -1;
+  float clearcoat = 0.0f;
+  int clearcoat_texture = -1;
+  float clearcoat_roughness = 0.0f;
+  int clearcoat_roughness_texture = -1;
+  int clearcoat_normal_texture = -1;
+  float clearcoat_normal_scale = 1.0f;
+  glm::vec3 sheen_color{0.0f};
+  int sheen_color_texture = -1;
+  float sheen_roughness = 0.0f;
+  int sheen_roughness_texture = -1;
+  // Whether a layer changes the BRDF: a coat, a sheen, or a specular colour that is not white on a specular layer.
+  bool layered() const {
+    const bool tinted = (specular_color != glm::vec3(1.0f) || specular_color_texture >= 0) && specular > 0.0f &&
+                        metallic < 1.0f;
+    return clearcoat > 0.0f || (sheen_color.x > 0.0f || sheen_color.y > 0.0f || sheen_color.z > 0.0f) || tinted;
+  }
 };
 
 struct SceneTexture {

@@ -1,17 +1,23 @@
 #include "scene/scene_plan.h"
 
+#include <algorithm>
+
 namespace rcsplat {
 
 std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
                                                   const std::set<std::string>& forced) {
   bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false,
-       glass = false;
+       glass = false, layers = false;
   for (const Material& m : p.materials) {
-    // Every texture a material reads through HAS_TEXTURES's code: base colour, metallic-roughness, specular.
+    // Every texture a material reads through HAS_TEXTURES's code: base colour, metallic-roughness, specular, layers.
     textured |= m.base_color_texture >= 0 || m.metallic_roughness_texture >= 0 || m.specular_texture >= 0;
+    textured |= m.layered && (m.specular_color_texture >= 0 || m.clearcoat_texture >= 0 ||
+                              m.clearcoat_roughness_texture >= 0 || m.sheen_color_texture >= 0 ||
+                              m.sheen_roughness_texture >= 0 || m.clearcoat_normal_texture >= 0);
     masked |= m.alpha_cutoff > 0.0f || m.alpha_blend;
     specular |= m.lobe != LOBE_NONE;
-    normal_maps |= m.normal_texture >= 0 && !p.tangents.empty();
+    normal_maps |= (m.normal_texture >= 0 || (m.layered && m.clearcoat_normal_texture >= 0)) && !p.tangents.empty();
+    layers |= m.layered != 0;
     glass |= m.transmission > 0.0f && m.metallic < 1.0f;
   }
   for (const EmissiveTriangle& e : p.emitters) emissive_textures |= emitter_textured_triangle(e) >= 0;
@@ -27,6 +33,7 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   set("HAS_NORMAL_MAPS", normal_maps);
   set("HAS_EMISSIVE_TEXTURES", emissive_textures);
   set("HAS_TRANSMISSION", glass);
+  set("HAS_LAYERS", layers);
   // Tests only: the environment's peak sampled uniformly over the sphere, to check its importance sampling against.
   if (forced.count("ENVIRONMENT_UNIFORM_SAMPLING")) switches["ENVIRONMENT_UNIFORM_SAMPLING"] = "1";
   return switches;
@@ -74,6 +81,12 @@ ScenePlan plan_scene(const Scene& scene) {
     mp.emissive_textured = mp.emissive && m.emissive_texture >= 0;
     mp.glass = m.transmission > 0.0f && m.metallic < 1.0f;
     mp.thin_walled = mp.glass && !(m.thickness > 0.0f);
+    if (m.layered) {
+      mp.clearcoat = m.clearcoat > 0.0f;
+      mp.sheen = std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]}) > 0.0f;
+      mp.specular_colour = source.specular_color != glm::vec3(1.0f) || source.specular_color_texture >= 0;
+      plan.layered_materials += 1;
+    }
     plan.glass_materials += mp.glass;
     plan.normal_mapped_materials += mp.normal_mapped;
     plan.emissive_textured_materials += mp.emissive_textured;

@@ -16,7 +16,8 @@ namespace rcsplat {
 
 // The scene's kernel switches (name -> "1" or "0"): HAS_TEXTURES, HAS_VERTEX_COLORS, HAS_ALPHA_MASK,
 // HAS_SPECULAR_BRDF (any non-Lambertian material), HAS_PUNCTUAL_LIGHTS, HAS_EMITTERS, HAS_ENVIRONMENT,
-// HAS_NORMAL_MAPS, HAS_EMISSIVE_TEXTURES (an emitter whose emission is textured), HAS_TRANSMISSION (glass). Those named in `forced` are on
+// HAS_NORMAL_MAPS, HAS_EMISSIVE_TEXTURES (an emitter whose emission is textured), HAS_TRANSMISSION (glass), HAS_LAYERS
+// (clearcoat, sheen, specular colour). Those named in `forced` are on
 // whatever the scene holds: tests show that compiling a feature the scene does not use changes no bit of its image.
 // The BVH adds BVH_STACK_SIZE, passes their own (STORE_STRATA, ...).
 std::map<std::string, std::string> scene_switches(const PackedScene& packed, bool has_vertex_colors,
@@ -31,13 +32,15 @@ struct MaterialPlan {
   bool emissive_textured = false;  // its emission is textured, sampled by textured power (HAS_EMISSIVE_TEXTURES)
   bool glass = false;        // it transmits (HAS_TRANSMISSION, kernels/glass.h)
   bool thin_walled = false;  // glass without a volume: rays pass it straight
+  // Its layers (HAS_LAYERS, kernels/brdf_layers.h): a clearcoat, a sheen, a specular colour.
+  bool clearcoat = false, sheen = false, specular_colour = false;
 };
 
 struct ScenePlan {
   std::string source;
   size_t triangles = 0, emissive_triangles = 0, textures = 0;
   bool vertex_colors = false, alpha_mask = false, alpha_blend = false;
-  unsigned normal_mapped_materials = 0, emissive_textured_materials = 0, glass_materials = 0;
+  unsigned normal_mapped_materials = 0, emissive_textured_materials = 0, glass_materials = 0, layered_materials = 0;
   std::vector<MaterialPlan> materials;
   std::array<unsigned, LOBE_KINDS> lobe_counts{};
   unsigned point_lights = 0, spot_lights = 0, directional_lights = 0;

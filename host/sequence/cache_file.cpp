@@ -187,6 +187,20 @@ uint64_t scene_fingerprint(const Scene& s) {
       h.value(m.attenuation_color);
       h.value(m.attenuation_distance);
     }
+    if (m.layered()) {  // layers (older files' scenes had none, and keep their hashes)
+      h.value(m.specular_color);
+      h.value(m.specular_color_texture);
+      h.value(m.clearcoat);
+      h.value(m.clearcoat_texture);
+      h.value(m.clearcoat_roughness);
+      h.value(m.clearcoat_roughness_texture);
+      h.value(m.clearcoat_normal_texture);
+      h.value(m.clearcoat_normal_scale);
+      h.value(m.sheen_color);
+      h.value(m.sheen_color_texture);
+      h.value(m.sheen_roughness);
+      h.value(m.sheen_roughness_texture);
+    }
   }
   h.value(uint64_t(s.textures.size()));
   for (const SceneTexture& t : s.textures) {
