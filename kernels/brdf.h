@@ -226,19 +226,18 @@ inline float3 cosine_local_direction(float u1, float u2) {
 // any. The irradiance cache is exact for it.
 inline float3 brdf_eval_diffuse(BrdfInputs in, float3 wo) {
 #if HAS_LAYERS
-  return layers_base_share(in, wo) * base_eval_diffuse(in, wo.z);
-#else
-  return base_eval_diffuse(in, wo.z);
+  if (has_layer_lobes(in)) return layers_base_share(in, wo) * base_eval_diffuse(in, wo.z);
 #endif
+  return base_eval_diffuse(in, wo.z);
 }
 
-// The BRDF's lobes: the base's specular lobe, and the coat's and sheen's where there are layers.
+// The BRDF's lobes: the base's specular lobe, and the coat's and sheen's where there are layers. A surface without a
+// coat or sheen takes the base's code alone in every function below, so that it keeps its bits in a scene with layers.
 inline float3 brdf_eval_specular(BrdfInputs in, float3 wo, float3 wi) {
 #if HAS_LAYERS
-  return layered_eval_lobes(in, wo, wi);
-#else
-  return base_eval_specular(in, wo, wi);
+  if (has_layer_lobes(in)) return layered_eval_lobes(in, wo, wi);
 #endif
+  return base_eval_specular(in, wo, wi);
 }
 
 // f(wo, wi), both in the local frame; zero unless both lie above the surface.
@@ -260,8 +259,8 @@ inline float3 lobes_albedo(BrdfInputs in, float3 wo) {
 inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
 #if HAS_LAYERS
-  return layered_pdf(in, wo, wi, true);
-#else
+  if (has_layer_lobes(in)) return layered_pdf(in, wo, wi, true);
+#endif
   float p_spec = brdf_specular_probability(in, wo);
   float pdf = (1.0f - p_spec) * wi.z * RC_INV_PI;
   if (p_spec > 0.0f) {
@@ -271,7 +270,6 @@ inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
     pdf += p_spec * ggx_d(h, a2) * ggx_g1(wo.z, a2) / (4.0f * wo.z);
   }
   return pdf;
-#endif
 }
 
 // Draws wi for wo from (u_lobe, u1, u2). Returns f cos(wi) / pdf, or zero when the direction falls below the surface;
@@ -280,14 +278,14 @@ inline float3 brdf_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, floa
   *pdf = 0.0f;
   if (wo.z <= 0.0f) return (float3)(0.0f);
 #if HAS_LAYERS
-  *wi = layered_sample(in, wo, true, u_lobe, u1, u2);
-#else
+  if (has_layer_lobes(in)) *wi = layered_sample(in, wo, true, u_lobe, u1, u2);
+  else
+#endif
   if (u_lobe < brdf_specular_probability(in, wo)) {
     *wi = ggx_sample_reflection(wo, in.alpha, u1, u2);
   } else {
     *wi = cosine_local_direction(u1, u2);
   }
-#endif
   if (wi->z <= 0.0f) return (float3)(0.0f);
   *pdf = brdf_pdf(in, wo, *wi);
   if (!(*pdf > 0.0f)) return (float3)(0.0f);
@@ -299,29 +297,28 @@ inline float3 brdf_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, floa
 // a mixture of them, the coat's and a cosine lobe for the sheen (u_lobe chooses; unused without layers).
 inline float3 lobes_sample(BrdfInputs in, float3 wo, float u_lobe, float u1, float u2) {
 #if HAS_LAYERS
-  return layered_sample(in, wo, false, u_lobe, u1, u2);
-#else
-  return ggx_sample_reflection(wo, in.alpha, u1, u2);
+  if (has_layer_lobes(in)) return layered_sample(in, wo, false, u_lobe, u1, u2);
 #endif
+  return ggx_sample_reflection(wo, in.alpha, u1, u2);
 }
 
 // The density of lobes_sample at wi.
 inline float lobes_pdf(BrdfInputs in, float3 wo, float3 wi) {
 #if HAS_LAYERS
-  return wo.z > 0.0f && wi.z > 0.0f ? layered_pdf(in, wo, wi, false) : 0.0f;
-#else
-  return ggx_reflection_pdf(in.alpha, wo, wi);
+  if (has_layer_lobes(in)) return wo.z > 0.0f && wi.z > 0.0f ? layered_pdf(in, wo, wi, false) : 0.0f;
 #endif
+  return ggx_reflection_pdf(in.alpha, wo, wi);
 }
 
 // The weight of one lobes_sample: f_lobes cos / pdf (F G2 / G1 without layers).
 inline float3 lobes_weight(BrdfInputs in, float3 wo, float3 wi) {
 #if HAS_LAYERS
-  const float pdf = lobes_pdf(in, wo, wi);
-  return pdf > 0.0f ? brdf_eval_specular(in, wo, wi) * (wi.z / pdf) : (float3)(0.0f);
-#else
-  return brdf_specular_weight(in, wo, wi);
+  if (has_layer_lobes(in)) {
+    const float pdf = lobes_pdf(in, wo, wi);
+    return pdf > 0.0f ? brdf_eval_specular(in, wo, wi) * (wi.z / pdf) : (float3)(0.0f);
+  }
 #endif
+  return brdf_specular_weight(in, wo, wi);
 }
 
 #endif

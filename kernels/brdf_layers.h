@@ -16,6 +16,9 @@
 #if HAS_LAYERS
 inline float max3(float3 c) { return fmax(c.x, fmax(c.y, c.z)); }
 
+// Whether a coat or a sheen adds a lobe (a specular colour alone tints the base's).
+inline bool has_layer_lobes(BrdfInputs in) { return in.clearcoat > 0.0f || max3(in.sheen) > 0.0f; }
+
 // A vector of the shading frame in the coat's frame (its normal as +z).
 inline float3 to_coat(BrdfInputs in, float3 v) { return (float3)(dot(v, in.coat_t), dot(v, in.coat_b), dot(v, in.coat_n)); }
 inline float3 from_coat(BrdfInputs in, float3 v) { return v.x * in.coat_t + v.y * in.coat_b + v.z * in.coat_n; }
@@ -94,6 +97,7 @@ inline float3 layered_eval_lobes(BrdfInputs in, float3 wo, float3 wi) {
 // The lobes' directional albedo toward wo: the base's lobe (kernels/brdf.h), the sheen's E, and the coat's T0 (the GGX
 // table's term for a Fresnel of 1) at its own roughness and angle, each under the layers above it.
 inline float3 layered_lobes_albedo(BrdfInputs in, float3 wo) {
+  if (!has_layer_lobes(in)) return base_specular_albedo(in, wo);
   const float coat = coat_view_weight(in, wo);
   float3 albedo = layers_base_share(in, wo) * base_specular_albedo(in, wo) + (1.0f - coat) * sheen_view_albedo(in, wo);
   if (coat > 0.0f) albedo += (float3)(coat * ggx_albedo_split(in.coat_alpha, dot(wo, in.coat_n)).x);

@@ -209,9 +209,9 @@ __kernel void gbuffer(SCENE_ARGS, __global GBufferSample* gbuffer, __global cons
     g.roughness = lobe.roughness;
     g.specular = lobe.specular;
     g.lobe = lobe.lobe;
-#endif
 #if HAS_LAYERS
     gbuffer_layers[y * camera->width + x] = lobe.layers;
+#endif
 #endif
     g.depth = hit.t;
   }

@@ -656,7 +656,7 @@ void expect_layered_floor(const layers_reference::Layered& m, void (*layer)(Scen
   for (size_t i = 0; i < img.triangle.size(); i += 4) {
     if (img.triangle[i] < 0) continue;
     const FloorPixel p = floor_pixel(s, img, i);
-    const auto terms = layers_reference::ggx_albedo_terms(p.wo.z, alpha, 96);
+    const auto terms = layers_reference::ggx_albedo_terms(p.wo.z, alpha, 256);
     const double sheen_e = layers_reference::max3(m.sheen) > 0.0
                                ? std::min(layers_reference::sheen_albedo(p.wo.z, m.sheen_roughness, 96), 1.0)
                                : 0.0;

@@ -80,6 +80,28 @@ RenderSettings small_frame(unsigned pixel_samples = 1) {
   return settings;
 }
 
+// The indirect relMSE over the pixels whose triangle `keep` accepts, less the reference's own noise there, and how many
+// pixels that is.
+struct SubsetError {
+  double rel_mse = 0.0;
+  size_t pixels = 0;
+};
+template <typename Keep>
+SubsetError subset_indirect_error(const RenderedImage& img, const RenderedImage& ref, Keep keep) {
+  std::vector<float> a, b;
+  double noise = 0.0;
+  for (size_t i = 0; i < img.triangle.size(); ++i) {
+    if (!keep(img.triangle[i])) continue;
+    for (size_t c = 0; c < 3; ++c) {
+      a.push_back(img.indirect[3 * i + c]);
+      b.push_back(ref.indirect[3 * i + c]);
+      noise += ref.indirect_variance[3 * i + c] / (double(ref.indirect[3 * i + c]) * ref.indirect[3 * i + c] + kRelMseOffset);
+    }
+  }
+  if (a.empty()) return {};
+  return {image_error(a, b).rel_mse - noise / double(a.size()), a.size() / 3};
+}
+
 PathReference path_reference(const Scene& scene, RenderSettings settings, unsigned samples) {
   settings.gi = GiMethod::path;
   settings.path.samples = samples;
@@ -392,23 +414,13 @@ TEST(GlobalIllumination, NormalMappedCornellBoxSplatAgreesWithPathTracedReferenc
   settings.gi = GiMethod::splat;
   const RenderedImage img = render(test::gpu(), scene, settings);
   // The mapped pixels alone (floor and back wall).
-  std::vector<float> a, b;
-  double noise = 0.0;
-  for (size_t i = 0; i < img.triangle.size(); ++i) {
-    const int t = img.triangle[i];
-    if (!(t == 0 || t == 1 || t == 4 || t == 5)) continue;
-    for (size_t c = 0; c < 3; ++c) {
-      a.push_back(img.indirect[3 * i + c]);
-      b.push_back(ref.indirect[3 * i + c]);
-      noise += ref.indirect_variance[3 * i + c] / (double(ref.indirect[3 * i + c]) * ref.indirect[3 * i + c] + kRelMseOffset);
-    }
-  }
-  const double mapped_error = image_error(a, b).rel_mse - noise / double(a.size());
+  const SubsetError mapped = subset_indirect_error(img, ref, [](int t) { return t == 0 || t == 1 || t == 4 || t == 5; });
+  const double mapped_error = mapped.rel_mse;
   const double error = indirect_rel_mse(img, ref) - reference.noise;
   std::printf("normal-mapped Cornell box: %llu records, indirect relMSE %.3e (mapped pixels %.3e, %zu of them) after "
               "subtracting the reference's own %.1e\n",
-              (unsigned long long)img.stats.irradiance.records, error, mapped_error, a.size() / 3, reference.noise);
-  EXPECT_GT(a.size() / 3, 600u);
+              (unsigned long long)img.stats.irradiance.records, error, mapped_error, mapped.pixels, reference.noise);
+  EXPECT_GT(mapped.pixels, 600u);
   EXPECT_LT(error, 1.2e-4);
   EXPECT_LT(mapped_error, 1.2e-4);
 }
@@ -446,6 +458,62 @@ TEST(GlobalIllumination, CornellBoxBehindGlassSplatAgreesWithPathTracedReference
               "%.1e\n",
               (unsigned long long)img.stats.irradiance.records, error, reference.noise);
   EXPECT_LT(error, 2.5e-4);
+}
+
+// The Cornell box with layered surfaces: the tall block varnished (a clearcoat of roughness 0.15 over dark blue:
+// sampled per pixel), the short block under a grey sheen of roughness 0.5 (rough: it reflects the cached irradiance by
+// its albedo), and a floor whose dielectric reflection is tinted by a specular colour.
+Scene cornell_box_with_layers() {
+  Scene scene = make_cornell_box();
+  SceneMaterial varnish = scene.materials[scene.triangle_material[22]];
+  varnish.name = "varnish";
+  varnish.base_color = glm::vec4(0.05f, 0.05f, 0.2f, 1.0f);  // car paint: the coat's reflection shows on a dark base
+  varnish.clearcoat = 1.0f;
+  varnish.clearcoat_roughness = 0.15f;
+  SceneMaterial velvet = scene.materials[scene.triangle_material[12]];
+  velvet.name = "velvet";
+  velvet.base_color = glm::vec4(0.3f, 0.3f, 0.6f, 1.0f);
+  velvet.sheen_color = glm::vec3(0.9f);
+  velvet.sheen_roughness = 0.5f;
+  SceneMaterial floor = scene.materials[scene.triangle_material[0]];
+  floor.name = "tinted floor";
+  floor.specular = 1.0f;
+  floor.roughness = 0.7f;
+  floor.specular_color = glm::vec3(2.0f, 1.0f, 0.5f);
+  const uint32_t first = uint32_t(scene.materials.size());
+  scene.materials.insert(scene.materials.end(), {varnish, velvet, floor});
+  for (size_t t = 22; t < 32; ++t) scene.triangle_material[t] = first;
+  for (size_t t = 12; t < 22; ++t) scene.triangle_material[t] = first + 1;
+  for (size_t t = 0; t < 2; ++t) scene.triangle_material[t] = first + 2;
+  return scene;
+}
+
+// Layers at every kind of ray: the pixels' direct light and composition, the glossy pass's samples of the coat, the
+// records' rays landing on layered surfaces and the path tracer's reference all shade them. Measured on PoCL (48 x 48,
+// a = 0.3, 4096-sample reference, after its own noise of 2.5e-5): indirect relMSE 4.7e-5 over the varnished block,
+// 6.7e-5 over the velvet one and 3.4e-4 over the frame, whose floor (2.6e-3) is a rough lobe's cached-irradiance
+// approximation (white or tinted alike: 2.5e-3 without the colour); the bounds are about twice those. Planted: the
+// glossy pass sampling the base's lobe alone (the coat's light lost) gives the varnish 2.4e-3; the sheen left
+// out of the rough lobe's albedo gives the velvet 6.4e-4.
+TEST(GlobalIllumination, LayeredCornellBoxSplatAgreesWithPathTracedReference) {
+  const Scene scene = cornell_box_with_layers();
+  RenderSettings settings = small_frame();
+  PathReference reference = path_reference(scene, settings, 4096);
+  settings.gi = GiMethod::splat;
+  const RenderedImage img = render(test::gpu(), scene, settings);
+  const double error = indirect_rel_mse(img, reference.image) - reference.noise;
+  const SubsetError varnish = subset_indirect_error(img, reference.image, [](int t) { return t >= 22 && t < 32; });
+  const SubsetError velvet = subset_indirect_error(img, reference.image, [](int t) { return t >= 12 && t < 22; });
+  const SubsetError floor = subset_indirect_error(img, reference.image, [](int t) { return t == 0 || t == 1; });
+  std::printf("layered Cornell box: %llu records, indirect relMSE %.3e (varnish %.3e over %zu pixels, velvet %.3e over "
+              "%zu, floor %.3e over %zu) after subtracting the reference's own %.1e\n",
+              (unsigned long long)img.stats.irradiance.records, error, varnish.rel_mse, varnish.pixels, velvet.rel_mse,
+              velvet.pixels, floor.rel_mse, floor.pixels, reference.noise);
+  EXPECT_GT(varnish.pixels, 100u);
+  EXPECT_GT(velvet.pixels, 100u);
+  EXPECT_LT(varnish.rel_mse, 1e-4);
+  EXPECT_LT(velvet.rel_mse, 1.4e-4);
+  EXPECT_LT(error, 7e-4);
 }
 
 // An HSH order above the highest offered is refused before any work, in the command line's words.

@@ -50,6 +50,8 @@ Scene cornell_with(const std::string& feature) {
     s.materials[0].roughness = 0.5f;
   } else if (feature == "glass") {
     s.materials[0].transmission = 1.0f;
+  } else if (feature == "clearcoat") {
+    s.materials[0].clearcoat = 1.0f;
   } else if (feature == "alpha mask") {
     s.materials[0].alpha_cutoff = 0.5f;
   } else if (feature == "sky") {
@@ -68,6 +70,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
                                                                 {"HAS_EMISSIVE_TEXTURES", "0"},
                                                                 {"HAS_EMITTERS", "1"},
                                                                 {"HAS_ENVIRONMENT", "0"},
+                                                                {"HAS_LAYERS", "0"},
                                                                 {"HAS_NORMAL_MAPS", "0"},
                                                                 {"HAS_PUNCTUAL_LIGHTS", "0"},
                                                                 {"HAS_SPECULAR_BRDF", "0"},
@@ -77,19 +80,21 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
   EXPECT_EQ(base.lobe_counts[LOBE_NONE], base.materials.size());
   EXPECT_EQ(base.emissive_triangles, 2u);
   EXPECT_FALSE(base.radiance_cache());
-  const std::pair<const char*, const char*> cases[] = {{"point light", "HAS_PUNCTUAL_LIGHTS"},
-                                                       {"texture", "HAS_TEXTURES"},
-                                                       {"glossy material", "HAS_SPECULAR_BRDF"},
-                                                       {"alpha mask", "HAS_ALPHA_MASK"},
-                                                       {"sky", "HAS_ENVIRONMENT"},
-                                                       {"normal map", "HAS_NORMAL_MAPS"},
-                                                       {"emissive texture", "HAS_EMISSIVE_TEXTURES"},
-                                                       {"glass", "HAS_TRANSMISSION"},
-                                                       {"no emitter", "HAS_EMITTERS"}};
+  // A clearcoat is a lobe: it turns on the BRDF's code as well as the layers'.
+  const std::pair<const char*, std::set<std::string>> cases[] = {{"point light", {"HAS_PUNCTUAL_LIGHTS"}},
+                                                                 {"texture", {"HAS_TEXTURES"}},
+                                                                 {"glossy material", {"HAS_SPECULAR_BRDF"}},
+                                                                 {"alpha mask", {"HAS_ALPHA_MASK"}},
+                                                                 {"sky", {"HAS_ENVIRONMENT"}},
+                                                                 {"normal map", {"HAS_NORMAL_MAPS"}},
+                                                                 {"emissive texture", {"HAS_EMISSIVE_TEXTURES"}},
+                                                                 {"glass", {"HAS_TRANSMISSION"}},
+                                                                 {"clearcoat", {"HAS_LAYERS", "HAS_SPECULAR_BRDF"}},
+                                                                 {"no emitter", {"HAS_EMITTERS"}}};
   for (const auto& [feature, flipped] : cases) {
     const ScenePlan plan = plan_scene(cornell_with(feature));
     for (const auto& [name, value] : base.switches)
-      EXPECT_EQ(plan.switches.at(name) != value, name == std::string(flipped)) << feature << ": " << name;
+      EXPECT_EQ(plan.switches.at(name) != value, flipped.count(name) == 1) << feature << ": " << name;
   }
   const ScenePlan glossy = plan_scene(cornell_with("glossy material"));
   EXPECT_TRUE(glossy.radiance_cache()) << "roughness 0.5 metal is radiance-cached";
@@ -102,7 +107,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
 // stack size.
 TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
   for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "sky", "no emitter",
-                              "normal map", "emissive texture", "glass"}) {
+                              "normal map", "emissive texture", "glass", "clearcoat"}) {
     const Scene scene = cornell_with(feature);
     const Bvh8 bvh = build_bvh8(scene.positions);
     DeviceScene device(test::gpu(), scene, bvh);
@@ -172,6 +177,15 @@ TEST(ScenePlan, CompilingGlassCodeChangesNoBit) {
   const Scene probe = cornell_with("no emitter");
   const glm::vec3 open_air = 0.5f * (probe.bounds_min() + probe.bounds_max()) + glm::vec3(0.0f, 150.0f, 0.0f);
   expect_forcing_changes_no_bit(cornell_under_point_light(open_air), {"HAS_TRANSMISSION"}, "HAS_TRANSMISSION ");
+}
+
+// The layers' code (clearcoat, sheen, specular colour: kernels/brdf_layers.h) compiled for a scene without them changes
+// no bit, on a scene whose metal block is radiance-cached and whose BRDF code runs: a surface without a coat or sheen
+// takes the base BRDF's own code, so the materials of a layered scene that have no layers keep their bits too.
+TEST(ScenePlan, CompilingLayersCodeChangesNoBit) {
+  const Scene scene = cornell_with("glossy material");
+  ASSERT_EQ(plan_scene(scene).switches.at("HAS_LAYERS"), "0");
+  expect_forcing_changes_no_bit(scene, {"HAS_LAYERS"}, "HAS_LAYERS ");
 }
 
 }  // namespace

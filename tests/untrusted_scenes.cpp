@@ -563,6 +563,26 @@ std::vector<UntrustedCase> untrusted_cases() {
     c.key_words = {"materials[0]", "attenuationDistance"};
     cases.push_back(c);
   }
+  {  // a clearcoat whose normal texture names no texture of the file
+    UntrustedCase c = quad_case("ClearcoatNormalTextureMissing", [](json& d) {
+      d["materials"] = json::array({{{"extensions",
+                                      {{"KHR_materials_clearcoat",
+                                        {{"clearcoatFactor", 1.0}, {"clearcoatNormalTexture", {{"index", 0}}}}}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+      d["extensionsUsed"] = {"KHR_materials_clearcoat"};
+    });
+    c.key_words = {"materials[0]", "clearcoatNormalTexture"};
+    cases.push_back(c);
+  }
+  {  // a sheen colour above 1
+    UntrustedCase c = quad_case("SheenColourAboveOne", [](json& d) {
+      d["materials"] = json::array({{{"name", "velvet"},
+                                     {"extensions", {{"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 7.0, 1.0}}}}}}}});
+      d["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    c.key_words = {"materials[0] 'velvet'", "sheenColorFactor"};
+    cases.push_back(c);
+  }
   return cases;
 }
 
