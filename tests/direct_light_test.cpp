@@ -643,9 +643,9 @@ TEST(DirectLight, GlassMirrorsTheLitSurfacesTheCameraSeesInIt) {
 // layer must matter: most pixels must differ from the bare base by more than their tolerance.
 constexpr double kSheenTableError = 0.01;
 
-void expect_layered_floor(const layers_reference::Layered& m, void (*layer)(SceneMaterial&)) {
+void expect_layered_floor(const layers_reference::Layered& m, void (*layer)(Scene&)) {
   Scene s = rough_floor(float(m.roughness));
-  layer(s.materials[0]);
+  layer(s);
   const RenderedImage img = render(s, 64, 0);
   layers_reference::Layered bare = m;
   bare.specular_color = {1.0, 1.0, 1.0};
@@ -685,9 +685,29 @@ TEST(DirectLight, ClearcoatMatchesTheExtensionInDouble) {
   m.roughness = 0.75;
   m.clearcoat = 1.0;
   m.clearcoat_roughness = 0.3;
-  expect_layered_floor(m, [](SceneMaterial& material) {
-    material.clearcoat = 1.0f;
-    material.clearcoat_roughness = 0.3f;
+  expect_layered_floor(m, [](Scene& s) {
+    s.materials[0].clearcoat = 1.0f;
+    s.materials[0].clearcoat_roughness = 0.3f;
+  });
+}
+
+// KHR_materials_clearcoat's clearcoatNormalTexture: the coat's lobe and Fresnel follow its own map (one texel tilting
+// it toward +x and -y), the base the interpolated normal. Planted: the coat about the interpolated normal; it fails.
+TEST(DirectLight, ClearcoatFollowsItsOwnNormalMap) {
+  layers_reference::Layered m{{0.8, 0.8, 0.8}};
+  m.roughness = 0.75;
+  m.clearcoat = 1.0;
+  m.clearcoat_roughness = 0.3;
+  m.coat_normal = brdf_reference::unit({205.0 / 127.5 - 1.0, 96.0 / 127.5 - 1.0, 214.0 / 127.5 - 1.0});
+  expect_layered_floor(m, [](Scene& s) {
+    s.materials[0].clearcoat = 1.0f;
+    s.materials[0].clearcoat_roughness = 0.3f;
+    SceneTexture t;
+    t.width = t.height = 1;
+    t.rgba = {205, 96, 214, 255};
+    s.textures.push_back(t);
+    s.materials[0].clearcoat_normal_texture = 0;
+    s.tangents.assign(s.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
   });
 }
 
@@ -698,9 +718,9 @@ TEST(DirectLight, SheenMatchesTheExtensionInDouble) {
   m.roughness = 0.75;
   m.sheen = {0.9, 0.5, 0.2};
   m.sheen_roughness = 0.5;
-  expect_layered_floor(m, [](SceneMaterial& material) {
-    material.sheen_color = {0.9f, 0.5f, 0.2f};
-    material.sheen_roughness = 0.5f;
+  expect_layered_floor(m, [](Scene& s) {
+    s.materials[0].sheen_color = {0.9f, 0.5f, 0.2f};
+    s.materials[0].sheen_roughness = 0.5f;
   });
 }
 
@@ -710,7 +730,7 @@ TEST(DirectLight, SpecularColourTintsTheDielectricsReflection) {
   layers_reference::Layered m{{0.8, 0.8, 0.8}};
   m.roughness = 0.75;
   m.specular_color = {1.5, 0.5, 12.0};
-  expect_layered_floor(m, [](SceneMaterial& material) { material.specular_color = {1.5f, 0.5f, 12.0f}; });
+  expect_layered_floor(m, [](Scene& s) { s.materials[0].specular_color = {1.5f, 0.5f, 12.0f}; });
 }
 
 // The sheen lobe's albedo table (kernels/sheen_albedo_values.h, made by host/tables/make_sheen_albedo.cpp on a

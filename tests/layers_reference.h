@@ -23,16 +23,18 @@ struct Layered {
   double clearcoat = 0.0, clearcoat_roughness = 0.0;
   std::array<double, 3> sheen{0.0, 0.0, 0.0};
   double sheen_roughness = 0.0;
+  Vec coat_normal{0.0, 0.0, 1.0};  // unit, in the frame of the shading normal (+z)
 };
 
 inline double max3(const std::array<double, 3>& c) { return std::max({c[0], c[1], c[2]}); }
 
-// GGX with height-correlated Smith masking, D G2 / (4 n.l n.v), in a frame whose normal is +z.
-inline double ggx_lobe(double alpha, Vec wo, Vec wi) {
-  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
-  const Vec h = unit(wo + wi);
-  const double g2 = 1.0 / (1.0 + brdf_reference::lambda_ggx(wo.z, alpha) + brdf_reference::lambda_ggx(wi.z, alpha));
-  return brdf_reference::d_ggx(h.z, alpha) * g2 / (4.0 * wo.z * wi.z);
+// GGX with height-correlated Smith masking, D G2 / (4 n.l n.v), about the unit normal n.
+inline double ggx_lobe(double alpha, Vec wo, Vec wi, Vec n = {0.0, 0.0, 1.0}) {
+  const double cos_o = dot(wo, n), cos_i = dot(wi, n);
+  if (cos_o <= 0.0 || cos_i <= 0.0) return 0.0;
+  const double cos_h = dot(unit(wo + wi), n);
+  const double g2 = 1.0 / (1.0 + brdf_reference::lambda_ggx(cos_o, alpha) + brdf_reference::lambda_ggx(cos_i, alpha));
+  return brdf_reference::d_ggx(cos_h, alpha) * g2 / (4.0 * cos_o * cos_i);
 }
 
 // The GGX lobe's albedo toward a view at cos_o for a Fresnel of 1 (a0) and of (1 - v.h)^5 (a1), over half vectors
@@ -94,7 +96,8 @@ inline double sheen_albedo(double cos_o, double roughness, int n = 400) {
   return sum * (0.5 * kPi / n) * (kPi / n);
 }
 
-// f(wo, wi) of the layered BRDF, the coat's normal being the shading normal (+z). Its diffuse part's weight reads the
+// f(wo, wi) of the layered BRDF about the shading normal (+z), the coat's lobe and Fresnel about its own normal. Its
+// diffuse part's weight reads the
 // base lobe's albedo terms and the sheen's albedo from the quadratures above, given here (they depend on the view
 // only): terms = ggx_albedo_terms(wo.z, base alpha), sheen_e = min(sheen_albedo(wo.z, sheen roughness), 1).
 inline std::array<double, 3> layered_brdf(const Layered& m, Vec wo, Vec wi, std::array<double, 2> terms, double sheen_e) {
@@ -108,10 +111,10 @@ inline std::array<double, 3> layered_brdf(const Layered& m, Vec wo, Vec wi, std:
     f0[size_t(c)] = std::min(0.04 * m.specular_color[size_t(c)], 1.0);
     taken = std::max(taken, m.specular * (f0[size_t(c)] * terms[0] + (1.0 - f0[size_t(c)]) * terms[1]));
   }
-  const double coat = m.clearcoat * (0.04 + 0.96 * brdf_reference::schlick(wo.z));
+  const double coat = m.clearcoat * (0.04 + 0.96 * brdf_reference::schlick(std::max(dot(wo, m.coat_normal), 0.0)));
   const double sheen_scale = 1.0 - max3(m.sheen) * sheen_e;
   const double coat_alpha = std::max(m.clearcoat_roughness * m.clearcoat_roughness, 1e-3);
-  const double sheen = sheen_lobe(sheen_alpha(m.sheen_roughness), wo, wi), coat_lobe = ggx_lobe(coat_alpha, wo, wi);
+  const double sheen = sheen_lobe(sheen_alpha(m.sheen_roughness), wo, wi), coat_lobe = ggx_lobe(coat_alpha, wo, wi, m.coat_normal);
   for (size_t c = 0; c < 3; ++c) {
     const double b = m.base[c];
     const double dielectric = (1.0 - taken) * b / kPi + m.specular * (f0[c] + (1.0 - f0[c]) * fw) * lobe;
