@@ -711,6 +711,31 @@ TEST(DirectLight, ClearcoatFollowsItsOwnNormalMap) {
   });
 }
 
+// The layers' textures multiply their factors: clearcoatTexture's R the coat's weight, sheenColorTexture's RGB (sRGB)
+// the sheen's colour, one texel each. Planted: the coat texture's G read instead of R; it fails.
+TEST(DirectLight, LayerTexturesScaleTheirFactors) {
+  layers_reference::Layered m{{0.8, 0.8, 0.8}};
+  m.roughness = 0.75;
+  m.clearcoat = 200.0 / 255.0;
+  m.clearcoat_roughness = 0.3;
+  m.sheen = {srgb_to_linear(128.0 / 255.0), srgb_to_linear(64.0 / 255.0), srgb_to_linear(255.0 / 255.0)};
+  m.sheen_roughness = 0.5;
+  expect_layered_floor(m, [](Scene& s) {
+    SceneTexture t;
+    t.width = t.height = 1;
+    t.rgba = {200, 30, 90, 255};
+    s.textures.push_back(t);
+    t.rgba = {128, 64, 255, 255};
+    s.textures.push_back(t);
+    s.materials[0].clearcoat = 1.0f;
+    s.materials[0].clearcoat_texture = 0;
+    s.materials[0].clearcoat_roughness = 0.3f;
+    s.materials[0].sheen_color = glm::vec3(1.0f);
+    s.materials[0].sheen_color_texture = 1;
+    s.materials[0].sheen_roughness = 0.5f;
+  });
+}
+
 // KHR_materials_sheen: a coloured sheen of roughness 0.5 over the rough dielectric, the base dimmed by
 // 1 - max3(colour) E(n.v). Planted: the base left undimmed; it fails.
 TEST(DirectLight, SheenMatchesTheExtensionInDouble) {
