@@ -944,6 +944,8 @@ class GltfReader {
         if (!std::isfinite(m.base_color[i]) || m.base_color[i] < 0.0f) fail(material_label(src) + ": invalid baseColorFactor");
       for (int i = 0; i < 3; ++i)
         if (!std::isfinite(m.emission[i]) || m.emission[i] < 0.0f) fail(material_label(src) + ": invalid emission");
+      if (m.clearcoat > 0.0f && m.transmission == 0.0f && (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f))
+        note_unsupported("clearcoat over emission", "the emission is not dimmed by the coat's Fresnel");
       // Triangles carry one texture-coordinate mapping (base_color_uv_mapping): a texture mapped otherwise is named
       // and left out.
       const UvMapping mapping = base_color_uv_mapping(int(&src - model_.materials.data()));
