@@ -195,16 +195,31 @@ inline float3 photon_gather(SCENE_ARGS, PHOTON_MAP_ARGS, HitSurface* h, float3 d
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
   if (lobe.lobe != LOBE_NONE) {
     float3 irradiance = estimates[2 * nearest + 1].xyz;
+#if HAS_LAYERS
+    // Layers: the base's terms below under the layers' share toward the view, and the layers' own albedo times E (the
+    // coat's Fresnel needs the view's direction about its normal: a shading frame).
+    BrdfInputs in = surface_brdf((float3)(1.0f), lobe, h->ns);
+    const float3 wo = view_local(shading_frame(h->ns), -dir);
+    const float cos_o = has_layer_lobes(in) ? wo.z : fmax(dot(h->ns, -dir), 1e-4f);  // the latter: the bits without
+    const float3 f0 = in.f0;
+#else
     BrdfInputs in = brdf_inputs((float3)(1.0f), lobe.metallic, lobe.roughness, lobe.specular);
     // Only the view's angle matters (the lobe's albedo is isotropic): no shading frame; as view_local, a normal tilted
     // past the viewer is taken just above the horizon.
     float cos_o = fmax(dot(h->ns, -dir), 1e-4f);
+    const float f0 = DIELECTRIC_F0;
+#endif
     float2 terms = specular_albedo_split(in, cos_o);
     float dielectric = (1.0f - in.metallic) * in.specular;
-    float3 c0 = dielectric * DIELECTRIC_F0 * irradiance + in.metallic * reflected;
-    float3 c1 = dielectric * (1.0f - DIELECTRIC_F0) * irradiance + in.metallic * (irradiance - reflected);
+    float3 c0 = dielectric * f0 * irradiance + in.metallic * reflected;
+    float3 c1 = dielectric * (1.0f - f0) * irradiance + in.metallic * (irradiance - reflected);
     // The diffuse weight from the same terms: the table read once for both.
-    return (1.0f - in.metallic) * diffuse_weight_from_terms(in, terms) * reflected + terms.x * c0 + terms.y * c1;
+    const float3 base =
+        (1.0f - in.metallic) * diffuse_weight_from_terms(in, terms) * reflected + terms.x * c0 + terms.y * c1;
+#if HAS_LAYERS
+    if (has_layer_lobes(in)) return layers_base_share(in, wo) * base + layers_own_albedo(in, wo) * irradiance;
+#endif
+    return base;
   }
 #endif
   return reflected;

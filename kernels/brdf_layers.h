@@ -94,14 +94,19 @@ inline float3 layered_eval_lobes(BrdfInputs in, float3 wo, float3 wi) {
          (float3)(coat * coat_eval(in, wo, wi));
 }
 
-// The lobes' directional albedo toward wo: the base's lobe (kernels/brdf.h), the sheen's E, and the coat's T0 (the GGX
-// table's term for a Fresnel of 1) at its own roughness and angle, each under the layers above it.
-inline float3 layered_lobes_albedo(BrdfInputs in, float3 wo) {
-  if (!has_layer_lobes(in)) return base_specular_albedo(in, wo);
+// The layers' own lobes' directional albedo toward wo: the sheen's E and the coat's T0 (the GGX table's term for a
+// Fresnel of 1) at its own roughness and angle, the sheen under the coat. layered_lobes_albedo adds the base's lobe
+// (kernels/brdf.h) under both.
+inline float3 layers_own_albedo(BrdfInputs in, float3 wo) {
   const float coat = coat_view_weight(in, wo);
-  float3 albedo = layers_base_share(in, wo) * base_specular_albedo(in, wo) + (1.0f - coat) * sheen_view_albedo(in, wo);
+  float3 albedo = (1.0f - coat) * sheen_view_albedo(in, wo);
   if (coat > 0.0f) albedo += (float3)(coat * ggx_albedo_split(in.coat_alpha, dot(wo, in.coat_n)).x);
   return albedo;
+}
+
+inline float3 layered_lobes_albedo(BrdfInputs in, float3 wo) {
+  if (!has_layer_lobes(in)) return base_specular_albedo(in, wo);
+  return layers_base_share(in, wo) * base_specular_albedo(in, wo) + layers_own_albedo(in, wo);
 }
 
 // How a layered BRDF's samples are shared between a cosine lobe (the diffuse base and the sheen), the base's GGX
