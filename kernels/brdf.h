@@ -310,6 +310,19 @@ inline float lobes_pdf(BrdfInputs in, float3 wo, float3 wi) {
   return ggx_reflection_pdf(in.alpha, wo, wi);
 }
 
+// The weight of a lobes_sample drawn from `from` toward `to` for light that travels the other way (a photon arriving
+// along -from and leaving along to): f_lobes(to, from) cos(to) / pdf. Without a coat or sheen the lobe is symmetric and
+// this is lobes_weight; the layers' weights follow the view, here `to`.
+inline float3 lobes_adjoint_weight(BrdfInputs in, float3 from, float3 to) {
+#if HAS_LAYERS
+  if (has_layer_lobes(in)) {
+    const float pdf = lobes_pdf(in, from, to);
+    return pdf > 0.0f && to.z > 0.0f ? brdf_eval_specular(in, to, from) * (to.z / pdf) : (float3)(0.0f);
+  }
+#endif
+  return brdf_specular_weight(in, from, to);
+}
+
 // The weight of one lobes_sample: f_lobes cos / pdf (F G2 / G1 without layers).
 inline float3 lobes_weight(BrdfInputs in, float3 wo, float3 wi) {
 #if HAS_LAYERS

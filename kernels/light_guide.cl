@@ -49,6 +49,8 @@ inline float3 scatter_photon(SCENE_ARGS, HitSurface* h, float3 dir, float3 refle
 // sharp (LOBE_GLOSSY, the lobes kernels/bounce.h hit_direct_without_caustics leaves to the map), along a direction
 // drawn from that lobe's visible normals seen from the light, carrying f_specular cos / pdf = F G2 / G1 of its power
 // (brdf_specular_weight, which is symmetric in the two directions); the diffuse base's light stays with the records.
+// Layers' lobes are weighed by the view's Fresnel, so they are not symmetric: lobes_adjoint_weight evaluates them
+// toward the photon's new direction.
 inline float3 scatter_caustic_photon(SCENE_ARGS, HitSurface* h, float3 dir, uint key, float3* power) {
   SurfaceLobe lobe = hit_lobe(materials, textures, texels, h);
   if (lobe.lobe != LOBE_GLOSSY) {
@@ -60,7 +62,7 @@ inline float3 scatter_caustic_photon(SCENE_ARGS, HitSurface* h, float3 dir, uint
   float3 toward_light = view_local(frame, -dir);
   float3 next = lobes_sample(in, toward_light, random01(key, 0u, PHOTON_LOBE_DIMENSION), random01(key, 0u, 6u),
                              random01(key, 0u, 7u));
-  *power *= lobes_weight(in, toward_light, next);
+  *power *= lobes_adjoint_weight(in, toward_light, next);
   return to_world(frame, next);
 }
 #endif
@@ -173,6 +175,9 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
       h.s = surface_at(triangles, hit.prim, hit.u, hit.v);
       h.ng = dot(h.s.geometric_normal, dir) > 0.0f ? -h.s.geometric_normal : h.s.geometric_normal;
       h.ns = dot(h.s.shading_normal, h.ng) > 0.0f ? h.s.shading_normal : h.ng;
+#if HAS_LAYERS
+      h.coat_normal = h.ns;  // photons shade with the interpolated normals, the coat's too
+#endif
       h.albedo_read = h.lobe_read = 0;
       const float per_photon = select * (float)params.photon_count;
       float3 reflected = power * hit_albedo(materials, textures, texels, &h);
