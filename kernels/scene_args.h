@@ -20,7 +20,7 @@
 // The G-buffer (what the primary ray through each pixel's centre sees) and its camera, as every pass reads them.
 // gbuffer_layers: per pixel, its surface's layers (kernels/brdf_layers.h) in scenes with them (HAS_LAYERS), else one
 // unread element.
-#define GBUFFER_ARGS                                                                      \
+#define GBUFFER_ARGS                                                          \
   __global const GBufferSample *gbuffer, __global const CameraParams *camera, \
       __global const SurfaceLayers *gbuffer_layers
 // Forwards GBUFFER_ARGS to a function that takes them.

@@ -412,6 +412,18 @@ TEST(GltfConformance, WebPTexturesAreRead) {
   }
 }
 
+// A file of one quad whose one material (dielectric, this roughness) carries these extensions; its path.
+std::string one_material_quad(const std::string& dir, const std::string& name, const std::string& material,
+                              double roughness, const json& extensions) {
+  GltfBuilder b;
+  add_quad(b, json::object(), 0);
+  b.doc["materials"] = json::array({{{"name", material},
+                                     {"pbrMetallicRoughness", {{"roughnessFactor", roughness}, {"metallicFactor", 0.0}}},
+                                     {"extensions", extensions}}});
+  b.doc["nodes"] = json::array({{{"mesh", 0}}});
+  return b.write(dir, name);
+}
+
 // Each (material extensions, word) loads as a file the loader refuses, its message naming the material and the word.
 template <size_t N, typename WriteScene>
 void expect_each_refused(const std::pair<json, const char*> (&refused)[N], WriteScene write, const std::string& material) {
@@ -432,13 +444,7 @@ void expect_each_refused(const std::pair<json, const char*> (&refused)[N], Write
 TEST(GltfConformance, GlassExtensionsAreReadAndChecked) {
   const std::string dir = test::scratch_dir();
   auto scene_with = [&](const json& extensions, const std::string& name) {
-    GltfBuilder b;
-    add_quad(b, json::object(), 0);
-    b.doc["materials"] = json::array({{{"name", "pane"},
-                                       {"pbrMetallicRoughness", {{"roughnessFactor", 0.0}, {"metallicFactor", 0.0}}},
-                                       {"extensions", extensions}}});
-    b.doc["nodes"] = json::array({{{"mesh", 0}}});
-    return b.write(dir, name);
+    return one_material_quad(dir, name, "pane", 0.0, extensions);
   };
   const Scene glass = load_gltf(scene_with(
       {{"KHR_materials_transmission", {{"transmissionFactor", 0.8}}},
@@ -480,15 +486,9 @@ TEST(GltfConformance, GlassExtensionsAreReadAndChecked) {
 TEST(GltfConformance, LayerExtensionsAreReadAndChecked) {
   const std::string dir = test::scratch_dir();
   auto scene_with = [&](const json& extensions, const std::string& name, double transmission = 0.0) {
-    GltfBuilder b;
-    add_quad(b, json::object(), 0);
     json material_extensions = extensions;
     if (transmission > 0.0) material_extensions["KHR_materials_transmission"] = {{"transmissionFactor", transmission}};
-    b.doc["materials"] = json::array({{{"name", "paint"},
-                                       {"pbrMetallicRoughness", {{"roughnessFactor", 0.5}, {"metallicFactor", 0.0}}},
-                                       {"extensions", material_extensions}}});
-    b.doc["nodes"] = json::array({{{"mesh", 0}}});
-    return b.write(dir, name);
+    return one_material_quad(dir, name, "paint", 0.5, material_extensions);
   };
   const Scene layered = load_gltf(scene_with(
       {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.1}}},
