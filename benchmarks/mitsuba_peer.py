@@ -41,6 +41,7 @@ from rcsplat_images import attributes, read_layer, write_exr
 
 COMPONENT = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
 DIFFUSE_ONLY = False  # --bsdf diffuse
+PRINCIPLED = False  # --bsdf principled
 COUNT = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 
 
@@ -202,6 +203,21 @@ def bsdf_and_emitter(g, material_index):
         return glass, None
     if DIFFUSE_ONLY:
         bsdf = {"type": "diffuse", "reflectance": base}
+    elif PRINCIPLED:
+        # Mitsuba's principled BSDF (Disney's), with glTF's clearcoat and sheen mapped onto its own: a clearcoat of
+        # alpha lerp(0.1, 0.001, gloss) (GTR1) for glTF's GGX alpha = roughness^2, and a sheen of its colour's
+        # strongest channel (untinted). specular 0.5 is F0 0.04. The models differ (benchmarks/layers_mitsuba.sh).
+        coat = extensions.get("KHR_materials_clearcoat", {})
+        sheen = extensions.get("KHR_materials_sheen", {})
+        coat_alpha = coat.get("clearcoatRoughnessFactor", 0.0) ** 2
+        bsdf = {"type": "principled", "base_color": base, "metallic": metallic, "roughness": roughness,
+                "specular": 0.5, "clearcoat": coat.get("clearcoatFactor", 0.0),
+                "clearcoat_gloss": min(max((0.1 - coat_alpha) / 0.099, 0.0), 1.0),
+                "sheen": max(sheen.get("sheenColorFactor", [0.0, 0.0, 0.0])), "sheen_tint": 0.0}
+        for key in ("clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture", "sheenColorTexture",
+                    "sheenRoughnessTexture"):
+            if key in coat or key in sheen:
+                g.skipped.add("layer textures")
     else:
         bsdf = {"type": "rcsplat_gltf", "base_color": base, "metallic": metallic, "roughness": roughness}
     bsdf = {"type": "twosided", "bsdf": bsdf}
@@ -323,11 +339,13 @@ def main():
     ap.add_argument("--json")
     ap.add_argument("--glass-depth", type=int, default=0,
                     help="path depth added for glass crossings, which Mitsuba counts as bounces and rcsplat does not")
-    ap.add_argument("--bsdf", default="gltf", choices=["gltf", "diffuse"],
-                    help="gltf: rcsplat's BRDF as a Mitsuba plugin (default); diffuse: Mitsuba's Lambertian")
+    ap.add_argument("--bsdf", default="gltf", choices=["gltf", "diffuse", "principled"],
+                    help="gltf: rcsplat's BRDF as a Mitsuba plugin (default); diffuse: Mitsuba's Lambertian; "
+                         "principled: Mitsuba's principled BSDF, glTF's clearcoat and sheen mapped onto it")
     a = ap.parse_args()
-    global DIFFUSE_ONLY
+    global DIFFUSE_ONLY, PRINCIPLED
     DIFFUSE_ONLY = a.bsdf == "diffuse"
+    PRINCIPLED = a.bsdf == "principled"
     find_llvm()
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
