@@ -28,9 +28,7 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 double(m.roughness), double(m.metallic), m.emissive ? ", emissive" : "", m.textured ? ", textured" : "",
                 m.normal_mapped ? ", normal map" : "", m.emissive_textured ? ", emissive texture" : "",
                 m.clearcoat ? ", clearcoat" : "", m.sheen ? ", sheen" : "", m.specular_colour ? ", specular colour" : "",
-                !m.glass ? "" : m.thin_walled ? ", thin-walled glass" : ", glass with a volume",
-                m.glass ? "seen through and passed by every ray, never cached (the share that is not glass as its kind says)"
-                        : lobe_treatment(m.lobe));
+                !m.glass ? "" : m.thin_walled ? ", thin-walled glass" : ", glass with a volume", material_treatment(m));
   std::printf("textures     %zu%s%s%s%s\n", plan.textures,
               plan.textures ? " (filtered by each ray's footprint through mip chains where the sampler allows)" : "",
               plan.vertex_colors ? ", vertex colours" : "",
@@ -88,7 +86,7 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
                          {"normal_map", m.normal_mapped}, {"emissive_texture", m.emissive_textured},
                          {"glass", m.glass ? (m.thin_walled ? "thin-walled" : "volume") : "no"},
                          {"clearcoat", m.clearcoat}, {"sheen", m.sheen}, {"specular_colour", m.specular_colour},
-                         {"shading", lobe_treatment(m.lobe)}});
+                         {"shading", material_treatment(m)}});
   nlohmann::json environment = nullptr;
   if (!plan.environment.empty())
     environment = {{"description", plan.environment}, {"kind", plan.environment_map ? "map" : "uniform sky"},

@@ -49,6 +49,18 @@ const char* lobe_name(int lobe) {
   }
 }
 
+const char* material_treatment(const MaterialPlan& m) {
+  if (m.glass) return "seen through and passed by every ray, never cached (the share that is not glass as its kind says)";
+  if (m.clearcoat || m.sheen || m.specular_colour) {
+    if (m.lobe == LOBE_GLOSSY)
+      return "diffuse base from the cached irradiance; its lobes (base, coat, sheen) sampled per pixel (layered: never "
+             "radiance-cached)";
+    if (m.lobe == LOBE_ROUGH)
+      return "diffuse base, and its lobes' albedo (base, coat, sheen) times the cached irradiance";
+  }
+  return lobe_treatment(m.lobe);
+}
+
 const char* lobe_treatment(int lobe) {
   switch (lobe) {
     case LOBE_NONE: return "albedo / pi times the cached irradiance (exact)";

@@ -61,6 +61,8 @@ ScenePlan plan_scene(const Scene& scene);
 
 // How the cache methods shade a material of this LOBE_*, in a few words (for `info` and the summary).
 const char* lobe_treatment(int lobe);
+// How the cache methods shade this material: its kind's treatment, or glass's, or a layered material's.
+const char* material_treatment(const MaterialPlan& m);
 const char* lobe_name(int lobe);
 
 }  // namespace rcsplat
