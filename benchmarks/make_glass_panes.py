@@ -56,13 +56,19 @@ def write(out, name, meshes):
         json.dump(doc, f, indent=1)
 
 
-def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "glass_panes"
-    os.makedirs(out, exist_ok=True)
+def grey_floor():
+    """The 12 x 12 grey (0.5) Lambertian floor at y = 0 and its material."""
     floor = Mesh()
     floor.quad((-6, 0, 6), (6, 0, 6), (6, 0, -6), (-6, 0, -6))
     grey = {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0,
                                                       "roughnessFactor": 1}}
+    return floor, grey
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else "glass_panes"
+    os.makedirs(out, exist_ok=True)
+    floor, grey = grey_floor()
     pane = Mesh()
     pane.quad((-1.5, 1.2, 1.0), (1.5, 1.2, 1.0), (1.5, 1.2, -2.0), (-1.5, 1.2, -2.0))
     thin = {"name": "thin pane", "doubleSided": True,

@@ -12,7 +12,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from make_glass_interior import Mesh  # noqa: E402
-from make_glass_panes import write  # noqa: E402
+from make_glass_panes import grey_floor, write  # noqa: E402
 
 CENTRE, RADIUS = (0.0, 1.0, -0.5), 1.0
 
@@ -20,10 +20,7 @@ CENTRE, RADIUS = (0.0, 1.0, -0.5), 1.0
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "layer_spheres"
     os.makedirs(out, exist_ok=True)
-    floor = Mesh()
-    floor.quad((-6, 0, 6), (6, 0, 6), (6, 0, -6), (-6, 0, -6))
-    grey = {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0,
-                                                      "roughnessFactor": 1}}
+    floor, grey = grey_floor()
     sphere = Mesh()
     sphere.sphere(CENTRE, RADIUS, rings=48, segments=96)
     base = {"name": "sphere", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.3, 0.2, 1], "metallicFactor": 0,

@@ -175,12 +175,20 @@ inline float3 brdf_specular_weight(BrdfInputs in, float3 wo, float3 wi) {
 // Probability of sampling the GGX lobe rather than the cosine lobe, from the lobes' weights seen from wo, estimated
 // with Schlick's Fresnel of the view: any split keeps the estimate unbiased (brdf_pdf uses the same), and this one
 // costs no table read (brdf_sample would read it three times a sample, in the kernels that trace paths).
-inline float brdf_specular_probability(BrdfInputs in, float3 wo) {
+// The base's specular lobe's and diffuse part's weights toward wo, estimated with Schlick's Fresnel of the view for a
+// dielectric F0 of f0 (grey): what brdf_specular_probability and the layers' mixture (kernels/brdf_layers.h) share
+// their samples by.
+inline void base_lobe_estimates(BrdfInputs in, float3 wo, float f0, float* spec, float* diffuse) {
   float fw = schlick_weight(wo.z);
   float gray = (in.base_color.x + in.base_color.y + in.base_color.z) * (1.0f / 3.0f);
-  float fd = in.specular * (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * fw);
-  float spec = (1.0f - in.metallic) * fd + in.metallic * (gray + (1.0f - gray) * fw);
-  float diffuse = (1.0f - in.metallic) * (1.0f - fd) * gray;
+  float fd = in.specular * (f0 + (1.0f - f0) * fw);
+  *spec = (1.0f - in.metallic) * fd + in.metallic * (gray + (1.0f - gray) * fw);
+  *diffuse = (1.0f - in.metallic) * (1.0f - fd) * gray;
+}
+
+inline float brdf_specular_probability(BrdfInputs in, float3 wo) {
+  float spec, diffuse;
+  base_lobe_estimates(in, wo, DIELECTRIC_F0, &spec, &diffuse);
   if (spec <= 0.0f) return 0.0f;
   if (diffuse <= 0.0f) return 1.0f;
   return clamp(spec / (spec + diffuse), 0.1f, 0.9f);  // neither lobe starved where both contribute

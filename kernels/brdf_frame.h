@@ -51,8 +51,4 @@ inline BrdfInputs gbuffer_layered_brdf(GBufferSample g, SurfaceLayers layers, fl
 #endif
 }
 
-// The lobes' directional albedo toward wo (local frame): the table's (kernels/brdf.h), and the layers' where there are
-// any.
-inline float3 specular_albedo(BrdfInputs in, float3 wo) { return lobes_albedo(in, wo); }
-
 #endif

@@ -117,14 +117,11 @@ typedef struct {
 } LobeShares;
 
 inline LobeShares layered_lobe_shares(BrdfInputs in, float3 wo, bool with_diffuse) {
-  const float fw = schlick_weight(wo.z);
-  const float gray = (in.base_color.x + in.base_color.y + in.base_color.z) * (1.0f / 3.0f);
-  const float f0 = (in.f0.x + in.f0.y + in.f0.z) * (1.0f / 3.0f);
-  const float fd = in.specular * (f0 + (1.0f - f0) * fw);
+  float base_spec, base_diffuse;
+  base_lobe_estimates(in, wo, (in.f0.x + in.f0.y + in.f0.z) * (1.0f / 3.0f), &base_spec, &base_diffuse);
   const float coat = coat_view_weight(in, wo), share = layers_base_share(in, wo);
-  float base = share * ((1.0f - in.metallic) * fd + in.metallic * (gray + (1.0f - gray) * fw));
-  float cosine = (1.0f - coat) * max3(sheen_view_albedo(in, wo)) +
-                 (with_diffuse ? share * (1.0f - in.metallic) * (1.0f - fd) * gray : 0.0f);
+  float base = share * base_spec;
+  float cosine = (1.0f - coat) * max3(sheen_view_albedo(in, wo)) + (with_diffuse ? share * base_diffuse : 0.0f);
   float coat_share = coat;
   const float total = base + cosine + coat_share;
   LobeShares p;

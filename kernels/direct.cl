@@ -28,8 +28,8 @@ inline float2 light_stratum_sample(uint key, uint i, uint j, uint strata) {
 // Direct light reflected toward the camera by a pixel with a specular lobe: every punctual light, and the emitters
 // with the same stratified light samples as a Lambertian pixel, each paired with a BRDF sample where the lobe is
 // glossy.
-inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, uint strata_per_axis, uint key,
-                                    RayTally* rays) {
+inline float3 direct_specular_pixel(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world,
+                                    uint strata_per_axis, uint key, RayTally* rays) {
   float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   float3 origin = offset_ray_origin(p, ng);
   LazyBrdf brdf = built_brdf(gbuffer_layered_brdf(g, layers, n));
@@ -78,7 +78,8 @@ __kernel void direct_light(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, __glob
 #if HAS_SPECULAR_BRDF
   if (g.triangle >= 0 && g.lobe != LOBE_NONE) {
     float3 wo = camera_view_direction(camera, vload3(0, g.position));
-    result = direct_specular_pixel(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, strata_per_axis, hash_u32(pixel ^ hash_u32(params.seed)), &rays);
+    result = direct_specular_pixel(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, strata_per_axis,
+                                   hash_u32(pixel ^ hash_u32(params.seed)), &rays);
     direct_out[pixel] = (float4)(result, (float)rays.cast);
     return;
   }
@@ -153,8 +154,8 @@ inline float3 direct_punctual(SCENE_ARGS, GBufferSample g, SurfaceLayers layers,
   return finite_or_zero(vload3(0, g.albedo) * RC_INV_PI * irradiance);
 }
 
-inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, float2 uv, float2 uv_environment,
-                             float u_lobe, RayTally* rays) {
+inline float3 direct_sampled(SCENE_ARGS, GBufferSample g, SurfaceLayers layers, float3 wo_world, float2 uv,
+                             float2 uv_environment, float u_lobe, RayTally* rays) {
   const float3 p = vload3(0, g.position), n = gbuffer_shading_normal(g), ng = vload3(0, g.geometric_normal);
   const float3 origin = offset_ray_origin(p, ng);
   float3 light = (float3)(0.0f);
@@ -208,7 +209,8 @@ __kernel void direct_light_round(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, 
   const float3 wo = (float3)(0.0f);  // only a specular lobe reads the view
 #endif
   RayTally rays = traced_rays(0u);
-  const float3 punctual = first_round ? direct_punctual(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, &rays) : (float3)(0.0f);
+  const SurfaceLayers layers = pixel_layers(gbuffer_layers, pixel);
+  const float3 punctual = first_round ? direct_punctual(SCENE, g, layers, wo, &rays) : (float3)(0.0f);
   const uint key = hash_u32(pixel ^ hash_u32(params.seed)), environment_key = key ^ ENVIRONMENT_KEY;
   const uint strata_key = hash_u32(o ^ hash_u32(params.seed ^ STREAM_LIGHT_STRATA));
   float3 sum = (float3)(0.0f);
@@ -218,7 +220,7 @@ __kernel void direct_light_round(SCENE_ARGS, GBUFFER_ARGS, DirectParams params, 
     const float2 uv = nested_stratum_point(t, strata_key, random01(key, s, 0u), random01(key, s, 1u));
     const float2 uv_environment = nested_stratum_point(t, strata_key ^ ENVIRONMENT_KEY, random01(environment_key, s, 0u),
                                                        random01(environment_key, s, 1u));
-    const float3 y = direct_sampled(SCENE, g, pixel_layers(gbuffer_layers, pixel), wo, uv, uv_environment, random01(key, s, 2u), &rays);
+    const float3 y = direct_sampled(SCENE, g, layers, wo, uv, uv_environment, random01(key, s, 2u), &rays);
     sum += y;
     const float y_luminance = luminance(y);
     sum_y += y_luminance;

@@ -42,7 +42,7 @@ inline float3 cached_reflection(SCENE_ARGS, HitSurface* h, float3 dir, float3 e)
   if (lobe.lobe == LOBE_NONE) return albedo * RC_INV_PI * e;
   BrdfInputs in = surface_brdf(albedo, lobe, h->ns);
   float3 wo = view_local(shading_frame(h->ns), -dir);
-  return brdf_eval_diffuse(in, wo) * e + specular_albedo(in, wo) * RC_INV_PI * e;
+  return brdf_eval_diffuse(in, wo) * e + lobes_albedo(in, wo) * RC_INV_PI * e;
 }
 
 // Whether the records reach *h (a Lambertian or rough surface, reached along dir): if so, *l is the light of the

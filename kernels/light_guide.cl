@@ -171,14 +171,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     }
 #endif
     if (landed) {
-      HitSurface h;
-      h.s = surface_at(triangles, hit.prim, hit.u, hit.v);
-      h.ng = dot(h.s.geometric_normal, dir) > 0.0f ? -h.s.geometric_normal : h.s.geometric_normal;
-      h.ns = dot(h.s.shading_normal, h.ng) > 0.0f ? h.s.shading_normal : h.ng;
-#if HAS_LAYERS
-      h.coat_normal = h.ns;  // photons shade with the interpolated normals, the coat's too
-#endif
-      h.albedo_read = h.lobe_read = 0;
+      HitSurface h = photon_hit_surface(triangles, hit.prim, hit.u, hit.v, dir);
       const float per_photon = select * (float)params.photon_count;
       float3 reflected = power * hit_albedo(materials, textures, texels, &h);
       float3 flux = finite_or_zero(reflected / per_photon);

@@ -372,6 +372,25 @@ inline HitSurface hit_surface(HIT_SURFACE_ARGS, int prim, float u, float v, floa
   return h;
 }
 
+// The surface a photon along dir landed on (kernels/light_guide.cl): as hit_surface, but shaded with its interpolated
+// normal alone (the coat's too), a normal that faces away from the photon replaced by the geometric one, and texel-sized
+// lookups. Kept beside hit_surface so that a field HitSurface gains is set in both.
+inline HitSurface photon_hit_surface(__global const TriangleShading* triangles, int prim, float u, float v,
+                                     float3 dir) {
+  HitSurface h;
+  h.s = surface_at(triangles, prim, u, v);
+  h.ng = dot(h.s.geometric_normal, dir) > 0.0f ? -h.s.geometric_normal : h.s.geometric_normal;
+  h.ns = dot(h.s.shading_normal, h.ng) > 0.0f ? h.s.shading_normal : h.ng;
+#if HAS_NORMAL_MAPS
+  h.ns_interpolated = h.ns;
+#endif
+#if HAS_LAYERS
+  h.coat_normal = h.ns;
+#endif
+  h.albedo_read = h.lobe_read = 0;
+  return h;
+}
+
 inline float3 hit_albedo(__global const Material* materials, __global const TextureInfo* textures,
                          __global const uint* texels, HitSurface* h) {
   if (!h->albedo_read) {

@@ -38,7 +38,7 @@ __kernel void tabulated_specular_albedo(__global const float* cases, uint count,
   if (i >= count) return;
   __global const float* c = cases + (size_t)i * 12;
   BrdfInputs in = brdf_inputs(vload3(0, c), c[3], c[4], c[5]);
-  vstore3(specular_albedo(in, vload3(2, c)), 0, out + (size_t)i * 4);
+  vstore3(lobes_albedo(in, vload3(2, c)), 0, out + (size_t)i * 4);
   out[(size_t)i * 4 + 3] = brdf_diffuse_weight(in, c[8]);
 }
 // Per case, 12 floats: base colour, metallic, roughness, specular, wo, wi.
