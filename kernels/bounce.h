@@ -4,6 +4,8 @@
 // Shared by the record pass and the path tracer so that both estimate the same integral.
 #ifndef RCSPLAT_BOUNCE_H
 #define RCSPLAT_BOUNCE_H
+// First: reflected_light.h, included under #if below, includes it too.
+#include "caustic_map.h"
 #include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
@@ -69,6 +71,9 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
 #endif
+#if HAS_GLASS_CAUSTICS
+  e += caustic_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng);  // the light glass volumes passed
+#endif
   if (!any_positive(e)) return (float3)(0.0f);  // what any albedo times it would give
   return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
 }
@@ -93,6 +98,9 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float3 e = direct_irradiance(BVH, lights, scene_counts.light_count, EMITTERS, scene_counts.emitter_count,
                                h->s.position, h->ns, h->ng, u, v, rays);
   float3 l = (float3)(0.0f);
+#if HAS_GLASS_CAUSTICS
+  e += caustic_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng);  // the light glass volumes passed
+#endif
 #if HAS_ENVIRONMENT
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
@@ -100,7 +108,7 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
   float3 wi = lobes_sample(in, wo, environment_extra_randoms(u, v, 3u).x, lobe_u.x, lobe_u.y), toward = to_world(frame, wi);
   float3 origin = offset_ray_origin(h->s.position, h->ng);
   if (wi.z > 0.0f && dot(toward, h->ng) > 0.0f) {
-    const float3 passes = escapes(BVH, origin, toward, rays);
+    const float3 passes = escapes(BVH, origin, &toward, rays);
     if (any_positive(passes))
       l += lobes_weight(in, wo, wi) * environment_smooth(environment, scene_counts, toward) * passes;
   }

@@ -263,6 +263,15 @@ inline float3 lobes_albedo(BrdfInputs in, float3 wo) {
 #endif
 }
 
+// Irradiance e whose directions are not known, reflected toward wo by a surface of kind `lobe` (LOBE_*): the diffuse
+// part exactly, and a rough lobe's albedo times e / pi (the light taken as even over directions, docs/NOTES.md
+// "Material kinds"). A sharper lobe reflects none of it here: the caller samples that lobe itself.
+inline float3 irradiance_reflected(BrdfInputs in, int lobe, float3 wo, float3 e) {
+  float3 l = brdf_eval_diffuse(in, wo) * e;
+  if (lobe == LOBE_ROUGH) l += lobes_albedo(in, wo) * RC_INV_PI * e;
+  return l;
+}
+
 // Density of brdf_sample's directions (solid angle) at wi.
 inline float brdf_pdf(BrdfInputs in, float3 wo, float3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;

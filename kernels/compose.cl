@@ -29,11 +29,10 @@ __kernel void compose(GBUFFER_ARGS, __global const float4* irradiance, __global 
     ShadingFrame frame = shading_frame(gbuffer_shading_normal(g));
     BrdfInputs in = gbuffer_layered_brdf(g, pixel_layers(gbuffer_layers, i), frame.n);
     float3 wo = view_local(frame, camera_view_direction(camera, vload3(0, g.position)));
-    indirect = brdf_eval_diffuse(in, wo) * e;
-    if (g.lobe == LOBE_ROUGH) indirect += lobes_albedo(in, wo) * RC_INV_PI * e;
-    else if (RADIANCE_CACHED && g.lobe == LOBE_HSH)
+    indirect = irradiance_reflected(in, g.lobe, wo, e);
+    if (RADIANCE_CACHED && g.lobe == LOBE_HSH)
       indirect += cached_lobes[i].xyz + (glossy_holds_guide_share ? glossy[i].xyz : (float3)(0.0f));
-    else indirect += glossy[i].xyz;
+    else if (g.lobe != LOBE_ROUGH) indirect += glossy[i].xyz;
     indirect = finite_or_zero(indirect);
   }
 #endif

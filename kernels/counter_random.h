@@ -37,6 +37,7 @@ inline float random01(rc_uint a, rc_uint b, rc_uint c) {
 #define STREAM_LIGHT_STRATA 0x6c737472u       /* "lstr": the light samples' strata in rounds (direct.cl) */
 #define STREAM_PATH 0x5bd1e995u               /* the path tracer's samples (kernels/path.cl) */
 #define STREAM_GLASS_MIRROR 0x6d697272u       /* "mirr": lit surfaces seen in glass (kernels/glass_mirror.cl) */
+#define STREAM_GLASS_CAUSTICS 0x676c6370u     /* "glcp": the glass caustic map's photons (passes/glass_caustics_pass) */
 #define STREAM_ROUND_STEP 0x9e3779b9u         /* the golden ratio in 32 bits: seed + step * round */
 
 #endif

@@ -93,9 +93,15 @@ inline float3 environment_peak_sample(__global const float4* environment, __glob
 #endif
 }
 
-// What of the light from the scene's outside reaches origin along dir: 1 or 0, and through glass its transmittance.
-inline float3 escapes(BVH_ARGS, float3 origin, float3 dir, RayTally* rays) {
-  return light_passes(BVH, origin, dir, INFINITY, rays);
+// What of the light from the scene's outside reaches origin along *dir: 1 or 0, and through glass its transmittance.
+// With HAS_GLASS_CAUSTICS a volume bends the ray (escape_transmittance): *dir becomes the direction whose light
+// arrives.
+inline float3 escapes(BVH_ARGS, float3 origin, float3* dir, RayTally* rays) {
+#if HAS_GLASS_CAUSTICS
+  return escape_transmittance(BVH, origin, dir, rays);
+#else
+  return light_passes(BVH, origin, *dir, INFINITY, rays);
+#endif
 }
 
 // One shadow-ray estimate of the peak's irradiance at p (normal n, geometric normal ng) from uniform (u1, u2); *wi
@@ -106,7 +112,8 @@ inline float3 environment_peak_irradiance(SCENE_ARGS, float3 origin, float3 n, f
   float3 l = environment_peak_sample(environment, environment_cdf, scene_counts, u1, u2, wi, &pdf);
   float cos_x = dot(n, *wi);
   if (!(pdf > 0.0f) || cos_x <= 0.0f || dot(ng, *wi) <= 0.0f) return (float3)(0.0f);
-  const float3 passes = escapes(BVH, origin, *wi, rays);
+  // A shadow ray toward the peak: a glass volume blocks it under HAS_GLASS_CAUSTICS, the map carrying that light.
+  const float3 passes = light_passes(BVH, origin, *wi, INFINITY, rays);
   if (!any_positive(passes)) return (float3)(0.0f);
   return l * cos_x * passes;
 }
@@ -122,7 +129,7 @@ inline float3 environment_irradiance(SCENE_ARGS, float3 p, float3 n, float3 ng, 
   float3 dir = cosine_direction(t, b, n, u1, u2);
   float3 e = (float3)(0.0f);
   if (dot(dir, ng) > 0.0f) {
-    const float3 passes = escapes(BVH, origin, dir, rays);
+    const float3 passes = escapes(BVH, origin, &dir, rays);
     if (any_positive(passes))
       e += RC_PI * environment_smooth(environment, scene_counts, dir) * passes;  // cosine-weighted: L cos / pdf = pi L
   }

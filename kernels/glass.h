@@ -95,12 +95,16 @@ inline float glass_crossing(__global const Material* materials, __global const T
 // hash of the crossing, so the same input gives the same bits. Returns the weight of the chain; *hit becomes the
 // first hit that is not glass (prim -1: the ray left the scene), *dir its direction, *distance the chain's length.
 // A ray still in glass after GLASS_MAX_CROSSINGS crossings is absorbed (weight 0).
-inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, float* distance) {
+// *met_volume: whether the chain crossed (or reflected off) glass with a volume.
+inline float3 pass_glass_noting_volumes(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, float* distance,
+                                        bool* met_volume) {
   float3 weight = (float3)(1.0f);
   *distance = hit->t;
+  *met_volume = false;
   for (uint k = 0u; hit->prim >= 0 && is_glass(triangles, materials, textures, texels, hit->prim, hit->u, hit->v); ++k) {
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
+    *met_volume |= materials[s.material].thickness > 0.0f;
     float3 through, mirror, tint;
     const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
     const float u = random01((uint)hit->prim * GLASS_MAX_CROSSINGS + k, as_uint(hit->u) ^ as_uint(dir->x),
@@ -115,6 +119,11 @@ inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, f
     else *distance += hit->t;
   }
   return weight;
+}
+
+inline float3 pass_glass(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, float* distance) {
+  bool met_volume;
+  return pass_glass_noting_volumes(BVH, rays, hit, dir, distance, &met_volume);
 }
 
 // pass_glass for a hit a kernel traced and kept (the split and wavefront record and glossy traces): *hit becomes the
@@ -134,7 +143,8 @@ inline float3 kept_hit_past_glass(BVH_ARGS, RayTally* rays, HitDesc* hit, float3
 // What of the light along a shadow ray (from `from` along to_offset up to tmax, as visible() takes it) gets through:
 // 0 where something opaque blocks it, and through glass each crossing's 1 - R times its tint, straight on (exact for
 // thin-walled glass, and for a slab of parallel faces but for the light's sideways shift; the light a curved volume
-// would focus or bend is not followed).
+// would focus or bend is not followed). With HAS_GLASS_CAUSTICS (--light-through-glass caustics) a volume blocks it:
+// the light a volume passes comes by the glass caustic map instead (kernels/glass_caustics.h).
 inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float tmax, RayTally* rays) {
   float3 weight = (float3)(1.0f);
   const bool toward_point = !isinf(tmax);
@@ -155,6 +165,9 @@ inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float
     if (k == GLASS_MAX_CROSSINGS || !is_glass(triangles, materials, textures, texels, hit.prim, hit.u, hit.v))
       return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+#if HAS_GLASS_CAUSTICS
+    if (materials[s.material].thickness > 0.0f) return (float3)(0.0f);
+#endif
     const float length_per_t = length(to_offset);
     const float3 dir = to_offset / length_per_t;
     float3 through, mirror, tint;
@@ -170,6 +183,40 @@ inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float
     }
   }
 }
+
+#if HAS_GLASS_CAUSTICS
+// What of the light from a direction a ray leaving `from` along *dir (unit) brings back gets through, where light by
+// direction is gathered (the environment's smooth part, which the glass caustic map does not shoot): thin-walled glass
+// as light_transmittance passes it, straight with its 1 - R and tint; a volume as pass_glass crosses it, reflected or
+// refracted at random, so *dir becomes the direction the light arrives from. 0 where something opaque blocks it.
+inline float3 escape_transmittance(BVH_ARGS, float3 from, float3* dir, RayTally* rays) {
+  float3 weight = (float3)(1.0f);
+  for (uint k = 0u;; ++k) {
+    TraceHit hit;
+    if (!closest_hit(BVH, rays, from, *dir, &hit)) return weight;
+    if (k == GLASS_MAX_CROSSINGS || !is_glass(triangles, materials, textures, texels, hit.prim, hit.u, hit.v))
+      return (float3)(0.0f);
+    SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
+    float3 through, mirror, tint;
+    if (materials[s.material].thickness > 0.0f) {
+      const float r = glass_crossing(materials, textures, texels, &s, *dir, hit.t, false, &through, &mirror, &tint);
+      const float u = random01((uint)hit.prim * GLASS_MAX_CROSSINGS + k, as_uint(hit.u) ^ as_uint(dir->x),
+                               as_uint(hit.v) ^ as_uint(dir->y));
+      if (u < r) {
+        *dir = mirror;
+      } else {
+        *dir = through;
+        weight *= tint;
+      }
+    } else {
+      weight *= (1.0f - glass_crossing(materials, textures, texels, &s, *dir, hit.t, true, &through, &mirror, &tint)) *
+                tint;
+      if (!any_positive(weight)) return weight;
+    }
+    from = leaving_origin(&s, *dir);
+  }
+}
+#endif
 #endif
 
 #endif

@@ -166,8 +166,9 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     if (landed) {  // glass is no landing: the photon goes on through it (kernels/glass.h), keeping what it passes
       RayTally glass_rays = traced_rays(0u);
       float chain;
-      power *= pass_glass(BVH, &glass_rays, &hit, &dir, &chain);
-      landed = hit.prim >= 0;
+      bool met_volume;
+      power *= pass_glass_noting_volumes(BVH, &glass_rays, &hit, &dir, &chain, &met_volume);
+      landed = hit.prim >= 0 && (met_volume || !params.glass_caustics);
     }
 #endif
     if (landed) {

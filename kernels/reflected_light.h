@@ -5,6 +5,7 @@
 #ifndef RCSPLAT_REFLECTED_LIGHT_H
 #define RCSPLAT_REFLECTED_LIGHT_H
 #include "brdf_frame.h"
+#include "caustic_map.h"
 #include "environment.h"
 #include "lighting.h"
 #include "scene_args.h"
@@ -68,10 +69,15 @@ inline float3 emitter_hit(SCENE_ARGS, float3 origin, float3 dir, float* light_pd
   TraceHit hit;
   if (!closest_hit(BVH, rays, origin, dir, &hit)) return (float3)(0.0f);
 #if HAS_TRANSMISSION
-  // Through glass: the emitter the chain reaches, at the chain's length (exact for thin-walled glass).
+  // Through glass: the emitter the chain reaches, at the chain's length (exact for thin-walled glass). With
+  // HAS_GLASS_CAUSTICS, an emitter seen through a volume is the glass caustic map's light, as for light samples.
   float distance;
-  const float3 passes = pass_glass(BVH, rays, &hit, &dir, &distance);
+  bool met_volume;
+  const float3 passes = pass_glass_noting_volumes(BVH, rays, &hit, &dir, &distance, &met_volume);
   if (hit.prim < 0) return (float3)(0.0f);
+#if HAS_GLASS_CAUSTICS
+  if (met_volume) return (float3)(0.0f);
+#endif
   hit.t = distance;
 #else
   const float3 passes = (float3)(1.0f);
@@ -161,7 +167,7 @@ inline float3 environment_reflected(SCENE_ARGS, LazyBrdf* brdf, ShadingFrame fra
                                   &pdf);
   float3 dir = to_world(frame, wi_local);
   if (pdf > 0.0f && dot(dir, ng) > 0.0f) {
-    const float3 passes = escapes(BVH, origin, dir, rays);
+    const float3 passes = escapes(BVH, origin, &dir, rays);
     if (any_positive(passes)) sum += throughput * environment_smooth(environment, scene_counts, dir) * passes;
   }
   return sum;
@@ -179,6 +185,10 @@ inline float3 direct_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, float3 p, f
              emitters_reflected(SCENE, brdf, lobe, frame, wo_local, p, origin, ng, u, v, u_lobe, rays);
 #if HAS_ENVIRONMENT
   l += environment_reflected(SCENE, brdf, frame, wo_local, origin, ng, u, v, rays);
+#endif
+#if HAS_GLASS_CAUSTICS
+  // The light glass volumes passed, as irradiance: a sharp lobe's highlight of it is not simulated.
+  l += irradiance_reflected(BRDF_IN, lobe, wo_local, caustic_irradiance(GLASS_CAUSTIC_MAP, p, ng));
 #endif
   return finite_or_zero(l);
 }

@@ -454,7 +454,9 @@ typedef struct {
   // is sharp (LOBE_GLOSSY), and only by that lobe, so that landing 1 holds exactly the light -> glossy -> surface paths
   // the records leave out (kernels/bounce.h hit_direct_without_caustics).
   rc_uint caustic;
-  rc_uint pad;
+  // 1: the glass caustic map's photons (HAS_GLASS_CAUSTICS, kernels/glass_caustics.cl): a landing is kept only where
+  // the photon's way to it crossed or reflected off a glass volume (landings 1, first_stored 0).
+  rc_uint glass_caustics;
 } PhotonParams;
 
 // The photon map (--bounce-method photons; kernels/photon_map.h): photon landings after at least one reflection, sorted

@@ -636,6 +636,183 @@ TEST(DirectLight, GlassMirrorsTheLitSurfacesTheCameraSeesInIt) {
 }
 
 
+// A UV sphere of `stacks` x `slices` about centre (radius r), wound outward, with the sphere's normals at its vertices
+// (the shading normals a smooth glass ball refracts by).
+void add_uv_sphere(Scene& s, dvec3 centre, double r, int stacks, int slices, uint32_t material) {
+  auto at = [&](int i, int j) {
+    const double theta = kPi * i / stacks, phi = 2.0 * kPi * j / slices;
+    return dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  };
+  auto triangle = [&](dvec3 a, dvec3 b, dvec3 c) {
+    s.add_triangle(glm::vec3(centre + r * a), glm::vec3(centre + r * b), glm::vec3(centre + r * c), material);
+    const size_t n = s.normals.size();
+    s.normals[n - 3] = glm::vec3(a);
+    s.normals[n - 2] = glm::vec3(b);
+    s.normals[n - 1] = glm::vec3(c);
+  };
+  for (int i = 0; i < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      const dvec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if (i > 0) triangle(a, b, d);
+      if (i + 1 < stacks) triangle(b, c, d);
+    }
+}
+
+// The glass ball's mesh as the host light tracer below reads it: positions and vertex normals in double.
+struct HostMesh {
+  std::vector<dvec3> p, n;  // three per triangle
+  // The closest hit of the ray o + t d (t > 1e-9) on the mesh: t, and the triangle and barycentrics (b1, b2).
+  bool hit(dvec3 o, dvec3 d, double& t, size_t& tri, double& b1, double& b2) const {
+    t = INFINITY;
+    for (size_t k = 0; k < p.size(); k += 3) {
+      const dvec3 e1 = p[k + 1] - p[k], e2 = p[k + 2] - p[k], q = glm::cross(d, e2);
+      const double det = glm::dot(e1, q);
+      if (std::abs(det) < 1e-14) continue;
+      const dvec3 s = o - p[k];
+      const double u = glm::dot(s, q) / det;
+      if (u < 0.0 || u > 1.0) continue;
+      const dvec3 r = glm::cross(s, e1);
+      const double v = glm::dot(d, r) / det, tt = glm::dot(e2, r) / det;
+      if (v < 0.0 || u + v > 1.0 || tt <= 1e-9 || tt >= t) continue;
+      t = tt, tri = k, b1 = u, b2 = v;
+    }
+    return std::isfinite(t);
+  }
+};
+
+// Where the light of a ray leaving o along unit d lands on the plane z = 0 after the glass mesh, by Snell's law and
+// Fresnel (angles' form) at each crossing about the interpolated normal, both the reflected and the refracted branch
+// followed with their weights (no randomness) until a branch weighs below 1e-4 or crosses 8 times; lands(x, y, w)
+// for each branch that reaches the plane.
+template <class Lands>
+void trace_through_glass(const HostMesh& m, double ior, dvec3 o, dvec3 d, double w, int crossings, Lands&& lands) {
+  double t, b1, b2;
+  size_t k;
+  if (!m.hit(o, d, t, k, b1, b2)) {
+    if (d.z < 0.0) {
+      const dvec3 x = o + d * (-o.z / d.z);
+      lands(x.x, x.y, w);
+    }
+    return;
+  }
+  if (crossings == 8 || w < 1e-4) return;
+  const dvec3 x = o + t * d, ng = glm::normalize(glm::cross(m.p[k + 1] - m.p[k], m.p[k + 2] - m.p[k]));
+  const bool entering = glm::dot(ng, d) < 0.0;
+  dvec3 n = glm::normalize((1.0 - b1 - b2) * m.n[k] + b1 * m.n[k + 1] + b2 * m.n[k + 2]);
+  if (!entering) n = -n;  // toward the side the ray comes from
+  if (glm::dot(n, d) >= 0.0) n = entering ? ng : -ng;
+  const double cos_i = -glm::dot(n, d), eta = entering ? ior : 1.0 / ior;
+  const double r = fresnel_by_angles(cos_i, eta);
+  const dvec3 mirror = d + 2.0 * cos_i * n, side = entering ? ng : -ng;
+  trace_through_glass(m, ior, x + 1e-7 * side, mirror, w * r, crossings + 1, lands);
+  if (r < 1.0) {
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / eta;
+    const dvec3 tangent = d + cos_i * n;  // d's part along the surface, of length sin_i
+    const dvec3 through = glm::normalize(tangent / eta - std::sqrt(1.0 - sin_t * sin_t) * n);
+    trace_through_glass(m, ior, x - 1e-7 * side, through, w * (1.0 - r), crossings + 1, lands);
+  }
+}
+
+// --light-through-glass caustics: a clear glass ball (radius 1, a volume, ior 1.5) between a point light and the
+// Lambertian plane. The ball stops the shadow rays, and the light it focuses reaches the plane by the glass caustic map.
+// Against a light tracer in double on the host (trace_through_glass over the same mesh and normals, every branch
+// followed), the mean irradiance of the plane over discs about the spot below the ball (all inside the ball's
+// geometric shadow, where no shadow ray reaches) must agree within four standard errors of the two estimates: the
+// photons' (each path's power I 4 pi / paths, Poisson in the disc) and the host's (its photons' spread), plus the
+// caustic map's blur at the disc's edge, its radius times the edge's irradiance. Shadow rays passing the ball straight
+// (the default's model) put a flat tinted shadow there instead, and a map without the ball's light puts nothing.
+TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
+  const double ior = 1.5, ball_z = 2.5, light_z = 6.0, intensity = 40.0;
+  Scene s = plane_scene();
+  SceneMaterial ball = glass(glm::vec3(1.0f), float(ior));
+  ball.thickness = 1.0f;
+  s.materials.push_back(ball);
+  const int stacks = 12, slices = 24;
+  add_uv_sphere(s, dvec3(0.0, 0.0, ball_z), 1.0, stacks, slices, 1);
+  SceneLight l;
+  l.position = {0.0f, 0.0f, float(light_z)};
+  l.intensity = glm::vec3(float(intensity));
+  s.lights.push_back(l);
+  s.glass_light.caustics = true;
+  // A map radius about the pixels' spacing, so that the pixels in a disc read most of its photons between them.
+  s.glass_light.neighbours = 256;
+  // Tilted 60 degrees about y, so that the plane under the ball is seen beside it, not through it.
+  const double tilt = 60.0 * kPi / 180.0;
+  s.cameras[0].orthographic = true;
+  s.cameras[0].eye = {float(-10.0 * std::sin(tilt)), 0.0f, float(10.0 * std::cos(tilt))};
+  s.cameras[0].target = {0.0f, 0.0f, 0.0f};
+  s.cameras[0].xmag = s.cameras[0].ymag = 1.3f;  // every disc below in view
+  const RenderedImage img = render(s, 256, 0);
+  ASSERT_TRUE(img.stats.scene.glass_caustics);
+  const double photon_flux = intensity * 4.0 * kPi / double(s.glass_light.photons);
+
+  HostMesh mesh;
+  for (size_t v = s.positions.size() - size_t(6 * stacks * slices - 6 * slices); v < s.positions.size(); ++v) {
+    mesh.p.push_back(dvec3(s.positions[v]));
+    mesh.n.push_back(dvec3(s.normals[v]));
+  }
+  ASSERT_EQ(mesh.p.size() % 3, 0u);
+  // Photons from the light through the cone the ball's sphere fills, each I times the cone's solid angle over N.
+  const double radii[] = {0.15, 0.3, 0.6, 1.2};
+  const int photons = 20000;
+  const double cos_cone = std::sqrt(1.0 - 1.0 / ((light_z - ball_z) * (light_z - ball_z)));
+  const double host_flux = intensity * 2.0 * kPi * (1.0 - cos_cone) / photons;
+  struct Landing {
+    int photon;
+    double distance, weight;  // from the axis below the light
+  };
+  std::vector<Landing> landings;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int k = 0; k < photons; ++k) {
+    const double cos_t = 1.0 - uni(rng) * (1.0 - cos_cone), sin_t = std::sqrt(1.0 - cos_t * cos_t);
+    const double phi = 2.0 * kPi * uni(rng);
+    trace_through_glass(mesh, ior, dvec3(0.0, 0.0, light_z), dvec3(sin_t * std::cos(phi), sin_t * std::sin(phi), -cos_t),
+                        1.0, 0, [&](double x, double y, double w) { landings.push_back({k, std::hypot(x, y), w}); });
+  }
+  // The host's mean irradiance between two distances from the axis, and its standard error over the photons.
+  auto host_irradiance = [&](double from, double to, double* sigma) {
+    std::vector<double> per_photon(photons, 0.0);
+    for (const Landing& l : landings)
+      if (l.distance >= from && l.distance < to) per_photon[size_t(l.photon)] += l.weight;
+    double sum = 0.0, squares = 0.0;
+    for (double w : per_photon) sum += w, squares += w * w;
+    const double area = kPi * (to * to - from * from);
+    if (sigma) *sigma = std::sqrt(std::max(0.0, squares - sum * sum / photons)) * host_flux / area;
+    return sum * host_flux / area;
+  };
+  ASSERT_GT(img.stats.scene.glass_caustic_photons, 10000u) << "the ball's photons";
+  const double map_radius = img.stats.scene.glass_caustic_radius;
+  for (int r = 0; r < 4; ++r) {
+    double host_sigma;
+    const double host = host_irradiance(0.0, radii[r], &host_sigma);
+    double measured = 0.0, squares = 0.0;
+    size_t pixels = 0;
+    for (size_t i = 0; i < img.triangle.size(); ++i) {
+      const dvec3 x = position_of(img, i);
+      if (img.triangle[i] < 0 || img.triangle[i] > 1 || std::hypot(x.x, x.y) >= radii[r]) continue;
+      const double e = direct_of(img, i).y * kPi / double(kAlbedo.y);
+      measured += e;
+      squares += e * e;
+      ++pixels;
+    }
+    ASSERT_GT(pixels, 30u);
+    measured /= double(pixels);
+    // The pixels' spread: each reads the photons within the map's radius of its point, and where that radius is
+    // below the pixels' spacing they sample the focused light as much as the photons do.
+    const double photon_sigma =
+        std::sqrt(std::max(0.0, squares / double(pixels) - measured * measured) / double(pixels - 1));
+    // The map's disc about a point near the edge reads photons across it: at most the light of the ring one map
+    // radius either side of the edge, over the disc.
+    const double ring = host_irradiance(radii[r] - map_radius, radii[r] + map_radius, nullptr);
+    const double blur = ring * 4.0 * map_radius / radii[r];
+    std::printf("glass ball, disc of radius %.2f: %.4f against the host's %.4f (sigma %.2e and %.2e, blur %.2e, %zu "
+                "pixels, map radius %.2e)\n",
+                radii[r], measured, host, photon_sigma, host_sigma, blur, pixels, map_radius);
+    EXPECT_NEAR(measured, host, 4.0 * std::hypot(photon_sigma, host_sigma) + blur) << "disc of radius " << radii[r];
+  }
+}
+
 // The layers (kernels/brdf_layers.h) on the rough_floor: each pixel's direct light from the point light must be the
 // extension's BRDF in double (tests/layers_reference.h) times the irradiance, within the float BRDF's 1e-4, the
 // tabulated diffuse weight's error (floor_tolerance) and, under a sheen, the sheen albedo table's bilinear error

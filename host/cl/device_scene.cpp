@@ -38,6 +38,18 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), forced_switches))
     defines_[name] = value;
   bvh_.add_defines(defines_);
+  if (has_glass_caustics()) set_glass_caustics(gpu, {}, {}, PhotonMapParams{});
+}
+
+void DeviceScene::set_glass_caustics(GpuContext& gpu, const std::vector<PhotonHit>& photons,
+                                     const std::vector<cl_uint>& buckets, const PhotonMapParams& grid) {
+  // A kernel reads no photon of an empty map (photon_count 0), but its buffers must be bound.
+  glass_caustic_photons_ =
+      gpu.upload(photons.empty() ? std::vector<PhotonHit>(1) : photons, CL_MEM_READ_ONLY, "glass caustic map");
+  glass_caustic_buckets_ = gpu.upload(buckets.empty() ? std::vector<cl_uint>(2, 0u) : buckets, CL_MEM_READ_ONLY,
+                                      "glass caustic map buckets");
+  glass_caustic_grid_ = grid;
+  if (photons.empty()) glass_caustic_grid_.photon_count = 0;
 }
 
 void DeviceScene::bind(NamedKernel& kernel) const {
@@ -53,6 +65,10 @@ void DeviceScene::bind(NamedKernel& kernel) const {
       .set_buffer<cl_float4>("environment", environment_)
       .set_buffer<cl_float>("environment_cdf", environment_cdf_)
       .set("scene_counts", counts_);
+  if (has_glass_caustics())
+    kernel.set_buffer<PhotonHit>("glass_caustic_photons", glass_caustic_photons_)
+        .set_buffer<cl_uint>("glass_caustic_buckets", glass_caustic_buckets_)
+        .set("glass_caustic_grid", glass_caustic_grid_);
 }
 
 std::map<std::string, std::string> scene_plan_switches(const ScenePlan& plan, int bvh_depth) {

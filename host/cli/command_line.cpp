@@ -46,9 +46,21 @@ void EnvironmentFlags::add(CLI::App* cmd, EnvironmentSettings& e) {
     cmd->add_option("--environment-rotation", e.rotation_degrees,
                     "Rotates the environment map about +Y by this many degrees (default " +
                         shortest(EnvironmentSettings{}.rotation_degrees) + ")");
+    cmd->add_option("--light-through-glass", light_through_glass,
+                    "How the lights reach what lies behind glass: 'straight' (default: shadow rays pass every glass "
+                    "with its colour; exact for thin-walled glass, and free of noise) or 'caustics' (a glass volume "
+                    "stops shadow rays and its light comes by a caustic map, so a glass ball or vase focuses it)")
+        ->check(CLI::IsMember({"straight", "caustics"}));
+    cmd->add_option("--glass-caustic-photons", e.glass.photons,
+                    "Photon paths for --light-through-glass caustics (default " +
+                        std::to_string(GlassLight{}.photons) + ")")
+        ->check(CLI::Range(1u, kMaxPhotonPaths));
 }
 
-void EnvironmentFlags::apply(EnvironmentSettings& e) const { e.sky = as_vec3(sky); }
+void EnvironmentFlags::apply(EnvironmentSettings& e) const {
+  e.sky = as_vec3(sky);
+  e.glass.caustics = light_through_glass == "caustics";
+}
 
 void add_scene_limit_options(CLI::App* cmd, SceneLimits& limits, bool device) {
   cmd->add_option("--asset-root", limits.asset_roots,

@@ -36,6 +36,7 @@ struct CameraFlags {
 // Light from outside the scene (scene/environment.h), for render, reference, info and sweep.
 struct EnvironmentFlags {
   std::vector<float> sky;
+  std::string light_through_glass = "straight";
   void add(CLI::App* cmd, EnvironmentSettings& e);
   void apply(EnvironmentSettings& e) const;
 };

@@ -43,7 +43,7 @@ size_t neighbours_of(const PhotonGrid& grid, const PhotonHit& p) {
 }  // namespace
 
 std::vector<PhotonHit> shoot_caustic_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths, unsigned seed) {
-  return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, 2, 1, true));
+  return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, 2, 1, PhotonKeep::after_sharp_lobe));
 }
 
 float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, unsigned neighbours) {

@@ -53,14 +53,14 @@ LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double
 }
 
 std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned seed, unsigned landings,
-                                             unsigned first_stored, bool caustic) {
+                                             unsigned first_stored, PhotonKeep keep) {
   size_t slots = 0;
-  const cl::Buffer photons = shoot_on_device(photon_count, seed, landings, first_stored, caustic, slots);
+  const cl::Buffer photons = shoot_on_device(photon_count, seed, landings, first_stored, keep, slots);
   return gpu_.download<PhotonHit>(photons, slots);
 }
 
 cl::Buffer LightGuidePass::shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings,
-                                           unsigned first_stored, bool caustic, size_t& slots) {
+                                           unsigned first_stored, PhotonKeep keep, size_t& slots) {
   slots = 0;
   if (!source_count_ || !photon_count || first_stored >= landings) return {};
   slots = size_t(photon_count) * (landings - first_stored);
@@ -72,7 +72,8 @@ cl::Buffer LightGuidePass::shoot_on_device(unsigned photon_count, unsigned seed,
   params.landings = landings;
   params.first_stored = first_stored;
   params.sky_source = sky_source_ ? 1u : 0u;
-  params.caustic = caustic ? 1u : 0u;
+  params.caustic = keep == PhotonKeep::after_sharp_lobe ? 1u : 0u;
+  params.glass_caustics = keep == PhotonKeep::through_glass_volume ? 1u : 0u;
   scene_.bind(kernel_);
   kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);

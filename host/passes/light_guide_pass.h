@@ -10,6 +10,10 @@
 
 namespace rcsplat {
 
+// Which landings a photon keeps (PhotonParams): every one; after_sharp_lobe, the caustic map's (landing 0 reflects
+// only by a LOBE_GLOSSY lobe); through_glass_volume, the glass caustic map's (a landing whose way crossed a volume).
+enum class PhotonKeep { every_landing, after_sharp_lobe, through_glass_volume };
+
 class LightGuidePass {
  public:
   // sky_power > 0: the environment's smooth part is a source too, of that power (the bounce probe's; see PhotonParams).
@@ -19,13 +23,12 @@ class LightGuidePass {
 
   // photon_count photons (none when the scene has no light with power), each landing up to `landings` times (reflected
   // diffusely in between), landings first_stored .. landings - 1 returned: photon i's landing k at
-  // [i * (landings - first_stored) + k - first_stored]; blocks until done. caustic: landing 0 reflects only by a
-  // sharp lobe (PhotonParams::caustic).
+  // [i * (landings - first_stored) + k - first_stored]; blocks until done. `keep`: which landings (PhotonKeep).
   std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0,
-                               bool caustic = false);
+                               PhotonKeep keep = PhotonKeep::every_landing);
   // The same landings left on the device, `slots` of them (0 and no buffer: none); does not block.
   cl::Buffer shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings, unsigned first_stored,
-                             bool caustic, size_t& slots);
+                             PhotonKeep keep, size_t& slots);
 
  private:
   static constexpr const char* kProgram = "light_guide.cl";  // its kernels' file

@@ -29,6 +29,12 @@ struct SceneStats {
   // Materials by how the cache shades their specular lobe (LOBE_*), and whether the BRDF code was compiled at all.
   unsigned lambertian_materials = 0, rough_materials = 0, glossy_materials = 0, hsh_materials = 0;
   bool specular_brdf = false;
+  // --light-through-glass caustics in a scene with a glass volume: the glass caustic map (passes/glass_caustics_pass.h),
+  // shot once with the scene; its radius in world units.
+  bool glass_caustics = false;
+  unsigned glass_caustic_paths = 0;
+  uint64_t glass_caustic_photons = 0;
+  double glass_caustic_radius = 0, glass_caustic_s = 0;
 };
 
 // Primary visibility, direct light and the image layers gathered on the device (LayerPass), downloaded and filled on

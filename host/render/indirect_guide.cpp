@@ -38,7 +38,7 @@ void attach_light_guide(IndirectFrame& f, RecordPass& records) {
     const unsigned seed = f.settings.seed ^ STREAM_LIGHT_GUIDE;
     if (GuideClusterPass::available(f.gpu)) {  // the photons stay on the device; the same clusters
       size_t slots = 0;
-      const cl::Buffer hits = photons.shoot_on_device(cs.guide_photons, seed, 1, 0, false, slots);
+      const cl::Buffer hits = photons.shoot_on_device(cs.guide_photons, seed, 1, 0, PhotonKeep::every_landing, slots);
       std::vector<GuideCluster> clusters;
       if (slots) clusters = GuideClusterPass(f.gpu).cluster(hits, uint32_t(slots), GUIDE_MAX_CLUSTERS);
       f.light.guide = ViewIndependentLight::Guide{f.settings.seed, cs.guide_photons, std::move(clusters), slots};

@@ -68,7 +68,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
         // landings after the first reflection, the lit ones kept.
         size_t slots = 0;
         const cl::Buffer landings = lights.shoot_on_device(
-            per_round, f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round), f.settings.bounces, 1, false, slots);
+            per_round, f.settings.seed ^ STREAM_PHOTON_MAP ^ hash_u32(round), f.settings.bounces, 1, PhotonKeep::every_landing, slots);
         kept.append_lit(landings, uint32_t(slots));
         paths += per_round;
       }

@@ -14,6 +14,7 @@
 #include "kernels/counter_random.h"
 #include "kernels/hsh.h"
 #include "passes/direct_pass.h"
+#include "passes/glass_caustics_pass.h"
 #include "passes/glass_mirror_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/layer_pass.h"
@@ -136,11 +137,23 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   scene_stats_.glossy_materials = lobes[LOBE_GLOSSY];
   scene_stats_.hsh_materials = lobes[LOBE_HSH];
   scene_stats_.specular_brdf = device_scene_->has_specular_brdf();
+  if (device_scene_->has_glass_caustics()) {
+    // The light glass volumes pass, shot once: every kernel's SCENE_ARGS carry it from here on.
+    StageTimer timing(scene_stats_.glass_caustic_s);
+    log_info("shooting " + std::to_string(scene_.glass_light.photons) + " photon paths through glass volumes");
+    const GlassCausticMap map = shoot_glass_caustics(gpu_, *device_scene_,
+                                                     device_surface_area(scene_, scene_frame_), scene_.glass_light);
+    scene_stats_.glass_caustics = true;
+    scene_stats_.glass_caustic_paths = map.paths;
+    scene_stats_.glass_caustic_photons = map.photons;
+    scene_stats_.glass_caustic_radius = scene_frame_.length_to_world(map.radius);
+  }
   // Every frame's first two programs, compiling while the plan's bounce probe and lobe table run; render() makes
   // their passes.
   GBufferPass::build_ahead(gpu_, *device_scene_);
   DirectPass::build_ahead(gpu_, *device_scene_);
   if (device_scene_->has_glass()) GlassMirrorPass::build_ahead(gpu_, *device_scene_);
+  if (device_scene_->has_glass_caustics()) GlassCausticsPass::build_ahead(gpu_, *device_scene_);
 }
 
 void Renderer::build_programs_ahead(const FramePlan& plan) {
@@ -267,6 +280,8 @@ void Renderer::shade_frame(const FramePlan& plan, const CameraParams& camera, co
                                       double(sub_pixels);
       st.primary.light_refined_pixels = run.refined_pixels;
     }
+    if (glass_caustics_)  // the light glass volumes passed, which shadow rays leave to the glass caustic map
+      glass_caustics_->add_to(gbuffer.view(), direct.radiance());
     gbuffer.weigh_through_glass(direct.radiance());  // a pixel that looks through glass sees its light through it
     if (glass_mirror_)  // and the lit surfaces its glass mirrors, as many paths as light samples
       glass_mirror_->run(gbuffer.view(), direct.radiance(), std::max(settings.light_samples, 1u),
@@ -457,6 +472,8 @@ RenderedImage Renderer::render(const FramePlan& plan) {
     gbuffer_ = std::make_unique<GBufferPass>(gpu_, *device_scene_);
     direct_ = std::make_unique<DirectPass>(gpu_, *device_scene_);
     if (device_scene_->has_glass()) glass_mirror_ = std::make_unique<GlassMirrorPass>(gpu_, *device_scene_);
+    if (device_scene_->has_glass_caustics())
+      glass_caustics_ = std::make_unique<GlassCausticsPass>(gpu_, *device_scene_);
   }
   if (!layers_ || layers_->side() != image.side || layers_->out_width() != image.width ||
       layers_->out_height() != image.height)

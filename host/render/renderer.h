@@ -25,6 +25,7 @@ class DeviceScene;
 class GBufferPass;
 class DirectPass;
 class GlassMirrorPass;
+class GlassCausticsPass;
 class LayerPass;
 struct RadianceLobeTable;
 struct ViewIndependentLight;
@@ -73,6 +74,7 @@ class Renderer {
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;
   std::unique_ptr<GlassMirrorPass> glass_mirror_;  // scenes with glass
+  std::unique_ptr<GlassCausticsPass> glass_caustics_;  // --light-through-glass caustics with a glass volume
   std::unique_ptr<LayerPass> layers_;
   std::unique_ptr<ViewIndependentLight> light_;
   std::unique_ptr<MethodPasses> passes_;  // the last frame's method's

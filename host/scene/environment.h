@@ -9,14 +9,27 @@
 
 namespace rcsplat {
 
+// How light from the light sources passes glass (--light-through-glass, docs/ALGORITHM.md section 12): a lighting
+// setting that, like the environment, belongs to the Scene once it loads and sets the kernels' switches.
+struct GlassLight {
+  // false (straight, the default): shadow rays pass every glass straight with its colour. true (caustics): a glass
+  // volume stops shadow rays, and the light it passes comes by the glass caustic map; thin-walled glass still passes
+  // shadow rays, which is exact for it.
+  bool caustics = false;
+  unsigned photons = 1u << 20;  // --glass-caustic-photons: photon paths shot for the glass caustic map
+  unsigned neighbours = 64;     // photons its gather radius holds on average where they crowd
+};
+
 // What the command line asks for: a sky colour or a map file (not both), its intensity and rotation about +Y.
 struct EnvironmentSettings {
   std::optional<glm::vec3> sky;  // --sky R,G,B: uniform radiance
   std::string file;              // --environment FILE (.exr, .hdr, anything OpenImageIO reads)
   float intensity = 1.0f;        // --environment-intensity: multiplies the map
   float rotation_degrees = 0.0f;  // --environment-rotation: about +Y, counter-clockwise seen from above
+  GlassLight glass;  // not light from outside, but given and applied with it when the scene loads
   bool requested() const { return sky.has_value() || !file.empty(); }
 };
+
 
 // Texels brighter than this many times the map's mean luminance give their excess to the peak, which shadow rays
 // sample; the rest is gathered by the cache's rays (kernels/environment.h). A sun is 10^3 to 10^5 times the mean; an

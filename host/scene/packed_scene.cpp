@@ -267,6 +267,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     for (const glm::vec4& t : scene.tangents) p.tangents.insert(p.tangents.end(), {t.x, t.y, t.z, t.w});
   }
   for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(frame.device_light(l)));
+  p.glass_caustics = scene.glass_light.caustics;
   p.environment = pack_environment(scene.environment);  // directions: the frame only translates and scales
   return p;
 }

@@ -21,6 +21,7 @@ struct PackedScene {
   std::vector<EmissiveTriangle> emitters;  // with a power-proportional selection CDF
   std::vector<float> emitter_mean_luminance;  // each emitter's luminance averaged over it (with its texture)
   PackedEnvironment environment;
+  bool glass_caustics = false;  // Scene::glass_light.caustics
 };
 
 // Positions and lights in `frame`'s coordinates (render() passes the fitted one; the identity keeps world units).

@@ -128,6 +128,7 @@ struct Scene {
   double posed_time = 0.0;
   // Light from outside (--sky, --environment); none by default: rays that leave the scene see black.
   Environment environment;
+  GlassLight glass_light;  // --light-through-glass and its photons (scene/environment.h)
   // What the file asks for that rcsplat does not simulate, once each, as "feature: what rcsplat does instead".
   std::vector<std::string> unsupported;
 

@@ -7,7 +7,7 @@ namespace rcsplat {
 std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has_vertex_colors,
                                                   const std::set<std::string>& forced) {
   bool textured = false, masked = false, specular = false, normal_maps = false, emissive_textures = false,
-       glass = false, layers = false;
+       glass = false, layers = false, glass_volume = false;
   for (const Material& m : p.materials) {
     // Every texture a material reads through HAS_TEXTURES's code: base colour, metallic-roughness, specular, layers.
     textured |= m.base_color_texture >= 0 || m.metallic_roughness_texture >= 0 || m.specular_texture >= 0;
@@ -19,6 +19,7 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
     normal_maps |= (m.normal_texture >= 0 || (m.layered && m.clearcoat_normal_texture >= 0)) && !p.tangents.empty();
     layers |= m.layered != 0;
     glass |= m.transmission > 0.0f && m.metallic < 1.0f;
+    glass_volume |= m.transmission > 0.0f && m.metallic < 1.0f && m.thickness > 0.0f;
   }
   for (const EmissiveTriangle& e : p.emitters) emissive_textures |= emitter_textured_triangle(e) >= 0;
   std::map<std::string, std::string> switches;
@@ -34,6 +35,10 @@ std::map<std::string, std::string> scene_switches(const PackedScene& p, bool has
   set("HAS_EMISSIVE_TEXTURES", emissive_textures);
   set("HAS_TRANSMISSION", glass);
   set("HAS_LAYERS", layers);
+  // A glass volume's light by the glass caustic map (--light-through-glass caustics; needs HAS_TRANSMISSION).
+  switches["HAS_GLASS_CAUSTICS"] = glass && ((glass_volume && p.glass_caustics) || forced.count("HAS_GLASS_CAUSTICS"))
+                                       ? "1"
+                                       : "0";
   // Tests only: the environment's peak sampled uniformly over the sphere, to check its importance sampling against.
   if (forced.count("ENVIRONMENT_UNIFORM_SAMPLING")) switches["ENVIRONMENT_UNIFORM_SAMPLING"] = "1";
   return switches;

@@ -17,6 +17,7 @@ Scene load_scene(const std::string& path, int camera, const CameraOverrides& ove
                  const EnvironmentSettings& environment, const SceneLimits& limits, const ScenePose& pose) {
   Scene scene = path.empty() ? make_cornell_box() : load_gltf(path, limits, pose);
   scene.environment = make_environment(environment);
+  scene.glass_light = environment.glass;
   add_view_defaults(scene, camera, overrides);
   return scene;
 }

@@ -1,0 +1,42 @@
+// The glass caustic map (kernels/glass_caustics.cl, docs/ALGORITHM.md section 12). With --light-through-glass caustics
+// a glass volume stops shadow rays, and the light it passes reaches surfaces as photons instead: those whose way from
+// a light to the first surface they land on crossed or reflected off a volume, so a glass ball focuses its light.
+// Shot once for the scene (the light is the scene's, not a frame's), the map travels in every kernel's SCENE_ARGS
+// (DeviceScene::set_glass_caustics): each bounce's direct light reads it, and this pass adds it to the pixels'.
+#pragma once
+#include "cl/device_scene.h"
+#include "cl/gpu_context.h"
+#include "passes/gbuffer_pass.h"
+#include "scene/environment.h"
+
+namespace rcsplat {
+
+// What a glass caustic map holds: photons kept of the paths shot, and its gather radius (device units).
+struct GlassCausticMap {
+  unsigned paths = 0;
+  size_t photons = 0;
+  float radius = 0.0f;
+};
+
+// Shoots settings.photons photon paths from the scene's lights (a fixed seed stream: the same map for every frame and
+// request) and sets them as the scene's glass caustic map, its radius fitted where they crowd from the radius that
+// surface_area (device units) would give (passes/caustic_map_pass.h crowded_gather_radius). Blocks.
+GlassCausticMap shoot_glass_caustics(GpuContext& gpu, DeviceScene& scene, double surface_area,
+                                     const GlassLight& settings);
+
+class GlassCausticsPass {
+ public:
+  GlassCausticsPass(GpuContext& gpu, const DeviceScene& scene);
+  static void build_ahead(GpuContext& gpu, const DeviceScene& scene);
+  // Adds to direct (float4 a pixel: RGB, A shadow rays) what each pixel reflects toward the camera of the map's light
+  // where it sees. Blocks.
+  void add_to(const GBufferView& gbuffer, const cl::Buffer& direct);
+
+ private:
+  static constexpr const char* kProgram = "glass_caustics.cl";  // its kernels' file
+  GpuContext& gpu_;
+  const DeviceScene& scene_;
+  NamedKernel kernel_;
+};
+
+}  // namespace rcsplat
