@@ -236,11 +236,12 @@ def parse_camera(text):
     return vec("eye"), vec("target"), vec("up"), float(values["yfov_degrees"])
 
 
-def scene_dict(g, mi, camera, width, height, bounces, work, sky=None, glass_depth=0):
+def scene_dict(g, mi, camera, width, height, bounces, work, sky=None, glass_depth=0, integrator="path"):
     eye, target, up, yfov = camera
     # Mitsuba counts a glass crossing as a bounce, rcsplat does not: glass_depth more for the crossings a path makes.
+    # ptracer (light tracing) finds what a path tracer cannot: a point light focused by glass onto a diffuse floor.
     d = {"type": "scene",
-         "integrator": {"type": "path", "max_depth": bounces + 2 + glass_depth, "rr_depth": 1000,
+         "integrator": {"type": integrator, "max_depth": bounces + 2 + glass_depth, "rr_depth": 1000,
                         "hide_emitters": False},
          "sensor": {"type": "perspective", "fov_axis": "y", "fov": yfov,
                     "to_world": mi.ScalarTransform4f().look_at(origin=eye, target=target, up=up),
@@ -339,6 +340,8 @@ def main():
     ap.add_argument("--json")
     ap.add_argument("--glass-depth", type=int, default=0,
                     help="path depth added for glass crossings, which Mitsuba counts as bounces and rcsplat does not")
+    ap.add_argument("--integrator", default="path", choices=["path", "ptracer"],
+                    help="Mitsuba's path tracer (default) or its particle tracer, for caustics of point lights")
     ap.add_argument("--bsdf", default="gltf", choices=["gltf", "diffuse", "principled"],
                     help="gltf: rcsplat's BRDF as a Mitsuba plugin (default); diffuse: Mitsuba's Lambertian; "
                          "principled: Mitsuba's principled BSDF, glTF's clearcoat and sheen mapped onto it")
@@ -370,7 +373,8 @@ def main():
     else:  # a reference from before rcsplat wrote its view: the scene's first camera, as rcsplat's default
         camera = g.first_camera()
         print(f"{a.reference}: no rcsplat:camera attribute; using the scene's first camera")
-    scene = mi.load_dict(scene_dict(g, mi, camera, width, height, bounces, a.output, sky, a.glass_depth))
+    scene = mi.load_dict(scene_dict(g, mi, camera, width, height, bounces, a.output, sky, a.glass_depth,
+                                    a.integrator))
     if g.skipped:
         print("not converted:", "; ".join(sorted(g.skipped)))
 

@@ -32,4 +32,17 @@ inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
   return finite_or_zero(sum / (RC_PI * r2));
 }
 
+// The irradiance of a map in levels (CausticMapLevel, the glass caustic map): each level's photons spread over its own
+// radius, summed.
+inline float3 caustic_levels_irradiance(__global const PhotonHit* photons, __global const uint* buckets,
+                                        __global const CausticMapLevel* levels, float3 x, float3 ng) {
+  float3 sum = (float3)(0.0f);
+  for (uint j = 0u; j < GLASS_CAUSTIC_LEVELS; ++j) {
+    const CausticMapLevel level = levels[j];
+    if (level.grid.photon_count > 0u)
+      sum += caustic_irradiance(photons + level.first_photon, buckets + level.first_bucket, level.grid, x, ng);
+  }
+  return sum;
+}
+
 #endif

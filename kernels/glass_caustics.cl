@@ -18,7 +18,7 @@ __kernel void add_glass_caustics(SCENE_ARGS, GBUFFER_ARGS, __global float4* dire
   if (i >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[i];
   if (g.triangle < 0) return;
-  const float3 e = caustic_irradiance(GLASS_CAUSTIC_MAP, vload3(0, g.position), vload3(0, g.geometric_normal));
+  const float3 e = caustic_levels_irradiance(GLASS_CAUSTIC_MAP, vload3(0, g.position), vload3(0, g.geometric_normal));
   if (!any_positive(e)) return;
   float3 l = vload3(0, g.albedo) * RC_INV_PI * e;
 #if HAS_SPECULAR_BRDF

@@ -9,8 +9,8 @@
 #if HAS_GLASS_CAUSTICS
 #define GLASS_CAUSTIC_ARGS                                                                     \
   , __global const PhotonHit *glass_caustic_photons, __global const uint *glass_caustic_buckets, \
-      PhotonMapParams glass_caustic_grid
-#define GLASS_CAUSTIC_MAP glass_caustic_photons, glass_caustic_buckets, glass_caustic_grid
+      __global const CausticMapLevel *glass_caustic_levels
+#define GLASS_CAUSTIC_MAP glass_caustic_photons, glass_caustic_buckets, glass_caustic_levels
 #define GLASS_CAUSTICS_PASSED_ON , GLASS_CAUSTIC_MAP
 #else
 #define GLASS_CAUSTIC_ARGS

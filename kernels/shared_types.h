@@ -477,6 +477,18 @@ typedef struct {
   rc_uint pad[3];
 } PhotonMapParams;
 
+// The glass caustic map (kernels/glass_caustics.cl) in levels of radius, each a grid of its own (PhotonMapParams, with
+// its photons from first_photon and its buckets' starts from first_bucket of the map's arrays): a photon joins the
+// level of the smallest radius r0 2^j about it that holds the map's neighbour count, so that its light spreads little
+// where photons crowd (a focus) and far where they are few (a caustic's faint fringe), its flux whole either way.
+#define GLASS_CAUSTIC_LEVELS 8
+typedef struct {
+  PhotonMapParams grid;
+  rc_uint first_photon;
+  rc_uint first_bucket;
+  rc_uint pad[2];
+} CausticMapLevel;
+
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
 // (host/cl/named_kernel.h checks names and types against the compiled kernels).
 
@@ -700,6 +712,7 @@ static_assert(sizeof(PhotonHit) == 64);
 static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 48);
+static_assert(sizeof(CausticMapLevel) == 64);
 static_assert(sizeof(WorldRecordParams) == 32);
 static_assert(sizeof(WorldRecordExtent) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);

@@ -717,10 +717,11 @@ void trace_through_glass(const HostMesh& m, double ior, dvec3 o, dvec3 d, double
 // Lambertian plane. The ball stops the shadow rays, and the light it focuses reaches the plane by the glass caustic map.
 // Against a light tracer in double on the host (trace_through_glass over the same mesh and normals, every branch
 // followed), the mean irradiance of the plane over discs about the spot below the ball (all inside the ball's
-// geometric shadow, where no shadow ray reaches) must agree within four standard errors of the two estimates: the
-// photons' (each path's power I 4 pi / paths, Poisson in the disc) and the host's (its photons' spread), plus the
-// caustic map's blur at the disc's edge, its radius times the edge's irradiance. Shadow rays passing the ball straight
-// (the default's model) put a flat tinted shadow there instead, and a map without the ball's light puts nothing.
+// geometric shadow, where no shadow ray reaches) must agree within four standard errors of the two estimates (the
+// rendered pixels' spread in the disc, the host photons' spread) plus the map's blur at the disc's edge: the light of
+// the ring one photon's spread either side of the edge, the spread taken from the host's density of photons there.
+// Shadow rays passing the ball straight (the default's model) add a flat tinted light there (at the widest disc 2.7
+// against 1.73), and a map without the ball's light leaves it dark.
 TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
   const double ior = 1.5, ball_z = 2.5, light_z = 6.0, intensity = 40.0;
   Scene s = plane_scene();
@@ -734,7 +735,8 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
   l.intensity = glm::vec3(float(intensity));
   s.lights.push_back(l);
   s.glass_light.caustics = true;
-  // A map radius about the pixels' spacing, so that the pixels in a disc read most of its photons between them.
+  // Each photon's radius holding 256 neighbours, so that the pixels in a disc read each photon's light between them
+  // (at the default 64 the focus's photons spread over less than a pixel, and the pixels sample them hit or miss).
   s.glass_light.neighbours = 256;
   // Tilted 60 degrees about y, so that the plane under the ball is seen beside it, not through it.
   const double tilt = 60.0 * kPi / 180.0;
@@ -772,6 +774,7 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
   }
   // The host's mean irradiance between two distances from the axis, and its standard error over the photons.
   auto host_irradiance = [&](double from, double to, double* sigma) {
+    from = std::max(from, 0.0);
     std::vector<double> per_photon(photons, 0.0);
     for (const Landing& l : landings)
       if (l.distance >= from && l.distance < to) per_photon[size_t(l.photon)] += l.weight;
@@ -782,7 +785,20 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
     return sum * host_flux / area;
   };
   ASSERT_GT(img.stats.scene.glass_caustic_photons, 10000u) << "the ball's photons";
-  const double map_radius = img.stats.scene.glass_caustic_radius;
+  // Each photon spreads its light over its own level's radius (kernels/shared_types.h CausticMapLevel): the smallest
+  // power of two of the smallest level's that holds its neighbours, so at most twice the radius of a disc that holds
+  // them where the photons land as densely as the host's photons say (the map's paths over the host's, the ball's
+  // cone a share cone_share of the sphere the map shoots into).
+  const double cone_share = (1.0 - cos_cone) / 2.0, neighbours = double(s.glass_light.neighbours);
+  auto spread_at = [&](double distance) {
+    const double from = std::max(distance - 0.05, 0.0), to = distance + 0.05;
+    size_t landed = 0;
+    for (const Landing& l : landings) landed += l.distance >= from && l.distance < to;
+    const double density = double(landed) / (kPi * (to * to - from * from)) *
+                           (double(s.glass_light.photons) * cone_share / photons);
+    const double holding = density > 0.0 ? std::sqrt(neighbours / (kPi * density)) : INFINITY;
+    return std::clamp(2.0 * holding, img.stats.scene.glass_caustic_radius, img.stats.scene.glass_caustic_largest_radius);
+  };
   for (int r = 0; r < 4; ++r) {
     double host_sigma;
     const double host = host_irradiance(0.0, radii[r], &host_sigma);
@@ -802,13 +818,13 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
     // below the pixels' spacing they sample the focused light as much as the photons do.
     const double photon_sigma =
         std::sqrt(std::max(0.0, squares / double(pixels) - measured * measured) / double(pixels - 1));
-    // The map's disc about a point near the edge reads photons across it: at most the light of the ring one map
-    // radius either side of the edge, over the disc.
-    const double ring = host_irradiance(radii[r] - map_radius, radii[r] + map_radius, nullptr);
-    const double blur = ring * 4.0 * map_radius / radii[r];
+    // A photon near the disc's edge spreads its light across it: at most the light of the ring one spread either
+    // side of the edge, moved by less than the spread, over the disc.
+    const double spread = spread_at(radii[r]);
+    const double blur = host_irradiance(radii[r] - spread, radii[r] + spread, nullptr) * 2.0 * spread / radii[r];
     std::printf("glass ball, disc of radius %.2f: %.4f against the host's %.4f (sigma %.2e and %.2e, blur %.2e, %zu "
-                "pixels, map radius %.2e)\n",
-                radii[r], measured, host, photon_sigma, host_sigma, blur, pixels, map_radius);
+                "pixels, spread %.2e)\n",
+                radii[r], measured, host, photon_sigma, host_sigma, blur, pixels, spread);
     EXPECT_NEAR(measured, host, 4.0 * std::hypot(photon_sigma, host_sigma) + blur) << "disc of radius " << radii[r];
   }
 }

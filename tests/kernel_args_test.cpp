@@ -76,9 +76,14 @@ TEST(KernelArgs, EveryKernelIsBoundByNameInItsOwnOrder) {
     direct_only.color_only = true;
     render(gpu, scene, direct_only);
   }
-  {  // Glass: the G-buffer's weights for pixels that look through it (kernels/gbuffer.cl weigh_through_glass).
+  {  // Glass: the G-buffer's weights for pixels that look through it (kernels/gbuffer.cl weigh_through_glass). The
+    // tall box as a volume whose light comes by the glass caustic map, which every kernel's SCENE_ARGS then carry
+    // (kernels/glass_caustics.cl adds it at the pixels).
     Scene glass = scene;
     glass.materials.back().transmission = 1.0f;
+    glass.materials.back().thickness = 1.0f;
+    glass.glass_light.caustics = true;
+    glass.glass_light.photons = 4096;
     RenderSettings through = settings;
     through.gi = GiMethod::splat;
     render(gpu, glass, through);

@@ -3,6 +3,8 @@
 // plan reports.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <set>
 #include <string>
 
@@ -50,6 +52,10 @@ Scene cornell_with(const std::string& feature) {
     s.materials[0].roughness = 0.5f;
   } else if (feature == "glass") {
     s.materials[0].transmission = 1.0f;
+  } else if (feature == "glass volume" || feature == "glass volume, caustics") {
+    s.materials[0].transmission = 1.0f;
+    s.materials[0].thickness = 1.0f;
+    s.glass_light.caustics = feature == "glass volume, caustics";
   } else if (feature == "clearcoat") {
     s.materials[0].clearcoat = 1.0f;
   } else if (feature == "alpha mask") {
@@ -70,6 +76,7 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
                                                                 {"HAS_EMISSIVE_TEXTURES", "0"},
                                                                 {"HAS_EMITTERS", "1"},
                                                                 {"HAS_ENVIRONMENT", "0"},
+                                                                {"HAS_GLASS_CAUSTICS", "0"},
                                                                 {"HAS_LAYERS", "0"},
                                                                 {"HAS_NORMAL_MAPS", "0"},
                                                                 {"HAS_PUNCTUAL_LIGHTS", "0"},
@@ -89,6 +96,9 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
                                                                  {"normal map", {"HAS_NORMAL_MAPS"}},
                                                                  {"emissive texture", {"HAS_EMISSIVE_TEXTURES"}},
                                                                  {"glass", {"HAS_TRANSMISSION"}},
+                                                                 {"glass volume", {"HAS_TRANSMISSION"}},
+                                                                 {"glass volume, caustics",
+                                                                  {"HAS_TRANSMISSION", "HAS_GLASS_CAUSTICS"}},
                                                                  {"clearcoat", {"HAS_LAYERS", "HAS_SPECULAR_BRDF"}},
                                                                  {"no emitter", {"HAS_EMITTERS"}}};
   for (const auto& [feature, flipped] : cases) {
@@ -101,13 +111,21 @@ TEST(ScenePlan, EachFeatureTurnsOnItsOwnSwitchAndNoOther) {
   EXPECT_EQ(glossy.lobe_counts[LOBE_HSH], 1u);
   EXPECT_EQ(plan_scene(cornell_with("point light")).point_lights, 1u);
   EXPECT_EQ(plan_scene(cornell_with("no emitter")).emissive_triangles, 0u);
+  // A volume's caustics are named as not simulated unless --light-through-glass caustics asks for them.
+  auto names_caustics = [](const ScenePlan& p) {
+    return std::any_of(p.not_simulated.begin(), p.not_simulated.end(),
+                       [](const std::string& l) { return l.find("caustics of glass volumes") != std::string::npos; });
+  };
+  EXPECT_TRUE(names_caustics(plan_scene(cornell_with("glass volume"))));
+  EXPECT_FALSE(names_caustics(plan_scene(cornell_with("glass volume, caustics"))));
+  EXPECT_FALSE(names_caustics(plan_scene(cornell_with("glass")))) << "thin-walled glass passes shadow rays exactly";
 }
 
 // What `info` reports is what a render compiles: the device scene's defines are the plan's switches and the BVH's
 // stack size.
 TEST(ScenePlan, DeviceSceneCompilesThePlansSwitches) {
   for (const char* feature : {"", "point light", "texture", "glossy material", "alpha mask", "sky", "no emitter",
-                              "normal map", "emissive texture", "glass", "clearcoat"}) {
+                              "normal map", "emissive texture", "glass", "glass volume, caustics", "clearcoat"}) {
     const Scene scene = cornell_with(feature);
     const Bvh8 bvh = build_bvh8(scene.positions);
     DeviceScene device(test::gpu(), scene, bvh);

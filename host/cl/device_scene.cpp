@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "scene/scene_plan.h"
+#include "util/error.h"
 
 namespace rcsplat {
 
@@ -38,18 +39,19 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   for (const auto& [name, value] : scene_switches(p, scene.has_vertex_colors(), forced_switches))
     defines_[name] = value;
   bvh_.add_defines(defines_);
-  if (has_glass_caustics()) set_glass_caustics(gpu, {}, {}, PhotonMapParams{});
+  if (has_glass_caustics()) set_glass_caustics(gpu, {}, {}, {});
 }
 
 void DeviceScene::set_glass_caustics(GpuContext& gpu, const std::vector<PhotonHit>& photons,
-                                     const std::vector<cl_uint>& buckets, const PhotonMapParams& grid) {
-  // A kernel reads no photon of an empty map (photon_count 0), but its buffers must be bound.
+                                     const std::vector<cl_uint>& buckets, std::vector<CausticMapLevel> levels) {
+  // A kernel reads no photon of an empty level (photon_count 0), but the buffers must be bound.
+  if (levels.size() > GLASS_CAUSTIC_LEVELS) throw Error("glass caustic map: more levels than the kernels read");
+  levels.resize(GLASS_CAUSTIC_LEVELS, CausticMapLevel{});
   glass_caustic_photons_ =
       gpu.upload(photons.empty() ? std::vector<PhotonHit>(1) : photons, CL_MEM_READ_ONLY, "glass caustic map");
   glass_caustic_buckets_ = gpu.upload(buckets.empty() ? std::vector<cl_uint>(2, 0u) : buckets, CL_MEM_READ_ONLY,
                                       "glass caustic map buckets");
-  glass_caustic_grid_ = grid;
-  if (photons.empty()) glass_caustic_grid_.photon_count = 0;
+  glass_caustic_levels_ = gpu.upload(levels, CL_MEM_READ_ONLY, "glass caustic map levels");
 }
 
 void DeviceScene::bind(NamedKernel& kernel) const {
@@ -68,7 +70,7 @@ void DeviceScene::bind(NamedKernel& kernel) const {
   if (has_glass_caustics())
     kernel.set_buffer<PhotonHit>("glass_caustic_photons", glass_caustic_photons_)
         .set_buffer<cl_uint>("glass_caustic_buckets", glass_caustic_buckets_)
-        .set("glass_caustic_grid", glass_caustic_grid_);
+        .set_buffer<CausticMapLevel>("glass_caustic_levels", glass_caustic_levels_);
 }
 
 std::map<std::string, std::string> scene_plan_switches(const ScenePlan& plan, int bvh_depth) {

@@ -42,11 +42,11 @@ class DeviceScene {
   bool has_layers() const { return defines_.at("HAS_LAYERS") == "1"; }
   // --light-through-glass caustics in a scene with a glass volume: SCENE_ARGS carry the glass caustic map.
   bool has_glass_caustics() const { return defines_.at("HAS_GLASS_CAUSTICS") == "1"; }
-  // Sets the glass caustic map every kernel's SCENE_ARGS then carry (passes/glass_caustics_pass.h makes it): photons
-  // sorted by bucket, the buckets' first photons, the grid. Until then the map is empty and reads 0.
+  // Sets the glass caustic map every kernel's SCENE_ARGS then carry (passes/glass_caustics_pass.h makes it): its
+  // levels' photons sorted by bucket, their buckets' first photons, and the GLASS_CAUSTIC_LEVELS levels (fewer: the
+  // rest empty). Until then the map is empty and reads 0.
   void set_glass_caustics(GpuContext& gpu, const std::vector<PhotonHit>& photons, const std::vector<cl_uint>& buckets,
-                          const PhotonMapParams& grid);
-  const PhotonMapParams& glass_caustic_grid() const { return glass_caustic_grid_; }
+                          std::vector<CausticMapLevel> levels);
   // Radiance caching runs (and its kernels compile) only for a scene with a LOBE_HSH material.
   bool has_radiance_cache() const { return lobe_counts_[LOBE_HSH] > 0; }
   const std::vector<Material>& materials() const { return materials_host_; }
@@ -65,8 +65,7 @@ class DeviceScene {
   DeviceBvh bvh_;
   cl::Buffer triangles_, tangents_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
   SceneCounts counts_{};
-  cl::Buffer glass_caustic_photons_, glass_caustic_buckets_;
-  PhotonMapParams glass_caustic_grid_{};
+  cl::Buffer glass_caustic_photons_, glass_caustic_buckets_, glass_caustic_levels_;
   double environment_smooth_power_ = 0.0;
   KernelDefines defines_;
   std::array<unsigned, LOBE_KINDS> lobe_counts_{};

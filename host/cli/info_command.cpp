@@ -43,9 +43,13 @@ void print_scene_plan(const ScenePlan& plan, int bvh_depth) {
                 "textured power\n", plan.emissive_textured_materials);
   if (plan.glass_materials)
     std::printf("glass        %u material(s): camera rays see through it (its colour and Fresnel) and see what it "
-                "mirrors; every other ray reflects or passes by Fresnel; shadow rays pass it with its colour "
-                "(thin-walled: exact; a volume: straight through, its caustics not focused); records never sit on it\n",
-                plan.glass_materials);
+                "mirrors; every other ray reflects or passes by Fresnel; %s; records never sit on it\n",
+                plan.glass_materials,
+                plan.switches.at("HAS_GLASS_CAUSTICS") == "1"
+                    ? "shadow rays pass thin-walled glass with its colour (exact) and stop at glass volumes, whose "
+                      "light arrives focused, by the glass caustic map (--light-through-glass caustics)"
+                    : "shadow rays pass it with its colour (thin-walled: exact; a volume: straight through, its "
+                      "caustics not focused; --light-through-glass caustics focuses them)");
   if (plan.layered_materials)
     std::printf("layers       %u material(s) with clearcoat, sheen or specular colour: in direct light, at every hit, "
                 "in the glossy pass and the path tracer; their lobes are sampled per pixel (glossy) or, where all are "
@@ -108,6 +112,10 @@ nlohmann::json scene_plan_json(const ScenePlan& plan, int bvh_depth) {
           {"lights",
            {{"point", plan.point_lights}, {"spot", plan.spot_lights}, {"directional", plan.directional_lights}}},
           {"environment", environment},
+          {"light_through_glass",
+           plan.glass_materials == 0                          ? nlohmann::json(nullptr)
+           : plan.switches.at("HAS_GLASS_CAUSTICS") == "1" ? "caustics"
+                                                              : "straight"},
           {"not_simulated", plan.not_simulated},
           {"switches", scene_plan_switches(plan, bvh_depth)}};
 }

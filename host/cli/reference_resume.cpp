@@ -51,6 +51,8 @@ bool resume_reference(GpuContext& gpu, const Scene& scene, const RenderOptions& 
       bounces_in_file == attributes.end() ? 1u : parse_count(path, "rcsplat:bounces", bounces_in_file->second);
   if (o.settings.bounces) refuse_other("rcsplat:bounces", "1", true, std::to_string(o.settings.bounces), "--bounces");
   refuse_other("rcsplat:environment", "none", false, scene.environment.describe(), "environment");
+  refuse_other("rcsplat:light_through_glass", "straight", false, light_through_glass_name(scene.glass_light),
+               "--light-through-glass");
   // Pixel samples left to rcsplat (0) continue with the file's.
   auto pixel_samples_in_file = attributes.find("rcsplat:pixel_samples");
   const unsigned file_pixel_samples = pixel_samples_in_file == attributes.end()

@@ -97,9 +97,9 @@ void print_summary(const Scene& scene, const ScenePlan& plan, const RenderedImag
               s.scene.bvh_depth);
   if (s.scene.glass_caustics)
     std::printf("glass light  by the glass caustic map (--light-through-glass caustics): %llu photons of %u paths "
-                "passed a glass volume, radius %.4g, %.3f s\n",
+                "passed a glass volume, radii %.4g to %.4g (each photon's holds its neighbours), %.3f s\n",
                 (unsigned long long)s.scene.glass_caustic_photons, s.scene.glass_caustic_paths,
-                s.scene.glass_caustic_radius, s.scene.glass_caustic_s);
+                s.scene.glass_caustic_radius, s.scene.glass_caustic_largest_radius, s.scene.glass_caustic_s);
   std::printf("rays         %llu primary, %llu shadow\n", (unsigned long long)s.primary.primary_rays,
               (unsigned long long)s.primary.shadow_rays);
   std::printf("time         BVH build %.3f s, upload %.3f s, kernel build %.3f s\n", s.scene.bvh_build_s,
@@ -222,7 +222,9 @@ nlohmann::json summary_json(const Scene& scene, const ScenePlan& plan, const Ren
       {"glass_caustics",
        s.scene.glass_caustics
            ? nlohmann::json{{"paths", s.scene.glass_caustic_paths}, {"photons", s.scene.glass_caustic_photons},
-                            {"radius", s.scene.glass_caustic_radius}, {"seconds", s.scene.glass_caustic_s}}
+                            {"radius", s.scene.glass_caustic_radius},
+                            {"largest_radius", s.scene.glass_caustic_largest_radius},
+                            {"seconds", s.scene.glass_caustic_s}}
            : nlohmann::json(nullptr)},
       {"rays",
        {{"primary", s.primary.primary_rays},

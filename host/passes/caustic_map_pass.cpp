@@ -14,8 +14,9 @@ namespace {
 constexpr size_t kRadiusSample = 4096;
 constexpr int kRadiusSteps = 4;
 
-// How many of the grid's photons lie within its radius of photon p (p itself not counted), facing p's way.
-size_t neighbours_of(const PhotonGrid& grid, const PhotonHit& p) {
+}  // namespace
+
+size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p) {
   const PhotonMapParams& g = grid.params;
   const float r2 = g.radius * g.radius;
   int c[3];
@@ -40,8 +41,6 @@ size_t neighbours_of(const PhotonGrid& grid, const PhotonHit& p) {
   return count > 0 ? count - 1 : 0;
 }
 
-}  // namespace
-
 std::vector<PhotonHit> shoot_caustic_photons(GpuContext& gpu, const DeviceScene& scene, unsigned paths, unsigned seed) {
   return lit_landings(LightGuidePass(gpu, scene).shoot(paths, seed, 2, 1, PhotonKeep::after_sharp_lobe));
 }
@@ -54,7 +53,7 @@ float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, 
     const PhotonGrid grid = sort_into_grid(photons, radius);
     double found = 0.0;
     size_t sampled = 0;
-    for (size_t i = 0; i < photons.size(); i += stride, ++sampled) found += double(neighbours_of(grid, photons[i]));
+    for (size_t i = 0; i < photons.size(); i += stride, ++sampled) found += double(photon_neighbour_count(grid, photons[i]));
     const double mean = found / double(sampled);
     // The count grows as r^2 on a surface: one step of that model, damped to a factor of 4 each way.
     const double scale = std::clamp(std::sqrt(double(neighbours) / std::max(mean, 0.25)), 0.25, 4.0);

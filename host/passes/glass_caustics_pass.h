@@ -4,6 +4,9 @@
 // Shot once for the scene (the light is the scene's, not a frame's), the map travels in every kernel's SCENE_ARGS
 // (DeviceScene::set_glass_caustics): each bounce's direct light reads it, and this pass adds it to the pixels'.
 #pragma once
+#include <array>
+#include <vector>
+
 #include "cl/device_scene.h"
 #include "cl/gpu_context.h"
 #include "passes/gbuffer_pass.h"
@@ -11,16 +14,23 @@
 
 namespace rcsplat {
 
-// What a glass caustic map holds: photons kept of the paths shot, and its gather radius (device units).
+// What a glass caustic map holds: photons kept of the paths shot, its smallest and largest level's radius (device
+// units), and each level's photons.
 struct GlassCausticMap {
   unsigned paths = 0;
   size_t photons = 0;
-  float radius = 0.0f;
+  float radius = 0.0f, largest_radius = 0.0f;
+  std::array<size_t, GLASS_CAUSTIC_LEVELS> level_photons{};
 };
 
+// Each photon's level (CausticMapLevel): the smallest j whose radius smallest 2^j holds `neighbours` other photons
+// about it (facing its way), the last level where none does.
+std::vector<int> glass_caustic_levels(const std::vector<PhotonHit>& photons, float smallest, unsigned neighbours);
+
 // Shoots settings.photons photon paths from the scene's lights (a fixed seed stream: the same map for every frame and
-// request) and sets them as the scene's glass caustic map, its radius fitted where they crowd from the radius that
-// surface_area (device units) would give (passes/caustic_map_pass.h crowded_gather_radius). Blocks.
+// request) and sets them as the scene's glass caustic map in levels (glass_caustic_levels), the smallest radius the one
+// where they crowd most, fitted from the radius that surface_area (device units) would give
+// (passes/caustic_map_pass.h crowded_gather_radius). Blocks.
 GlassCausticMap shoot_glass_caustics(GpuContext& gpu, DeviceScene& scene, double surface_area,
                                      const GlassLight& settings);
 

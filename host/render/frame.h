@@ -34,7 +34,7 @@ struct SceneStats {
   bool glass_caustics = false;
   unsigned glass_caustic_paths = 0;
   uint64_t glass_caustic_photons = 0;
-  double glass_caustic_radius = 0, glass_caustic_s = 0;
+  double glass_caustic_radius = 0, glass_caustic_largest_radius = 0, glass_caustic_s = 0;  // radii in world units
 };
 
 // Primary visibility, direct light and the image layers gathered on the device (LayerPass), downloaded and filled on

@@ -147,6 +147,7 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
     scene_stats_.glass_caustic_paths = map.paths;
     scene_stats_.glass_caustic_photons = map.photons;
     scene_stats_.glass_caustic_radius = scene_frame_.length_to_world(map.radius);
+    scene_stats_.glass_caustic_largest_radius = scene_frame_.length_to_world(map.largest_radius);
   }
   // Every frame's first two programs, compiling while the plan's bounce probe and lobe table run; render() makes
   // their passes.

@@ -129,6 +129,11 @@ ScenePlan plan_scene(const Scene& scene) {
     plan.environment_mean_luminance = packed.environment.mean_luminance;
   }
   plan.not_simulated = scene.unsupported;
+  const bool volume = std::any_of(plan.materials.begin(), plan.materials.end(),
+                                  [](const MaterialPlan& m) { return m.glass && !m.thin_walled; });
+  if (volume && !scene.glass_light.caustics)
+    plan.not_simulated.push_back("focused caustics of glass volumes: shadow rays pass a volume straight with its "
+                                 "colour (--light-through-glass caustics focuses its light)");
   plan.switches = scene_switches(packed, plan.vertex_colors);
   return plan;
 }

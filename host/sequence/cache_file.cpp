@@ -226,6 +226,10 @@ uint64_t scene_fingerprint(const Scene& s) {
   h.value(s.environment.height);
   h.array(s.environment.radiance);
   h.value(s.environment.rotation_degrees);
+  if (s.glass_light.caustics) {  // a later setting: hashed only where asked for, so older files keep their hashes
+    h.value(s.glass_light.photons);
+    h.value(s.glass_light.neighbours);
+  }
   return h.get();
 }
 

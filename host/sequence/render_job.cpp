@@ -22,6 +22,10 @@ Scene load_scene(const std::string& path, int camera, const CameraOverrides& ove
   return scene;
 }
 
+std::string light_through_glass_name(const GlassLight& g) {
+  return g.caustics ? "caustics (" + std::to_string(g.photons) + " photon paths)" : "straight";
+}
+
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings) {
   // The view, so that another renderer can render the same picture (benchmarks/mitsuba_peer.py reads it).
   const SceneCamera cam = choose_camera(scene, settings.camera, settings.camera_overrides);
@@ -42,6 +46,7 @@ ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, 
           {"rcsplat:bounces", std::to_string(image.stats.bounces.count)},
           {"rcsplat:bounce_method", bounce_method_name(image.stats.bounces.method)},
           {"rcsplat:environment", scene.environment.describe()},
+          {"rcsplat:light_through_glass", light_through_glass_name(scene.glass_light)},
           {"rcsplat:pixel_samples", std::to_string(image.stats.primary.pixel_samples)},
           {"rcsplat:pixel_points", pixel_points_name(settings)}};
 }

@@ -54,5 +54,8 @@ void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& 
 
 // The EXR attributes of a render: scene, method, samples, bounces, environment, pixel samples.
 ExrAttributes render_attributes(const Scene& scene, const RenderedImage& image, const RenderSettings& settings);
+// How the lights pass glass, as an EXR records it (rcsplat:light_through_glass): "straight" or "caustics (N photon
+// paths)"; --resume refuses another.
+std::string light_through_glass_name(const GlassLight& glass);
 
 }  // namespace rcsplat

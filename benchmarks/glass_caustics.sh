@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Issue 61 item 2: light through a curved glass volume, by the glass caustic map (--light-through-glass caustics) and
+# by straight shadow rays (the default), against Mitsuba 3's particle tracer (ptracer, which follows a point light's
+# photons through its dielectric) on benchmarks/make_glass_ball.py's ball over the floor. Mean ratio per channel,
+# Mitsuba over rcsplat, over the floor within 1.2 of the point below the ball (the caustic, inside the ball's shadow)
+# and beyond 2.5 of it (direct light alone, the control); the cache's frame with the map and its time beside the
+# default's. Writes OUT/table.md and images at -2, 0 and +2 stops.
+#   bash benchmarks/setup_python.sh   # once
+#   SIZE=128 SPP=256 bash benchmarks/glass_caustics.sh OUT
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-glass_caustics}" size="${SIZE:-128}" spp="${SPP:-256}"
+py=benchmarks/.venv/bin/python
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
+mkdir -p "$out"
+python3 benchmarks/make_glass_ball.py "$out"
+scene="$out/ball.gltf"
+for mode in caustics straight; do
+  build/rcsplat reference "$scene" --width "$size" --height "$size" --bounces 2 --spp "$spp" \
+    --light-through-glass "$mode" -o "$out/$mode.ref.exr" > "$out/$mode.ref.log"
+  build/rcsplat render "$scene" --width "$size" --height "$size" --bounces 2 --light-through-glass "$mode" \
+    -o "$out/$mode.cache.exr" --json "$out/$mode.cache.json" > "$out/$mode.cache.log"
+done
+"$py" benchmarks/mitsuba_peer.py "$scene" --reference "$out/caustics.ref.exr" --converged-spp "$spp" --spp "" \
+  --glass-depth 6 --integrator ptracer --bsdf diffuse -o "$out/mitsuba" --json "$out/mitsuba.json" > "$out/mitsuba.log"
+"$py" - "$out" "$spp" > "$out/table.md" <<'PY'
+import json
+import sys
+sys.path.insert(0, "benchmarks")
+import numpy as np
+from rcsplat_images import display, read_layer
+out, spp = sys.argv[1], sys.argv[2]
+mit = read_layer(f"{out}/mitsuba/mitsuba_{spp}spp.exr")
+pos = read_layer(f"{out}/caustics.ref.exr", "position")
+on_floor = np.abs(pos[..., 1]) < 1e-3
+d = np.hypot(pos[..., 0], pos[..., 2] + 0.5)
+regions = {"caustic (within 1.2 below the ball)": on_floor & (d < 1.2), "lit floor (beyond 2.5)": on_floor & (d > 2.5)}
+print("| rcsplat image | region | pixels | Mitsuba / rcsplat R | G | B |")
+print("|---|---|---|---|---|---|")
+for image in ("caustics.ref", "caustics.cache", "straight.ref", "straight.cache"):
+    img = read_layer(f"{out}/{image}.exr")
+    for name, mask in regions.items():
+        r = mit[mask].mean(axis=0) / img[mask].mean(axis=0)
+        print(f"| {image} | {name} | {int(mask.sum())} | {r[0]:.4f} | {r[1]:.4f} | {r[2]:.4f} |")
+print()
+for mode in ("caustics", "straight"):
+    s = json.load(open(f"{out}/{mode}.cache.json"))
+    print(f"- cache, {mode}: frame {s['seconds']['total']:.3f} s" +
+          (f", glass caustic map {s['glass_caustics']['photons']} photons, {s['glass_caustics']['seconds']:.3f} s"
+           if s.get("glass_caustics") else ""))
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+rows = [("cache, caustics", "caustics.cache"), ("cache, straight", "straight.cache"),
+        ("Mitsuba ptracer", f"mitsuba/mitsuba_{spp}spp")]
+stops = (-2, 0, 2)
+fig, axes = plt.subplots(len(rows), len(stops), figsize=(3.0 * len(stops), 3.0 * len(rows)))
+for r, (name, image) in enumerate(rows):
+    img = read_layer(f"{out}/{image}.exr")
+    for c, stop in enumerate(stops):
+        ax = axes[r][c]
+        ax.imshow(display(img, stop))
+        ax.set_xticks([])
+        ax.set_yticks([])
+        if c == 0:
+            ax.set_ylabel(name, fontsize=8)
+        if r == 0:
+            ax.set_title(f"{stop:+d} stops", fontsize=8)
+fig.tight_layout()
+fig.savefig(f"{out}/exposures.png", dpi=100)
+PY
+cat "$out/table.md"
