@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the glass caustics benchmark's scene (issue 61 item 2): the grey Lambertian floor of make_glass_panes.py, a
+"""Writes the glass caustics benchmark's scene (issue 61 item 2): the grey floor of make_glass_panes.py (made
+Lambertian: no specular layer), a
 clear glass ball (radius 1, KHR_materials_volume, ior 1.5) 1.5 above it and a point light 3.5 above the ball's
 centre, seen from above at an angle beside the ball. The ball focuses the light into a bright spot on the floor below
 it: rcsplat's --light-through-glass caustics draws it from the glass caustic map, straight shadow rays (the default)
@@ -21,6 +22,8 @@ def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "glass_ball"
     os.makedirs(out, exist_ok=True)
     floor, grey = grey_floor()
+    # Lambertian (no specular layer), as Mitsuba's diffuse: the two floors then agree and the ratios are the glass's.
+    grey["extensions"] = {"KHR_materials_specular": {"specularFactor": 0.0}}
     ball = Mesh()
     ball.sphere(CENTRE, RADIUS, rings=48, segments=96)
     glass = {"name": "glass ball", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0,
@@ -31,7 +34,7 @@ def main():
     path = os.path.join(out, "ball.gltf")
     with open(path) as f:
         doc = json.load(f)
-    doc["extensionsUsed"].append("KHR_lights_punctual")
+    doc["extensionsUsed"] += ["KHR_lights_punctual", "KHR_materials_specular"]
     doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": INTENSITY,
                                                               "color": [1, 1, 1]}]}}
     doc["nodes"].append({"translation": [CENTRE[0], LIGHT_HEIGHT, CENTRE[2]],

@@ -32,17 +32,43 @@ inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
   return finite_or_zero(sum / (RC_PI * r2));
 }
 
+// One level of a map in levels (CausticMapLevel), whose cells are at least twice its radius wide: the disc about x then
+// meets only the 2 x 2 x 2 cells nearest x, the cell holding it and, along each axis, the one beside its nearer face.
+inline float3 caustic_level_irradiance(__global const PhotonHit* photons, __global const uint* buckets,
+                                       PhotonMapParams grid, float3 x, float3 ng) {
+  const float r = grid.radius, r2 = r * r, half_thickness = PHOTON_DISC_HALF_THICKNESS * r;
+  const float3 o = vload3(0, grid.grid_origin);
+  const int cx = photon_cell(x.x, o.x, grid.cell_size), cy = photon_cell(x.y, o.y, grid.cell_size),
+            cz = photon_cell(x.z, o.z, grid.cell_size);
+  // Toward the nearer face: the cell's centre lies at (c + 0.5) cells.
+  const int sx = x.x - o.x < ((float)cx + 0.5f) * grid.cell_size ? -1 : 1;
+  const int sy = x.y - o.y < ((float)cy + 0.5f) * grid.cell_size ? -1 : 1;
+  const int sz = x.z - o.z < ((float)cz + 0.5f) * grid.cell_size ? -1 : 1;
+  uint visited[8];
+  uint visited_count = 0;
+  float3 sum = (float3)(0.0f);
+  for (int c = 0; c < 8; ++c) {
+    const uint bucket = photon_bucket(cx + (c & 1) * sx, cy + ((c >> 1) & 1) * sy, cz + (c >> 2) * sz, grid.bucket_count);
+    if (!first_visit(bucket, visited, &visited_count)) continue;
+    for (uint j = buckets[bucket]; j < buckets[bucket + 1u]; ++j) {
+      const float3 d = vload3(0, photons[j].position) - x;
+      if (in_disc(d, vload3(0, photons[j].normal), ng, r2, half_thickness)) sum += vload3(0, photons[j].incident);
+    }
+  }
+  return sum / (RC_PI * r2);
+}
+
 // The irradiance of a map in levels (CausticMapLevel, the glass caustic map): each level's photons spread over its own
-// radius, summed.
+// radius, summed; a level whose reach x lies outside costs nothing more.
 inline float3 caustic_levels_irradiance(__global const PhotonHit* photons, __global const uint* buckets,
                                         __global const CausticMapLevel* levels, float3 x, float3 ng) {
   float3 sum = (float3)(0.0f);
   for (uint j = 0u; j < GLASS_CAUSTIC_LEVELS; ++j) {
     const CausticMapLevel level = levels[j];
-    if (level.grid.photon_count > 0u)
-      sum += caustic_irradiance(photons + level.first_photon, buckets + level.first_bucket, level.grid, x, ng);
+    if (level.grid.photon_count > 0u && all(x >= vload3(0, level.reach_min)) && all(x <= vload3(0, level.reach_max)))
+      sum += caustic_level_irradiance(photons + level.first_photon, buckets + level.first_bucket, level.grid, x, ng);
   }
-  return sum;
+  return finite_or_zero(sum);
 }
 
 #endif

@@ -95,7 +95,8 @@ inline float glass_crossing(__global const Material* materials, __global const T
 // hash of the crossing, so the same input gives the same bits. Returns the weight of the chain; *hit becomes the
 // first hit that is not glass (prim -1: the ray left the scene), *dir its direction, *distance the chain's length.
 // A ray still in glass after GLASS_MAX_CROSSINGS crossings is absorbed (weight 0).
-// *met_volume: whether the chain crossed (or reflected off) glass with a volume.
+// *met_volume: whether the chain passed into or out of glass with a volume (light it only reflected off a volume's
+// face is not the volume's to carry: thin glass's reflections reach no shadow ray either).
 inline float3 pass_glass_noting_volumes(BVH_ARGS, RayTally* rays, TraceHit* hit, float3* dir, float* distance,
                                         bool* met_volume) {
   float3 weight = (float3)(1.0f);
@@ -104,7 +105,6 @@ inline float3 pass_glass_noting_volumes(BVH_ARGS, RayTally* rays, TraceHit* hit,
   for (uint k = 0u; hit->prim >= 0 && is_glass(triangles, materials, textures, texels, hit->prim, hit->u, hit->v); ++k) {
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
-    *met_volume |= materials[s.material].thickness > 0.0f;
     float3 through, mirror, tint;
     const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
     const float u = random01((uint)hit->prim * GLASS_MAX_CROSSINGS + k, as_uint(hit->u) ^ as_uint(dir->x),
@@ -114,6 +114,7 @@ inline float3 pass_glass_noting_volumes(BVH_ARGS, RayTally* rays, TraceHit* hit,
     } else {
       *dir = through;
       weight *= tint;
+      *met_volume |= materials[s.material].thickness > 0.0f;
     }
     if (!closest_hit(BVH, rays, leaving_origin(&s, *dir), *dir, hit)) hit->prim = -1;
     else *distance += hit->t;

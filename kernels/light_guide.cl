@@ -75,8 +75,69 @@ inline float3 unit_disc_point(float3 axis, float u, float v) {
   return (r * cos_p) * t + (r * sin_p) * b;
 }
 
-__kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, PhotonParams params,
-                            __global PhotonHit* photons) {
+// Where a photon comes from, for aiming it (below): a light at infinity (a unit disc facing it), a point (isotropic or
+// a spot) or an emitting surface.
+#define PHOTON_FROM_INFINITY 0u
+#define PHOTON_FROM_POINT 1u
+#define PHOTON_FROM_SPOT 2u
+#define PHOTON_FROM_SURFACE 3u
+
+#if HAS_GLASS_CAUSTICS
+// The glass caustic map's photons (PhotonParams::glass_caustics spheres) go only toward the glass volumes: aimed at
+// their bounding spheres (xyz centre, w radius, device frame), one picked uniformly, so that a small vase in a large
+// room still gathers its photons. Their power is what the light sends that way over the density of the aimed choice.
+#define PHOTON_AIM_DIMENSION 96u
+
+// The cone from origin that sphere s fills: its axis and 1 - cos of its half-angle (2: origin is inside, every
+// direction).
+inline float3 sphere_cone(float4 s, float3 origin, float* one_minus_cos) {
+  const float3 to = s.xyz - origin;
+  const float d2 = dot(to, to), r2 = s.w * s.w;
+  if (!(d2 > r2)) {
+    *one_minus_cos = 2.0f;
+    return (float3)(0.0f, 0.0f, 1.0f);
+  }
+  const float x = r2 / d2;
+  *one_minus_cos = x / (1.0f + sqrt(1.0f - x));  // 1 - sqrt(1 - x), without cancellation for small spheres
+  return to * rsqrt(d2);
+}
+
+// A direction from origin uniform in sphere k's cone by (v, w); *density: its density per solid angle over every
+// sphere's cone, each sphere picked with probability 1 / count.
+inline float3 toward_spheres(__global const float4* spheres, uint count, float3 origin, uint k, float v, float w,
+                             float* density) {
+  float own;
+  const float3 axis = sphere_cone(spheres[k], origin, &own);
+  const float3 dir = cone_direction(axis, v * own, w);
+  float sum = 0.0f;
+  for (uint j = 0u; j < count; ++j) {
+    float one_minus_cos;
+    const float3 a = sphere_cone(spheres[j], origin, &one_minus_cos);
+    if (j != k && 1.0f - dot(dir, a) <= one_minus_cos) sum += 1.0f / (2.0f * RC_PI * one_minus_cos);
+  }
+  *density = (sum + 1.0f / (2.0f * RC_PI * own)) / (float)count;  // dir lies in its own cone, whatever rounding says
+  return dir;
+}
+
+// A point of the plane through the device frame's centre facing dir, uniform in sphere k's shadow on it (a disc) by
+// (u, v); *density: its density per area over every sphere's disc.
+inline float3 across_spheres(__global const float4* spheres, uint count, float3 dir, uint k, float u, float v,
+                             float* density) {
+  const float4 s = spheres[k];
+  const float3 p = s.xyz - dot(s.xyz, dir) * dir + s.w * unit_disc_point(dir, u, v);
+  float sum = 1.0f / (RC_PI * s.w * s.w);  // p lies in its own disc, whatever rounding says
+  for (uint j = 0u; j < count; ++j) {
+    const float4 o = spheres[j];
+    const float3 d = p - (o.xyz - dot(o.xyz, dir) * dir);
+    if (j != k && dot(d, d) <= o.w * o.w) sum += 1.0f / (RC_PI * o.w * o.w);
+  }
+  *density = sum / (float)count;
+  return p;
+}
+#endif
+
+__kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, __global const float4* glass_targets,
+                            PhotonParams params, __global PhotonHit* photons) {
   uint i = get_global_id(0);
   if (i >= params.photon_count) return;
   uint key = hash_u32(i ^ hash_u32(params.seed));
@@ -84,6 +145,8 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
   float select = source_cdf[source] - (source > 0 ? source_cdf[source - 1] : 0.0f);
   float u = random01(key, 0u, 1u), v = random01(key, 0u, 2u);
   float3 origin, dir, power;
+  uint photon_from = PHOTON_FROM_POINT;  // how a glass caustic photon is aimed (HAS_GLASS_CAUSTICS)
+  float3 emitting_side = (float3)(0.0f);
 #if HAS_ENVIRONMENT
   if (params.sky_source && source == (int)params.source_count - 1) {
     // The sky's smooth part: a direction uniform over the sphere, the photon entering through the unit disc facing it
@@ -102,12 +165,14 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
       origin = unit_disc_point(axis, u, v) - 2.0f * axis;
       dir = axis;
       power = intensity * RC_PI;
+      photon_from = PHOTON_FROM_INFINITY;
     } else if (light.type == LIGHT_SPOT) {
       float cos_outer = clamp(-light.spot_offset / light.spot_scale, -1.0f, 1.0f);
       dir = cone_direction(axis, u * (1.0f - cos_outer), v);
       float a = clamp(dot(dir, axis) * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
       origin = vload3(0, light.position);
       power = intensity * (2.0f * RC_PI * (1.0f - cos_outer)) * (a * a);
+      photon_from = PHOTON_FROM_SPOT;
     } else {
       dir = cone_direction((float3)(0.0f, 0.0f, 1.0f), 2.0f * u, v);
       origin = vload3(0, light.position);
@@ -125,6 +190,7 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     origin = unit_disc_point(toward, random01(key, 0u, 4u), random01(key, 0u, 5u)) + 2.0f * toward;
     dir = -toward;
     power = pdf > 0.0f ? radiance_over_pdf * RC_PI : (float3)(0.0f);
+    photon_from = PHOTON_FROM_INFINITY;
   }
 #endif
   else {
@@ -145,7 +211,35 @@ __kernel void shoot_photons(SCENE_ARGS, __global const float* source_cdf, Photon
     // Where the photon leaves, as the light sampler reads it.
     const float3 radiance = emitter_radiance_at(e, su * (1.0f - v), su * v, triangles, materials, textures, texels);
     power = radiance * (RC_PI * e.area * sides);
+    photon_from = PHOTON_FROM_SURFACE;
+    emitting_side = n;
   }
+#if HAS_GLASS_CAUSTICS
+  if (params.glass_caustics > 0u) {
+    // Aimed at the glass volumes, the photon's power becomes what the source sends along its new way over the aimed
+    // density (each branch above drew it from a density its power divides out: pi for a unit disc, 4 pi for a point
+    // light's sphere, cos / pi for an emitter's cosine lobe).
+    const uint target = min((uint)(random01(key, 0u, PHOTON_AIM_DIMENSION) * (float)params.glass_caustics),
+                            params.glass_caustics - 1u);
+    const float u_aim = random01(key, 0u, PHOTON_AIM_DIMENSION + 1u), v_aim = random01(key, 0u, PHOTON_AIM_DIMENSION + 2u);
+    float density;
+    if (photon_from == PHOTON_FROM_INFINITY) {
+      origin = across_spheres(glass_targets, params.glass_caustics, dir, target, u_aim, v_aim, &density) - 2.0f * dir;
+      power *= 1.0f / (RC_PI * density);
+    } else {
+      dir = toward_spheres(glass_targets, params.glass_caustics, origin, target, u_aim, v_aim, &density);
+      if (photon_from == PHOTON_FROM_POINT) {
+        power *= 1.0f / (4.0f * RC_PI * density);
+      } else if (photon_from == PHOTON_FROM_SPOT) {
+        PunctualLight light = lights[source];
+        const float a = clamp(dot(dir, vload3(0, light.direction)) * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
+        power = vload3(0, light.intensity) * (a * a / density);
+      } else {
+        power *= fmax(dot(dir, emitting_side), 0.0f) / (RC_PI * density);
+      }
+    }
+  }
+#endif
   // Landing 0 is the first surface (the light guide reads only it); with params.landings > 1 the photon goes on,
   // reflected by the surface's BRDF (scatter_photon), and lands params.landings times at most (the photon map,
   // kernels/photon_map.h, keeps landings 1 ..).

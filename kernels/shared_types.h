@@ -454,8 +454,9 @@ typedef struct {
   // is sharp (LOBE_GLOSSY), and only by that lobe, so that landing 1 holds exactly the light -> glossy -> surface paths
   // the records leave out (kernels/bounce.h hit_direct_without_caustics).
   rc_uint caustic;
-  // 1: the glass caustic map's photons (HAS_GLASS_CAUSTICS, kernels/glass_caustics.cl): a landing is kept only where
-  // the photon's way to it crossed or reflected off a glass volume (landings 1, first_stored 0).
+  // Above 0: the glass caustic map's photons (HAS_GLASS_CAUSTICS, kernels/glass_caustics.cl), aimed at this many
+  // bounding spheres of the glass volumes; a landing is kept only where the photon's way to it crossed or reflected
+  // off a glass volume (landings 1, first_stored 0).
   rc_uint glass_caustics;
 } PhotonParams;
 
@@ -487,6 +488,10 @@ typedef struct {
   rc_uint first_photon;
   rc_uint first_bucket;
   rc_uint pad[2];
+  // Where the level's light can be: its photons' bounds widened by its radius (w unused). A point outside reads
+  // nothing from the level, so most of the scene pays no lookup at all.
+  float reach_min[4];
+  float reach_max[4];
 } CausticMapLevel;
 
 // Kernel parameters. Every kernel takes its buffers by name and its other parameters in one of these structs
@@ -712,7 +717,7 @@ static_assert(sizeof(PhotonHit) == 64);
 static_assert(sizeof(SurfacePatch) == 32);
 static_assert(sizeof(PhotonParams) == 32);
 static_assert(sizeof(PhotonMapParams) == 48);
-static_assert(sizeof(CausticMapLevel) == 64);
+static_assert(sizeof(CausticMapLevel) == 96);
 static_assert(sizeof(WorldRecordParams) == 32);
 static_assert(sizeof(WorldRecordExtent) == 32);
 static_assert(sizeof(BrdfMaterial) == 32);

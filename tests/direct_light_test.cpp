@@ -738,6 +738,7 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
   // Each photon's radius holding 256 neighbours, so that the pixels in a disc read each photon's light between them
   // (at the default 64 the focus's photons spread over less than a pixel, and the pixels sample them hit or miss).
   s.glass_light.neighbours = 256;
+  s.glass_light.photons = 1u << 16;  // aimed at the ball, most land past it: enough, and the map's setup stays short
   // Tilted 60 degrees about y, so that the plane under the ball is seen beside it, not through it.
   const double tilt = 60.0 * kPi / 180.0;
   s.cameras[0].orthographic = true;
@@ -787,15 +788,15 @@ TEST(DirectLight, GlassBallFocusesItsLightAsAHostLightTracerDoes) {
   ASSERT_GT(img.stats.scene.glass_caustic_photons, 10000u) << "the ball's photons";
   // Each photon spreads its light over its own level's radius (kernels/shared_types.h CausticMapLevel): the smallest
   // power of two of the smallest level's that holds its neighbours, so at most twice the radius of a disc that holds
-  // them where the photons land as densely as the host's photons say (the map's paths over the host's, the ball's
-  // cone a share cone_share of the sphere the map shoots into).
-  const double cone_share = (1.0 - cos_cone) / 2.0, neighbours = double(s.glass_light.neighbours);
+  // them where the photons land as densely as the host's photons say, times the map's paths over the host's (both
+  // aimed at the ball's sphere, kernels/light_guide.cl).
+  const double neighbours = double(s.glass_light.neighbours);
   auto spread_at = [&](double distance) {
     const double from = std::max(distance - 0.05, 0.0), to = distance + 0.05;
     size_t landed = 0;
     for (const Landing& l : landings) landed += l.distance >= from && l.distance < to;
-    const double density = double(landed) / (kPi * (to * to - from * from)) *
-                           (double(s.glass_light.photons) * cone_share / photons);
+    const double density =
+        double(landed) / (kPi * (to * to - from * from)) * (double(s.glass_light.photons) / photons);
     const double holding = density > 0.0 ? std::sqrt(neighbours / (kPi * density)) : INFINITY;
     return std::clamp(2.0 * holding, img.stats.scene.glass_caustic_radius, img.stats.scene.glass_caustic_largest_radius);
   };

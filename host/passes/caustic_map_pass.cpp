@@ -16,7 +16,7 @@ constexpr int kRadiusSteps = 4;
 
 }  // namespace
 
-size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p) {
+size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p, size_t enough) {
   const PhotonMapParams& g = grid.params;
   const float r2 = g.radius * g.radius;
   int c[3];
@@ -37,6 +37,7 @@ size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p) {
       }
       count += d2 < r2 && facing > PHOTON_MIN_NORMAL_COSINE;
     }
+    if (count > enough) break;  // p itself is among them
   }
   return count > 0 ? count - 1 : 0;
 }

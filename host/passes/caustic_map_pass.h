@@ -21,8 +21,9 @@ std::vector<PhotonHit> shoot_caustic_photons(GpuContext& gpu, const DeviceScene&
 // larger than start: caustic photons crowd into a small part of the surface, where the whole surface's radius would
 // blur them. Deterministic: the same photons give the same radius.
 float crowded_gather_radius(const std::vector<PhotonHit>& photons, float start, unsigned neighbours);
-// How many of the grid's photons lie within its radius of photon p (p itself not counted), facing p's way.
-size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p);
+// How many of the grid's photons lie within its radius of photon p (p itself not counted), facing p's way; the count
+// stops early, somewhere above `enough`, once it passes it.
+size_t photon_neighbour_count(const PhotonGrid& grid, const PhotonHit& p, size_t enough = SIZE_MAX);
 
 class CausticMapPass {
  public:

@@ -11,6 +11,8 @@
 #include "cl/gpu_context.h"
 #include "passes/gbuffer_pass.h"
 #include "scene/environment.h"
+#include "scene/scene.h"
+#include "scene/scene_frame.h"
 
 namespace rcsplat {
 
@@ -23,16 +25,21 @@ struct GlassCausticMap {
   std::array<size_t, GLASS_CAUSTIC_LEVELS> level_photons{};
 };
 
+// The bounding spheres (xyz centre, w radius; `frame`'s device coordinates) of the scene's glass volumes, one a
+// material (GLASS_CAUSTIC_LEVELS at most: the materials beyond share the last sphere), which the glass caustic map's
+// photons aim at.
+std::vector<cl_float4> glass_volume_spheres(const Scene& scene, const SceneFrame& frame);
+
 // Each photon's level (CausticMapLevel): the smallest j whose radius smallest 2^j holds `neighbours` other photons
 // about it (facing its way), the last level where none does.
 std::vector<int> glass_caustic_levels(const std::vector<PhotonHit>& photons, float smallest, unsigned neighbours);
 
-// Shoots settings.photons photon paths from the scene's lights (a fixed seed stream: the same map for every frame and
-// request) and sets them as the scene's glass caustic map in levels (glass_caustic_levels), the smallest radius the one
+// Shoots settings.photons photon paths from the scene's lights toward the glass volumes' spheres `volumes` (a fixed
+// seed stream: the same map for every frame and request) and sets them as the scene's glass caustic map in levels (glass_caustic_levels), the smallest radius the one
 // where they crowd most, fitted from the radius that surface_area (device units) would give
 // (passes/caustic_map_pass.h crowded_gather_radius). Blocks.
 GlassCausticMap shoot_glass_caustics(GpuContext& gpu, DeviceScene& scene, double surface_area,
-                                     const GlassLight& settings);
+                                     const std::vector<cl_float4>& volumes, const GlassLight& settings);
 
 class GlassCausticsPass {
  public:

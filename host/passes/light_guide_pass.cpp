@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "util/colour.h"
+#include "util/error.h"
 
 namespace rcsplat {
 void LightGuidePass::build_ahead(GpuContext& gpu, const DeviceScene& scene) { gpu.build_ahead(kProgram, scene.defines()); }
@@ -34,7 +35,10 @@ std::vector<double> light_source_powers(const std::vector<PunctualLight>& lights
 }
 
 LightGuidePass::LightGuidePass(GpuContext& gpu, const DeviceScene& scene, double sky_power)
-    : gpu_(gpu), scene_(scene), kernel_(gpu.kernel(kProgram, "shoot_photons", scene.defines())) {
+    : gpu_(gpu),
+      scene_(scene),
+      kernel_(gpu.kernel(kProgram, "shoot_photons", scene.defines())),
+      glass_targets_(gpu.upload(std::vector<cl_float4>(1, cl_float4{}), CL_MEM_READ_ONLY, "photons")) {
   std::vector<double> power = light_source_powers(scene.lights(), scene.emitters(), scene.emitter_mean_luminance());
   // The environment's peak, after the emitters (kernels/light_guide.cl): its photons enter through a unit disc.
   if (scene.environment_peak_power() > 0.0f) power.push_back(double(scene.environment_peak_power()) * std::numbers::pi);
@@ -59,6 +63,12 @@ std::vector<PhotonHit> LightGuidePass::shoot(unsigned photon_count, unsigned see
   return gpu_.download<PhotonHit>(photons, slots);
 }
 
+void LightGuidePass::aim_at(const std::vector<cl_float4>& spheres) {
+  if (spheres.empty()) return;
+  glass_targets_ = gpu_.upload(spheres, CL_MEM_READ_ONLY, "photons");
+  glass_target_count_ = unsigned(spheres.size());
+}
+
 cl::Buffer LightGuidePass::shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings,
                                            unsigned first_stored, PhotonKeep keep, size_t& slots) {
   slots = 0;
@@ -73,9 +83,14 @@ cl::Buffer LightGuidePass::shoot_on_device(unsigned photon_count, unsigned seed,
   params.first_stored = first_stored;
   params.sky_source = sky_source_ ? 1u : 0u;
   params.caustic = keep == PhotonKeep::after_sharp_lobe ? 1u : 0u;
-  params.glass_caustics = keep == PhotonKeep::through_glass_volume ? 1u : 0u;
+  if (keep == PhotonKeep::through_glass_volume && !glass_target_count_)
+    throw Error("glass caustic photons: no glass volume to aim at");
+  params.glass_caustics = keep == PhotonKeep::through_glass_volume ? glass_target_count_ : 0u;
   scene_.bind(kernel_);
-  kernel_.set_buffer<cl_float>("source_cdf", source_cdf_).set("params", params).set_buffer<PhotonHit>("photons", photons);
+  kernel_.set_buffer<cl_float>("source_cdf", source_cdf_)
+      .set_buffer<cl_float4>("glass_targets", glass_targets_)
+      .set("params", params)
+      .set_buffer<PhotonHit>("photons", photons);
   kernel_.launch(photon_count, gpu_.groups().traversal);
   return photons;
 }

@@ -26,6 +26,9 @@ class LightGuidePass {
   // [i * (landings - first_stored) + k - first_stored]; blocks until done. `keep`: which landings (PhotonKeep).
   std::vector<PhotonHit> shoot(unsigned photon_count, unsigned seed, unsigned landings = 1, unsigned first_stored = 0,
                                PhotonKeep keep = PhotonKeep::every_landing);
+  // The glass volumes' bounding spheres (xyz centre, w radius; device frame) that PhotonKeep::through_glass_volume's
+  // photons aim at (kernels/light_guide.cl); it needs at least one.
+  void aim_at(const std::vector<cl_float4>& spheres);
   // The same landings left on the device, `slots` of them (0 and no buffer: none); does not block.
   cl::Buffer shoot_on_device(unsigned photon_count, unsigned seed, unsigned landings, unsigned first_stored,
                              PhotonKeep keep, size_t& slots);
@@ -35,7 +38,8 @@ class LightGuidePass {
   GpuContext& gpu_;
   const DeviceScene& scene_;
   NamedKernel kernel_;
-  cl::Buffer source_cdf_;
+  cl::Buffer source_cdf_, glass_targets_;
+  unsigned glass_target_count_ = 0;
   unsigned source_count_ = 0;
   bool sky_source_ = false;
 };

@@ -141,8 +141,9 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
     // The light glass volumes pass, shot once: every kernel's SCENE_ARGS carry it from here on.
     StageTimer timing(scene_stats_.glass_caustic_s);
     log_info("shooting " + std::to_string(scene_.glass_light.photons) + " photon paths through glass volumes");
-    const GlassCausticMap map = shoot_glass_caustics(gpu_, *device_scene_,
-                                                     device_surface_area(scene_, scene_frame_), scene_.glass_light);
+    const GlassCausticMap map =
+        shoot_glass_caustics(gpu_, *device_scene_, device_surface_area(scene_, scene_frame_),
+                             glass_volume_spheres(scene_, scene_frame_), scene_.glass_light);
     scene_stats_.glass_caustics = true;
     scene_stats_.glass_caustic_paths = map.paths;
     scene_stats_.glass_caustic_photons = map.photons;

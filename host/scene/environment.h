@@ -16,7 +16,8 @@ struct GlassLight {
   // volume stops shadow rays, and the light it passes comes by the glass caustic map; thin-walled glass still passes
   // shadow rays, which is exact for it.
   bool caustics = false;
-  unsigned photons = 1u << 20;  // --glass-caustic-photons: photon paths shot for the glass caustic map
+  // --glass-caustic-photons: photon paths shot for the glass caustic map, aimed at the volumes (most land past one).
+  unsigned photons = 1u << 18;
   unsigned neighbours = 64;     // photons its gather radius holds on average where they crowd
 };
 
