@@ -28,7 +28,7 @@ import json
 import sys
 sys.path.insert(0, "benchmarks")
 import numpy as np
-from rcsplat_images import display, read_layer
+from rcsplat_images import exposure_grid, read_layer
 out, spp = sys.argv[1], sys.argv[2]
 mit = read_layer(f"{out}/mitsuba/mitsuba_{spp}spp.exr")
 pos = read_layer(f"{out}/caustics.ref.exr", "position")
@@ -58,25 +58,8 @@ for mode in ("caustics", "straight"):
     print(f"- cache, {mode}: frame {s['seconds']['total']:.3f} s" +
           (f", glass caustic map {s['glass_caustics']['photons']} photons, {s['glass_caustics']['seconds']:.3f} s"
            if s.get("glass_caustics") else ""))
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-rows = [("cache, caustics", "caustics.cache"), ("cache, straight", "straight.cache"),
-        ("Mitsuba ptracer", f"mitsuba/mitsuba_{spp}spp")]
-stops = (-2, 0, 2)
-fig, axes = plt.subplots(len(rows), len(stops), figsize=(3.0 * len(stops), 3.0 * len(rows)))
-for r, (name, image) in enumerate(rows):
-    img = read_layer(f"{out}/{image}.exr")
-    for c, stop in enumerate(stops):
-        ax = axes[r][c]
-        ax.imshow(display(img, stop))
-        ax.set_xticks([])
-        ax.set_yticks([])
-        if c == 0:
-            ax.set_ylabel(name, fontsize=8)
-        if r == 0:
-            ax.set_title(f"{stop:+d} stops", fontsize=8)
-fig.tight_layout()
-fig.savefig(f"{out}/exposures.png", dpi=100)
+rows = [("cache, caustics", f"{out}/caustics.cache.exr"), ("cache, straight", f"{out}/straight.cache.exr"),
+        ("Mitsuba ptracer", f"{out}/mitsuba/mitsuba_{spp}spp.exr")]
+exposure_grid(rows, (-2, 0, 2), f"{out}/exposures.png")
 PY
 cat "$out/table.md"

@@ -24,34 +24,14 @@ EXTRA="$extra" bash benchmarks/issue59_still_frame.sh "$scene" "$out/reference.e
 "$py" - "$out" <<'PY'
 import glob, os, sys
 sys.path.insert(0, "benchmarks")
-import numpy as np
-from rcsplat_images import read_layer
+from rcsplat_images import exposure_grid
 out = sys.argv[1]
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 rows = [("cache", f"{out}/still/cache.noisy.exr"), ("cache + OIDN", f"{out}/still/cache.exr")]
 pts = sorted(glob.glob(f"{out}/still/pt*.exr"), key=lambda p: int(os.path.basename(p)[2:].split(".")[0]))
 pts = [p for p in pts if ".noisy" not in p]
 if pts:
     rows.append((os.path.basename(pts[-1]).split(".")[0].replace("pt", "PT ") + " spp + OIDN", pts[-1]))
 rows.append(("reference", f"{out}/reference.exr"))
-stops = (-4, 0, 2)
-fig, axes = plt.subplots(len(rows), len(stops), figsize=(3.2 * len(stops), 2.5 * len(rows)))
-for r, (name, path) in enumerate(rows):
-    img = read_layer(path)
-    for c, stop in enumerate(stops):
-        x = np.clip(img * 2.0 ** stop, 0, None)
-        srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
-        ax = axes[r][c]
-        ax.imshow(np.clip(srgb, 0, 1))
-        ax.set_xticks([])
-        ax.set_yticks([])
-        if c == 0:
-            ax.set_ylabel(name, fontsize=8)
-        if r == 0:
-            ax.set_title(f"{stop:+d} stops", fontsize=8)
-fig.tight_layout()
-fig.savefig(f"{out}/exposures.png", dpi=110)
+exposure_grid(rows, (-4, 0, 2), f"{out}/exposures.png", dpi=110)
 print(f"{out}/exposures.png")
 PY

@@ -36,3 +36,25 @@ def display(linear, exposure_stops=0.0):
     x = np.maximum(np.nan_to_num(linear, nan=0.0, posinf=0.0, neginf=0.0) * 2.0 ** exposure_stops, 0.0)
     x = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055).astype(np.float32)
+
+
+def exposure_grid(rows, stops, path, dpi=100):
+    """A figure of images (rows of (label, EXR path)) at several exposures (stops), tone-mapped as rcsplat's PNGs are,
+    saved to path."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(rows), len(stops), figsize=(3.0 * len(stops), 2.6 * len(rows)), squeeze=False)
+    for r, (name, image) in enumerate(rows):
+        img = read_layer(image)
+        for c, stop in enumerate(stops):
+            ax = axes[r][c]
+            ax.imshow(display(img, stop))
+            ax.set_xticks([])
+            ax.set_yticks([])
+            if c == 0:
+                ax.set_ylabel(name, fontsize=8)
+            if r == 0:
+                ax.set_title(f"{stop:+d} stops", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
