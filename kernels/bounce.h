@@ -72,7 +72,7 @@ inline float3 hit_direct(SCENE_ARGS, HitSurface* h, float3 dir, float u, float v
   e += environment_irradiance(SCENE, h->s.position, h->ns, h->ng, smooth_u.x, smooth_u.y, peak_u.x, peak_u.y, rays);
 #endif
 #if HAS_GLASS_CAUSTICS
-  e += caustic_levels_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng);  // the light glass volumes passed
+  e += caustic_levels_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng, 0.0f);  // the light glass volumes passed
 #endif
   if (!any_positive(e)) return (float3)(0.0f);  // what any albedo times it would give
   return finite_or_zero(hit_albedo(materials, textures, texels, h) * RC_INV_PI * e);
@@ -99,7 +99,7 @@ inline float3 hit_direct_without_caustics(SCENE_ARGS, HitSurface* h, float3 dir,
                                h->s.position, h->ns, h->ng, u, v, rays);
   float3 l = (float3)(0.0f);
 #if HAS_GLASS_CAUSTICS
-  e += caustic_levels_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng);  // the light glass volumes passed
+  e += caustic_levels_irradiance(GLASS_CAUSTIC_MAP, h->s.position, h->ng, 0.0f);  // the light glass volumes passed
 #endif
 #if HAS_ENVIRONMENT
   float2 smooth_u = environment_extra_randoms(u, v, 0u), peak_u = environment_extra_randoms(u, v, 1u);

@@ -58,15 +58,36 @@ inline float3 caustic_level_irradiance(__global const PhotonHit* photons, __glob
   return sum / (RC_PI * r2);
 }
 
-// The irradiance of a map in levels (CausticMapLevel, the glass caustic map): each level's photons spread over its own
-// radius, summed; a level whose reach x lies outside costs nothing more.
+// The irradiance of a map in levels (CausticMapLevel, the glass caustic map) over a footprint of this width about x on
+// its surface (0: at x alone): each level's photons spread over its own radius, summed. A level whose radius is below
+// the footprint (its discs would fall between neighbouring samples' points) is read at four points of a rotated grid
+// across it and averaged, so that a pixel takes a focus smaller than itself by its area rather than by where its one
+// point falls. A level whose reach x lies outside costs
+// nothing more.
 inline float3 caustic_levels_irradiance(__global const PhotonHit* photons, __global const uint* buckets,
-                                        __global const CausticMapLevel* levels, float3 x, float3 ng) {
+                                        __global const CausticMapLevel* levels, float3 x, float3 ng,
+                                        float footprint) {
+  float3 t, b;
+  tangent_frame(ng, &t, &b);
   float3 sum = (float3)(0.0f);
   for (uint j = 0u; j < GLASS_CAUSTIC_LEVELS; ++j) {
     const CausticMapLevel level = levels[j];
-    if (level.grid.photon_count > 0u && all(x >= vload3(0, level.reach_min)) && all(x <= vload3(0, level.reach_max)))
-      sum += caustic_level_irradiance(photons + level.first_photon, buckets + level.first_bucket, level.grid, x, ng);
+    const float r = level.grid.radius;
+    const float3 lo = vload3(0, level.reach_min) - (float3)(footprint), hi = vload3(0, level.reach_max) + (float3)(footprint);
+    if (level.grid.photon_count == 0u || !all(x >= lo) || !all(x <= hi)) continue;
+    __global const PhotonHit* mine = photons + level.first_photon;
+    __global const uint* my_buckets = buckets + level.first_bucket;
+    if (!(r < footprint)) {
+      sum += caustic_level_irradiance(mine, my_buckets, level.grid, x, ng);
+      continue;
+    }
+    // The rotated grid's four points (1/8, 3/8) (3/8, -1/8) ... of the footprint, as the sub-pixels are placed.
+    const float s = 0.125f * footprint, l = 0.375f * footprint;
+    float3 area = caustic_level_irradiance(mine, my_buckets, level.grid, x + s * t + l * b, ng);
+    area += caustic_level_irradiance(mine, my_buckets, level.grid, x + l * t - s * b, ng);
+    area += caustic_level_irradiance(mine, my_buckets, level.grid, x - s * t - l * b, ng);
+    area += caustic_level_irradiance(mine, my_buckets, level.grid, x - l * t + s * b, ng);
+    sum += 0.25f * area;
   }
   return finite_or_zero(sum);
 }

@@ -39,14 +39,6 @@ inline float3 orthographic_ray_origin(__global const CameraParams* cam, int x, i
   return vload3(0, cam->eye) + sx * vload3(0, cam->right) + sy * vload3(0, cam->up);
 }
 
-// The width of a camera ray's cone at distance t: the spacing of the frame's samples (a pixel, or the jitter cell of
-// a path-traced round's strata) seen from the eye, which its texture lookups are filtered to (kernels/surface.h).
-inline float primary_cone_width(__global const CameraParams* cam, float t) {
-  const float cell = cam->jitter_cell > 0.0f ? cam->jitter_cell : 1.0f;
-  if (cam->orthographic) return 2.0f * cam->half_height / (float)cam->height * cell;
-  return t * 2.0f * cam->tan_half_fov_y / (float)cam->height * cell;
-}
-
 #if HAS_TRANSMISSION
 // What the mirror image in glass shows along dir from origin: the sky where the ray leaves the scene, an emitter's
 // light where it meets one, through the glass on the way (passed as camera rays pass it: the light inside a slab

@@ -6,6 +6,7 @@
 #include "caustic_map.h"
 #include "scene_args.h"
 #include "shading_normal.h"
+#include "surface.h"
 #if HAS_SPECULAR_BRDF
 #include "brdf_frame.h"
 #endif
@@ -18,7 +19,10 @@ __kernel void add_glass_caustics(SCENE_ARGS, GBUFFER_ARGS, __global float4* dire
   if (i >= (uint)(camera->width * camera->height)) return;
   GBufferSample g = gbuffer[i];
   if (g.triangle < 0) return;
-  const float3 e = caustic_levels_irradiance(GLASS_CAUSTIC_MAP, vload3(0, g.position), vload3(0, g.geometric_normal));
+  // Over the camera's sample spacing there: a focus smaller than a pixel is taken by its area (kernels/caustic_map.h).
+  const float3 p = vload3(0, g.position);
+  const float footprint = primary_cone_width(camera, camera->orthographic ? 0.0f : distance(p, vload3(0, camera->eye)));
+  const float3 e = caustic_levels_irradiance(GLASS_CAUSTIC_MAP, p, vload3(0, g.geometric_normal), footprint);
   if (!any_positive(e)) return;
   float3 l = vload3(0, g.albedo) * RC_INV_PI * e;
 #if HAS_SPECULAR_BRDF

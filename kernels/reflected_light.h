@@ -188,7 +188,7 @@ inline float3 direct_reflected(SCENE_ARGS, LazyBrdf* brdf, int lobe, float3 p, f
 #endif
 #if HAS_GLASS_CAUSTICS
   // The light glass volumes passed, as irradiance: a sharp lobe's highlight of it is not simulated.
-  l += irradiance_reflected(BRDF_IN, lobe, wo_local, caustic_levels_irradiance(GLASS_CAUSTIC_MAP, p, ng));
+  l += irradiance_reflected(BRDF_IN, lobe, wo_local, caustic_levels_irradiance(GLASS_CAUSTIC_MAP, p, ng, 0.0f));
 #endif
   return finite_or_zero(l);
 }

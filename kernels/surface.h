@@ -50,6 +50,15 @@ inline SurfacePoint surface_at(__global const TriangleShading* triangles, int pr
   return s;
 }
 
+// The width of a camera ray's cone at distance t: the spacing of the frame's samples (a pixel, or the jitter cell of
+// a path-traced round's strata) seen from the eye, which its texture lookups are filtered to (below) and the glass caustic map is read over
+// (kernels/glass_caustics.cl).
+inline float primary_cone_width(__global const CameraParams* cam, float t) {
+  const float cell = cam->jitter_cell > 0.0f ? cam->jitter_cell : 1.0f;
+  if (cam->orthographic) return 2.0f * cam->half_height / (float)cam->height * cell;
+  return t * 2.0f * cam->tan_half_fov_y / (float)cam->height * cell;
+}
+
 // Texture lookups: base colour and metallic-roughness (HAS_TEXTURES), normal maps, textured emission.
 #define TEXTURE_LOOKUPS (HAS_TEXTURES || HAS_NORMAL_MAPS || HAS_EMISSIVE_TEXTURES)
 
