@@ -10,6 +10,16 @@
   __global const PhotonHit *caustic_photons, __global const uint *caustic_buckets, PhotonMapParams caustic_grid
 #define CAUSTIC_MAP caustic_photons, caustic_buckets, caustic_grid
 
+// Adds to *sum the incident flux of the photons of `bucket` that lie in the disc of squared radius r2 about x, on a
+// surface facing ng's way (in_disc).
+inline void add_bucket_in_disc(__global const PhotonHit* photons, __global const uint* buckets, uint bucket, float3 x,
+                               float3 ng, float r2, float half_thickness, float3* sum) {
+  for (uint j = buckets[bucket]; j < buckets[bucket + 1u]; ++j) {
+    float3 d = vload3(0, photons[j].position) - x;
+    if (in_disc(d, vload3(0, photons[j].normal), ng, r2, half_thickness)) *sum += vload3(0, photons[j].incident);
+  }
+}
+
 // The caustic irradiance at x on a surface facing ng's way: the photons of the 3 x 3 x 3 cells about x (cells are at
 // least a radius wide) that lie in the disc of radius caustic_grid.radius about x, their incident flux over pi r^2.
 inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
@@ -22,12 +32,8 @@ inline float3 caustic_irradiance(CAUSTIC_MAP_ARGS, float3 x, float3 ng) {
   uint visited_count = 0;
   for (int c = 0; c < 27; ++c) {
     uint bucket = photon_bucket(cx + c % 3 - 1, cy + (c / 3) % 3 - 1, cz + c / 9 - 1, caustic_grid.bucket_count);
-    if (!first_visit(bucket, visited, &visited_count)) continue;
-    for (uint j = caustic_buckets[bucket]; j < caustic_buckets[bucket + 1u]; ++j) {
-      float3 d = vload3(0, caustic_photons[j].position) - x;
-      if (in_disc(d, vload3(0, caustic_photons[j].normal), ng, r2, half_thickness))
-        sum += vload3(0, caustic_photons[j].incident);
-    }
+    if (first_visit(bucket, visited, &visited_count))
+      add_bucket_in_disc(caustic_photons, caustic_buckets, bucket, x, ng, r2, half_thickness, &sum);
   }
   return finite_or_zero(sum / (RC_PI * r2));
 }
@@ -49,11 +55,8 @@ inline float3 caustic_level_irradiance(__global const PhotonHit* photons, __glob
   float3 sum = (float3)(0.0f);
   for (int c = 0; c < 8; ++c) {
     const uint bucket = photon_bucket(cx + (c & 1) * sx, cy + ((c >> 1) & 1) * sy, cz + (c >> 2) * sz, grid.bucket_count);
-    if (!first_visit(bucket, visited, &visited_count)) continue;
-    for (uint j = buckets[bucket]; j < buckets[bucket + 1u]; ++j) {
-      const float3 d = vload3(0, photons[j].position) - x;
-      if (in_disc(d, vload3(0, photons[j].normal), ng, r2, half_thickness)) sum += vload3(0, photons[j].incident);
-    }
+    if (first_visit(bucket, visited, &visited_count))
+      add_bucket_in_disc(photons, buckets, bucket, x, ng, r2, half_thickness, &sum);
   }
   return sum / (RC_PI * r2);
 }
@@ -62,8 +65,7 @@ inline float3 caustic_level_irradiance(__global const PhotonHit* photons, __glob
 // its surface (0: at x alone): each level's photons spread over its own radius, summed. A level whose radius is below
 // the footprint (its discs would fall between neighbouring samples' points) is read at four points of a rotated grid
 // across it and averaged, so that a pixel takes a focus smaller than itself by its area rather than by where its one
-// point falls. A level whose reach x lies outside costs
-// nothing more.
+// point falls. A level whose reach x lies outside costs nothing more.
 inline float3 caustic_levels_irradiance(__global const PhotonHit* photons, __global const uint* buckets,
                                         __global const CausticMapLevel* levels, float3 x, float3 ng,
                                         float footprint) {

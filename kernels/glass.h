@@ -90,6 +90,25 @@ inline float glass_crossing(__global const Material* materials, __global const T
   return cos_t > 0.0f || !volume ? r : 1.0f;
 }
 
+// Crossing k of a chain at glass point s, reached at hit (its distance hit.t from the chain's last point) along *dir:
+// the ray reflects with probability R (weight 1) or passes (*weight times the tint), by a hash of the crossing, so the
+// same input gives the same bits. Returns whether it passed.
+inline bool cross_glass_at_random(__global const Material* materials, __global const TextureInfo* textures,
+                                  __global const uint* texels, SurfacePoint* s, TraceHit hit, uint k, float3* dir,
+                                  float3* weight) {
+  float3 through, mirror, tint;
+  const float r = glass_crossing(materials, textures, texels, s, *dir, hit.t, false, &through, &mirror, &tint);
+  const float u = random01((uint)hit.prim * GLASS_MAX_CROSSINGS + k, as_uint(hit.u) ^ as_uint(dir->x),
+                           as_uint(hit.v) ^ as_uint(dir->y));
+  if (u < r) {
+    *dir = mirror;
+    return false;
+  }
+  *dir = through;
+  *weight *= tint;
+  return true;
+}
+
 // A ray that reached glass along *dir (hit: its glass point, at distance hit->t) goes on through it as a light path
 // does: at each glass point it reflects with probability R (weight 1) or passes with 1 - R (weight: the tint), by a
 // hash of the crossing, so the same input gives the same bits. Returns the weight of the chain; *hit becomes the
@@ -105,17 +124,8 @@ inline float3 pass_glass_noting_volumes(BVH_ARGS, RayTally* rays, TraceHit* hit,
   for (uint k = 0u; hit->prim >= 0 && is_glass(triangles, materials, textures, texels, hit->prim, hit->u, hit->v); ++k) {
     if (k == GLASS_MAX_CROSSINGS) return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit->prim, hit->u, hit->v);
-    float3 through, mirror, tint;
-    const float r = glass_crossing(materials, textures, texels, &s, *dir, hit->t, false, &through, &mirror, &tint);
-    const float u = random01((uint)hit->prim * GLASS_MAX_CROSSINGS + k, as_uint(hit->u) ^ as_uint(dir->x),
-                             as_uint(hit->v) ^ as_uint(dir->y));
-    if (u < r) {
-      *dir = mirror;
-    } else {
-      *dir = through;
-      weight *= tint;
+    if (cross_glass_at_random(materials, textures, texels, &s, *hit, k, dir, &weight))
       *met_volume |= materials[s.material].thickness > 0.0f;
-    }
     if (!closest_hit(BVH, rays, leaving_origin(&s, *dir), *dir, hit)) hit->prim = -1;
     else *distance += hit->t;
   }
@@ -145,7 +155,7 @@ inline float3 kept_hit_past_glass(BVH_ARGS, RayTally* rays, HitDesc* hit, float3
 // 0 where something opaque blocks it, and through glass each crossing's 1 - R times its tint, straight on (exact for
 // thin-walled glass, and for a slab of parallel faces but for the light's sideways shift; the light a curved volume
 // would focus or bend is not followed). With HAS_GLASS_CAUSTICS (--light-through-glass caustics) a volume blocks it:
-// the light a volume passes comes by the glass caustic map instead (kernels/glass_caustics.h).
+// the light a volume passes comes by the glass caustic map instead (kernels/glass_caustics.cl).
 inline float3 light_transmittance(BVH_ARGS, float3 from, float3 to_offset, float tmax, RayTally* rays) {
   float3 weight = (float3)(1.0f);
   const bool toward_point = !isinf(tmax);
@@ -198,18 +208,10 @@ inline float3 escape_transmittance(BVH_ARGS, float3 from, float3* dir, RayTally*
     if (k == GLASS_MAX_CROSSINGS || !is_glass(triangles, materials, textures, texels, hit.prim, hit.u, hit.v))
       return (float3)(0.0f);
     SurfacePoint s = surface_at(triangles, hit.prim, hit.u, hit.v);
-    float3 through, mirror, tint;
     if (materials[s.material].thickness > 0.0f) {
-      const float r = glass_crossing(materials, textures, texels, &s, *dir, hit.t, false, &through, &mirror, &tint);
-      const float u = random01((uint)hit.prim * GLASS_MAX_CROSSINGS + k, as_uint(hit.u) ^ as_uint(dir->x),
-                               as_uint(hit.v) ^ as_uint(dir->y));
-      if (u < r) {
-        *dir = mirror;
-      } else {
-        *dir = through;
-        weight *= tint;
-      }
+      cross_glass_at_random(materials, textures, texels, &s, hit, k, dir, &weight);
     } else {
+      float3 through, mirror, tint;
       weight *= (1.0f - glass_crossing(materials, textures, texels, &s, *dir, hit.t, true, &through, &mirror, &tint)) *
                 tint;
       if (!any_positive(weight)) return weight;

@@ -29,7 +29,7 @@ __kernel void add_glass_caustics(SCENE_ARGS, GBUFFER_ARGS, __global float4* dire
   if (g.lobe != LOBE_NONE) {
     ShadingFrame frame = shading_frame(gbuffer_shading_normal(g));
     BrdfInputs in = gbuffer_layered_brdf(g, pixel_layers(gbuffer_layers, i), frame.n);
-    l = irradiance_reflected(in, g.lobe, view_local(frame, camera_view_direction(camera, vload3(0, g.position))), e);
+    l = irradiance_reflected(in, g.lobe, view_local(frame, camera_view_direction(camera, p)), e);
   }
 #endif
   direct[i] += (float4)(finite_or_zero(l), 0.0f);

@@ -4,7 +4,7 @@
 #define RCSPLAT_SCENE_ARGS_H
 #include "shared_types.h"
 
-// With HAS_GLASS_CAUSTICS, the glass caustic map (kernels/glass_caustics.h): the light that reached a surface through
+// With HAS_GLASS_CAUSTICS, the glass caustic map (kernels/glass_caustics.cl, kernels/caustic_map.h): the light that reached a surface through
 // a glass volume, which every direct-light estimate reads as the light sources' own.
 #if HAS_GLASS_CAUSTICS
 #define GLASS_CAUSTIC_ARGS                                                                     \

@@ -113,7 +113,6 @@ GlassCausticMap shoot_glass_caustics(GpuContext& gpu, DeviceScene& scene, double
     sorted.insert(sorted.end(), grid.photons.begin(), grid.photons.end());
     buckets.insert(buckets.end(), grid.bucket_starts.begin(), grid.bucket_starts.end());
     map.largest_radius = radius;
-    map.level_photons[size_t(j)] = mine.size();
   }
   scene.set_glass_caustics(gpu, sorted, buckets, levels);
   return map;

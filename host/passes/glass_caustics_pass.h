@@ -4,7 +4,6 @@
 // Shot once for the scene (the light is the scene's, not a frame's), the map travels in every kernel's SCENE_ARGS
 // (DeviceScene::set_glass_caustics): each bounce's direct light reads it, and this pass adds it to the pixels'.
 #pragma once
-#include <array>
 #include <vector>
 
 #include "cl/device_scene.h"
@@ -16,13 +15,12 @@
 
 namespace rcsplat {
 
-// What a glass caustic map holds: photons kept of the paths shot, its smallest and largest level's radius (device
-// units), and each level's photons.
+// What a glass caustic map holds: photons kept of the paths shot, and its smallest and largest level's radius (device
+// units).
 struct GlassCausticMap {
   unsigned paths = 0;
   size_t photons = 0;
   float radius = 0.0f, largest_radius = 0.0f;
-  std::array<size_t, GLASS_CAUSTIC_LEVELS> level_photons{};
 };
 
 // The bounding spheres (xyz centre, w radius; `frame`'s device coordinates) of the scene's glass volumes, one a
