@@ -254,8 +254,8 @@ std::string sliding_quad_scene(const std::string& dir, const std::string& name, 
 }
 
 // --cache-per-frame plays an animation that moves a mesh: each frame is the scene posed at its time, rendered as
-// `render` renders that pose (the same bits as a file with the quad standing there); with records kept it is refused
-// by name. Planted once: the pose not applied to the nodes (every frame the rest pose) failed the last frame's bits.
+// `render` renders that pose (the same bits as a file with the quad standing there); a cache pre-pass refuses it by
+// name. Planted once: the pose not applied to the nodes (every frame the rest pose) failed the last frame's bits.
 TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
   const fs::path dir = test::scratch_dir();
   const std::string moving = sliding_quad_scene(dir.string(), "moving", 0.6f, true);
@@ -282,17 +282,22 @@ TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
   ASSERT_EQ(posed.exit_code, 0) << posed.output;
   EXPECT_EQ(read_exr_rgb((dir / "posed.exr").string(), w, h), after);
 
-  o.cache = CacheMode::kept;
+  // A farm's pre-pass keeps no moving scene yet: refused by name (records kept in one process follow it:
+  // tests/moving_scene_test.cpp).
+  o.cache = CacheMode::pre_pass;
+  o.cache_every = 1;
+  o.render.cache_out = (dir / "pre.rcache").string();
   o.render.outputs = {(dir / "kept_%d.exr").string()};
   try {
     render_walkthrough(o);
-    ADD_FAILURE() << "a moving mesh with records kept was accepted";
+    ADD_FAILURE() << "a moving mesh in a cache pre-pass was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("animations[0] 'Slide' moves nodes[0] 'Quad'"), std::string::npos) << message;
     EXPECT_NE(message.find("--cache-per-frame"), std::string::npos) << message;
   }
   EXPECT_FALSE(fs::exists(dir / "kept_0.exr"));
+  EXPECT_FALSE(fs::exists(dir / "pre.rcache"));
 }
 
 TEST(Animation, KeyframeFilesAreReadLineByLineAndRefusedByLine) {

@@ -218,11 +218,16 @@ class Flattener {
 }  // namespace
 
 Bvh8 build_bvh8(const std::vector<glm::vec3>& positions) {
+  std::vector<uint32_t> all(positions.size() / 3);
+  for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
+  return build_bvh8(positions, all);
+}
+
+Bvh8 build_bvh8(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& triangles) {
   auto start = std::chrono::steady_clock::now();
-  size_t triangle_count = positions.size() / 3;
   std::vector<RTCBuildPrimitive> prims;
-  prims.reserve(triangle_count * 2);  // spare capacity lets the builder make spatial splits
-  for (size_t t = 0; t < triangle_count; ++t) {
+  prims.reserve(triangles.size() * 2);  // spare capacity lets the builder make spatial splits
+  for (const size_t t : triangles) {
     const glm::vec3 &a = positions[3 * t], &b = positions[3 * t + 1], &c = positions[3 * t + 2];
     glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     bool finite = std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(lo.z) && std::isfinite(hi.x) &&

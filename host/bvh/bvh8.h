@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "kernels/shared_types.h"
@@ -23,5 +24,7 @@ struct Bvh8 {
 
 // positions: three per triangle. Degenerate and non-finite triangles are left out (no ray can hit them).
 Bvh8 build_bvh8(const std::vector<glm::vec3>& positions);
+// Over the listed triangles alone; the leaves name them by their index in `positions`.
+Bvh8 build_bvh8(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& triangles);
 
 }  // namespace rcsplat

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "bvh/bvh8.h"
+#include "bvh/moving_bvh.h"
 #include "cl/gpu_context.h"
 
 namespace rcsplat {
@@ -14,6 +15,9 @@ std::string bvh_stack_switch(int stack_size);
 class DeviceBvh {
  public:
   DeviceBvh(GpuContext& gpu, const Bvh8& bvh);
+
+  // Writes the rows a move rewrote (bvh/moving_bvh.h); the tree keeps its size and depth.
+  void write_rows(GpuContext& gpu, const Bvh8& bvh, const MovingBvh::Changed& rows);
 
   const cl::Buffer& nodes() const { return nodes_; }
   const cl::Buffer& blocks() const { return blocks_; }

@@ -54,6 +54,28 @@ void DeviceScene::set_glass_caustics(GpuContext& gpu, const std::vector<PhotonHi
   glass_caustic_levels_ = gpu.upload(levels, CL_MEM_READ_ONLY, "glass caustic map levels");
 }
 
+void DeviceScene::move(GpuContext& gpu, const Scene& scene, const Bvh8* bvh, const MovingBvh::Changed& rows,
+                       const std::vector<TriangleRange>& moved_triangles) {
+  if (bvh) bvh_.write_rows(gpu, *bvh, rows);
+  PackedScene p = pack_scene(scene, frame_, Texels::left_out);
+  for (const TriangleRange& r : moved_triangles) {
+    if (!r.count) continue;
+    gpu.queue().enqueueWriteBuffer(triangles_, CL_TRUE, r.first * sizeof(TriangleShading),
+                                   r.count * sizeof(TriangleShading), p.triangles.data() + r.first);
+    if (!p.tangents.empty())  // 4 floats a vertex, 3 vertices a triangle
+      gpu.queue().enqueueWriteBuffer(tangents_, CL_TRUE, r.first * 12 * sizeof(float), r.count * 12 * sizeof(float),
+                                     p.tangents.data() + r.first * 12);
+  }
+  // Lights and emitters are few: written whole (an emitter's place in the power-proportional table may change).
+  lights_ = gpu.upload(p.lights, CL_MEM_READ_ONLY, "lights");
+  emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
+  lights_host_ = p.lights;
+  emitters_host_ = p.emitters;
+  emitter_mean_luminance_ = p.emitter_mean_luminance;
+  counts_.light_count = cl_uint(p.lights.size());
+  counts_.emitter_count = cl_uint(p.emitters.size());
+}
+
 void DeviceScene::bind(NamedKernel& kernel) const {
   kernel.set_buffer<cl_float8>("nodes", bvh_.nodes())
       .set_buffer<cl_float8>("blocks", bvh_.blocks())

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bvh/bvh8.h"
+#include "bvh/moving_bvh.h"
 #include "cl/device_bvh.h"
 #include "cl/gpu_context.h"
 #include "scene/packed_scene.h"
@@ -26,6 +27,12 @@ class DeviceScene {
 
   // Sets a kernel's SCENE_ARGS.
   void bind(NamedKernel& kernel) const;
+
+  // Parts of `scene` (the one given at construction, changed in place) moved (render/renderer.h Renderer::move):
+  // writes the BVH's rewritten rows (bvh: the whole tree; null when no triangle moved), the moved triangles' shading
+  // and tangents, and the lights and emitters again.
+  void move(GpuContext& gpu, const Scene& scene, const Bvh8* bvh, const MovingBvh::Changed& rows,
+            const std::vector<TriangleRange>& moved_triangles);
 
   // scene_switches (scene/scene_plan.h) and BVH_STACK_SIZE: a scene compiles only the code it needs.
   const KernelDefines& defines() const { return defines_; }

@@ -219,6 +219,11 @@ Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
                       std::to_string(RenderSettings{}.kept_records_capacity) + ", " +
                       std::to_string(sizeof(CacheRecord)) + " bytes each)")
       ->check(CLI::Range(size_t(1), size_t(1) << 28));
+  cmd->add_option("--moved-record-tolerance", o.moved_record_tolerance,
+                  "Records kept through a moving scene: a move drops, to be placed again, the records whose light it "
+                  "may have changed by more than this fraction (the moving part's share of the record's hemisphere; "
+                  "default " + shortest(float(defaults.moved_record_tolerance)) + "; a light that moves drops all)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--stats", o.stats_path,
                   "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
   cmd->add_option("--mp4", o.mp4_path,

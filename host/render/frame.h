@@ -149,6 +149,7 @@ struct KeptRecordsStats {
   uint64_t reused = 0;   // kept records this frame's view took
   uint64_t added = 0;    // placed by this frame
   uint64_t evicted = 0;  // dropped after this frame (the capacity)
+  uint64_t moved = 0;    // dropped before this frame because something moved where they see (KeptRecords::drop_moved)
   uint64_t kept = 0;     // held after this frame
   uint64_t capacity = 0;
 };

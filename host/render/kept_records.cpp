@@ -53,6 +53,7 @@ bool KeptRecords::begin_frame(const KeptRecordsKey& key) {
   if (dropped) {
     records_.clear();
     last_used_.clear();
+    moved_change_.clear();
     payload_.clear();
     payload_per_record_ = 0;
     largest_radiance_ = 0.0f;
@@ -62,6 +63,8 @@ bool KeptRecords::begin_frame(const KeptRecordsKey& key) {
   ++frame_;
   stats_ = KeptRecordsStats{};
   stats_.capacity = capacity_;
+  stats_.moved = dropped ? 0 : moved_since_frame_;
+  moved_since_frame_ = 0;
   return dropped;
 }
 
@@ -90,6 +93,7 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
 void KeptRecords::drop_records() {
   records_.clear();
   last_used_.clear();
+  moved_change_.clear();
   payload_.clear();
   largest_radiance_ = 0.0f;
 }
@@ -99,6 +103,7 @@ void KeptRecords::restore(const KeptRecordsKey& key, Contents contents, uint64_t
   has_key_ = true;
   records_ = std::move(contents.records);
   last_used_ = std::move(contents.last_used);
+  moved_change_.assign(records_.size(), 0.0f);
   payload_ = std::move(contents.payload);
   payload_per_record_ = contents.payload_per_record;
   largest_radiance_ = contents.largest_radiance;
@@ -111,6 +116,7 @@ void KeptRecords::add(const CacheRecord* records, size_t count, const float* pay
   payload_per_record_ = payload_per_record;
   if (count) records_.insert(records_.end(), records, records + count);
   last_used_.insert(last_used_.end(), count, frame_);
+  moved_change_.insert(moved_change_.end(), count, 0.0f);
   if (payload_per_record && count) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
   stats_.added = count;
   if (records_.size() > capacity_) {
@@ -121,21 +127,65 @@ void KeptRecords::add(const CacheRecord* records, size_t count, const float* pay
     std::vector<char> drop(records_.size(), 0);
     const size_t excess = records_.size() - capacity_;
     for (size_t k = 0; k < excess; ++k) drop[order[k]] = 1;
-    size_t kept = 0;
-    for (size_t i = 0; i < records_.size(); ++i)
-      if (!drop[i]) {
-        records_[kept] = records_[i];
-        last_used_[kept] = last_used_[i];
-        std::copy_n(payload_.begin() + std::ptrdiff_t(i * payload_per_record_), payload_per_record_,
-                    payload_.begin() + std::ptrdiff_t(kept * payload_per_record_));
-        ++kept;
-      }
-    records_.resize(kept);
-    last_used_.resize(kept);
-    payload_.resize(kept * payload_per_record_);
+    keep_only(drop);
     stats_.evicted = excess;
   }
   stats_.kept = records_.size();
+}
+
+void KeptRecords::keep_only(const std::vector<char>& drop) {
+  size_t kept = 0;
+  for (size_t i = 0; i < records_.size(); ++i)
+    if (!drop[i]) {
+      records_[kept] = records_[i];
+      last_used_[kept] = last_used_[i];
+      moved_change_[kept] = moved_change_[i];
+      std::copy_n(payload_.begin() + std::ptrdiff_t(i * payload_per_record_), payload_per_record_,
+                  payload_.begin() + std::ptrdiff_t(kept * payload_per_record_));
+      ++kept;
+    }
+  records_.resize(kept);
+  last_used_.resize(kept);
+  moved_change_.resize(kept);
+  payload_.resize(kept * payload_per_record_);
+}
+
+size_t KeptRecords::drop_moved(const std::vector<SweptBox>& moves, double tolerance) {
+  std::vector<char> drop(records_.size(), 0);
+  size_t count = 0;
+  for (size_t i = 0; i < records_.size(); ++i) {
+    double change = double(moved_change_[i]);
+    for (const SweptBox& move : moves) change += moved_record_change(records_[i], move);
+    moved_change_[i] = float(change);
+    if (change > tolerance) {
+      drop[i] = 1;
+      ++count;
+    }
+  }
+  if (count) keep_only(drop);
+  moved_since_frame_ += count;
+  return count;
+}
+
+size_t KeptRecords::drop_moved_all() {
+  const size_t count = records_.size();
+  keep_only(std::vector<char>(count, 1));
+  moved_since_frame_ += count;
+  return count;
+}
+
+double moved_record_change(const CacheRecord& record, const SweptBox& swept) {
+  const glm::dvec3 lo(swept.lo), hi(swept.hi);
+  const glm::dvec3 centre = 0.5 * (lo + hi), p = load(record.position), n = load(record.normal);
+  const double radius = 0.5 * glm::length(hi - lo);
+  const glm::dvec3 to = centre - p;
+  const double d = glm::length(to);
+  if (d <= radius + double(record.radius)) return 1.0;
+  const double sin_a = radius / d, a = std::asin(sin_a);
+  const double theta = std::acos(std::clamp(glm::dot(n, to) / (d * std::max(glm::length(n), 1e-30)), -1.0, 1.0));
+  if (theta - a >= 0.5 * M_PI) return 0.0;  // wholly below the horizon
+  const double band = 4.0 * sin_a * double(swept.displacement) / d;  // infinite displacement: the whole sphere
+  return std::min(sin_a * sin_a, band) * std::cos(std::max(theta - a, 0.0));
 }
 
 }  // namespace rcsplat

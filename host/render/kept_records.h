@@ -17,7 +17,10 @@
 // (ViewIndependentLight), so a record placed at frame 90 sees the same photons as one placed at frame 0; the photons
 // and clusters it was made from are kept beside the records too (KeptLight), for cache files.
 #pragma once
+#include <glm/glm.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +41,22 @@ struct KeptRecordsKey {
   bool operator==(const KeptRecordsKey&) const = default;
 };
 KeptRecordsKey kept_records_key(const RenderSettings& frame_settings);
+
+// One move of a moving part (device coordinates): the box it filled before and after, joined, and how far any of its
+// points moved (infinite: unknown).
+struct SweptBox {
+  glm::vec3 lo, hi;
+  float displacement = INFINITY;
+};
+
+// A bound on how much of a record's light one move may change, as a fraction of it (docs/ALGORITHM.md section 13).
+// Seen from the record, the part fills at most its bounding sphere (radius r, distance d, angular radius a, at angle
+// theta from the normal), a share sin^2(a) cos(max(theta - a, 0)) of the cosine-weighted hemisphere (0 below the
+// horizon). A move by delta changes only the directions within delta / d of the part's outline, a band of share at
+// most 4 (r / d)(delta / d) cos(...): the smaller of the two bounds. The light seen there before and after differs by
+// the scene's contrast, which this leaves to the tolerance. A record whose sphere of validity (radius R) reaches the
+// part's sphere counts 1: it stands on, under or beside it.
+double moved_record_change(const CacheRecord& record, const SweptBox& swept);
 
 // Records of one kind (irradiance or radiance) kept across frames. A radiance record carries its HSH coefficients
 // beside it (`payload` floats a record, kernels/hsh_records.cl's layout), kept, taken and evicted with it.
@@ -62,6 +81,12 @@ class KeptRecords {
   // Drops every record (and the brightest stratum) but keeps the key, so the light kept with them stays: a cache
   // pre-pass's key frame starts from no records (sequence/cache_merge.h).
   void drop_records();
+  // Parts moved (issue 62): adds each move's bound (moved_record_change) to each record's change since it was made,
+  // and drops, so that the next frame places them again, the records whose sum passes `tolerance`. The next frame's
+  // stats count them (moved).
+  size_t drop_moved(const std::vector<SweptBox>& moves, double tolerance);
+  // A light moved: every record's light may have changed.
+  size_t drop_moved_all();
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
   void set_capacity(size_t capacity) { capacity_ = capacity; }
@@ -90,10 +115,13 @@ class KeptRecords {
   uint64_t frame_ = 0;
   std::vector<CacheRecord> records_;
   std::vector<uint64_t> last_used_;  // the last frame whose view took each record
+  std::vector<float> moved_change_;  // the bound on how much moves have changed each record's light (drop_moved)
   std::vector<float> payload_;       // payload_per_record_ floats a record
   size_t payload_per_record_ = 0;
   float largest_radiance_ = 0.0f;
   KeptRecordsStats stats_;
+  uint64_t moved_since_frame_ = 0;  // drop_moved's records before the next frame begins
+  void keep_only(const std::vector<char>& drop);
 };
 
 // The light records read that does not depend on the view, as photons and clusters: what the photon map, the caustic

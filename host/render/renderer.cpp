@@ -22,6 +22,7 @@
 #include "passes/light_guide_pass.h"
 #include "passes/ray_queue.h"
 #include "render/indirect.h"
+#include "render/kept_records.h"
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
 #include "scene/scene_frame.h"
@@ -107,10 +108,12 @@ void add_round(RenderedImage& sum, const RenderedImage& round) {
 
 }  // namespace
 
-Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches)
+Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches,
+                   const std::vector<TriangleRange>& moving_parts)
     : gpu_(gpu),
       scene_(scene),
       forced_switches_(forced_switches),
+      moving_parts_(moving_parts),
       light_(std::make_unique<ViewIndependentLight>()),
       passes_(std::make_unique<MethodPasses>()) {
   StageTimer setup_time(setup_seconds_);
@@ -122,7 +125,12 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   log_info("building the BVH over " + std::to_string(scene_.triangle_count()) + " triangles");
   {
     // Only the device keeps the BVH: the host's copy goes once it is uploaded.
-    Bvh8 bvh = build_bvh8(scene_frame_.device_positions(scene_));
+    Bvh8 still;
+    if (moving_parts_.empty())
+      still = build_bvh8(scene_frame_.device_positions(scene_));
+    else
+      moving_bvh_ = std::make_unique<MovingBvh>(scene_frame_.device_positions(scene_), moving_parts_);
+    const Bvh8& bvh = moving_bvh_ ? moving_bvh_->tree() : still;
     scene_stats_.triangles = scene_.triangle_count();
     scene_stats_.bvh_nodes = bvh.nodes.size();
     scene_stats_.bvh_blocks = bvh.blocks.size();
@@ -137,8 +145,52 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   scene_stats_.glossy_materials = lobes[LOBE_GLOSSY];
   scene_stats_.hsh_materials = lobes[LOBE_HSH];
   scene_stats_.specular_brdf = device_scene_->has_specular_brdf();
-  if (device_scene_->has_glass_caustics()) {
-    // The light glass volumes pass, shot once: every kernel's SCENE_ARGS carry it from here on.
+  if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
+  // Every frame's first two programs, compiling while the plan's bounce probe and lobe table run; render() makes
+  // their passes.
+  GBufferPass::build_ahead(gpu_, *device_scene_);
+  DirectPass::build_ahead(gpu_, *device_scene_);
+  if (device_scene_->has_glass()) GlassMirrorPass::build_ahead(gpu_, *device_scene_);
+  if (device_scene_->has_glass_caustics()) GlassCausticsPass::build_ahead(gpu_, *device_scene_);
+}
+
+size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
+  if (moved_parts.empty() && !lights_moved) return 0;
+  if (!moved_parts.empty() && !moving_bvh_) throw Error("this renderer was made without moving parts");
+  StageTimer setup_time(setup_seconds_);
+  MovingBvh::Changed rows;
+  {
+    StageTimer refit(setup_.scene.bvh_build_s);
+    std::vector<size_t> parts;
+    for (const PartMove& m : moved_parts) parts.push_back(m.part);
+    if (!parts.empty()) rows = moving_bvh_->move(scene_frame_.device_positions(scene_), parts);
+  }
+  {
+    StageTimer timing(setup_.scene.upload_s);
+    std::vector<TriangleRange> moved;
+    for (const PartMove& m : moved_parts) moved.push_back(moving_parts_[m.part]);
+    device_scene_->move(gpu_, scene_, moving_bvh_ ? &moving_bvh_->tree() : nullptr, rows, moved);
+  }
+  // Photons, clusters and the glass caustic map saw the scene as it was: made again when a frame asks for them.
+  light_ = std::make_unique<ViewIndependentLight>();
+  if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
+  if (!kept_records_) return 0;
+  kept_records_->light = KeptLight{};
+  size_t dropped = 0;
+  for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
+    std::vector<SweptBox> swept;
+    for (size_t i = 0; i < rows.swept.size(); ++i)
+      swept.push_back({rows.swept[i].first, rows.swept[i].second,
+                       float(moved_parts[i].displacement / scene_frame_.scale)});
+    // A light that moves changes every record's light (temporal gradients would follow it: not yet).
+    dropped += lights_moved ? records->drop_moved_all() : records->drop_moved(swept, record_tolerance);
+  }
+  return dropped;
+}
+
+void Renderer::shoot_glass_caustic_map() {
+  {
+    // The light glass volumes pass: every kernel's SCENE_ARGS carry it from here on.
     StageTimer timing(scene_stats_.glass_caustic_s);
     log_info("shooting " + std::to_string(scene_.glass_light.photons) + " photon paths through glass volumes");
     const GlassCausticMap map =
@@ -150,12 +202,6 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
     scene_stats_.glass_caustic_radius = scene_frame_.length_to_world(map.radius);
     scene_stats_.glass_caustic_largest_radius = scene_frame_.length_to_world(map.largest_radius);
   }
-  // Every frame's first two programs, compiling while the plan's bounce probe and lobe table run; render() makes
-  // their passes.
-  GBufferPass::build_ahead(gpu_, *device_scene_);
-  DirectPass::build_ahead(gpu_, *device_scene_);
-  if (device_scene_->has_glass()) GlassMirrorPass::build_ahead(gpu_, *device_scene_);
-  if (device_scene_->has_glass_caustics()) GlassCausticsPass::build_ahead(gpu_, *device_scene_);
 }
 
 void Renderer::build_programs_ahead(const FramePlan& plan) {

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "bvh/moving_bvh.h"
 #include "cl/gpu_context.h"
 #include "render/frame.h"
 #include "render/frame_plan.h"
@@ -36,7 +37,10 @@ class Renderer {
  public:
   // Builds the BVH and uploads the scene. forced_switches: kernel switches compiled on whether the scene needs them
   // or not (tests; scene/scene_plan.h). gpu and scene must outlive the renderer.
-  Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches = {});
+  // moving_parts: triangle ranges of the scene that will move rigidly (scene/scene_animator.h): each gets a BVH of
+  // its own under a top level (bvh/moving_bvh.h), so that move() refits it alone. None: one BVH, as a still scene.
+  Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::string>& forced_switches = {},
+           const std::vector<TriangleRange>& moving_parts = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -48,6 +52,19 @@ class Renderer {
   // the first frame of a renderer does, later frames do not.
   RenderedImage render(const FramePlan& plan);
   RenderedImage render(const RenderSettings& request) { return render(plan(request)); }
+
+  // The scene (the one given at construction, changed in place) moved: the listed parts (indices into moving_parts)
+  // and, where lights_moved, its lights. Refits the moved parts' BVH and writes what they changed to the device; the
+  // light that depends on where things are (photon map, caustic map, light guide, glass caustic map) is made again
+  // for the next frame. The next frame's statistics count the work (bvh_build_s, upload_s).
+  // Kept records (RenderSettings::keep_records) whose light the move may have changed by more than
+  // record_tolerance of itself are dropped, so that the next frame places them again (KeptRecords::drop_moved); a
+  // light that moved drops them all. Returns how many were dropped.
+  struct PartMove {
+    size_t part;          // index into moving_parts
+    double displacement;  // how far any of its points moved, world units
+  };
+  size_t move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance);
 
   const DeviceScene& device_scene() const { return *device_scene_; }
   // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
@@ -64,12 +81,15 @@ class Renderer {
   void shade_frame(const FramePlan& plan, const CameraParams& camera, const RenderSettings& settings,
                    RenderedImage& img, Progress* progress = nullptr, size_t progress_done_before = 0);
   void path_trace_pixel_area(const FramePlan& plan, const CameraParams& camera, RenderedImage& img);
+  void shoot_glass_caustic_map();
 
   GpuContext& gpu_;
   const Scene& scene_;
   std::set<std::string> forced_switches_;
   SceneFrame scene_frame_;
   SceneStats scene_stats_;  // what every frame reports of the scene; its times (setup_) only the first frame
+  std::vector<TriangleRange> moving_parts_;
+  std::unique_ptr<MovingBvh> moving_bvh_;  // with moving parts
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

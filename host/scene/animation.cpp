@@ -67,7 +67,7 @@ glm::vec4 sample_track(const AnimationTrack& track, double t) {
   return glm::vec4(v);
 }
 
-glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t) {
+glm::mat4 rig_world_matrix(const NodeRig& rig, int animation, double t) {
   glm::mat4 world(1.0f);
   for (const RigNode& node : rig.chain) {
     if (node.has_matrix) {
@@ -97,14 +97,14 @@ glm::mat4 trs_matrix(const NodeTrs& trs) {
          glm::scale(glm::mat4(1.0f), trs.scale);
 }
 
-bool rig_is_animated(const CameraRig& rig, int animation) {
+bool rig_is_animated(const NodeRig& rig, int animation) {
   for (const RigNode& node : rig.chain)
     for (const AnimationTrack& track : node.tracks)
       if (track.animation == animation) return true;
   return false;
 }
 
-double rig_duration(const CameraRig& rig, int animation) {
+double rig_duration(const NodeRig& rig, int animation) {
   double last = 0.0;
   for (const RigNode& node : rig.chain)
     for (const AnimationTrack& track : node.tracks)

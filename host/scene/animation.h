@@ -1,7 +1,7 @@
-// glTF animation of a camera: the chain of nodes from a scene root down to a camera's node, each with its rest
-// transform and the animation channels that move it, sampled at any time as glTF 2.0 section 3.11 says (STEP, LINEAR
-// with spherical interpolation of rotations, CUBICSPLINE as a Hermite spline). Only cameras are animated: `animate`
-// refuses an animation that moves a mesh or a light (Scene::animated_content), since one cache serves the whole path.
+// glTF node animation: the chain of nodes from a scene root down to a camera's node, or to a node that holds a mesh or
+// a light (Scene::movers), each with its rest transform and the animation channels that move it, sampled at any time
+// as glTF 2.0 section 3.11 says (STEP, LINEAR with spherical interpolation of rotations, CUBICSPLINE as a Hermite
+// spline). scene/scene_animator.h poses the movers' triangles and lights by it.
 #pragma once
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -38,8 +38,8 @@ struct RigNode {
   std::vector<AnimationTrack> tracks;
 };
 
-// From a scene root (first) down to the camera's node (last).
-struct CameraRig {
+// From a scene root (first) down to a camera's or a mover's node (last).
+struct NodeRig {
   std::vector<RigNode> chain;
 };
 
@@ -49,10 +49,10 @@ glm::vec4 sample_track(const AnimationTrack& track, double t);
 void apply_track(const AnimationTrack& track, double t, NodeTrs& trs);
 // T * R * S.
 glm::mat4 trs_matrix(const NodeTrs& trs);
-// The camera node's world transform at time t with the channels of `animation` applied (others: the rest transform).
-glm::mat4 rig_world_matrix(const CameraRig& rig, int animation, double t);
+// The last node's world transform at time t with the channels of `animation` applied (others: the rest transform).
+glm::mat4 rig_world_matrix(const NodeRig& rig, int animation, double t);
 // Whether any node of the rig is moved by `animation`, and the last key time of its channels there.
-bool rig_is_animated(const CameraRig& rig, int animation);
-double rig_duration(const CameraRig& rig, int animation);
+bool rig_is_animated(const NodeRig& rig, int animation);
+double rig_duration(const NodeRig& rig, int animation);
 
 }  // namespace rcsplat

@@ -60,8 +60,8 @@ class GltfReader {
     }
     if (!model_.animations.empty() && pose_.animation < 0)
       note_unsupported(std::to_string(model_.animations.size()) + " animation(s)",
-                       "render draws the nodes' rest transforms and weights; `rcsplat animate` plays a camera's "
-                       "animation, and with --cache-per-frame moves meshes and lights too");
+                       "render draws the nodes' rest transforms and weights; `rcsplat animate` plays them (meshes "
+                       "and lights moved rigidly with one cache; skins with --cache-per-frame)");
     read_textures();
     read_materials();
     std::vector<int> roots;
@@ -357,13 +357,18 @@ class GltfReader {
     glm::mat4 world = parent * posed_matrix(index);
     for (int i = 0; i < 16; ++i)
       if (!std::isfinite(glm::value_ptr(world)[i])) fail("nodes[" + std::to_string(index) + "] has a non-finite transform");
+    NodeContent content{index, world, scene_.triangle_count(), 0, -1};
     if (node.mesh >= 0) add_mesh(index, world);
+    content.triangle_count = scene_.triangle_count() - content.first_triangle;
     if (node.camera >= 0) {
       add_camera(node.camera, world);
       camera_nodes_.push_back(index);
     }
     auto ext = node.extensions.find("KHR_lights_punctual");
+    const size_t lights_before = scene_.lights.size();
     if (ext != node.extensions.end() && ext->second.Has("light")) add_light(index_value(ext->second.Get("light")), world);
+    if (scene_.lights.size() > lights_before) content.light = int(lights_before);
+    if (content.triangle_count > 0 || content.light >= 0) content_.push_back(content);
     return world;
   }
 
@@ -1128,6 +1133,67 @@ class GltfReader {
     return track;
   }
 
+  // In read_animations' map of where each node sits in a rig, a mover's rig is numbered from here on.
+  static constexpr size_t kMoverRig = size_t(1) << 40;
+
+  // Scene::movers: every node that placed a mesh or a light and that a channel moves (on the node, above it, or on a
+  // joint of its skin), with its chain of nodes; read_animations gives the chains' nodes their channels.
+  void read_movers(const std::vector<int>& parent, std::vector<std::vector<std::pair<size_t, size_t>>>& in_rigs,
+                   size_t& rig_nodes, size_t max_rig_nodes) {
+    const size_t nodes = model_.nodes.size();
+    std::vector<char> targeted(nodes, 0);
+    for (const tinygltf::Animation& anim : model_.animations)
+      for (const tinygltf::AnimationChannel& channel : anim.channels)
+        if (channel.target_node >= 0 && size_t(channel.target_node) < nodes && channel.target_path != "weights")
+          targeted[size_t(channel.target_node)] = 1;
+    auto chain_targeted = [&](int n) {
+      for (; n >= 0; n = parent[size_t(n)])
+        if (targeted[size_t(n)]) return true;
+      return false;
+    };
+    skinned_by_.assign(nodes, {});
+    for (const NodeContent& c : content_) {
+      const tinygltf::Node& node = model_.nodes[size_t(c.node)];
+      std::vector<int> joints;
+      if (node.mesh >= 0 && node.skin >= 0 && size_t(node.skin) < model_.skins.size())
+        joints = model_.skins[size_t(node.skin)].joints;
+      bool moves = chain_targeted(c.node);
+      for (int j : joints) moves = moves || (j >= 0 && size_t(j) < nodes && chain_targeted(j));
+      if (!moves) continue;
+      const size_t index = scene_.movers.size();
+      Scene::Mover mover;
+      mover.label = node_label(model_, c.node);
+      mover.placed = c.world;
+      mover.first_triangle = c.first_triangle;
+      mover.triangle_count = c.triangle_count;
+      mover.light = c.light;
+      // The joints' chains: a channel on any of their nodes deforms the mesh (read_animations notes which).
+      for (int j : joints)
+        for (int n = j; n >= 0 && size_t(n) < nodes; n = parent[size_t(n)])
+          if (std::find(skinned_by_[size_t(n)].begin(), skinned_by_[size_t(n)].end(), index) ==
+              skinned_by_[size_t(n)].end())
+            skinned_by_[size_t(n)].push_back(index);
+      std::vector<int> chain;
+      for (int n = c.node; n >= 0; n = parent[size_t(n)]) chain.push_back(n);
+      rig_nodes += chain.size();
+      if (rig_nodes > max_rig_nodes)
+        fail("its cameras and moving meshes and lights sit under more than " + std::to_string(max_rig_nodes) +
+             " nodes in all (each one's chain of nodes up to its scene root counted)");
+      std::reverse(chain.begin(), chain.end());
+      for (int n : chain) {
+        const tinygltf::Node& link = model_.nodes[size_t(n)];
+        RigNode r;
+        r.label = node_label(model_, n);
+        r.has_matrix = link.matrix.size() == 16;
+        r.matrix = local_matrix(link);
+        r.rest = rest_trs(link);
+        in_rigs[size_t(n)].push_back({kMoverRig + index, mover.rig.chain.size()});
+        mover.rig.chain.push_back(r);
+      }
+      scene_.movers.push_back(std::move(mover));
+    }
+  }
+
   // The cameras' rigs (scene/animation.h) and what each animation moves besides them.
   void read_animations() {
     const size_t nodes = model_.nodes.size();
@@ -1136,10 +1202,17 @@ class GltfReader {
       for (int c : model_.nodes[n].children) parent[size_t(c)] = int(n);
     // A node above a mesh or a light carries it: moving that node moves the scene.
     std::vector<char> carries(nodes, 0);
+    auto mark_carriers = [&](int n) {
+      for (int a = n; a >= 0 && !carries[size_t(a)]; a = parent[size_t(a)]) carries[size_t(a)] = 1;
+    };
     for (size_t n = 0; n < nodes; ++n) {
       const tinygltf::Node& node = model_.nodes[n];
       if (node.mesh < 0 && !node.extensions.count("KHR_lights_punctual")) continue;
-      for (int a = int(n); a >= 0 && !carries[size_t(a)]; a = parent[size_t(a)]) carries[size_t(a)] = 1;
+      mark_carriers(int(n));
+      // A skinned mesh's joints (and the nodes above them) place its vertices: moving them moves the mesh.
+      if (node.mesh >= 0 && node.skin >= 0 && size_t(node.skin) < model_.skins.size())
+        for (int j : model_.skins[size_t(node.skin)].joints)
+          if (j >= 0 && size_t(j) < nodes) mark_carriers(j);
     }
     // Where each node sits in the cameras' chains.
     std::vector<std::vector<std::pair<size_t, size_t>>> in_rigs(nodes);
@@ -1156,7 +1229,7 @@ class GltfReader {
         fail("its cameras sit under more than " + std::to_string(kMaxRigNodes) + " nodes in all (each camera's chain "
              "of nodes up to its scene root counted)");
       std::reverse(chain.begin(), chain.end());
-      CameraRig rig;
+      NodeRig rig;
       for (int n : chain) {
         const tinygltf::Node& node = model_.nodes[size_t(n)];
         RigNode r;
@@ -1169,6 +1242,7 @@ class GltfReader {
       }
       scene_.camera_rigs.push_back(std::move(rig));
     }
+    read_movers(parent, in_rigs, rig_nodes, kMaxRigNodes);
     for (size_t a = 0; a < model_.animations.size(); ++a) {
       const tinygltf::Animation& anim = model_.animations[a];
       const std::string name = "animations[" + std::to_string(a) + "] '" + printable(anim.name) + "'";
@@ -1180,6 +1254,10 @@ class GltfReader {
         if (n < 0 || size_t(n) >= nodes) continue;  // a pointer target (KHR_animation_pointer): not sampled
         const std::string& path = channel.target_path;
         if (carries[size_t(n)]) {
+          for (const size_t m : skinned_by_[size_t(n)])
+            if (std::find(scene_.movers[m].skin_animations.begin(), scene_.movers[m].skin_animations.end(), int(a)) ==
+                scene_.movers[m].skin_animations.end())
+              scene_.movers[m].skin_animations.push_back(int(a));
           scene_.animated_content.push_back({int(a),
                                              name + " moves " + node_label(model_, n) +
                                                  (path == "weights" ? "'s morph weights"
@@ -1191,7 +1269,6 @@ class GltfReader {
                           name + ".channels[" + std::to_string(c) + "].input");
           if (!times.empty() && std::isfinite(times.back()))
             scene_.animation_durations[a] = std::max(scene_.animation_durations[a], double(times.back()));
-          continue;
         }
         if (in_rigs[size_t(n)].empty() || path == "weights") continue;
         AnimatedProperty property;
@@ -1207,10 +1284,12 @@ class GltfReader {
                                                 where + " (sampler " + std::to_string(channel.sampler) + ")");
         rig_key_floats += (track.times.size() + track.values.size()) * in_rigs[size_t(n)].size();
         if (rig_key_floats > kMaxRigKeyFloats)
-          fail(where + ": the cameras' animation keys pass " + std::to_string(kMaxRigKeyFloats) +
-               " numbers in all (each camera holds the keys of the nodes above it)");
+          fail(where + ": the animation keys of the cameras and the moving meshes and lights pass " +
+               std::to_string(kMaxRigKeyFloats) + " numbers in all (each holds the keys of the nodes above it)");
         for (const auto& [rig, position] : in_rigs[size_t(n)])
-          scene_.camera_rigs[rig].chain[position].tracks.push_back(track);
+          (rig < kMoverRig ? scene_.camera_rigs[rig] : scene_.movers[rig - kMoverRig].rig)
+              .chain[position]
+              .tracks.push_back(track);
         scene_.animation_durations[a] = std::max(scene_.animation_durations[a], double(track.times.back()));
       }
     }
@@ -1229,6 +1308,15 @@ class GltfReader {
   std::vector<std::optional<glm::mat4>> node_world_;
   std::vector<int> parent_;
   std::vector<int> camera_nodes_;  // the node of each camera added, in the order of scene_.cameras
+  // What each node that holds a mesh or a light placed, in the order visited: the movers (Scene::movers) among them.
+  struct NodeContent {
+    int node;
+    glm::mat4 world;
+    size_t first_triangle, triangle_count;
+    int light;
+  };
+  std::vector<NodeContent> content_;
+  std::vector<std::vector<size_t>> skinned_by_;  // for each node, the movers whose skin a channel on it deforms
 };
 
 }  // namespace

@@ -114,7 +114,7 @@ struct Scene {
   // glTF animation (scene/animation.h): the rig of each glTF camera (same order as `cameras`; a camera added for a
   // scene without one has none), the animations' names, and what each animation moves that is not a camera: a node
   // that holds or carries a mesh or a light, or a mesh's morph weights ("animations[0] 'Open' moves nodes[4] 'Door'").
-  std::vector<CameraRig> camera_rigs;
+  std::vector<NodeRig> camera_rigs;
   std::vector<std::string> animation_names;
   struct AnimatedContent {
     int animation = 0;
@@ -123,6 +123,19 @@ struct Scene {
   };
   std::vector<AnimatedContent> animated_content;
   std::vector<double> animation_durations;  // each animation's last key time over all its channels, seconds
+  // Every node that holds a mesh or a light and that some animation moves (a channel on it or on a node above it, or
+  // for a skinned mesh on a joint), with what it placed: scene/scene_animator.h poses them at any time.
+  struct Mover {
+    std::string label;       // "nodes[4] 'Ball'"
+    NodeRig rig;             // from its scene root down to the node
+    glm::mat4 placed{1.0f};  // the node's world transform in the pose the loader read (posed_animation, posed_time)
+    size_t first_triangle = 0, triangle_count = 0;  // its mesh's triangles (none: 0)
+    int light = -1;                                 // its light's index in `lights`, or -1
+    // Placed by its skin's joints, not by its node: an animation of the joints deforms it, which no rigid move
+    // follows (`animate` loads such a scene again for each frame: --cache-per-frame).
+    std::vector<int> skin_animations;
+  };
+  std::vector<Mover> movers;
   // The pose the loader placed the scene in (ScenePose): -1, the rest pose.
   int posed_animation = -1;
   double posed_time = 0.0;

@@ -45,8 +45,8 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
   for (const Scene::AnimatedContent& moved : scene.animated_content)
     if (moved.animation == animation && !scene_may_move)
       throw Error(scene.source + ": " + moved.what +
-                  "; with records kept across frames `animate` moves only the camera through a scene that stands "
-                  "still (one cache serves the whole path): " +
+                  "; with a fixed cache file, a farm's pre-pass or its merge, `animate` moves only the camera "
+                  "through a scene that stands still (one cache serves the whole path): " +
                   (moved.morph_weights ? std::string("morph weights are not played even with --cache-per-frame; ")
                                        : std::string("render it with --cache-per-frame, or ")) +
                   "walk through it as it stands with --keyframes or --orbit");
@@ -82,7 +82,7 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
     throw Error(scene.source + ": " + name + " does not move " + camera_name(scene, camera) +
                 (animated.empty() ? std::string(" nor any camera") : "; it moves " + animated + " (--camera)"));
   }
-  const CameraRig rig = scene.camera_rigs[size_t(camera)];
+  const NodeRig rig = scene.camera_rigs[size_t(camera)];
   CameraPath path;
   path.description = "glTF " + name + " of " + camera_name(scene, camera);
   path.duration = rig_duration(rig, animation);

@@ -11,6 +11,7 @@
 #include "cl/device_info.h"
 #include "render/kept_records.h"
 #include "render/render_output.h"
+#include "scene/scene_animator.h"
 #include "sequence/cache_merge.h"
 #include "sequence/camera_path.h"
 #include "sequence/video.h"
@@ -40,7 +41,10 @@ CameraPath choose_path(const WalkthroughRequest& o, const Scene& scene) {
   if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
   if (o.render.scene_path.empty())
     throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
-  return gltf_camera_path(scene, o.render.settings.camera, o.animation, o.cache == CacheMode::per_frame);
+  // Records kept from frame to frame follow a moving scene (FrameRenderers); a cache file's fixed records, a farm's
+  // pre-pass and merge do not yet.
+  return gltf_camera_path(scene, o.render.settings.camera, o.animation,
+                          o.cache == CacheMode::per_frame || o.cache == CacheMode::kept);
 }
 
 // The PNG frame pattern the MP4 preview is made from: the first PNG output.
@@ -50,17 +54,44 @@ std::string png_pattern(const WalkthroughRequest& o) {
   return "";
 }
 
-// The frames a request renders and the scene's renderer for each: one Renderer for a still scene; a scene the path's
-// animation moves (CacheMode::per_frame only: choose_path refuses it otherwise) is loaded again in each frame's pose
-// with a renderer of its own, as `render` would render that pose.
+// The frames a request renders and the scene's renderer for each: one Renderer for a still scene. A scene the path's
+// animation moves (choose_path refuses it but with records kept or a cache per frame):
+// - with records kept, one Renderer over a copy of the scene that a SceneAnimator poses at each frame's time: the
+//   moving parts' BVH is refitted, what they changed written to the device, and the kept records their move may
+//   have changed dropped, to be placed again (Renderer::move);
+// - with a cache per frame, the scene loaded again in each frame's pose with a renderer of its own, as `render`
+//   would render that pose (skins and morph weights too).
 class FrameRenderers {
  public:
   FrameRenderers(GpuContext& gpu, const WalkthroughRequest& o, const Scene& scene, const CameraPath& path)
       : gpu_(gpu), o_(o), scene_(scene), path_(path), moves_(path.moves_scene_animation >= 0) {
-    if (!moves_) renderer_ = std::make_unique<Renderer>(gpu_, scene_, o_.render.settings.forced_switches);
+    if (!moves_) {
+      renderer_ = std::make_unique<Renderer>(gpu_, scene_, o_.render.settings.forced_switches);
+    } else if (o_.cache != CacheMode::per_frame) {
+      animator_.emplace(scene_, path.moves_scene_animation);
+      posed_ = std::make_unique<Scene>(scene_);
+      std::vector<TriangleRange> parts;
+      for (const size_t m : animator_->moving()) {
+        const Scene::Mover& mover = scene_.movers[m];
+        part_of_.push_back(mover.triangle_count ? long(parts.size()) : -1);
+        if (mover.triangle_count) parts.push_back({mover.first_triangle, mover.triangle_count});
+      }
+      renderer_ = std::make_unique<Renderer>(gpu_, *posed_, o_.render.settings.forced_switches, parts);
+    }
   }
   Renderer& for_frame(long long frame) {
     if (!moves_) return *renderer_;
+    if (animator_) {
+      const std::vector<size_t> changed = animator_->pose(*posed_, double(frame) / o_.fps);
+      std::vector<Renderer::PartMove> parts;
+      bool lights = false;
+      for (const size_t i : changed) {
+        if (part_of_[i] >= 0) parts.push_back({size_t(part_of_[i]), animator_->last_displacement(i)});
+        lights = lights || posed_->movers[animator_->moving()[i]].light >= 0;
+      }
+      renderer_->move(parts, lights, o_.moved_record_tolerance);
+      return *renderer_;
+    }
     renderer_.reset();  // before the scene it renders from
     posed_ = std::make_unique<Scene>(
         load_scene(o_.render, ScenePose{path_.moves_scene_animation, double(frame) / o_.fps}));
@@ -76,6 +107,8 @@ class FrameRenderers {
   const Scene& scene_;
   const CameraPath& path_;
   const bool moves_;
+  std::optional<SceneAnimator> animator_;  // records kept through a moving scene
+  std::vector<long> part_of_;              // each moving mover's part of the renderer's BVH (-1: a light alone)
   std::unique_ptr<Scene> posed_;
   std::unique_ptr<Renderer> renderer_;
 };
@@ -164,6 +197,10 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   WalkthroughResult result;
   const Scene scene = load_scene(o.render);
   const CameraPath path = choose_path(o, scene);
+  if (path.moves_scene_animation >= 0 && (!o.render.cache_in.empty() || !o.render.cache_out.empty()))
+    throw Error("--cache-in and --cache-out: " + scene.source + " moves (animations[" +
+                std::to_string(path.moves_scene_animation) +
+                "]); a cache file holds the records of a scene that stands still (not yet the time they were made at)");
   const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
   const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
   if (first < 0 || last < first) throw Error("--first-frame and --last-frame: an empty or negative range");

@@ -44,6 +44,9 @@ struct WalkthroughRequest {
   // Render only the frames whose outputs are not all there (a rerun or a requeue of a stopped task); the frames must
   // not depend on each other (CacheMode::fixed or per_frame).
   bool skip_existing = false;
+  // Records kept through a moving scene (issue 62): a move drops the kept records whose light it may have changed by
+  // more than this fraction (render/kept_records.h moved_record_change); they are placed again.
+  double moved_record_tolerance = 0.01;
   std::string stats_path;  // a CSV row a frame, rewritten after each frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
 };
