@@ -49,7 +49,7 @@ struct SweptBox {
   float displacement = INFINITY;
 };
 
-// A bound on how much of a record's light one move may change, as a fraction of it (docs/ALGORITHM.md section 13).
+// A bound on how much of a record's light one move may change, as a fraction of it (docs/ALGORITHM.md section 14).
 // Seen from the record, the part fills at most its bounding sphere (radius r, distance d, angular radius a, at angle
 // theta from the normal), a share sin^2(a) cos(max(theta - a, 0)) of the cosine-weighted hemisphere (0 below the
 // horizon). A move by delta changes only the directions within delta / d of the part's outline, a band of share at

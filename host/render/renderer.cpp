@@ -171,11 +171,25 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     for (const PartMove& m : moved_parts) moved.push_back(moving_parts_[m.part]);
     device_scene_->move(gpu_, scene_, moving_bvh_ ? &moving_bvh_->tree() : nullptr, rows, moved);
   }
-  // Photons, clusters and the glass caustic map saw the scene as it was: made again when a frame asks for them.
-  light_ = std::make_unique<ViewIndependentLight>();
-  if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
+  // Photons, clusters and the glass caustic map saw the scene as it was. A photon map is a density blurred over its
+  // gather radius: a part that has moved less than that radius since the photons were shot changes its estimate by
+  // less than the blur does, so the map is kept until the moves add up to the radius (the caustic map's radius, where
+  // there is one, the same); a light that moves makes it again at once. The light guide only steers samples and goes
+  // with the map. Made again, each is shot when a frame next asks for it.
+  double largest = 0.0;
+  for (const PartMove& m : moved_parts) largest = std::max(largest, m.displacement);
+  moved_since_photons_ += largest;
+  const bool has_maps = light_->photon_map || light_->caustic_map;
+  double radius = has_maps ? INFINITY : 0.0;
+  if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
+  if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
+  if (lights_moved || moved_since_photons_ > radius) {
+    light_ = std::make_unique<ViewIndependentLight>();
+    moved_since_photons_ = 0.0;
+    if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
+    if (kept_records_) kept_records_->light = KeptLight{};
+  }
   if (!kept_records_) return 0;
-  kept_records_->light = KeptLight{};
   size_t dropped = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
     std::vector<SweptBox> swept;

@@ -54,12 +54,12 @@ class Renderer {
   RenderedImage render(const RenderSettings& request) { return render(plan(request)); }
 
   // The scene (the one given at construction, changed in place) moved: the listed parts (indices into moving_parts)
-  // and, where lights_moved, its lights. Refits the moved parts' BVH and writes what they changed to the device; the
+  // and, where lights_moved, its lights. Refits the moved parts' BVH and writes what they changed to the device. The
   // light that depends on where things are (photon map, caustic map, light guide, glass caustic map) is made again
-  // for the next frame. The next frame's statistics count the work (bvh_build_s, upload_s).
-  // Kept records (RenderSettings::keep_records) whose light the move may have changed by more than
-  // record_tolerance of itself are dropped, so that the next frame places them again (KeptRecords::drop_moved); a
-  // light that moved drops them all. Returns how many were dropped.
+  // once the moves since it was made add up to the photon map's gather radius, or at once where a light moved. Kept
+  // records (RenderSettings::keep_records) whose light the moves may have changed by more than record_tolerance of
+  // itself are dropped, so that the next frame places them again (KeptRecords::drop_moved); a light that moves drops
+  // them all. The next frame's statistics count the work (bvh_build_s, upload_s). Returns the records dropped.
   struct PartMove {
     size_t part;          // index into moving_parts
     double displacement;  // how far any of its points moved, world units
@@ -90,6 +90,7 @@ class Renderer {
   SceneStats scene_stats_;  // what every frame reports of the scene; its times (setup_) only the first frame
   std::vector<TriangleRange> moving_parts_;
   std::unique_ptr<MovingBvh> moving_bvh_;  // with moving parts
+  double moved_since_photons_ = 0.0;       // world units the parts have moved since the photons were shot (move())
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;
