@@ -18,6 +18,7 @@
 #include "image/image_io.h"
 #include "passes/ray_cast_pass.h"
 #include "render/camera.h"
+#include "cache/cache_settings.h"
 #include "render/kept_records.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_animator.h"
@@ -238,10 +239,23 @@ CacheRecord record_at(glm::vec3 position, glm::vec3 normal, float radius) {
   return r;
 }
 
-// A move drops the records it may have changed by more than the tolerance, summed over the moves since each was made,
-// and keeps the rest as they were, byte for byte. Planted once: the sum not kept (each move judged alone) kept the
-// far record through every move and failed.
-TEST(KeptRecords, AMoveDropsTheRecordsThatSeeItAndKeepsTheRestBitForBit) {
+// A view that sees everything: the camera at z = 10 looking down -z with a wide field of view.
+CameraParams wide_view() {
+  CameraParams c{};
+  c.eye[2] = 10.0f;
+  c.forward[2] = -1.0f;
+  c.right[0] = 1.0f;
+  c.up[1] = 1.0f;
+  c.tan_half_fov_y = 4.0f;
+  c.aspect = 1.0f;
+  c.width = c.height = 64;
+  return c;
+}
+
+// A move marks the records it may have changed by more than the tolerance, summed over the moves since each was made;
+// a view takes the marked ones apart (to be computed again) and the rest as they were, byte for byte. Planted once:
+// the sum not kept (each move judged alone) never marked the far record and failed.
+TEST(KeptRecords, AMoveMarksTheRecordsThatSeeItAndKeepsTheRestBitForBit) {
   KeptRecords kept(100);
   kept.begin_frame(KeptRecordsKey{});
   const std::vector<CacheRecord> records = {
@@ -252,23 +266,28 @@ TEST(KeptRecords, AMoveDropsTheRecordsThatSeeItAndKeepsTheRestBitForBit) {
   kept.add(records.data(), records.size());
   const SweptBox move{{-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 0.05f};
   // The far record: radius sqrt(3)/2 at distance 20, band 4 (r/d)(delta/d) = 4 * 0.0433 * 0.0025 = 4.3e-4 a move.
-  const double far_share = moved_record_change(records[1], move);
-  EXPECT_NEAR(far_share, 4.0 * (std::sqrt(0.75) / 20.0) * (0.05 / 20.0), 1e-6);
+  EXPECT_NEAR(moved_record_change(records[1], move), 4.0 * (std::sqrt(0.75) / 20.0) * (0.05 / 20.0), 1e-6);
   EXPECT_EQ(moved_record_change(records[0], move), 1.0);
   EXPECT_EQ(moved_record_change(records[2], move), 0.0);
-  EXPECT_EQ(kept.drop_moved({move}, 1e-3), 1u) << "the record beside the box goes";
-  ASSERT_EQ(kept.size(), 2u);
-  EXPECT_EQ(std::memcmp(&kept.records()[0], &records[1], sizeof(CacheRecord)), 0);
-  EXPECT_EQ(std::memcmp(&kept.records()[1], &records[2], sizeof(CacheRecord)), 0);
-  EXPECT_EQ(kept.drop_moved({move}, 1e-3), 0u) << "two moves: 8.7e-4, below the tolerance";
-  EXPECT_EQ(kept.drop_moved({move}, 1e-3), 1u) << "three moves: 1.3e-3, past it";
-  ASSERT_EQ(kept.size(), 1u);
-  EXPECT_EQ(std::memcmp(&kept.records()[0], &records[2], sizeof(CacheRecord)), 0);
+  EXPECT_EQ(kept.mark_moved({move}, 1e-3), 1u) << "the record beside the box";
+  EXPECT_EQ(kept.mark_moved({move}, 1e-3), 0u) << "two moves: 8.7e-4, below the tolerance";
+  EXPECT_EQ(kept.mark_moved({move}, 1e-3), 1u) << "three moves: 1.3e-3, past it";
+  ASSERT_EQ(kept.size(), 3u) << "marked records wait for a view";
   kept.begin_frame(KeptRecordsKey{});
+  std::vector<CacheRecord> moved;
+  const std::vector<CacheRecord> taken = kept.for_view(wide_view(), CacheSettings{}, nullptr, &moved);
+  ASSERT_EQ(taken.size(), 1u);
+  EXPECT_EQ(std::memcmp(&taken[0], &records[2], sizeof(CacheRecord)), 0);
+  ASSERT_EQ(moved.size(), 2u);
+  EXPECT_EQ(std::memcmp(&moved[0], &records[0], sizeof(CacheRecord)), 0);
+  EXPECT_EQ(std::memcmp(&moved[1], &records[1], sizeof(CacheRecord)), 0);
   EXPECT_EQ(kept.stats().moved, 2u);
+  EXPECT_EQ(kept.size(), 1u) << "the frame adds what it computes in their place";
   // A light that moves changes every record's light.
-  EXPECT_EQ(kept.drop_moved_all(), 1u);
-  EXPECT_EQ(kept.size(), 0u);
+  EXPECT_EQ(kept.mark_all_moved(), 1u);
+  kept.begin_frame(KeptRecordsKey{});
+  EXPECT_TRUE(kept.for_view(wide_view(), CacheSettings{}, nullptr, &moved).empty());
+  EXPECT_EQ(moved.size(), 1u);
 }
 
 // The BVH of moving parts (a top level over the still triangles' tree and each part's own) finds the hits one tree
@@ -293,9 +312,11 @@ std::vector<float> indirect_of(const std::string& path) {
 // The quad jumps 1.2 to the right (and turns) at t = 1 s; frames 0 to 2 at 2 frames/s, so frame 2 sees it moved.
 // Records kept through the jump against a cache placed anew in each frame (--cache-per-frame, the scene loaded again
 // in its pose), at frame 2, over the pixels whose indirect light the jump changed by more than a quarter in the fresh
-// caches: the kept records' indirect light is the fresh cache's within 3% on the mean. Before the jump, when nothing
-// had moved, the same bits. Planted once: no record dropped by the move (tolerance 1: frame 0's records kept) left
-// the quad's light where it was, 6.9 times the fresh cache's there.
+// caches: the kept records' indirect light is the fresh cache's within 6% on the mean. The two differ by layout, not
+// by light: the kept records are computed again where frame 0 placed them, the fresh ones placed for the new scene
+// (3.5% apart here, with 15 records). Before the jump, when nothing had moved, the same bits. Planted once: no record
+// marked by the move (tolerance 1: frame 0's light kept) left the quad's light where it was, 6.9 times the fresh
+// cache's there.
 TEST(MovingScene, RecordsKeptThroughAMoveLeaveNoLightWhereTheMeshWas) {
   const std::string dir = test::scratch_dir();
   WalkthroughRequest o;
@@ -325,7 +346,7 @@ TEST(MovingScene, RecordsKeptThroughAMoveLeaveNoLightWhereTheMeshWas) {
     kept_sum += after[p] + after[p + 1] + after[p + 2];
   }
   ASSERT_GT(ghost_pixels, 40u);
-  EXPECT_NEAR(kept_sum / fresh_sum, 1.0, 0.03) << ghost_pixels << " pixels the jump changed";
+  EXPECT_NEAR(kept_sum / fresh_sum, 1.0, 0.06) << ghost_pixels << " pixels the jump changed";
 }
 
 }  // namespace

@@ -20,6 +20,7 @@ nlohmann::json kept_json(const KeptRecordsStats& k, uint64_t records) {
           {"reused", k.reused},
           {"added", kept ? k.added : records},
           {"evicted", k.evicted},
+          {"moved", k.moved},
           {"kept", k.kept}};
 }
 

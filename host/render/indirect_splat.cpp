@@ -1,6 +1,9 @@
 // Radiance cache splatting (Gautron et al. 2005) as the paper's algorithm box: place records coarse to fine where no
 // record reaches, compute each level's records as one batch, clamp radii against neighbours, splat, and finally
 // normalise and compose.
+#include <algorithm>
+#include <glm/glm.hpp>
+
 #include "passes/record_pass.h"
 #include "passes/splat_pass.h"
 #include "render/device_record_index.h"
@@ -27,6 +30,37 @@ RecordPass& frame_record_pass(IndirectFrame& f, const CacheSettings& cache, bool
   return records;
 }
 
+namespace {
+
+// The G-buffer pixels (of `camera`, device coordinates) the records' positions project to, each once: where a record a
+// move marked is computed again.
+std::vector<cl_uint> pixels_seeing(const CameraParams& camera, const std::vector<CacheRecord>& records) {
+  std::vector<cl_uint> pixels;
+  const glm::vec3 eye(camera.eye[0], camera.eye[1], camera.eye[2]), right(camera.right[0], camera.right[1], camera.right[2]),
+      up(camera.up[0], camera.up[1], camera.up[2]), forward(camera.forward[0], camera.forward[1], camera.forward[2]);
+  for (const CacheRecord& r : records) {
+    const glm::vec3 d = glm::vec3(r.position[0], r.position[1], r.position[2]) - eye;
+    const float z = glm::dot(d, forward);
+    float sx, sy;
+    if (camera.orthographic) {
+      sx = glm::dot(d, right) / (camera.half_height * camera.aspect);
+      sy = glm::dot(d, up) / camera.half_height;
+    } else {
+      if (!(z > 0.0f)) continue;
+      sx = glm::dot(d, right) / (z * camera.tan_half_fov_y * camera.aspect);
+      sy = glm::dot(d, up) / (z * camera.tan_half_fov_y);
+    }
+    const float x = 0.5f * (sx + 1.0f) * float(camera.width), y = 0.5f * (1.0f - sy) * float(camera.height);
+    if (!(x >= 0.0f && x < float(camera.width) && y >= 0.0f && y < float(camera.height))) continue;
+    pixels.push_back(cl_uint(int(y) * camera.width + int(x)));
+  }
+  std::sort(pixels.begin(), pixels.end());
+  pixels.erase(std::unique(pixels.begin(), pixels.end()), pixels.end());
+  return pixels;
+}
+
+}  // namespace
+
 void splat_indirect(IndirectFrame& f) {
   const CacheSettings& cs = f.settings.cache;
   RenderedImage& img = f.image;
@@ -42,16 +76,36 @@ void splat_indirect(IndirectFrame& f) {
   SplatPass& splat = f.passes.splat.get({}, [&] { return std::make_unique<SplatPass>(f.gpu); });
   builds.stop();
 
-  // Records kept from earlier frames (a walkthrough): those this view may see, fitted to it and seated first.
-  uint32_t kept = 0;
+  // Records kept from earlier frames (a walkthrough): those this view may see, fitted to it and seated first. Those a
+  // move marked (scene/scene_animator.h, KeptRecords::mark_moved) are computed again where they stand, seen from the
+  // pixel they project to, before placement: the cache keeps its layout, so a move changes the light and not where
+  // the records are (placing them anew moved their pattern from frame to frame: flicker).
+  uint32_t kept = 0, recomputed = 0;
   if (f.kept_records) {
-    StageTimer timing(st.irradiance.placement_s);
-    const std::vector<CacheRecord> reused = f.kept_records->for_view(*f.camera, cs);
-    kept = uint32_t(reused.size());
-    records.load(reused);
-    index.seat_kept(records, kept, cs);
+    std::vector<CacheRecord> moved;
+    {
+      StageTimer timing(st.irradiance.placement_s);
+      const std::vector<CacheRecord> reused = f.kept_records->for_view(*f.camera, cs, nullptr, &moved);
+      kept = uint32_t(reused.size());
+      records.load(reused);
+      index.seat_kept(records, kept, cs);
+    }
+    const std::vector<cl_uint> pixels = pixels_seeing(*f.camera, moved);
+    if (!pixels.empty()) {
+      recomputed = uint32_t(pixels.size());
+      const cl::Buffer candidates = f.gpu.upload(pixels, CL_MEM_READ_ONLY, "records");
+      {
+        StageTimer timing(st.irradiance.records_s);
+        records.compute(gbuffer, candidates, recomputed, kept,
+                        hemisphere_params(cs, f.settings.seed, coarsest_placement_spacing(cs)));
+      }
+      StageTimer timing(st.irradiance.placement_s);
+      index.add_records(records, kept, recomputed);
+      index.clamp_neighbours(records, kept + recomputed, kept, true);
+    }
   }
-  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance, {}, "irradiance cache", kept);
+  uint32_t total = place_records(index, records, gbuffer, cs, f.settings.seed, st.irradiance, {}, "irradiance cache",
+                                 kept + recomputed);
   {
     // One splat of every record with its final radius, at the frame's fixed-point scale.
     StageTimer timing(st.irradiance.splat_s);

@@ -63,15 +63,16 @@ bool KeptRecords::begin_frame(const KeptRecordsKey& key) {
   ++frame_;
   stats_ = KeptRecordsStats{};
   stats_.capacity = capacity_;
-  stats_.moved = dropped ? 0 : moved_since_frame_;
-  moved_since_frame_ = 0;
   return dropped;
 }
 
 std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const CacheSettings& cache,
-                                               std::vector<float>* payload) {
+                                               std::vector<float>* payload, std::vector<CacheRecord>* moved) {
   std::vector<CacheRecord> taken;
   if (payload) payload->clear();
+  if (moved) moved->clear();
+  std::vector<char> drop(records_.size(), 0);
+  size_t dropped = 0;
   const double accuracy = double(cache.accuracy), smallest = double(cache.min_reach_pixels);
   for (size_t i = 0; i < records_.size(); ++i) {
     const CacheRecord& r = records_[i];
@@ -80,13 +81,21 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
     // Fitting (kernels/placement.cl) never takes a reach below the view's minimum nor above the kept one.
     const double reach = std::max(accuracy * double(r.radius), 1.01 * smallest * footprint);
     if (!sphere_meets_view(camera, p, reach)) continue;
+    if (std::isinf(moved_change_[i])) {
+      if (moved) moved->push_back(r);
+      drop[i] = 1;
+      ++dropped;
+      continue;
+    }
     taken.push_back(r);
     if (payload)
       payload->insert(payload->end(), payload_.begin() + std::ptrdiff_t(i * payload_per_record_),
                       payload_.begin() + std::ptrdiff_t((i + 1) * payload_per_record_));
     last_used_[i] = frame_;
   }
+  if (dropped) keep_only(drop);
   stats_.reused = taken.size();
+  stats_.moved = dropped;
   return taken;
 }
 
@@ -150,27 +159,24 @@ void KeptRecords::keep_only(const std::vector<char>& drop) {
   payload_.resize(kept * payload_per_record_);
 }
 
-size_t KeptRecords::drop_moved(const std::vector<SweptBox>& moves, double tolerance) {
-  std::vector<char> drop(records_.size(), 0);
+size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance) {
   size_t count = 0;
   for (size_t i = 0; i < records_.size(); ++i) {
+    if (std::isinf(moved_change_[i])) continue;
     double change = double(moved_change_[i]);
     for (const SweptBox& move : moves) change += moved_record_change(records_[i], move);
-    moved_change_[i] = float(change);
-    if (change > tolerance) {
-      drop[i] = 1;
-      ++count;
-    }
+    moved_change_[i] = change > tolerance ? INFINITY : float(change);
+    count += change > tolerance;
   }
-  if (count) keep_only(drop);
-  moved_since_frame_ += count;
   return count;
 }
 
-size_t KeptRecords::drop_moved_all() {
-  const size_t count = records_.size();
-  keep_only(std::vector<char>(count, 1));
-  moved_since_frame_ += count;
+size_t KeptRecords::mark_all_moved() {
+  size_t count = 0;
+  for (float& change : moved_change_) {
+    count += !std::isinf(change);
+    change = INFINITY;
+  }
   return count;
 }
 

@@ -68,9 +68,10 @@ class KeptRecords {
   bool begin_frame(const KeptRecordsKey& key);
   // The kept records whose reach (a times the radius, or the view's minimum reach if larger) may meet the view of
   // `camera` (device coordinates), in the order they were kept; they count as used by this frame. payload (if not
-  // null) gets their payloads in the same order.
+  // null) gets their payloads in the same order. Records marked as moved (mark_moved) that the view may see are not
+  // among them: they go to `moved` (if not null) to be computed again, and are dropped here (stats().moved).
   std::vector<CacheRecord> for_view(const CameraParams& camera, const CacheSettings& cache,
-                                    std::vector<float>* payload = nullptr);
+                                    std::vector<float>* payload = nullptr, std::vector<CacheRecord>* moved = nullptr);
   // Keeps the records this frame placed (device coordinates) with their payloads (`payload_per_record` floats each;
   // the same count every frame while the key stays), then evicts the least recently used past the capacity.
   void add(const CacheRecord* records, size_t count, const float* payload = nullptr, size_t payload_per_record = 0);
@@ -82,11 +83,12 @@ class KeptRecords {
   // pre-pass's key frame starts from no records (sequence/cache_merge.h).
   void drop_records();
   // Parts moved (issue 62): adds each move's bound (moved_record_change) to each record's change since it was made,
-  // and drops, so that the next frame places them again, the records whose sum passes `tolerance`. The next frame's
-  // stats count them (moved).
-  size_t drop_moved(const std::vector<SweptBox>& moves, double tolerance);
+  // and marks the records whose sum passes `tolerance` as moved. A moved record stays where it is until a view takes
+  // it: for_view then hands it out to be computed again in place (and drops it here; the frame adds what it
+  // computes). Returns how many were marked.
+  size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance);
   // A light moved: every record's light may have changed.
-  size_t drop_moved_all();
+  size_t mark_all_moved();
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
   void set_capacity(size_t capacity) { capacity_ = capacity; }
@@ -115,12 +117,12 @@ class KeptRecords {
   uint64_t frame_ = 0;
   std::vector<CacheRecord> records_;
   std::vector<uint64_t> last_used_;  // the last frame whose view took each record
-  std::vector<float> moved_change_;  // the bound on how much moves have changed each record's light (drop_moved)
+  // The bound on how much moves have changed each record's light (mark_moved); infinite: marked as moved.
+  std::vector<float> moved_change_;
   std::vector<float> payload_;       // payload_per_record_ floats a record
   size_t payload_per_record_ = 0;
   float largest_radiance_ = 0.0f;
   KeptRecordsStats stats_;
-  uint64_t moved_since_frame_ = 0;  // drop_moved's records before the next frame begins
   void keep_only(const std::vector<char>& drop);
 };
 

@@ -190,16 +190,16 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     if (kept_records_) kept_records_->light = KeptLight{};
   }
   if (!kept_records_) return 0;
-  size_t dropped = 0;
+  size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
     std::vector<SweptBox> swept;
     for (size_t i = 0; i < rows.swept.size(); ++i)
       swept.push_back({rows.swept[i].first, rows.swept[i].second,
                        float(moved_parts[i].displacement / scene_frame_.scale)});
     // A light that moves changes every record's light (temporal gradients would follow it: not yet).
-    dropped += lights_moved ? records->drop_moved_all() : records->drop_moved(swept, record_tolerance);
+    marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
   }
-  return dropped;
+  return marked;
 }
 
 void Renderer::shoot_glass_caustic_map() {

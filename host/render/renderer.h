@@ -58,8 +58,9 @@ class Renderer {
   // light that depends on where things are (photon map, caustic map, light guide, glass caustic map) is made again
   // once the moves since it was made add up to the photon map's gather radius, or at once where a light moved. Kept
   // records (RenderSettings::keep_records) whose light the moves may have changed by more than record_tolerance of
-  // itself are dropped, so that the next frame places them again (KeptRecords::drop_moved); a light that moves drops
-  // them all. The next frame's statistics count the work (bvh_build_s, upload_s). Returns the records dropped.
+  // itself are marked as moved (KeptRecords::mark_moved; a light that moves marks them all): the next frame that sees
+  // one computes an irradiance record again where it is, and places a radiance record again. The next frame's
+  // statistics count the work (bvh_build_s, upload_s). Returns the records marked.
   struct PartMove {
     size_t part;          // index into moving_parts
     double displacement;  // how far any of its points moved, world units

@@ -9,7 +9,7 @@ const char* const kFrameTableHeader =
     "records_s,placement_s,splat_s,radiance_s,resolve_s,glossy_s,path_s,layers_s,records,records_reused,"
     "records_added,records_evicted,radiance_records,radiance_reused,radiance_added,radiance_evicted,primary_rays,"
     "shadow_rays,record_rays,radiance_rays,glossy_rays,"
-    "path_rays,device_peak_bytes,host_peak_bytes\n";
+    "path_rays,device_peak_bytes,host_peak_bytes,records_moved,radiance_moved\n";
 
 std::string frame_table_row(const FrameRow& r) {
   const RenderStats& s = r.stats;
@@ -24,7 +24,8 @@ std::string frame_table_row(const FrameRow& r) {
       << (kept ? s.kept_radiance_records.added : s.radiance.records) << ',' << s.kept_radiance_records.evicted << ','
       << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
       << s.irradiance.rays << ',' << s.radiance.rays << ',' << s.glossy.rays << ',' << s.path.rays << ','
-      << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << '\n';
+      << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << ',' << k.moved << ','
+      << s.kept_radiance_records.moved << '\n';
   return out.str();
 }
 
