@@ -19,13 +19,7 @@ DeviceScene::DeviceScene(GpuContext& gpu, const Scene& scene, const Bvh8& bvh,
   materials_host_ = p.materials;
   textures_ = gpu.upload(p.textures, CL_MEM_READ_ONLY, "textures");
   texels_ = gpu.upload(p.texels, CL_MEM_READ_ONLY, "textures");
-  lights_ = gpu.upload(p.lights, CL_MEM_READ_ONLY, "lights");
-  emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
-  lights_host_ = p.lights;
-  emitters_host_ = p.emitters;
-  emitter_mean_luminance_ = p.emitter_mean_luminance;
-  counts_.light_count = cl_uint(p.lights.size());
-  counts_.emitter_count = cl_uint(p.emitters.size());
+  upload_lights(gpu, p);
   environment_ = gpu.upload(p.environment.texels, CL_MEM_READ_ONLY, "environment");  // float4 per texel
   environment_cdf_ = gpu.upload(p.environment.cdf, CL_MEM_READ_ONLY, "environment");
   counts_.environment_width = p.environment.width;
@@ -67,6 +61,10 @@ void DeviceScene::move(GpuContext& gpu, const Scene& scene, const Bvh8* bvh, con
                                      p.tangents.data() + r.first * 12);
   }
   // Lights and emitters are few: written whole (an emitter's place in the power-proportional table may change).
+  upload_lights(gpu, p);
+}
+
+void DeviceScene::upload_lights(GpuContext& gpu, const PackedScene& p) {
   lights_ = gpu.upload(p.lights, CL_MEM_READ_ONLY, "lights");
   emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
   lights_host_ = p.lights;

@@ -69,6 +69,9 @@ class DeviceScene {
   bool environment_present() const { return counts_.environment_width > 0; }
 
  private:
+  // The punctual lights and emissive triangles, with their host copies and counts.
+  void upload_lights(GpuContext& gpu, const PackedScene& p);
+
   DeviceBvh bvh_;
   cl::Buffer triangles_, tangents_, materials_, textures_, texels_, lights_, emitters_, environment_, environment_cdf_;
   SceneCounts counts_{};

@@ -82,7 +82,7 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
     const double reach = std::max(accuracy * double(r.radius), 1.01 * smallest * footprint);
     if (!sphere_meets_view(camera, p, reach)) continue;
     if (std::isinf(moved_change_[i])) {
-      if (moved) moved->push_back(r);
+      if (moved && moved_change_[i] > 0.0f) moved->push_back(r);
       drop[i] = 1;
       ++dropped;
       continue;
@@ -164,9 +164,15 @@ size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolera
   for (size_t i = 0; i < records_.size(); ++i) {
     if (std::isinf(moved_change_[i])) continue;
     double change = double(moved_change_[i]);
-    for (const SweptBox& move : moves) change += moved_record_change(records_[i], move);
-    moved_change_[i] = change > tolerance ? INFINITY : float(change);
-    count += change > tolerance;
+    bool beside = false;
+    for (const SweptBox& move : moves) {
+      beside = beside || record_beside_move(records_[i], move);
+      change += moved_record_change(records_[i], move);
+    }
+    // Beside a moving part, what the record stands on and what hides it changed: it goes, and placement puts records
+    // where the view now needs them. Farther off only its light changed: it is computed again where it stands.
+    moved_change_[i] = beside ? -INFINITY : change > tolerance ? INFINITY : float(change);
+    count += beside || change > tolerance;
   }
   return count;
 }
@@ -180,17 +186,23 @@ size_t KeptRecords::mark_all_moved() {
   return count;
 }
 
+bool record_beside_move(const CacheRecord& record, const SweptBox& swept) {
+  const glm::dvec3 lo(swept.lo), hi(swept.hi);
+  return glm::length(0.5 * (lo + hi) - load(record.position)) <= 0.5 * glm::length(hi - lo) + double(record.radius);
+}
+
 double moved_record_change(const CacheRecord& record, const SweptBox& swept) {
+  if (record_beside_move(record, swept)) return 1.0;
   const glm::dvec3 lo(swept.lo), hi(swept.hi);
   const glm::dvec3 centre = 0.5 * (lo + hi), p = load(record.position), n = load(record.normal);
   const double radius = 0.5 * glm::length(hi - lo);
   const glm::dvec3 to = centre - p;
   const double d = glm::length(to);
-  if (d <= radius + double(record.radius)) return 1.0;
   const double sin_a = radius / d, a = std::asin(sin_a);
   const double theta = std::acos(std::clamp(glm::dot(n, to) / (d * std::max(glm::length(n), 1e-30)), -1.0, 1.0));
   if (theta - a >= 0.5 * M_PI) return 0.0;  // wholly below the horizon
-  const double band = 4.0 * sin_a * double(swept.displacement) / d;  // infinite displacement: the whole sphere
+  // Two discs of angular radius a whose centres are delta / d apart differ by about 4 a (delta / d) of the sphere.
+  const double band = 4.0 / M_PI * sin_a * double(swept.displacement) / d;  // infinite displacement: the whole sphere
   return std::min(sin_a * sin_a, band) * std::cos(std::max(theta - a, 0.0));
 }
 

@@ -52,11 +52,14 @@ struct SweptBox {
 // A bound on how much of a record's light one move may change, as a fraction of it (docs/ALGORITHM.md section 14).
 // Seen from the record, the part fills at most its bounding sphere (radius r, distance d, angular radius a, at angle
 // theta from the normal), a share sin^2(a) cos(max(theta - a, 0)) of the cosine-weighted hemisphere (0 below the
-// horizon). A move by delta changes only the directions within delta / d of the part's outline, a band of share at
-// most 4 (r / d)(delta / d) cos(...): the smaller of the two bounds. The light seen there before and after differs by
+// horizon). A move by delta shifts the sphere's outline by at most delta / d, and two discs of angular radius a that
+// far apart differ by about 4 a (delta / d) of the sphere: a share of at most (4 / pi)(r / d)(delta / d) cos(...).
+// The bound is the smaller of the two. The light seen there before and after differs by
 // the scene's contrast, which this leaves to the tolerance. A record whose sphere of validity (radius R) reaches the
 // part's sphere counts 1: it stands on, under or beside it.
 double moved_record_change(const CacheRecord& record, const SweptBox& swept);
+// Whether the record's sphere of validity reaches the sphere around the move's box (moved_record_change counts 1).
+bool record_beside_move(const CacheRecord& record, const SweptBox& swept);
 
 // Records of one kind (irradiance or radiance) kept across frames. A radiance record carries its HSH coefficients
 // beside it (`payload` floats a record, kernels/hsh_records.cl's layout), kept, taken and evicted with it.
@@ -85,7 +88,8 @@ class KeptRecords {
   // Parts moved (issue 62): adds each move's bound (moved_record_change) to each record's change since it was made,
   // and marks the records whose sum passes `tolerance` as moved. A moved record stays where it is until a view takes
   // it: for_view then hands it out to be computed again in place (and drops it here; the frame adds what it
-  // computes). Returns how many were marked.
+  // computes). A record beside a moving part (record_beside_move) is marked to go instead: for_view drops it, and
+  // placement puts records where the view needs them. Returns how many were marked.
   size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance);
   // A light moved: every record's light may have changed.
   size_t mark_all_moved();
@@ -117,7 +121,8 @@ class KeptRecords {
   uint64_t frame_ = 0;
   std::vector<CacheRecord> records_;
   std::vector<uint64_t> last_used_;  // the last frame whose view took each record
-  // The bound on how much moves have changed each record's light (mark_moved); infinite: marked as moved.
+  // The bound on how much moves have changed each record's light (mark_moved); +infinity: marked to be computed
+  // again, -infinity: marked to go.
   std::vector<float> moved_change_;
   std::vector<float> payload_;       // payload_per_record_ floats a record
   size_t payload_per_record_ = 0;

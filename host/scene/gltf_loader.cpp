@@ -1133,6 +1133,17 @@ class GltfReader {
     return track;
   }
 
+  // A link of a camera's or a mover's chain: node n at rest (read_animations gives it its channels).
+  RigNode rig_node(int n) const {
+    const tinygltf::Node& node = model_.nodes[size_t(n)];
+    RigNode r;
+    r.label = node_label(model_, n);
+    r.has_matrix = node.matrix.size() == 16;
+    r.matrix = local_matrix(node);
+    r.rest = rest_trs(node);
+    return r;
+  }
+
   // In read_animations' map of where each node sits in a rig, a mover's rig is numbered from here on.
   static constexpr size_t kMoverRig = size_t(1) << 40;
 
@@ -1181,14 +1192,8 @@ class GltfReader {
              " nodes in all (each one's chain of nodes up to its scene root counted)");
       std::reverse(chain.begin(), chain.end());
       for (int n : chain) {
-        const tinygltf::Node& link = model_.nodes[size_t(n)];
-        RigNode r;
-        r.label = node_label(model_, n);
-        r.has_matrix = link.matrix.size() == 16;
-        r.matrix = local_matrix(link);
-        r.rest = rest_trs(link);
         in_rigs[size_t(n)].push_back({kMoverRig + index, mover.rig.chain.size()});
-        mover.rig.chain.push_back(r);
+        mover.rig.chain.push_back(rig_node(n));
       }
       scene_.movers.push_back(std::move(mover));
     }
@@ -1231,14 +1236,8 @@ class GltfReader {
       std::reverse(chain.begin(), chain.end());
       NodeRig rig;
       for (int n : chain) {
-        const tinygltf::Node& node = model_.nodes[size_t(n)];
-        RigNode r;
-        r.label = node_label(model_, n);
-        r.has_matrix = node.matrix.size() == 16;
-        r.matrix = local_matrix(node);
-        r.rest = rest_trs(node);
         in_rigs[size_t(n)].push_back({scene_.camera_rigs.size(), rig.chain.size()});
-        rig.chain.push_back(r);
+        rig.chain.push_back(rig_node(n));
       }
       scene_.camera_rigs.push_back(std::move(rig));
     }
