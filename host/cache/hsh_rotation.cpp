@@ -12,7 +12,6 @@
 namespace rcsplat {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // All n^2 basis functions at a direction (x, y, z), z = cos(theta).
 void basis_at(int order, double x, double y, double z, std::vector<double>& out) {
@@ -60,7 +59,7 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
   nodes.clear();
   weights.clear();
   for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
+    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 1.0;
     for (int it = 0; it < 100; ++it) {
       double p0 = 1.0, p1 = x;
       for (int k = 2; k <= n; ++k) {
@@ -80,14 +79,14 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
 
 HemisphereQuadrature hemisphere_quadrature(int psi_nodes, int phi_steps) {
   std::vector<double> psi, w_psi;
-  gauss_legendre(psi_nodes, 0.0, kPi / 2.0, psi, w_psi);
+  gauss_legendre(psi_nodes, 0.0, std::numbers::pi / 2.0, psi, w_psi);
   HemisphereQuadrature q;
   for (size_t i = 0; i < psi.size(); ++i) {
     double c = std::sin(psi[i]) * std::sin(psi[i]), s = std::sqrt(1.0 - c * c);
     // d omega = d cos(theta) d phi = 2 sin(psi) cos(psi) d psi d phi
-    double weight = w_psi[i] * 2.0 * std::sin(psi[i]) * std::cos(psi[i]) * (2.0 * kPi / phi_steps);
+    double weight = w_psi[i] * 2.0 * std::sin(psi[i]) * std::cos(psi[i]) * (2.0 * std::numbers::pi / phi_steps);
     for (int j = 0; j < phi_steps; ++j) {
-      double phi = 2.0 * kPi * (j + 0.5) / phi_steps;
+      double phi = 2.0 * std::numbers::pi * (j + 0.5) / phi_steps;
       q.x.push_back(s * std::cos(phi));
       q.y.push_back(s * std::sin(phi));
       q.z.push_back(c);
@@ -100,7 +99,7 @@ HemisphereQuadrature hemisphere_quadrature(int psi_nodes, int phi_steps) {
 double hsh_basis_double(int l, int m, double cos_theta, double phi) {
   int am = std::abs(m);
   double x = std::clamp(2.0 * cos_theta - 1.0, -1.0, 1.0);
-  double k = std::sqrt((2.0 * l + 1.0) / (2.0 * kPi) * std::exp(std::lgamma(l - am + 1.0) - std::lgamma(l + am + 1.0)));
+  double k = std::sqrt((2.0 * l + 1.0) / (2.0 * std::numbers::pi) * std::exp(std::lgamma(l - am + 1.0) - std::lgamma(l + am + 1.0)));
   double p = std::assoc_legendre(unsigned(l), unsigned(am), x);  // no Condon-Shortley phase, as kernels/hsh.h
   if (m == 0) return k * p;
   return std::sqrt(2.0) * k * p * (m > 0 ? std::cos(m * phi) : std::sin(am * phi));

@@ -1,5 +1,7 @@
 #include "cl/device_bvh.h"
 
+#include <algorithm>
+
 namespace rcsplat {
 
 DeviceBvh::DeviceBvh(GpuContext& gpu, const Bvh8& bvh)
@@ -16,7 +18,9 @@ void DeviceBvh::write_rows(GpuContext& gpu, const Bvh8& bvh, const MovingBvh::Ch
                                      r.count * sizeof(TriangleBlock8), bvh.blocks.data() + r.first);
 }
 
-std::string bvh_stack_switch(int stack_size) { return std::to_string((stack_size + 15) / 16 * 16); }
+// At least 32: trees of one to three levels (small scenes, and a small scene's moving parts under their top level)
+// then share one program instead of compiling two; the stack's size changes no result.
+std::string bvh_stack_switch(int stack_size) { return std::to_string(std::max((stack_size + 15) / 16 * 16, 32)); }
 
 void DeviceBvh::add_defines(KernelDefines& defines) const {
   defines["BVH_STACK_SIZE"] = bvh_stack_switch(stack_size_);

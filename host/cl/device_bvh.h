@@ -9,7 +9,7 @@
 namespace rcsplat {
 
 // BVH_STACK_SIZE for a tree whose traversal needs stack_size entries (Bvh8::stack_size), rounded up to a multiple of 16
-// so that scenes of similar depth share one compiled program.
+// and at least 32, so that scenes of similar depth share one compiled program.
 std::string bvh_stack_switch(int stack_size);
 
 class DeviceBvh {

@@ -15,7 +15,6 @@
 namespace rcsplat {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 using Vec3 = std::array<double, 3>;
 
@@ -97,7 +96,7 @@ struct CsfTerm {
 
 Plane csf_filter(const Plane& channel, const std::vector<CsfTerm>& terms, double ppd) {
   const double widest = 0.04;  // the largest b of all three channels sets everyone's support, as in the paper
-  const int radius = int(std::ceil(3.0 * std::sqrt(widest / (2.0 * kPi * kPi)) * ppd));
+  const int radius = int(std::ceil(3.0 * std::sqrt(widest / (2.0 * std::numbers::pi * std::numbers::pi)) * ppd));
   double total = 0.0;
   std::vector<std::vector<double>> gaussians;
   std::vector<double> weights;
@@ -106,10 +105,10 @@ Plane csf_filter(const Plane& channel, const std::vector<CsfTerm>& terms, double
     double sum = 0.0;
     for (int i = -radius; i <= radius; ++i) {
       const double x = double(i) / ppd;
-      g[size_t(i + radius)] = std::exp(-kPi * kPi * x * x / t.b);
+      g[size_t(i + radius)] = std::exp(-std::numbers::pi * std::numbers::pi * x * x / t.b);
       sum += g[size_t(i + radius)];
     }
-    const double w = t.a * std::sqrt(kPi / t.b);
+    const double w = t.a * std::sqrt(std::numbers::pi / t.b);
     total += w * sum * sum;  // the 2-D kernel's sum: the product of its two 1-D sums
     gaussians.push_back(std::move(g));
     weights.push_back(w);

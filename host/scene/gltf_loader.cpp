@@ -1157,10 +1157,16 @@ class GltfReader {
       for (const tinygltf::AnimationChannel& channel : anim.channels)
         if (channel.target_node >= 0 && size_t(channel.target_node) < nodes && channel.target_path != "weights")
           targeted[size_t(channel.target_node)] = 1;
+    // Whether a channel moves the node or one above it, each node's answer kept: every chain is walked once, however
+    // many skins' joints share it.
+    std::vector<signed char> moved_chain(nodes, -1);
     auto chain_targeted = [&](int n) {
-      for (; n >= 0; n = parent[size_t(n)])
-        if (targeted[size_t(n)]) return true;
-      return false;
+      std::vector<int> walked;
+      int up = n;
+      for (; up >= 0 && moved_chain[size_t(up)] < 0 && !targeted[size_t(up)]; up = parent[size_t(up)]) walked.push_back(up);
+      const signed char answer = up < 0 ? 0 : targeted[size_t(up)] ? 1 : moved_chain[size_t(up)];
+      for (int w : walked) moved_chain[size_t(w)] = answer;
+      return answer == 1;
     };
     skinned_by_.assign(nodes, {});
     for (const NodeContent& c : content_) {
@@ -1178,12 +1184,17 @@ class GltfReader {
       mover.first_triangle = c.first_triangle;
       mover.triangle_count = c.triangle_count;
       mover.light = c.light;
-      // The joints' chains: a channel on any of their nodes deforms the mesh (read_animations notes which).
+      // The joints' chains: a channel on any of their nodes deforms the mesh (read_animations notes which). Bounded
+      // with the rigs' nodes: many skins of many joints under a deep chain must not make the loader walk their product.
       for (int j : joints)
-        for (int n = j; n >= 0 && size_t(n) < nodes; n = parent[size_t(n)])
-          if (std::find(skinned_by_[size_t(n)].begin(), skinned_by_[size_t(n)].end(), index) ==
-              skinned_by_[size_t(n)].end())
-            skinned_by_[size_t(n)].push_back(index);
+        for (int n = j; n >= 0 && size_t(n) < nodes; n = parent[size_t(n)]) {
+          if (++rig_nodes > max_rig_nodes)
+            fail("its moving skins' joints and the cameras and moving meshes and lights sit under more than " +
+                 std::to_string(max_rig_nodes) + " nodes in all (each one's chain of nodes up to its scene root "
+                 "counted)");
+          std::vector<size_t>& movers = skinned_by_[size_t(n)];
+          if (movers.empty() || movers.back() != index) movers.push_back(index);
+        }
       std::vector<int> chain;
       for (int n = c.node; n >= 0; n = parent[size_t(n)]) chain.push_back(n);
       rig_nodes += chain.size();
