@@ -25,6 +25,9 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # these are the kernel-numerics suites in files shared with host-side ones.
 kernel_numerics='HardCases.*:SubPixelSides/LayerPassTest.*:Bench.*:PhotonMap.EstimatesMatchADoublePrecisionSumOverTheDisc'
 kernel_numerics+=':PhotonMap.EstimatesWithTheSceneSurface*'
+# Walkthroughs of a moving scene (tests/moving_scene_test.cpp): kernels mostly; the moving BVH's refit, the animator and
+# the records' marks run here through MovingBvh, SceneAnimator and KeptRecords.
+kernel_numerics+=':MovingScene.*'
 # Open Image Denoise is not instrumented either (a prebuilt library with TBB's threads): its suite runs in the plain run.
 kernel_numerics+=':OpenImageDenoise.*'
 if [ "${1:-}" = "--all" ]; then
