@@ -7,12 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <regex>
 #include <semaphore>
 #include <set>
 #include <thread>
 #include <sstream>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "cl/embedded_kernels.h"
@@ -347,22 +350,60 @@ std::map<std::string, double> GpuContext::program_seconds_by_file() const {
   return program_seconds_by_file_;
 }
 
+namespace {
+
+// An exclusive lock on a file beside a cache entry, held while one process compiles it: processes that start
+// together (a test suite's shards, a farm's tasks on one node sharing a kernel cache) each wait for the first's
+// binary instead of compiling the same program side by side. The kernel drops a dead holder's lock. A lock that
+// cannot be taken (a read-only cache) is no lock: the build goes on without it.
+class CacheEntryLock {
+ public:
+  explicit CacheEntryLock(const fs::path& entry) {
+    if (entry.empty()) return;
+    std::error_code made;
+    fs::create_directories(entry.parent_path(), made);
+    fd_ = ::open((entry.string() + ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ >= 0 && ::flock(fd_, LOCK_EX) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+    }
+  }
+  ~CacheEntryLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock; the file stays for the next process
+  }
+  CacheEntryLock(const CacheEntryLock&) = delete;
+  CacheEntryLock& operator=(const CacheEntryLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace
+
+std::shared_ptr<cl::Program> GpuContext::load_cached(const fs::path& cache_file, const std::string& options) {
+  if (cache_file.empty() || !fs::exists(cache_file)) return nullptr;
+  std::ifstream in(cache_file, std::ios::binary);
+  std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  try {
+    cl::Program::Binaries binaries{binary};
+    auto program = std::make_shared<cl::Program>(context_, std::vector<cl::Device>{info_.device}, binaries);
+    program->build({info_.device}, options.c_str());
+    return program;
+  } catch (const cl::Error&) {
+    return nullptr;  // a stale or foreign binary: rebuild from source
+  }
+}
+
 std::shared_ptr<cl::Program> GpuContext::build(const std::string& file, const std::string& source,
                                                const std::string& options) {
   auto start = std::chrono::steady_clock::now();
   const fs::path cache_file = this->cache_file(program_identity(source, options), ".bin");
 
-  std::shared_ptr<cl::Program> program;
-  if (!cache_file.empty() && fs::exists(cache_file)) {
-    std::ifstream in(cache_file, std::ios::binary);
-    std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    try {
-      cl::Program::Binaries binaries{binary};
-      program = std::make_shared<cl::Program>(context_, std::vector<cl::Device>{info_.device}, binaries);
-      program->build({info_.device}, options.c_str());
-    } catch (const cl::Error&) {
-      program.reset();  // a stale or foreign binary: rebuild from source
-    }
+  std::shared_ptr<cl::Program> program = load_cached(cache_file, options);
+  std::optional<CacheEntryLock> entry_lock;
+  if (!program && !cache_file.empty()) {
+    entry_lock.emplace(cache_file);
+    program = load_cached(cache_file, options);  // another process may have built it while this one waited
   }
   if (!program) {
     program = std::make_shared<cl::Program>(context_, source);

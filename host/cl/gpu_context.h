@@ -152,6 +152,9 @@ class GpuContext {
   cl::Program& wait_for(const std::string& key, const std::string& file, const std::function<std::string()>& source,
                         const std::string& options);
   std::shared_ptr<cl::Program> build(const std::string& file, const std::string& source, const std::string& options);
+  // The program the on-disk cache holds at cache_file, built for this device; null when there is none or it does
+  // not load.
+  std::shared_ptr<cl::Program> load_cached(const std::filesystem::path& cache_file, const std::string& options);
   // The build options for a set of switches, and where the on-disk cache keeps what `identity` (everything that
   // changes it) names, with this extension; empty when there is no cache folder or builds are cold.
   std::string build_options(const KernelDefines& defines) const;

@@ -151,6 +151,10 @@ struct KeptRecordsStats {
   uint64_t evicted = 0;  // dropped after this frame (the capacity)
   uint64_t moved = 0;    // dropped before this frame because something moved where they see (KeptRecords::drop_moved)
   uint64_t kept = 0;     // held after this frame
+  // Temporal windows (sequence/walkthrough.h): records computed again ahead of the frame, the windows that gave, and
+  // the time that took (in the frame's total).
+  uint64_t ahead = 0, windows = 0;
+  double ahead_s = 0.0;
   uint64_t capacity = 0;
 };
 

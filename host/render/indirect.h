@@ -123,6 +123,14 @@ struct MethodPasses {
   KeptPass<RadianceSplatPass, LobeKey> radiance_splat;
   KeptPass<HshRecordPass, unsigned> hsh_records;  // the order
   KeptPass<PathPass> path;
+  // The kept records the last frame computed again in place (render/indirect_splat.cpp), for a look ahead
+  // (Renderer::look_ahead): the pass that computed them, the pixels and the slots, the hemisphere.
+  struct InPlaceBatch {
+    RecordPass* pass = nullptr;
+    std::vector<cl_uint> pixels;
+    uint32_t first = 0;
+    HemisphereParams hemisphere{};
+  } in_place;
 };
 
 struct IndirectFrame {

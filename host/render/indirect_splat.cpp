@@ -81,6 +81,7 @@ void splat_indirect(IndirectFrame& f) {
   // pixel they project to, before placement: the cache keeps its layout, so a move changes the light and not where
   // the records are (placing them anew moved their pattern from frame to frame: flicker).
   uint32_t kept = 0, recomputed = 0;
+  f.passes.in_place = {};
   if (f.kept_records) {
     std::vector<CacheRecord> moved;
     {
@@ -94,10 +95,10 @@ void splat_indirect(IndirectFrame& f) {
     if (!pixels.empty()) {
       recomputed = uint32_t(pixels.size());
       const cl::Buffer candidates = f.gpu.upload(pixels, CL_MEM_READ_ONLY, "records");
+      f.passes.in_place = {&records, pixels, kept, hemisphere_params(cs, f.settings.seed, coarsest_placement_spacing(cs))};
       {
         StageTimer timing(st.irradiance.records_s);
-        records.compute(gbuffer, candidates, recomputed, kept,
-                        hemisphere_params(cs, f.settings.seed, coarsest_placement_spacing(cs)));
+        records.compute(gbuffer, candidates, recomputed, kept, f.passes.in_place.hemisphere);
       }
       StageTimer timing(st.irradiance.placement_s);
       index.add_records(records, kept, recomputed);
@@ -125,14 +126,14 @@ void splat_indirect(IndirectFrame& f) {
     if (!layers_stay_on_device(f.settings)) {
       img.records = records.download(0, total);
       count_clamped_radii(img.records, cs, st.irradiance);
-      if (f.kept_records) f.kept_records->add(img.records.data() + kept, total - kept);
+      if (f.kept_records) f.kept_records->add(img.records.data() + kept, total - kept, nullptr, 0, recomputed);
     } else {
       const std::array<uint64_t, 2> clamped = f.layers.count_clamped_reaches(records.records(), total, cs);
       st.irradiance.at_min_radius += clamped[0];
       st.irradiance.at_max_radius += clamped[1];
       if (f.kept_records) {
         const std::vector<CacheRecord> added = records.download(kept, total - kept);
-        f.kept_records->add(added.data(), added.size());
+        f.kept_records->add(added.data(), added.size(), nullptr, 0, recomputed);
       }
     }
     if (f.kept_records) st.kept_records = f.kept_records->stats();

@@ -51,10 +51,7 @@ KeptRecordsKey kept_records_key(const RenderSettings& s) {
 bool KeptRecords::begin_frame(const KeptRecordsKey& key) {
   const bool dropped = !has_key_ || !(key == key_);
   if (dropped) {
-    records_.clear();
-    last_used_.clear();
-    moved_change_.clear();
-    payload_.clear();
+    clear_records();
     payload_per_record_ = 0;
     largest_radiance_ = 0.0f;
     key_ = key;
@@ -87,7 +84,10 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
       ++dropped;
       continue;
     }
-    taken.push_back(r);
+    if (window_end_[i] > window_start_[i])  // its light now, between the window's two (ends held past the end)
+      taken.push_back(interpolated(r, ahead_[i], (time_ - window_start_[i]) / (window_end_[i] - window_start_[i])));
+    else
+      taken.push_back(r);
     if (payload)
       payload->insert(payload->end(), payload_.begin() + std::ptrdiff_t(i * payload_per_record_),
                       payload_.begin() + std::ptrdiff_t((i + 1) * payload_per_record_));
@@ -99,11 +99,29 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
   return taken;
 }
 
-void KeptRecords::drop_records() {
+void KeptRecords::clear_records() {
   records_.clear();
   last_used_.clear();
   moved_change_.clear();
+  in_place_frame_.clear();
+  window_end_.clear();
+  window_start_.clear();
+  ahead_.clear();
   payload_.clear();
+}
+
+void KeptRecords::add_bookkeeping(size_t count, size_t in_place) {
+  moved_change_.insert(moved_change_.end(), count, 0.0f);
+  in_place_frame_.insert(in_place_frame_.end(), count, 0);
+  std::fill(in_place_frame_.end() - std::ptrdiff_t(count), in_place_frame_.end() - std::ptrdiff_t(count - in_place),
+            frame_);
+  window_end_.insert(window_end_.end(), count, -INFINITY);
+  window_start_.insert(window_start_.end(), count, -INFINITY);
+  ahead_.insert(ahead_.end(), count, RecordLightAhead{});
+}
+
+void KeptRecords::drop_records() {
+  clear_records();
   largest_radiance_ = 0.0f;
 }
 
@@ -112,20 +130,26 @@ void KeptRecords::restore(const KeptRecordsKey& key, Contents contents, uint64_t
   has_key_ = true;
   records_ = std::move(contents.records);
   last_used_ = std::move(contents.last_used);
-  moved_change_.assign(records_.size(), 0.0f);
+  moved_change_.clear();
+  in_place_frame_.clear();
+  window_end_.clear();
+  window_start_.clear();
+  ahead_.clear();
+  add_bookkeeping(records_.size(), 0);
   payload_ = std::move(contents.payload);
   payload_per_record_ = contents.payload_per_record;
   largest_radiance_ = contents.largest_radiance;
   frame_ = frames_begun;
 }
 
-void KeptRecords::add(const CacheRecord* records, size_t count, const float* payload, size_t payload_per_record) {
+void KeptRecords::add(const CacheRecord* records, size_t count, const float* payload, size_t payload_per_record,
+                      size_t in_place) {
   if (!records_.empty() && payload_per_record != payload_per_record_)
     throw std::logic_error("kept records: a payload of another size under the same key");
   payload_per_record_ = payload_per_record;
   if (count) records_.insert(records_.end(), records, records + count);
   last_used_.insert(last_used_.end(), count, frame_);
-  moved_change_.insert(moved_change_.end(), count, 0.0f);
+  add_bookkeeping(count, std::min(in_place, count));
   if (payload_per_record && count) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
   stats_.added = count;
   if (records_.size() > capacity_) {
@@ -149,6 +173,10 @@ void KeptRecords::keep_only(const std::vector<char>& drop) {
       records_[kept] = records_[i];
       last_used_[kept] = last_used_[i];
       moved_change_[kept] = moved_change_[i];
+      in_place_frame_[kept] = in_place_frame_[i];
+      window_end_[kept] = window_end_[i];
+      window_start_[kept] = window_start_[i];
+      ahead_[kept] = ahead_[i];
       std::copy_n(payload_.begin() + std::ptrdiff_t(i * payload_per_record_), payload_per_record_,
                   payload_.begin() + std::ptrdiff_t(kept * payload_per_record_));
       ++kept;
@@ -156,34 +184,92 @@ void KeptRecords::keep_only(const std::vector<char>& drop) {
   records_.resize(kept);
   last_used_.resize(kept);
   moved_change_.resize(kept);
+  in_place_frame_.resize(kept);
+  window_end_.resize(kept);
+  window_start_.resize(kept);
+  ahead_.resize(kept);
   payload_.resize(kept * payload_per_record_);
+}
+
+void KeptRecords::settle_window(size_t i) {
+  if (window_end_[i] <= window_start_[i]) return;
+  records_[i] = interpolated(records_[i], ahead_[i], 1.0);
+  window_end_[i] = window_start_[i] = -INFINITY;
 }
 
 size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance) {
   size_t count = 0;
   for (size_t i = 0; i < records_.size(); ++i) {
     if (std::isinf(moved_change_[i])) continue;
-    double change = double(moved_change_[i]);
     bool beside = false;
-    for (const SweptBox& move : moves) {
-      beside = beside || record_beside_move(records_[i], move);
-      change += moved_record_change(records_[i], move);
-    }
+    for (const SweptBox& move : moves) beside = beside || record_beside_move(records_[i], move);
     // Beside a moving part, what the record stands on and what hides it changed: it goes, and placement puts records
-    // where the view now needs them. Farther off only its light changed: it is computed again where it stands.
-    moved_change_[i] = beside ? -INFINITY : change > tolerance ? INFINITY : float(change);
-    count += beside || change > tolerance;
+    // where the view now needs them, window or not (an interpolation would miss the contact).
+    if (beside) {
+      moved_change_[i] = -INFINITY;
+      ++count;
+      continue;
+    }
+    if (window_covers_now(i)) continue;  // its light at the window's end holds this move
+    settle_window(i);
+    double change = double(moved_change_[i]);
+    for (const SweptBox& move : moves) change += moved_record_change(records_[i], move);
+    // Farther off only its light changed: it is computed again where it stands.
+    moved_change_[i] = change > tolerance ? INFINITY : float(change);
+    count += change > tolerance;
   }
   return count;
 }
 
 size_t KeptRecords::mark_all_moved() {
   size_t count = 0;
-  for (float& change : moved_change_) {
-    count += !std::isinf(change);
-    change = INFINITY;
+  for (size_t i = 0; i < records_.size(); ++i) {
+    if (std::isinf(moved_change_[i]) || window_covers_now(i)) continue;
+    settle_window(i);
+    moved_change_[i] = INFINITY;
+    ++count;
   }
   return count;
+}
+
+std::vector<size_t> KeptRecords::computed_in_place_this_frame() const {
+  std::vector<size_t> indices;
+  for (size_t i = 0; i < records_.size(); ++i)
+    if (in_place_frame_[i] == frame_ && frame_ > 0) indices.push_back(i);
+  return indices;
+}
+
+void KeptRecords::set_window(size_t index, const RecordLightAhead& ahead, double end) {
+  ahead_[index] = ahead;
+  window_start_[index] = time_;
+  window_end_[index] = end;
+  moved_change_[index] = 0.0f;
+}
+
+uint64_t KeptRecords::windows_open() const {
+  uint64_t open = 0;
+  for (size_t i = 0; i < records_.size(); ++i) open += window_end_[i] > window_start_[i] && window_covers_now(i);
+  return open;
+}
+
+RecordLightAhead light_of(const CacheRecord& record) {
+  RecordLightAhead light;
+  std::copy_n(record.irradiance, 3, light.irradiance);
+  std::copy_n(record.grad_translation, 9, light.grad_translation);
+  std::copy_n(record.grad_rotation, 9, light.grad_rotation);
+  return light;
+}
+
+CacheRecord interpolated(const CacheRecord& record, const RecordLightAhead& ahead, double s) {
+  const float t = float(std::clamp(s, 0.0, 1.0));
+  CacheRecord r = record;
+  auto lerp = [t](float* to, const float* from, int n) {
+    for (int k = 0; k < n; ++k) to[k] = (1.0f - t) * to[k] + t * from[k];  // the ends exactly at t = 0 and 1
+  };
+  lerp(r.irradiance, ahead.irradiance, 3);
+  lerp(r.grad_translation, ahead.grad_translation, 9);
+  lerp(r.grad_rotation, ahead.grad_rotation, 9);
+  return r;
 }
 
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept) {

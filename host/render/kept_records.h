@@ -61,6 +61,17 @@ double moved_record_change(const CacheRecord& record, const SweptBox& swept);
 // Whether the record's sphere of validity reaches the sphere around the move's box (moved_record_change counts 1).
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept);
 
+// A record's light at a later time (temporal windows, docs/ALGORITHM.md section 15): computed at the pixel it was
+// computed at, with the scene posed at that time. Its position, normal and radius stay the record's.
+struct RecordLightAhead {
+  float irradiance[3];
+  float grad_translation[9];
+  float grad_rotation[9];
+};
+RecordLightAhead light_of(const CacheRecord& record);
+// The record with its light a share s (0 .. 1) of the way from its own to `ahead`, each term linearly.
+CacheRecord interpolated(const CacheRecord& record, const RecordLightAhead& ahead, double s);
+
 // Records of one kind (irradiance or radiance) kept across frames. A radiance record carries its HSH coefficients
 // beside it (`payload` floats a record, kernels/hsh_records.cl's layout), kept, taken and evicted with it.
 class KeptRecords {
@@ -76,8 +87,10 @@ class KeptRecords {
   std::vector<CacheRecord> for_view(const CameraParams& camera, const CacheSettings& cache,
                                     std::vector<float>* payload = nullptr, std::vector<CacheRecord>* moved = nullptr);
   // Keeps the records this frame placed (device coordinates) with their payloads (`payload_per_record` floats each;
-  // the same count every frame while the key stays), then evicts the least recently used past the capacity.
-  void add(const CacheRecord* records, size_t count, const float* payload = nullptr, size_t payload_per_record = 0);
+  // the same count every frame while the key stays), then evicts the least recently used past the capacity. The first
+  // `in_place` of them are records a move marked, computed again where they stood (computed_in_place_this_frame).
+  void add(const CacheRecord* records, size_t count, const float* payload = nullptr, size_t payload_per_record = 0,
+           size_t in_place = 0);
   // Radiance records: the brightest stratum any kept record saw (the radiance splat's bound), raised by each frame.
   float largest_radiance() const { return largest_radiance_; }
   void raise_largest_radiance(float value) { largest_radiance_ = std::max(largest_radiance_, value); }
@@ -93,6 +106,18 @@ class KeptRecords {
   size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance);
   // A light moved: every record's light may have changed.
   size_t mark_all_moved();
+  // Temporal windows (issue 62 item 3). The time (seconds on the animation) of the frame the next moves, views and
+  // windows belong to: a record with a window [start, end] is handed out by for_view with its light interpolated to
+  // this time, and moves up to its end do not count against it (its light at the end already holds them). Past its
+  // end, the next move settles it: its light becomes the end's and moves count again.
+  void set_time(double seconds) { time_ = seconds; }
+  double time() const { return time_; }
+  // The records this frame computed again in place (add's in_place), in the order they were computed.
+  std::vector<size_t> computed_in_place_this_frame() const;
+  // Gives record `index` a window from now to `end`: its light there is `ahead`.
+  void set_window(size_t index, const RecordLightAhead& ahead, double end);
+  uint64_t windows_open() const;  // records whose window has not ended
+  bool has_window(size_t index) const { return window_end_[index] > window_start_[index] && window_covers_now(index); }
   const KeptRecordsStats& stats() const { return stats_; }
   size_t size() const { return records_.size(); }
   void set_capacity(size_t capacity) { capacity_ = capacity; }
@@ -124,11 +149,21 @@ class KeptRecords {
   // The bound on how much moves have changed each record's light (mark_moved); +infinity: marked to be computed
   // again, -infinity: marked to go.
   std::vector<float> moved_change_;
+  std::vector<uint64_t> in_place_frame_;   // the frame that computed the record again in place (0: none)
+  std::vector<double> window_end_;         // where it has a window: its end (seconds); -infinity: none
+  std::vector<double> window_start_;
+  std::vector<RecordLightAhead> ahead_;    // its light at window_end_
+  double time_ = 0.0;
   std::vector<float> payload_;       // payload_per_record_ floats a record
   size_t payload_per_record_ = 0;
   float largest_radiance_ = 0.0f;
   KeptRecordsStats stats_;
   void keep_only(const std::vector<char>& drop);
+  void clear_records();
+  void settle_window(size_t i);  // a window that ended: its light becomes the end's
+  // Appends `count` records' bookkeeping: not marked, no window, used by this frame.
+  void add_bookkeeping(size_t count, size_t in_place);
+  bool window_covers_now(size_t i) const { return window_end_[i] >= time_; }
 };
 
 // The light records read that does not depend on the view, as photons and clusters: what the photon map, the caustic

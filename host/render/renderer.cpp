@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include "render/bounce_choice.h"
 #include "render/pixel_samples.h"
 #include "scene/scene_frame.h"
+#include "util/colour.h"
 #include "util/byte_size.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -154,23 +156,28 @@ Renderer::Renderer(GpuContext& gpu, const Scene& scene, const std::set<std::stri
   if (device_scene_->has_glass_caustics()) GlassCausticsPass::build_ahead(gpu_, *device_scene_);
 }
 
-size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
-  if (moved_parts.empty() && !lights_moved) return 0;
+MovingBvh::Changed Renderer::move_geometry(const std::vector<PartMove>& moved_parts, double& bvh_s, double& upload_s) {
   if (!moved_parts.empty() && !moving_bvh_) throw Error("this renderer was made without moving parts");
-  StageTimer setup_time(setup_seconds_);
   MovingBvh::Changed rows;
   {
-    StageTimer refit(setup_.scene.bvh_build_s);
+    StageTimer refit(bvh_s);
     std::vector<size_t> parts;
     for (const PartMove& m : moved_parts) parts.push_back(m.part);
     if (!parts.empty()) rows = moving_bvh_->move(scene_frame_.device_positions(scene_), parts);
   }
   {
-    StageTimer timing(setup_.scene.upload_s);
+    StageTimer timing(upload_s);
     std::vector<TriangleRange> moved;
     for (const PartMove& m : moved_parts) moved.push_back(moving_parts_[m.part]);
     device_scene_->move(gpu_, scene_, moving_bvh_ ? &moving_bvh_->tree() : nullptr, rows, moved);
   }
+  return rows;
+}
+
+size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
+  if (moved_parts.empty() && !lights_moved) return 0;
+  StageTimer setup_time(setup_seconds_);
+  const MovingBvh::Changed rows = move_geometry(moved_parts, setup_.scene.bvh_build_s, setup_.scene.upload_s);
   // Photons, clusters and the glass caustic map saw the scene as it was. A photon map is a density blurred over its
   // gather radius: a part that has moved less than that radius since the photons were shot changes its estimate by
   // less than the blur does, so the map is kept until the moves add up to the radius (the caustic map's radius, where
@@ -200,6 +207,45 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
   }
   return marked;
+}
+
+void Renderer::pose_for_look_ahead(const std::vector<PartMove>& moved_parts) {
+  double bvh_s = 0.0, upload_s = 0.0;  // the caller times the look ahead as a whole
+  move_geometry(moved_parts, bvh_s, upload_s);
+}
+
+Renderer::LookAhead Renderer::look_ahead(double end, double sudden_change) {
+  LookAhead result;
+  if (!kept_records_ || !passes_) return result;
+  MethodPasses::InPlaceBatch& batch = passes_->in_place;
+  KeptRecords& kept = kept_records_->irradiance;
+  const std::vector<size_t> in_place = kept.computed_in_place_this_frame();
+  // Eviction may have taken some of the batch's records: then the pixels no longer line up, and none gets a window.
+  if (!batch.pass || batch.pixels.empty() || in_place.size() != batch.pixels.size()) return result;
+  std::vector<size_t> indices;  // those without a window yet (a second, shorter look ahead: --max-lag)
+  std::vector<cl_uint> pixels;
+  for (size_t i = 0; i < in_place.size(); ++i)
+    if (!kept.has_window(in_place[i])) {
+      indices.push_back(in_place[i]);
+      pixels.push_back(batch.pixels[i]);
+    }
+  if (pixels.empty()) return result;
+  const uint32_t count = uint32_t(pixels.size());
+  const cl::Buffer candidates = gpu_.upload(pixels, CL_MEM_READ_ONLY, "records");
+  // The frame is done with its records: the batch's slots take their light at `end`, from the same pixels and with
+  // the same strata, so the two ends' noise is alike and the interpolation does not flicker.
+  batch.pass->compute(gbuffer_->view(), candidates, count, batch.first, batch.hemisphere);
+  const std::vector<CacheRecord> ahead = batch.pass->download(batch.first, count);
+  result.computed = count;
+  for (uint32_t i = 0; i < count; ++i) {
+    const CacheRecord& now = kept.records()[indices[i]];
+    const double l0 = luminance(now.irradiance), l1 = luminance(ahead[i].irradiance);
+    const double change = std::fabs(l1 - l0) / std::max({l0, l1, 1e-30});
+    if (!(change <= sudden_change)) continue;  // too sudden to interpolate: computed again as moves mark it
+    kept.set_window(indices[i], light_of(ahead[i]), end);
+    ++result.windows;
+  }
+  return result;
 }
 
 void Renderer::shoot_glass_caustic_map() {

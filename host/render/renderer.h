@@ -67,6 +67,18 @@ class Renderer {
   };
   size_t move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance);
 
+  // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
+  // later time: refits and uploads what the parts' moves changed, and nothing else (no record is marked, the photons
+  // stay). A look ahead poses the scene there, calls look_ahead, and poses it back the same way.
+  void pose_for_look_ahead(const std::vector<PartMove>& moved_parts);
+  // Computes the irradiance records the last frame computed again in place once more, with the scene as it is posed
+  // now (at `end`, seconds): each whose light differs from the frame's by at most sudden_change of the larger gets a
+  // window from the frame's time to `end` (KeptRecords::set_window), over which later frames interpolate its light.
+  struct LookAhead {
+    uint32_t computed = 0, windows = 0;
+  };
+  LookAhead look_ahead(double end, double sudden_change);
+
   const DeviceScene& device_scene() const { return *device_scene_; }
   // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
   // cache files (sequence/cache_file.h) read into it before a frame and write it after one.
@@ -74,6 +86,8 @@ class Renderer {
 
  private:
   double kept_per_bounce();
+  // Refits the moved parts' BVH and writes what they changed to the device; returns the rows it changed.
+  MovingBvh::Changed move_geometry(const std::vector<PartMove>& moved_parts, double& bvh_s, double& upload_s);
   // Starts building every program the planned frame will use (GpuContext::build_ahead), so that they compile side by
   // side and beside the frame's first passes; a program a frame asks for that is not among them builds when asked.
   void build_programs_ahead(const FramePlan& plan);

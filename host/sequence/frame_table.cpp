@@ -9,7 +9,7 @@ const char* const kFrameTableHeader =
     "records_s,placement_s,splat_s,radiance_s,resolve_s,glossy_s,path_s,layers_s,records,records_reused,"
     "records_added,records_evicted,radiance_records,radiance_reused,radiance_added,radiance_evicted,primary_rays,"
     "shadow_rays,record_rays,radiance_rays,glossy_rays,"
-    "path_rays,device_peak_bytes,host_peak_bytes,records_moved,radiance_moved\n";
+    "path_rays,device_peak_bytes,host_peak_bytes,records_moved,radiance_moved,records_ahead,windows,ahead_s\n";
 
 std::string frame_table_row(const FrameRow& r) {
   const RenderStats& s = r.stats;
@@ -25,7 +25,7 @@ std::string frame_table_row(const FrameRow& r) {
       << s.primary.primary_rays << ',' << s.primary.shadow_rays << ','
       << s.irradiance.rays << ',' << s.radiance.rays << ',' << s.glossy.rays << ',' << s.path.rays << ','
       << s.device_memory.peak_bytes << ',' << r.host_peak_bytes << ',' << k.moved << ','
-      << s.kept_radiance_records.moved << '\n';
+      << s.kept_radiance_records.moved << ',' << k.ahead << ',' << k.windows << ',' << k.ahead_s << '\n';
   return out.str();
 }
 

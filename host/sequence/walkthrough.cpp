@@ -82,13 +82,11 @@ class FrameRenderers {
   Renderer& for_frame(long long frame) {
     if (!moves_) return *renderer_;
     if (animator_) {
-      const std::vector<size_t> changed = animator_->pose(*posed_, double(frame) / o_.fps);
-      std::vector<Renderer::PartMove> parts;
+      const double time = double(frame) / o_.fps;
+      renderer_->kept_records().irradiance.set_time(time);
+      renderer_->kept_records().radiance.set_time(time);
       bool lights = false;
-      for (const size_t i : changed) {
-        if (part_of_[i] >= 0) parts.push_back({size_t(part_of_[i]), animator_->last_displacement(i)});
-        lights = lights || posed_->movers[animator_->moving()[i]].light >= 0;
-      }
+      const std::vector<Renderer::PartMove> parts = pose(time, lights);
       renderer_->move(parts, lights, o_.moved_record_tolerance);
       return *renderer_;
     }
@@ -101,6 +99,38 @@ class FrameRenderers {
   Renderer& current() { return *renderer_; }
   const Scene& scene() const { return posed_ ? *posed_ : scene_; }
 
+  // After frame `frame` (records kept through a moving scene): the records it computed again in place, computed
+  // once more with the scene posed at the end of their temporal window, so that the frames before it interpolate
+  // (Renderer::look_ahead); those too sudden for the window get one of max_lag + 1 frames. No window where a light
+  // moves before its end: the photons the records gather would be the frame's. Adds what it did to the frame's row.
+  void look_ahead(long long frame, long long last, RenderStats& stats) {
+    if (!animator_ || o_.temporal_window <= 1) return;
+    if (renderer_->kept_records().irradiance.computed_in_place_this_frame().empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    const double now = double(frame) / o_.fps;
+    // (window length, the change across it beyond which a record waits for a shorter window or none)
+    std::vector<std::pair<long long, double>> looks{{o_.temporal_window, o_.max_lag + 1 >= o_.temporal_window ? INFINITY : 0.25}};
+    if (o_.max_lag >= 1 && o_.max_lag + 1 < o_.temporal_window) looks.push_back({o_.max_lag + 1, INFINITY});
+    for (const auto& [length, sudden] : looks) {
+      const long long end = std::min(frame + length, last);
+      if (end <= frame) break;
+      bool lights = false;
+      const std::vector<Renderer::PartMove> ahead = pose(double(end) / o_.fps, lights);
+      if (!lights) {
+        renderer_->pose_for_look_ahead(ahead);
+        const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
+        stats.kept_records.ahead += done.computed;
+        stats.kept_records.windows += done.windows;
+      }
+      bool lights_back = false;
+      renderer_->pose_for_look_ahead(pose(now, lights_back));
+      if (lights) break;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.kept_records.ahead_s += seconds;
+    stats.total_s += seconds;
+  }
+
  private:
   GpuContext& gpu_;
   const WalkthroughRequest& o_;
@@ -111,6 +141,18 @@ class FrameRenderers {
   std::vector<long> part_of_;              // each moving mover's part of the renderer's BVH (-1: a light alone)
   std::unique_ptr<Scene> posed_;
   std::unique_ptr<Renderer> renderer_;
+
+  // Poses the scene copy at `time`: the parts that moved since the last pose and how far, and whether a light did.
+  std::vector<Renderer::PartMove> pose(double time, bool& lights) {
+    const std::vector<size_t> changed = animator_->pose(*posed_, time);
+    std::vector<Renderer::PartMove> parts;
+    lights = false;
+    for (const size_t i : changed) {
+      if (part_of_[i] >= 0) parts.push_back({size_t(part_of_[i]), animator_->last_displacement(i)});
+      lights = lights || posed_->movers[animator_->moving()[i]].light >= 0;
+    }
+    return parts;
+  }
 };
 
 }  // namespace
@@ -147,6 +189,9 @@ CacheMode cache_mode_from_flags(bool per_frame, bool fixed, bool pre_pass, bool 
 void check_walkthrough(const WalkthroughRequest& o) {
   check_request(o.render.settings);
   if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw Error("--fps must be above 0 and at most 1000");
+  if (o.temporal_window < 1 || o.temporal_window > 240) throw Error("--temporal-window must be 1 to 240 frames");
+  if (o.max_lag < 0 || o.max_lag >= o.temporal_window)
+    throw Error("--max-lag must be 0 to --temporal-window - 1 (" + std::to_string(o.temporal_window - 1) + ") frames");
   const RenderJob& job = o.render;
   const CacheMode mode = o.cache;
   const bool pre_pass = mode == CacheMode::pre_pass, merging = mode == CacheMode::merge;
@@ -282,7 +327,8 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
       renderer.kept_records().radiance.drop_records();
     }
     last_plan = renderer.plan(settings);
-    const RenderedImage image = renderer.render(last_plan);
+    RenderedImage image = renderer.render(last_plan);
+    renderers.look_ahead(frame, last, image.stats);
     if (pre_pass) part.add_key_frame(frame, renderer.kept_records());
     ExrAttributes attributes = render_attributes(renderers.scene(), image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);

@@ -47,6 +47,13 @@ struct WalkthroughRequest {
   // Records kept through a moving scene (issue 62): a move drops the kept records whose light it may have changed by
   // more than this fraction (render/kept_records.h moved_record_change); they are placed again.
   double moved_record_tolerance = 0.01;
+  // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15): a record a move marked is computed again at its
+  // frame and, with the scene posed temporal_window frames later, at that frame too; the frames between interpolate
+  // its light. 1: no windows. A record whose light changes across the window by more than a quarter (a light that
+  // switches, a door that opens) is interpolated over max_lag + 1 frames at most; 0: computed again at each frame
+  // its marks ask for, as without windows.
+  long long temporal_window = 4;
+  long long max_lag = 0;
   std::string stats_path;  // a CSV row a frame, rewritten after each frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
 };
