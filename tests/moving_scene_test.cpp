@@ -260,7 +260,7 @@ TEST(KeptRecords, AMoveMarksTheRecordsThatSeeItAndKeepsTheRestBitForBit) {
   KeptRecords kept(100);
   kept.begin_frame(KeptRecordsKey{});
   const std::vector<CacheRecord> records = {
-      record_at({0.0f, -0.9f, 0.0f}, {0, 1, 0}, 0.1f),  // under the moving box: stands beside it
+      record_at({0.0f, -0.55f, 0.0f}, {0, 1, 0}, 0.1f),  // under the moving box: stands beside it
       record_at({0.0f, 0.0f, -20.0f}, {0, 0, 1}, 0.1f),  // far in front of it, facing it
       record_at({0.0f, 0.0f, 3.0f}, {0, 0, 1}, 0.1f),    // behind it, facing away: the box is below its horizon
   };
@@ -271,6 +271,11 @@ TEST(KeptRecords, AMoveMarksTheRecordsThatSeeItAndKeepsTheRestBitForBit) {
   EXPECT_NEAR(moved_record_change(records[1], move), 4.0 / M_PI * (std::sqrt(0.75) / 20.0) * (0.05 / 20.0), 1e-7);
   EXPECT_EQ(moved_record_change(records[0], move), 1.0);
   EXPECT_EQ(moved_record_change(records[2], move), 0.0);
+  // Off a corner of the box, inside the sphere around it: not beside (computed in place, not dropped), but the part
+  // may fill any share of its hemisphere. Planted once: the sphere as the beside test took it for beside and failed.
+  const CacheRecord corner = record_at({0.6f, 0.6f, 0.0f}, {1, 0, 0}, 0.05f);
+  EXPECT_FALSE(record_beside_move(corner, move));
+  EXPECT_EQ(moved_record_change(corner, move), 1.0);
   EXPECT_EQ(kept.mark_moved({move}, 3e-4), 1u) << "the record beside the box";
   EXPECT_EQ(kept.mark_moved({move}, 3e-4), 0u) << "two moves: 2.8e-4, below the tolerance";
   EXPECT_EQ(kept.mark_moved({move}, 3e-4), 1u) << "three moves: 4.1e-4, past it";
@@ -301,7 +306,7 @@ TEST(KeptRecords, AWindowInterpolatesTheLightAndMovesWithinItDoNotMarkIt) {
   CacheRecord far = record_at({0.0f, 0.0f, -20.0f}, {0, 0, 1}, 0.1f);
   far.irradiance[0] = far.irradiance[1] = far.irradiance[2] = 1.0f;
   far.grad_translation[4] = 0.5f;
-  const CacheRecord near = record_at({0.0f, -0.9f, 0.0f}, {0, 1, 0}, 0.1f);
+  const CacheRecord near = record_at({0.0f, -0.55f, 0.0f}, {0, 1, 0}, 0.1f);
   const std::vector<CacheRecord> records = {far, near};
   kept.set_time(1.0);
   kept.add(records.data(), records.size(), nullptr, 0, 2);
@@ -407,12 +412,26 @@ TEST(MovingScene, RecordsKeptThroughAMoveLeaveNoLightWhereTheMeshWas) {
   EXPECT_NEAR(kept_sum / fresh_sum, 1.0, 0.06) << ghost_pixels << " pixels the jump changed";
 }
 
-// The quad slides 1.2 to the right (and turns) over [0, 1] s, frames 0 to 4 at 4 frames/s. With a window of 3
-// frames (no lag limit), frame 1 computes the records the slide marked again, and once more with the scene posed at
-// frame 4: frames 2 and 3 interpolate them. Their indirect light, over the pixels whose light the slide changed by
-// more than a quarter between frames 1 and 4 in fresh caches (--cache-per-frame), is the fresh caches' within 6% on
-// the mean (2.6% and 4.5% here; records beside the quad go and are placed again in each frame). Planted once: the
-// window's light held at its start (no interpolation) read 6.6% and 19% off and failed.
+// L1 distance between two frames' indirect light, relative to the first's.
+double indirect_distance(const std::string& a_path, const std::string& b_path) {
+  const std::vector<float> a = indirect_of(a_path), b = indirect_of(b_path);
+  double sum = 0.0, difference = 0.0;
+  for (size_t p = 0; p < a.size() && p < b.size(); ++p) {
+    sum += std::fabs(a[p]);
+    difference += std::fabs(double(b[p]) - double(a[p]));
+  }
+  return a.size() == b.size() && sum > 0.0 ? difference / sum : INFINITY;
+}
+
+// The quad slides 1.2 to the right (and turns) over [0, 1] s, frames 0 to 4 at 4 frames/s, every record marked by any
+// move (tolerance 0). With a window of 3 frames, frame 1 computes the marked records again, and once more with the
+// scene posed at frame 4, and frames 2 and 3 interpolate. Against the same walk without windows (each record computed
+// again at each frame where it stands: the same layout), the indirect light of frames 2 and 3 differs by what the
+// interpolation misses:
+// - every window kept (--max-lag 2): the quad's shadow crosses records between the ends, and 8% and 11% of the light
+//   is off here (bound 14%); planted once, the window's light held at its start read 17% and 52% and failed;
+// - the default --max-lag 0, which leaves the records whose light changes by more than a quarter across the window to
+//   be computed at each frame: under 1% (0.06% and 0.00% here); the rule planted off is the case above.
 TEST(MovingScene, AWindowInterpolatesTheLightOfTheFramesBetweenItsEnds) {
   const std::string dir = test::scratch_dir();
   WalkthroughRequest o;
@@ -422,31 +441,23 @@ TEST(MovingScene, AWindowInterpolatesTheLightOfTheFramesBetweenItsEnds) {
   // Records small enough that those on the wall away from the quad are not beside it (those beside it go).
   o.render.settings.cache.max_reach_pixels = 6.0f;
   o.fps = 4.0;
-  o.cache = CacheMode::per_frame;
-  o.render.outputs = {dir + "/fresh_%d.exr"};
+  o.moved_record_tolerance = 0.0;
+  o.temporal_window = 1;
+  o.render.outputs = {dir + "/each_%d.exr"};
   ASSERT_NO_THROW(render_walkthrough(o));
-  o.cache = CacheMode::kept;
   o.temporal_window = 3;
-  o.max_lag = 2;
-  o.render.outputs = {dir + "/kept_%d.exr"};
-  const WalkthroughResult kept = render_walkthrough(o);
-  ASSERT_EQ(kept.rows.size(), 5u);
-  EXPECT_GT(kept.rows[1].stats.kept_records.windows, 30u) << "of the records frame 1 computed again (64 here)";
-  const std::vector<float> start = indirect_of(dir + "/fresh_1.exr"), end = indirect_of(dir + "/fresh_4.exr");
-  for (const int frame : {2, 3}) {
-    const std::vector<float> fresh = indirect_of(dir + "/fresh_" + std::to_string(frame) + ".exr"),
-                             between = indirect_of(dir + "/kept_" + std::to_string(frame) + ".exr");
-    double fresh_sum = 0.0, kept_sum = 0.0;
-    size_t changed = 0;
-    for (size_t p = 0; p + 2 < fresh.size(); p += 3) {
-      const double a = start[p] + start[p + 1] + start[p + 2], b = end[p] + end[p + 1] + end[p + 2];
-      if (!(std::fabs(a - b) > 0.25 * std::max(b, 1e-6))) continue;
-      ++changed;
-      fresh_sum += fresh[p] + fresh[p + 1] + fresh[p + 2];
-      kept_sum += between[p] + between[p + 1] + between[p + 2];
+  for (const long long lag : {2, 0}) {
+    o.max_lag = lag;
+    const std::string name = dir + "/lag" + std::to_string(lag) + "_";
+    o.render.outputs = {name + "%d.exr"};
+    const WalkthroughResult windows = render_walkthrough(o);
+    ASSERT_EQ(windows.rows.size(), 5u);
+    EXPECT_GT(windows.rows[1].stats.kept_records.windows, lag ? 60u : 5u) << "of the records frame 1 computed again";
+    for (const int frame : {2, 3}) {
+      const double off = indirect_distance(dir + "/each_" + std::to_string(frame) + ".exr",
+                                           name + std::to_string(frame) + ".exr");
+      EXPECT_LT(off, lag ? 0.14 : 0.01) << "--max-lag " << lag << ", frame " << frame;
     }
-    ASSERT_GT(changed, 40u);
-    EXPECT_NEAR(kept_sum / fresh_sum, 1.0, 0.06) << "frame " << frame << ", " << changed << " pixels the slide changed";
   }
 }
 

@@ -273,8 +273,11 @@ CacheRecord interpolated(const CacheRecord& record, const RecordLightAhead& ahea
 }
 
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept) {
-  const glm::dvec3 lo(swept.lo), hi(swept.hi);
-  return glm::length(0.5 * (lo + hi) - load(record.position)) <= 0.5 * glm::length(hi - lo) + double(record.radius);
+  // The distance from the record to the box the part filled before and after the move: the box, not the sphere
+  // around it, so that a thin part (a door) leaves the records across the room to be computed in place.
+  const glm::dvec3 p = load(record.position);
+  const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(swept.lo) - p, p - glm::dvec3(swept.hi)), glm::dvec3(0.0));
+  return glm::length(outside) <= double(record.radius);
 }
 
 double moved_record_change(const CacheRecord& record, const SweptBox& swept) {
@@ -284,6 +287,7 @@ double moved_record_change(const CacheRecord& record, const SweptBox& swept) {
   const double radius = 0.5 * glm::length(hi - lo);
   const glm::dvec3 to = centre - p;
   const double d = glm::length(to);
+  if (!(d > radius)) return 1.0;  // inside the sphere around the box: the part may fill any share of the hemisphere
   const double sin_a = radius / d, a = std::asin(sin_a);
   const double theta = std::acos(std::clamp(glm::dot(n, to) / (d * std::max(glm::length(n), 1e-30)), -1.0, 1.0));
   if (theta - a >= 0.5 * M_PI) return 0.0;  // wholly below the horizon

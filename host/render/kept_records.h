@@ -56,9 +56,9 @@ struct SweptBox {
 // far apart differ by about 4 a (delta / d) of the sphere: a share of at most (4 / pi)(r / d)(delta / d) cos(...).
 // The bound is the smaller of the two. The light seen there before and after differs by
 // the scene's contrast, which this leaves to the tolerance. A record whose sphere of validity (radius R) reaches the
-// part's sphere counts 1: it stands on, under or beside it.
+// part's box counts 1: it stands on, under or beside it; so does one inside the sphere around the box.
 double moved_record_change(const CacheRecord& record, const SweptBox& swept);
-// Whether the record's sphere of validity reaches the sphere around the move's box (moved_record_change counts 1).
+// Whether the record's sphere of validity reaches the move's box (moved_record_change counts 1).
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept);
 
 // A record's light at a later time (temporal windows, docs/ALGORITHM.md section 15): computed at the pixel it was

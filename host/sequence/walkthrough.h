@@ -52,7 +52,7 @@ struct WalkthroughRequest {
   // its light. 1: no windows. A record whose light changes across the window by more than a quarter (a light that
   // switches, a door that opens) is interpolated over max_lag + 1 frames at most; 0: computed again at each frame
   // its marks ask for, as without windows.
-  long long temporal_window = 4;
+  long long temporal_window = 8;
   long long max_lag = 0;
   std::string stats_path;  // a CSV row a frame, rewritten after each frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
