@@ -367,6 +367,15 @@ TEST(MovingScene, MovingPartsThatStandStillChangeNoBit) {
   EXPECT_EQ(two_levels.stats.scene.bvh_nodes, one_tree.stats.scene.bvh_nodes + 2) << "a top node and the quad's root";
 }
 
+// A walkthrough of the carried quad sliding 1.2 (STEP or LINEAR), one bounce and one sample a pixel, 64 x 64.
+WalkthroughRequest quad_walk(const std::string& dir, const std::string& name, bool step) {
+  WalkthroughRequest o;
+  o.render.scene_path = carried_quad_scene(dir, name, 1.2f, step);
+  o.render.settings = test::one_bounce_one_sample();
+  o.render.settings.width = o.render.settings.height = 64;
+  return o;
+}
+
 std::vector<float> indirect_of(const std::string& path) {
   int w = 0, h = 0;
   return read_exr_layer(path, "indirect", w, h);
@@ -382,10 +391,7 @@ std::vector<float> indirect_of(const std::string& path) {
 // cache's there.
 TEST(MovingScene, RecordsKeptThroughAMoveLeaveNoLightWhereTheMeshWas) {
   const std::string dir = test::scratch_dir();
-  WalkthroughRequest o;
-  o.render.scene_path = carried_quad_scene(dir, "jump", 1.2f, true);
-  o.render.settings = test::one_bounce_one_sample();
-  o.render.settings.width = o.render.settings.height = 64;
+  WalkthroughRequest o = quad_walk(dir, "jump", true);
   o.fps = 2.0;
   o.cache = CacheMode::per_frame;
   o.render.outputs = {dir + "/fresh_%d.exr"};
@@ -434,10 +440,7 @@ double indirect_distance(const std::string& a_path, const std::string& b_path) {
 //   be computed at each frame: under 1% (0.06% and 0.00% here); the rule planted off is the case above.
 TEST(MovingScene, AWindowInterpolatesTheLightOfTheFramesBetweenItsEnds) {
   const std::string dir = test::scratch_dir();
-  WalkthroughRequest o;
-  o.render.scene_path = carried_quad_scene(dir, "slide", 1.2f, false);
-  o.render.settings = test::one_bounce_one_sample();
-  o.render.settings.width = o.render.settings.height = 64;
+  WalkthroughRequest o = quad_walk(dir, "slide", false);
   // Records small enough that those on the wall away from the quad are not beside it (those beside it go).
   o.render.settings.cache.max_reach_pixels = 6.0f;
   o.fps = 4.0;
