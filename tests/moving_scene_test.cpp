@@ -82,6 +82,15 @@ std::string carried_quad_scene(const std::string& dir, const std::string& name, 
   return b.write(dir, name);
 }
 
+// A walkthrough of the carried quad sliding 1.2 (STEP or LINEAR), one bounce and one sample a pixel, 64 x 64.
+WalkthroughRequest quad_walk(const std::string& dir, const std::string& name, bool step) {
+  WalkthroughRequest o;
+  o.render.scene_path = carried_quad_scene(dir, name, 1.2f, step);
+  o.render.settings = test::one_bounce_one_sample();
+  o.render.settings.width = o.render.settings.height = 64;
+  return o;
+}
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
@@ -151,6 +160,14 @@ TEST(SceneAnimator, RefusesAMoveThatTurnsTrianglesInsideOut) {
     EXPECT_NE(message.find("nodes[1] 'Quad'"), std::string::npos) << message;
     EXPECT_NE(message.find("--cache-per-frame"), std::string::npos) << message;
   }
+  // A walkthrough refuses it before its first frame (frames at 0, 0.5 and 1 s; flattened at 0.5 s), and writes none.
+  // Planted once: the frames' times not checked up front wrote frame 0 and failed.
+  WalkthroughRequest o = quad_walk(dir, "unused", false);
+  o.render.scene_path = path;
+  o.fps = 2.0;
+  o.render.outputs = {dir + "/mirrored_%d.exr"};
+  EXPECT_THROW(render_walkthrough(o), Error);
+  EXPECT_FALSE(fs::exists(dir + "/mirrored_0.exr"));
 }
 
 std::vector<glm::vec3> random_soup(size_t triangles, uint32_t seed) {
@@ -365,15 +382,6 @@ TEST(MovingScene, MovingPartsThatStandStillChangeNoBit) {
   EXPECT_EQ(two_levels.color, one_tree.color);
   EXPECT_EQ(two_levels.indirect, one_tree.indirect);
   EXPECT_EQ(two_levels.stats.scene.bvh_nodes, one_tree.stats.scene.bvh_nodes + 2) << "a top node and the quad's root";
-}
-
-// A walkthrough of the carried quad sliding 1.2 (STEP or LINEAR), one bounce and one sample a pixel, 64 x 64.
-WalkthroughRequest quad_walk(const std::string& dir, const std::string& name, bool step) {
-  WalkthroughRequest o;
-  o.render.scene_path = carried_quad_scene(dir, name, 1.2f, step);
-  o.render.settings = test::one_bounce_one_sample();
-  o.render.settings.width = o.render.settings.height = 64;
-  return o;
 }
 
 std::vector<float> indirect_of(const std::string& path) {

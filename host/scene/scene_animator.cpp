@@ -40,20 +40,30 @@ SceneAnimator::SceneAnimator(const Scene& scene, int animation) : animation_(ani
   }
 }
 
+glm::dmat4 SceneAnimator::transform_at(const Scene& scene, size_t i, double t) const {
+  const Scene::Mover& mover = scene.movers[moving_[i]];
+  const glm::dmat4 m = glm::dmat4(rig_world_matrix(mover.rig, animation_, t)) * glm::inverse(glm::dmat4(mover.placed));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r]))
+        throw Error(scene.source + ": " + mover.label + " has no finite transform at t = " + std::to_string(t) + " s");
+  if (glm::determinant(glm::dmat3(m)) <= 0.0)
+    throw Error(scene.source + ": " + mover.label + " is mirrored or flattened at t = " + std::to_string(t) +
+                " s, which turns its triangles inside out; one cache follows rigid moves only (give --cache-per-frame)");
+  return m;
+}
+
+void SceneAnimator::check(const Scene& scene, double t) const {
+  for (size_t i = 0; i < moving_.size(); ++i) (void)transform_at(scene, i, t);
+}
+
 std::vector<size_t> SceneAnimator::pose(Scene& scene, double t) {
   std::vector<size_t> changed;
   for (size_t i = 0; i < moving_.size(); ++i) {
     const Scene::Mover& mover = scene.movers[moving_[i]];
-    const glm::dmat4 m = glm::dmat4(rig_world_matrix(mover.rig, animation_, t)) * glm::inverse(glm::dmat4(mover.placed));
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r)
-        if (!std::isfinite(m[c][r]))
-          throw Error(scene.source + ": " + mover.label + " has no finite transform at t = " + std::to_string(t) + " s");
+    const glm::dmat4 m = transform_at(scene, i, t);
     if (m == transform_[i]) continue;
     const glm::dmat3 linear(m);
-    if (glm::determinant(linear) <= 0.0)
-      throw Error(scene.source + ": " + mover.label + " is mirrored or flattened at t = " + std::to_string(t) +
-                  " s, which turns its triangles inside out; one cache follows rigid moves only (give --cache-per-frame)");
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
     const Placed& p = placed_[i];
     const size_t first = mover.first_triangle * 3;

@@ -23,6 +23,10 @@ class SceneAnimator {
   // the loader placed them.
   std::vector<size_t> pose(Scene& scene, double t);
 
+  // Throws what pose would throw at time t (a transform that is not finite, or mirrors or flattens a mover), moving
+  // nothing: a walkthrough checks every frame's time before it writes its first frame.
+  void check(const Scene& scene, double t) const;
+
   // The movers this animation moves: indices into Scene::movers.
   const std::vector<size_t>& moving() const { return moving_; }
   // How far the last pose moved moving mover i's triangles at most, world units: the largest move of a corner of
@@ -36,6 +40,8 @@ class SceneAnimator {
     SceneLight light;
     glm::dvec3 lo{0.0}, hi{0.0};  // the triangles' box
   };
+  // Moving mover i's transform from placed to posed at time t, checked.
+  glm::dmat4 transform_at(const Scene& scene, size_t i, double t) const;
   int animation_;
   std::vector<size_t> moving_;
   std::vector<Placed> placed_;          // a moving mover's triangles and light as the loader placed them

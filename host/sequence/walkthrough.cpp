@@ -98,6 +98,12 @@ class FrameRenderers {
   }
   Renderer& current() { return *renderer_; }
   const Scene& scene() const { return posed_ ? *posed_ : scene_; }
+  // Before any frame is written: a pose no rigid move follows at any of the frames' times is refused now, not after
+  // the frames before it were rendered.
+  void check_poses(long long first, long long last) const {
+    if (!animator_) return;
+    for (long long frame = first; frame <= last; ++frame) animator_->check(*posed_, double(frame) / o_.fps);
+  }
 
   // After frame `frame` (records kept through a moving scene): the records it computed again in place, computed
   // once more with the scene posed at the end of their temporal window, so that the frames before it interpolate
@@ -272,6 +278,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   GpuContext gpu(device);
   gpu.set_memory_budget(o.render.limits.device_memory_bytes);
   FrameRenderers renderers(gpu, o, scene, path);
+  renderers.check_poses(first, last);
   const ProgressHidden hidden;  // a line a frame instead of each pass's progress
 
   auto frame_settings = [&](long long frame) {
