@@ -223,9 +223,10 @@ Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
                       std::to_string(sizeof(CacheRecord)) + " bytes each)")
       ->check(CLI::Range(size_t(1), size_t(1) << 28));
   cmd->add_option("--moved-record-tolerance", o.moved_record_tolerance,
-                  "Records kept through a moving scene: a move drops, to be placed again, the records whose light it "
-                  "may have changed by more than this fraction (the moving part's share of the record's hemisphere; "
-                  "default " + shortest(float(defaults.moved_record_tolerance)) + "; a light that moves drops all)")
+                  "Records kept through a moving scene: a move marks, to be computed again where they stand, the "
+                  "records whose light it may have changed by more than this fraction (the moving part's share of the "
+                  "record's hemisphere; default " + shortest(float(defaults.moved_record_tolerance)) +
+                      "; those beside the part go and are placed again; a light that moves marks all)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--temporal-window", o.temporal_window,
                   "Records kept through a moving scene: a record a move marks is computed at its frame and at this "

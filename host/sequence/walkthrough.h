@@ -44,8 +44,8 @@ struct WalkthroughRequest {
   // Render only the frames whose outputs are not all there (a rerun or a requeue of a stopped task); the frames must
   // not depend on each other (CacheMode::fixed or per_frame).
   bool skip_existing = false;
-  // Records kept through a moving scene (issue 62): a move drops the kept records whose light it may have changed by
-  // more than this fraction (render/kept_records.h moved_record_change); they are placed again.
+  // Records kept through a moving scene (issue 62): a move marks the kept records whose light it may have changed by
+  // more than this fraction (render/kept_records.h moved_record_change), to be computed again where they stand.
   double moved_record_tolerance = 0.01;
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15): a record a move marked is computed again at its
   // frame and, with the scene posed temporal_window frames later, at that frame too; the frames between interpolate
