@@ -64,6 +64,9 @@ expect_refused("spp not a multiple of the pixel samples" "--spp 6 must be a mult
 expect_refused("device memory budget" "needs [0-9.]+ MiB; [0-9.]+ MiB are held already, and the budget is 1.0 MiB \\(--max-device-memory\\)"
                render -o out.exr --max-device-memory 0.0009765625)
 expect_refused("asset root that is no folder" "--asset-root: Directory does not exist" render -o out.exr --asset-root nowhere)
+expect_refused("a lag as long as the window" "--max-lag must be 0 to --temporal-window - 1 \\(3\\) frames"
+               animate --orbit 1 --temporal-window 4 --max-lag 4 -o "f%d.exr")
+expect_refused("a window of no frames" "--temporal-window: Value 0" animate --orbit 1 --temporal-window 0 -o "f%d.exr")
 expect_refused("animate without a frame number" "-o frames.exr: a frame sequence's name holds one frame number"
                animate --orbit 1 -o frames.exr)
 expect_refused("animate the Cornell box without a path" "the built-in Cornell box has no animation"

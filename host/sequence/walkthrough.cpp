@@ -129,8 +129,9 @@ class FrameRenderers {
         stats.kept_records.windows += done.windows;
       }
       bool lights_back = false;
-      renderer_->pose_for_look_ahead(pose(now, lights_back));
-      if (lights) break;
+      const std::vector<Renderer::PartMove> back = pose(now, lights_back);  // the animator too, for the next move
+      if (lights) break;  // the device never left `now`
+      renderer_->pose_for_look_ahead(back);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.kept_records.ahead_s += seconds;
