@@ -282,22 +282,7 @@ TEST(Animation, ACachePerFrameRendersAMovingScenePosedAtEachFrame) {
   ASSERT_EQ(posed.exit_code, 0) << posed.output;
   EXPECT_EQ(read_exr_rgb((dir / "posed.exr").string(), w, h), after);
 
-  // A farm's pre-pass keeps no moving scene yet: refused by name (records kept in one process follow it:
-  // tests/moving_scene_test.cpp).
-  o.cache = CacheMode::pre_pass;
-  o.cache_every = 1;
-  o.render.cache_out = (dir / "pre.rcache").string();
-  o.render.outputs = {(dir / "kept_%d.exr").string()};
-  try {
-    render_walkthrough(o);
-    ADD_FAILURE() << "a moving mesh in a cache pre-pass was accepted";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("animations[0] 'Slide' moves nodes[0] 'Quad'"), std::string::npos) << message;
-    EXPECT_NE(message.find("--cache-per-frame"), std::string::npos) << message;
-  }
-  EXPECT_FALSE(fs::exists(dir / "kept_0.exr"));
-  EXPECT_FALSE(fs::exists(dir / "pre.rcache"));
+  // A farm's pre-pass, merge and fixed frames follow a moving scene too: tests/moving_scene_test.cpp.
 }
 
 TEST(Animation, KeyframeFilesAreReadLineByLineAndRefusedByLine) {

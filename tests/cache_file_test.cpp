@@ -95,9 +95,11 @@ TEST(CacheFile, EverythingKeptRoundTripsBitForBit) {
   const KeptRecordsKey key = kept_records_key(plan.frame_settings());
   const CacheFileIdentity identity{scene_fingerprint(scene), settings_fingerprint(key), "test"};
   const std::string path = test::scratch_dir() + "/lobed.cache";
+  renderer.kept_records().times = RecordTimes{3, false, 24.0, 1.25};  // as a moving scene's walkthrough would end
   write_cache_file(path, kept, identity);
   KeptCache read(1u << 20);
   read_cache_file(path, identity, key, cache_file_limits(plan.frame_settings()), read);
+  EXPECT_EQ(read.times, kept.times);
   for (const auto& [a, b] : {std::pair{&read.irradiance, &kept.irradiance}, std::pair{&read.radiance, &kept.radiance}}) {
     EXPECT_TRUE(same_bytes(a->records(), b->records()));
     EXPECT_EQ(a->last_used(), b->last_used());
@@ -111,7 +113,7 @@ TEST(CacheFile, EverythingKeptRoundTripsBitForBit) {
   EXPECT_EQ(read.light.photon_paths, kept.light.photon_paths);
   EXPECT_EQ(read.light.guide_hits, kept.light.guide_hits);
   const size_t records = kept.irradiance.size() + kept.radiance.size();
-  EXPECT_EQ(read_bytes(path).size(), 144 + 8 + 16 + records * 168 + kept.radiance.payload().size() * 4 + 20 +
+  EXPECT_EQ(read_bytes(path).size(), 168 + 8 + 16 + records * 168 + kept.radiance.payload().size() * 4 + 20 +
                                          kept.light.photons.size() * 64 + 12 + kept.light.caustic_photons.size() * 64 +
                                          20 + kept.light.guide_clusters.size() * 48 + 8);
 }
@@ -148,7 +150,7 @@ TEST(CacheFile, AFrameFromAFileIsTheWritersNextFrameWithTheFilesLight) {
   const std::string path = test::scratch_dir() + "/walk.cache";
   write_cache_file(path, writer.kept_records(), identity);
   const KeptCache& kept = writer.kept_records();
-  const size_t photons_at = 144 + 8 + kept.irradiance.size() * 168 + 16 + kept.radiance.size() * 168 +
+  const size_t photons_at = 168 + 8 + kept.irradiance.size() * 168 + 16 + kept.radiance.size() * 168 +
                             kept.radiance.payload().size() * 4 + 4 + 8 + 8;
   const size_t photons = kept.light.photons.size();
   const RenderedImage expected = writer.render(next);
@@ -392,6 +394,9 @@ TEST(CacheFile, TheMergeDropsExactlyTheRecordsAnEarlierKeyFrameReaches) {
   EXPECT_GT(kept, n / 10);
 }
 
+// Format 3's header: magic, format, record size, rcsplat version, fingerprints and frames, device, record times.
+constexpr size_t kHeader = 16 + 4 + 4 + 32 + 3 * 8 + 64 + 24;
+
 TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   const fs::path dir = test::scratch_dir();
   WalkthroughRequest writer = orbit(dir);
@@ -422,7 +427,7 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
   {
     std::string b = good;
     const float negative = -1.0f;
-    std::memcpy(b.data() + 144 + 8 + 160 * 3 + 12, &negative, 4);  // record 3's radius
+    std::memcpy(b.data() + kHeader + 8 + 160 * 3 + 12, &negative, 4);  // record 3's radius
     reseal(b);
     cases.push_back({"radius", b, "record 3 holds numbers out of range", {}});
   }
@@ -430,19 +435,36 @@ TEST(CacheFile, EveryBadFileIsRefusedByNameBeforeAnyFrame) {
     // A count that claims more than the file holds, sealed: refused before anything is allocated for it.
     std::string b = good;
     const uint64_t huge = uint64_t(1) << 60;
-    std::memcpy(b.data() + 144, &huge, 8);
+    std::memcpy(b.data() + kHeader, &huge, 8);
     reseal(b);
     cases.push_back({"count", b, "truncated or padded", {}});
   }
   {
     // The light guide's first cluster (after the records and the empty maps' sections) with a negative radius.
     uint64_t records = 0;
-    std::memcpy(&records, good.data() + 144, 8);
+    std::memcpy(&records, good.data() + kHeader, 8);
     std::string b = good;
     const float negative = -1.0f;
-    std::memcpy(b.data() + 144 + 8 + records * 168 + 16 + 20 + 12 + 20 + 12, &negative, 4);
+    std::memcpy(b.data() + kHeader + 8 + records * 168 + 16 + 20 + 12 + 20 + 12, &negative, 4);
     reseal(b);
     cases.push_back({"cluster", b, "light guide cluster 0 holds numbers out of range", {}});
+  }
+  {
+    // The time the records hold (format 3, after the device's name): an animation below -1, then a still scene's
+    // file read as a moving one's.
+    std::string b = good;
+    const int32_t animation = -2;
+    std::memcpy(b.data() + kHeader - 24, &animation, 4);
+    reseal(b);
+    cases.push_back({"times", b, "the time its records hold is out of range (animation -2", {}});
+    b = good;
+    const int32_t moved = 0;
+    const double fps = 24.0;
+    std::memcpy(b.data() + kHeader - 24, &moved, 4);
+    std::memcpy(b.data() + kHeader - 16, &fps, 8);
+    reseal(b);
+    cases.push_back({"moving", b, "its records hold the scene moved by animations[0], and this render draws the "
+                     "scene standing still", {}});
   }
   cases.push_back({"scene", good, "written for another scene",
                    [](WalkthroughRequest& o) { o.render.environment.sky = glm::vec3(0.1f); }});

@@ -197,10 +197,10 @@ void KeptRecords::settle_window(size_t i) {
   window_end_[i] = window_start_[i] = -INFINITY;
 }
 
-size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance) {
+size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<char>* only) {
   size_t count = 0;
   for (size_t i = 0; i < records_.size(); ++i) {
-    if (std::isinf(moved_change_[i])) continue;
+    if (std::isinf(moved_change_[i]) || (only && !(*only)[i])) continue;
     bool beside = false;
     for (const SweptBox& move : moves) beside = beside || record_beside_move(records_[i], move);
     // Beside a moving part, what the record stands on and what hides it changed: it goes, and placement puts records
@@ -221,15 +221,31 @@ size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolera
   return count;
 }
 
-size_t KeptRecords::mark_all_moved() {
+size_t KeptRecords::mark_all_moved(const std::vector<char>* only) {
   size_t count = 0;
   for (size_t i = 0; i < records_.size(); ++i) {
-    if (std::isinf(moved_change_[i]) || window_covers_now(i)) continue;
+    if (std::isinf(moved_change_[i]) || window_covers_now(i) || (only && !(*only)[i])) continue;
     settle_window(i);
     moved_change_[i] = INFINITY;
     ++count;
   }
   return count;
+}
+
+size_t KeptRecords::settle_for_file() {
+  std::vector<char> drop(records_.size(), 0);
+  size_t dropped = 0;
+  for (size_t i = 0; i < records_.size(); ++i) {
+    if (window_end_[i] > window_start_[i]) {
+      const double s = std::clamp((time_ - window_start_[i]) / (window_end_[i] - window_start_[i]), 0.0, 1.0);
+      records_[i] = interpolated(records_[i], ahead_[i], s);
+      window_end_[i] = window_start_[i] = -INFINITY;
+    }
+    drop[i] = std::isinf(moved_change_[i]);
+    dropped += drop[i];
+  }
+  if (dropped) keep_only(drop);
+  return dropped;
 }
 
 std::vector<size_t> KeptRecords::computed_in_place_this_frame() const {

@@ -103,9 +103,15 @@ class KeptRecords {
   // it: for_view then hands it out to be computed again in place (and drops it here; the frame adds what it
   // computes). A record beside a moving part (record_beside_move) is marked to go instead: for_view drops it, and
   // placement puts records where the view needs them. Returns how many were marked.
-  size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance);
+  // `only` (if not null, one entry a record): the records the moves apply to, the others left as they are (records
+  // of different times, each group brought to the present by its own moves: sequence/record_times.h).
+  size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<char>* only = nullptr);
   // A light moved: every record's light may have changed.
-  size_t mark_all_moved();
+  size_t mark_all_moved(const std::vector<char>* only = nullptr);
+  // Before a cache file is written of a moving scene: every open window closed with the record's light at the time
+  // now (set_time), and the records marked to be computed again or to go dropped, since a file keeps no marks.
+  // Returns the records dropped.
+  size_t settle_for_file();
   // Temporal windows (issue 62 item 3). The time (seconds on the animation) of the frame the next moves, views and
   // windows belong to: a record with a window [start, end] is handed out by for_view with its light interpolated to
   // this time, and moves up to its end do not count against it (its light at the end already holds them). Past its
@@ -181,8 +187,23 @@ struct KeptLight {
   std::vector<GuideCluster> guide_clusters;
 };
 
+// The time a cache's records hold (issue 62 item 5): nothing for a scene that stands still (animation -1); for one
+// that glTF animation `animation` moves, either one time for every record (`time`, seconds: the frame a walkthrough
+// with records kept ended on) or, by_key_frame, each record its key frame's (its last_used frame / fps: a cache
+// pre-pass's part, a merged file). A process that reads them brings each record from its time to its frame's
+// (sequence/record_times.h).
+struct RecordTimes {
+  int animation = -1;
+  bool by_key_frame = false;
+  double fps = 0.0;
+  double time = 0.0;
+  bool moving() const { return animation >= 0; }
+  double of(uint64_t last_used) const { return by_key_frame ? double(last_used) / fps : time; }
+  bool operator==(const RecordTimes&) const = default;
+};
+
 // What a walkthrough keeps (Renderer::kept_records): the irradiance records of the splat and the radiance records of
-// the LOBE_HSH pixels, each with its own cap, and the light they were computed with.
+// the LOBE_HSH pixels, each with its own cap, the light they were computed with, and the time they hold.
 struct KeptCache {
   explicit KeptCache(size_t capacity) : irradiance(capacity), radiance(capacity) {}
   void set_capacity(size_t capacity) {
@@ -191,6 +212,7 @@ struct KeptCache {
   }
   KeptRecords irradiance, radiance;
   KeptLight light;
+  RecordTimes times;
 };
 
 }  // namespace rcsplat

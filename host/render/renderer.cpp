@@ -190,12 +190,7 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
   double radius = has_maps ? INFINITY : 0.0;
   if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
   if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
-  if (lights_moved || moved_since_photons_ > radius) {
-    light_ = std::make_unique<ViewIndependentLight>();
-    moved_since_photons_ = 0.0;
-    if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
-    if (kept_records_) kept_records_->light = KeptLight{};
-  }
+  if (lights_moved || moved_since_photons_ > radius) forget_light();
   if (!kept_records_) return 0;
   size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
@@ -207,6 +202,13 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
   }
   return marked;
+}
+
+void Renderer::forget_light() {
+  light_ = std::make_unique<ViewIndependentLight>();
+  moved_since_photons_ = 0.0;
+  if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
+  if (kept_records_) kept_records_->light = KeptLight{};
 }
 
 void Renderer::pose_for_look_ahead(const std::vector<PartMove>& moved_parts) {

@@ -67,6 +67,11 @@ class Renderer {
   };
   size_t move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance);
 
+  // Drops the light that depends on where things are (photon map, caustic map, light guide; the glass caustic map is
+  // shot again now), so that the next frame shoots it with the scene as it is posed then: a frame whose light must
+  // not depend on the frames before it (a cache pre-pass's key frame, a fixed cache's frame, of a moving scene).
+  void forget_light();
+
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
   // later time: refits and uploads what the parts' moves changed, and nothing else (no record is marked, the photons
   // stay). A look ahead poses the scene there, calls look_ahead, and poses it back the same way.

@@ -53,6 +53,25 @@ glm::dmat4 SceneAnimator::transform_at(const Scene& scene, size_t i, double t) c
   return m;
 }
 
+SceneAnimator::Between SceneAnimator::between(const Scene& scene, size_t i, double t0, double t1) const {
+  const glm::dmat4 a = transform_at(scene, i, t0), b = transform_at(scene, i, t1);
+  Between out;
+  out.moved = a != b;
+  const Placed& p = placed_[i];
+  if (p.positions.empty()) return out;
+  out.lo = glm::dvec3(INFINITY);
+  out.hi = glm::dvec3(-INFINITY);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec4 c((corner & 1) ? p.hi.x : p.lo.x, (corner & 2) ? p.hi.y : p.lo.y, (corner & 4) ? p.hi.z : p.lo.z,
+                       1.0);
+    const glm::dvec3 ca(a * c), cb(b * c);
+    out.lo = glm::min(out.lo, glm::min(ca, cb));
+    out.hi = glm::max(out.hi, glm::max(ca, cb));
+    out.displacement = std::max(out.displacement, glm::length(cb - ca));
+  }
+  return out;
+}
+
 void SceneAnimator::check(const Scene& scene, double t) const {
   for (size_t i = 0; i < moving_.size(); ++i) (void)transform_at(scene, i, t);
 }

@@ -27,6 +27,17 @@ class SceneAnimator {
   // nothing: a walkthrough checks every frame's time before it writes its first frame.
   void check(const Scene& scene, double t) const;
 
+  // Moving mover i from time t0 to time t1, world units (the poses need not be the last one): the box its triangles
+  // fill at either time (the transformed corners of their box as placed), joined; how far any of their points moved;
+  // and whether it moved at all (a mover without triangles, a light alone, has an empty box). Cache files' records hold
+  // the times they were made at; this is how far the scene moved since (sequence/record_times.h).
+  struct Between {
+    glm::dvec3 lo{0.0}, hi{0.0};
+    double displacement = 0.0;
+    bool moved = false;
+  };
+  Between between(const Scene& scene, size_t i, double t0, double t1) const;
+
   // The movers this animation moves: indices into Scene::movers.
   const std::vector<size_t>& moving() const { return moving_; }
   // How far the last pose moved moving mover i's triangles at most, world units: the largest move of a corner of

@@ -14,9 +14,9 @@ namespace rcsplat {
 namespace {
 
 constexpr char kMagic[16] = "rcsplat cache\0\0";
-constexpr uint32_t kFormatVersion = 2;
-constexpr size_t kVersionBytes = 32, kDeviceBytes = 64;
-constexpr size_t kHeaderBytes = 16 + 4 + 4 + kVersionBytes + 8 * 3 + kDeviceBytes;
+constexpr uint32_t kFormatVersion = 3;
+constexpr size_t kVersionBytes = 32, kDeviceBytes = 64, kTimesBytes = 4 + 4 + 8 + 8;
+constexpr size_t kHeaderBytes = 16 + 4 + 4 + kVersionBytes + 8 * 3 + kDeviceBytes + kTimesBytes;
 constexpr size_t kPerRecordBytes = sizeof(CacheRecord) + sizeof(uint64_t);
 // A new field of CacheSettings must join settings_fingerprint below (and a new field of CacheRecord, the format).
 static_assert(sizeof(CacheSettings) == 56, "a cache setting was added: fingerprint it in settings_fingerprint");
@@ -294,6 +294,10 @@ void write_cache_file(const std::string& path, const KeptCache& kept, const Cach
   put(out, identity.settings);
   put(out, uint64_t(kept.irradiance.frames_begun()));
   put_fixed(out, identity.device, kDeviceBytes);
+  put(out, int32_t(kept.times.animation));
+  put(out, uint32_t(kept.times.by_key_frame));
+  put(out, kept.times.fps);
+  put(out, kept.times.time);
 
   put(out, uint64_t(kept.irradiance.size()));
   put_records(out, kept.irradiance);
@@ -347,6 +351,12 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
   const uint64_t scene = take<uint64_t>(head, at), settings = take<uint64_t>(head, at);
   const uint64_t frames = take<uint64_t>(head, at);
   at += kDeviceBytes;  // the device that computed them: for a person reading the file
+  RecordTimes times;
+  times.animation = take<int32_t>(head, at);
+  const uint32_t by_key_frame = take<uint32_t>(head, at);
+  times.by_key_frame = by_key_frame != 0;
+  times.fps = take<double>(head, at);
+  times.time = take<double>(head, at);
 
   // The largest file these settings can have written, before the file is read whole.
   const uint64_t most = kHeaderBytes + 2 * (8 + uint64_t(limits.records) * kPerRecordBytes) + 16 +
@@ -402,6 +412,15 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
         "written with other settings than this render's (cache settings, seed, bounces, photons, pixel samples); "
         "render with the settings that wrote it");
 
+  // The time the records hold: a scene that stands still, or an animation's frames at a rate a walkthrough can ask for.
+  const bool times_ok = times.animation < 0
+                            ? times.animation == -1 && by_key_frame == 0 && times.fps == 0.0 && times.time == 0.0
+                            : by_key_frame <= 1 && times.fps > 0.0 && times.fps <= 1000.0 && std::isfinite(times.time) &&
+                                  (by_key_frame ? times.time == 0.0 : times.time >= 0.0);
+  if (!times_ok)
+    fail("the time its records hold is out of range (animation " + std::to_string(times.animation) + ", " +
+         std::to_string(times.fps) + " frames/s, " + std::to_string(times.time) + " s)");
+
   // What these settings can make, then every number.
   for (const auto* kind : {&irradiance, &radiance})
     if (kind->records.size() > limits.records)
@@ -438,6 +457,7 @@ void read_cache_file(const std::string& path, const CacheFileIdentity& expected,
   into.irradiance.restore(key, std::move(irradiance), frames);
   into.radiance.restore(key, std::move(radiance), frames);
   into.light = std::move(light);
+  into.times = times;
 }
 
 }  // namespace rcsplat

@@ -6,13 +6,16 @@
 // maps' estimates from those photons, the new records and the pixels, so its frames differ from the writer's by its
 // own float rounding (scene, settings and rcsplat version must match; the device need not).
 //
-// Format 2 (little-endian; docs/USAGE.md "Cache files"):
+// Format 3 (little-endian; docs/USAGE.md "Cache files"):
 //   16 bytes  "rcsplat cache\0\0\0"
-//   u32       format version (2), u32 bytes a record (160)
+//   u32       format version (3), u32 bytes a record (160)
 //   32 bytes  the rcsplat version that wrote it, zero-padded: records change with the code that computes them
 //   u64       the scene's fingerprint (scene_fingerprint), u64 the settings' (settings_fingerprint)
 //   u64       frames begun
 //   64 bytes  the device that computed them, zero-padded (for messages)
+//   i32       the glTF animation that moves the scene (-1: it stands still), u32 1 where each record holds its key
+//             frame's time (its u64 below / fps), f64 frames a second, f64 the time every record holds otherwise
+//             (render/kept_records.h RecordTimes; all zero for a scene that stands still)
 //   irradiance records: u64 N, N records (CacheRecord, device coordinates), N u64 (the frame that last used each)
 //   radiance records:   u64 N, u32 F floats a record, f32 the brightest stratum any of them saw, N records, N u64,
 //                       N x F floats (HSH coefficients, kernels/hsh_records.cl's layout)

@@ -76,7 +76,7 @@ class ReachGrid {
 
 // One kind of records of every part, in key-frame order, thinned.
 KeptRecords::Contents merge_kind(const std::vector<CachePart>& parts, KeptRecords KeptCache::*kind, float accuracy,
-                                 size_t& records_in) {
+                                 const HoldsAt& holds, size_t& records_in) {
   struct Entry {
     uint64_t tag;
     size_t part, index;
@@ -94,7 +94,7 @@ KeptRecords::Contents merge_kind(const std::vector<CachePart>& parts, KeptRecord
     records[e] = (parts[entries[e].part].cache->*kind).records()[entries[e].index];
     tags[e] = entries[e].tag;
   }
-  const std::vector<char> keep = records_not_reached_earlier(records, tags, accuracy);
+  const std::vector<char> keep = records_not_reached_earlier(records, tags, accuracy, holds);
   KeptRecords::Contents out;
   for (const CachePart& part : parts)
     if (!(part.cache->*kind).records().empty()) out.payload_per_record = (part.cache->*kind).payload_per_record();
@@ -118,7 +118,7 @@ KeptRecords::Contents merge_kind(const std::vector<CachePart>& parts, KeptRecord
 }  // namespace
 
 std::vector<char> records_not_reached_earlier(const std::vector<CacheRecord>& records, const std::vector<uint64_t>& tags,
-                                              float accuracy) {
+                                              float accuracy, const HoldsAt& holds) {
   const size_t n = records.size();
   std::vector<char> keep(n, 1);
   if (n == 0) return keep;
@@ -137,7 +137,8 @@ std::vector<char> records_not_reached_earlier(const std::vector<CacheRecord>& re
       keep[i] = !grid.any(at.p, [&](uint32_t k) {
         const CacheRecord& r = records[k];
         const glm::vec3 pk = record_position(r), nk = record_normal(r);
-        return record_reaches_pixel(r, ward_weight(at.p, at.n, pk, nk, r.radius), accuracy, at, pk, nk);
+        return record_reaches_pixel(r, ward_weight(at.p, at.n, pk, nk, r.radius), accuracy, at, pk, nk) &&
+               (!holds || holds(r, tags[k], tags[i]));
       });
     }
     for (size_t i = begin; i < end; ++i)
@@ -148,12 +149,20 @@ std::vector<char> records_not_reached_earlier(const std::vector<CacheRecord>& re
 }
 
 CacheMergeStats merge_cache_parts(const std::vector<CachePart>& parts, const KeptRecordsKey& key, size_t capacity,
-                                  KeptCache& into) {
+                                  KeptCache& into, const HoldsAt& holds) {
   if (parts.empty()) throw Error("--cache-merge: no part files to merge");
-  for (size_t p = 1; p < parts.size(); ++p)
+  for (size_t p = 1; p < parts.size(); ++p) {
     if (!same_light(parts[0].cache->light, parts[p].cache->light))
       throw Error(parts[p].path + ": its photons and light guide differ from " + parts[0].path +
                   "'s: every part of a pre-pass must come from the same settings, rcsplat and kind of device");
+    if (!(parts[0].cache->times == parts[p].cache->times))
+      throw Error(parts[p].path + ": its records' times differ from " + parts[0].path +
+                  "'s (another animation or frame rate): every part of a pre-pass must come from the same walkthrough");
+  }
+  const RecordTimes& times = parts[0].cache->times;
+  if (times.moving() && (!times.by_key_frame || !holds))
+    throw Error(parts[0].path + ": not a pre-pass part of a moving scene (its records hold one time, not their key "
+                "frames')");
   // A key frame in two parts would be kept twice (overlapping frame ranges).
   std::map<uint64_t, size_t> owner;
   for (size_t p = 0; p < parts.size(); ++p)
@@ -166,8 +175,10 @@ CacheMergeStats merge_cache_parts(const std::vector<CachePart>& parts, const Kep
       }
   CacheMergeStats stats;
   stats.key_frames = owner.size();
-  KeptRecords::Contents irradiance = merge_kind(parts, &KeptCache::irradiance, key.cache.accuracy, stats.irradiance_in);
-  KeptRecords::Contents radiance = merge_kind(parts, &KeptCache::radiance, key.cache.accuracy, stats.radiance_in);
+  const HoldsAt& still_holds = times.moving() ? holds : HoldsAt{};
+  KeptRecords::Contents irradiance =
+      merge_kind(parts, &KeptCache::irradiance, key.cache.accuracy, still_holds, stats.irradiance_in);
+  KeptRecords::Contents radiance = merge_kind(parts, &KeptCache::radiance, key.cache.accuracy, still_holds, stats.radiance_in);
   stats.irradiance_kept = irradiance.records.size();
   stats.radiance_kept = radiance.records.size();
   if (stats.irradiance_kept > capacity || stats.radiance_kept > capacity)
@@ -179,6 +190,7 @@ CacheMergeStats merge_cache_parts(const std::vector<CachePart>& parts, const Kep
   into.irradiance.restore(key, std::move(irradiance), frames);
   into.radiance.restore(key, std::move(radiance), frames);
   into.light = parts[0].cache->light;
+  into.times = times;
   return stats;
 }
 
@@ -205,7 +217,8 @@ KeptCache PrePassPart::cache(const KeptCache& kept, const KeptRecordsKey& key, s
   KeptCache out(capacity);
   out.irradiance.restore(key, irradiance_, frames_);
   out.radiance.restore(key, radiance_, frames_);
-  out.light = kept.light;
+  out.light = times_.moving() ? KeptLight{} : kept.light;
+  out.times = times_;
   return out;
 }
 

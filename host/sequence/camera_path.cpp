@@ -45,8 +45,7 @@ CameraPath gltf_camera_path(const Scene& scene, int camera, int animation, bool 
   for (const Scene::AnimatedContent& moved : scene.animated_content)
     if (moved.animation == animation && !scene_may_move)
       throw Error(scene.source + ": " + moved.what +
-                  "; with a fixed cache file, a farm's pre-pass or its merge, `animate` moves only the camera "
-                  "through a scene that stands still (one cache serves the whole path): " +
+                  "; this camera path moves only the camera through a scene that stands still: " +
                   (moved.morph_weights ? std::string("morph weights are not played even with --cache-per-frame; ")
                                        : std::string("render it with --cache-per-frame, or ")) +
                   "walk through it as it stands with --keyframes or --orbit");

@@ -69,9 +69,20 @@ CacheFileIdentity cache_identity(const GpuContext& gpu, const Scene& scene, cons
 }  // namespace
 
 void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
-                     const std::string& path) {
+                     const std::string& path, int animation) {
   read_cache_file(path, cache_identity(gpu, scene, plan), kept_records_key(plan.frame_settings()), cache_file_limits(plan.frame_settings()),
                   kept);
+  const int holds = kept.times.animation;
+  if (holds != animation) {
+    auto moved_by = [&](int a) {
+      return a < 0 ? std::string("the scene standing still")
+                   : "the scene moved by animations[" + std::to_string(a) + "]" +
+                         (size_t(a) < scene.animation_names.size() ? " '" + scene.animation_names[size_t(a)] + "'" : "");
+    };
+    throw Error(path + ": its records hold " + moved_by(holds) + ", and this render draws " + moved_by(animation) +
+                (animation < 0 ? std::string(" (`render` draws a scene as it stands; `animate` plays its animation)")
+                               : std::string()));
+  }
   log_info(path + ": " + std::to_string(kept.irradiance.size()) + " irradiance records, " +
            std::to_string(kept.radiance.size()) + " radiance records, " + std::to_string(kept.light.photons.size()) +
            " photons, " + std::to_string(kept.light.caustic_photons.size()) + " caustic photons and " +
@@ -79,8 +90,8 @@ void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene,
 }
 
 void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
-                     const std::string& path) {
-  load_cache_file(gpu, renderer.kept_records(), scene, plan, path);
+                     const std::string& path, int animation) {
+  load_cache_file(gpu, renderer.kept_records(), scene, plan, path, animation);
 }
 
 void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& scene, const FramePlan& plan,

@@ -42,11 +42,13 @@ Scene load_scene(const RenderJob& job, const ScenePose& pose = {});
 
 // --cache-in / --cache-out (sequence/cache_file.h): checked before any work (the splat only; --cache-out writable);
 // then read into the renderer's kept records (or another KeptCache) for the plan's settings, or written from them.
+// `animation`: the glTF animation that moves the reader's scene (-1: it stands still); a file whose records hold
+// another (render/kept_records.h RecordTimes) is refused, naming both.
 void check_cache_files(const RenderJob& job);
 void load_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
+                     const std::string& path, int animation = -1);
 void load_cache_file(const GpuContext& gpu, KeptCache& kept, const Scene& scene, const FramePlan& plan,
-                     const std::string& path);
+                     const std::string& path, int animation = -1);
 void save_cache_file(const GpuContext& gpu, Renderer& renderer, const Scene& scene, const FramePlan& plan,
                      const std::string& path);
 void save_cache_file(const GpuContext& gpu, const KeptCache& kept, const Scene& scene, const FramePlan& plan,

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <functional>
 #include <optional>
 
 #include "cl/device_info.h"
@@ -14,6 +15,7 @@
 #include "scene/scene_animator.h"
 #include "sequence/cache_merge.h"
 #include "sequence/camera_path.h"
+#include "sequence/record_times.h"
 #include "sequence/video.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -41,10 +43,9 @@ CameraPath choose_path(const WalkthroughRequest& o, const Scene& scene) {
   if (!o.keyframes.empty()) return read_keyframe_camera_path(o.keyframes);
   if (o.render.scene_path.empty())
     throw Error("animate: the built-in Cornell box has no animation; give --orbit SECONDS or --keyframes FILE");
-  // Records kept from frame to frame follow a moving scene (FrameRenderers); a cache file's fixed records, a farm's
-  // pre-pass and merge do not yet.
-  return gltf_camera_path(scene, o.render.settings.camera, o.animation,
-                          o.cache == CacheMode::per_frame || o.cache == CacheMode::kept);
+  // Every cache mode follows a moving scene (FrameRenderers; sequence/record_times.h); what no rigid move follows
+  // (skins, morph weights) SceneAnimator refuses but with --cache-per-frame.
+  return gltf_camera_path(scene, o.render.settings.camera, o.animation, true);
 }
 
 // The PNG frame pattern the MP4 preview is made from: the first PNG output.
@@ -97,6 +98,35 @@ class FrameRenderers {
     return *renderer_;
   }
   Renderer& current() { return *renderer_; }
+  bool animated() const { return animator_.has_value(); }
+  // The time the records of this walkthrough hold after frame `frame` (still: none), by key frame for a pre-pass.
+  RecordTimes times(long long frame, bool by_key_frame) const {
+    if (!animator_) return {};
+    return {path_.moves_scene_animation, by_key_frame, o_.fps, by_key_frame ? 0.0 : double(frame) / o_.fps};
+  }
+  // How far the scene moved between two times, for records made at one and used at the other.
+  std::optional<RecordMoves> record_moves() const {
+    if (!animator_) return std::nullopt;
+    return RecordMoves(scene_, *animator_, renderer_->device_scene().frame(), o_.moved_record_tolerance);
+  }
+  // Records read from a cache file (or put back from a fixed one) whose times `times` gives, brought to frame
+  // `frame`: the scene posed there without marking anything, then each record marked by what moved since its own
+  // time (RecordMoves::bring_to), to be computed again where it stands or to go. Where a light moved since a
+  // single-time file's records, the photons they came with go too.
+  void bring_records_to(long long frame, const RecordTimes& times) {
+    if (!animator_) return;
+    const double time = double(frame) / o_.fps;
+    bool lights = false;
+    const std::vector<Renderer::PartMove> parts = pose(time, lights);
+    if (!parts.empty()) renderer_->pose_for_look_ahead(parts);
+    KeptCache& kept = renderer_->kept_records();
+    RecordMoves moves(scene_, *animator_, renderer_->device_scene().frame(), o_.moved_record_tolerance);
+    for (KeptRecords* records : {&kept.irradiance, &kept.radiance}) {
+      records->set_time(time);
+      moves.bring_to(*records, times, time);
+    }
+    if (!times.by_key_frame && moves.between(times.time, time).lights) renderer_->forget_light();
+  }
   const Scene& scene() const { return posed_ ? *posed_ : scene_; }
   // Before any frame is written: a pose no rigid move follows at any of the frames' times is refused now, not after
   // the frames before it were rendered.
@@ -249,10 +279,6 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   WalkthroughResult result;
   const Scene scene = load_scene(o.render);
   const CameraPath path = choose_path(o, scene);
-  if (path.moves_scene_animation >= 0 && (!o.render.cache_in.empty() || !o.render.cache_out.empty()))
-    throw Error("--cache-in and --cache-out: " + scene.source + " moves (animations[" +
-                std::to_string(path.moves_scene_animation) +
-                "]); a cache file holds the records of a scene that stands still (not yet the time they were made at)");
   const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
   const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
   if (first < 0 || last < first) throw Error("--first-frame and --last-frame: an empty or negative range");
@@ -291,9 +317,12 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     settings.camera_overrides = pose.overrides();
     return settings;
   };
-  if (!o.render.cache_in.empty())  // before any frame: a file that does not fit is refused with no output
+  if (!o.render.cache_in.empty()) {  // before any frame: a file that does not fit is refused with no output
     load_cache_file(gpu, renderers.current(), scene, renderers.current().plan(frame_settings(first)),
-                    o.render.cache_in);
+                    o.render.cache_in, path.moves_scene_animation);
+    // Records kept from a moving scene's file start where the file's time left them (a fixed cache: each frame).
+    if (o.cache == CacheMode::kept) renderers.bring_records_to(first, renderers.current().kept_records().times);
+  }
   if (o.cache == CacheMode::merge) {
     // The parts, each read as a stranger's cache file for these settings, merged (sequence/cache_merge.h), written.
     const FramePlan plan = renderers.current().plan(frame_settings(first));
@@ -301,18 +330,25 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     std::vector<KeptCache> caches(o.cache_merge.size(), KeptCache(capacity));
     std::vector<CachePart> parts;
     for (size_t i = 0; i < caches.size(); ++i) {
-      load_cache_file(gpu, caches[i], scene, plan, o.cache_merge[i]);
+      load_cache_file(gpu, caches[i], scene, plan, o.cache_merge[i], path.moves_scene_animation);
       parts.push_back({o.cache_merge[i], &caches[i]});
     }
+    // A moving scene: an earlier key frame's record stands for a later one's only where it still holds there.
+    std::optional<RecordMoves> moves = renderers.record_moves();
+    HoldsAt holds;
+    if (moves)
+      holds = [&moves, fps = caches[0].times.fps](const CacheRecord& record, uint64_t from, uint64_t to) {
+        return moves->holds(record, double(from) / fps, double(to) / fps);
+      };
     KeptCache merged(capacity);
-    result.merge = merge_cache_parts(parts, kept_records_key(plan.frame_settings()), capacity, merged);
+    result.merge = merge_cache_parts(parts, kept_records_key(plan.frame_settings()), capacity, merged, holds);
     save_cache_file(gpu, merged, scene, plan, o.render.cache_out);
     return result;
   }
   // A fixed cache: what the file holds, put back before every frame (a frame's own records go with it).
   std::optional<KeptCache> fixed_cache;
   if (o.cache == CacheMode::fixed) fixed_cache.emplace(renderers.current().kept_records());
-  PrePassPart part;
+  PrePassPart part(renderers.times(first, true));
 
   FramePlan last_plan;
   std::string table = kFrameTableHeader;
@@ -329,14 +365,20 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     }
     const RenderSettings settings = frame_settings(frame);
     Renderer& renderer = renderers.for_frame(frame);
-    if (fixed_cache) renderer.kept_records() = *fixed_cache;
+    if (fixed_cache) {
+      renderer.kept_records() = *fixed_cache;
+      renderers.bring_records_to(frame, fixed_cache->times);
+    }
     if (pre_pass) {  // a key frame starts from no records; the light stays, the same in every task
       renderer.kept_records().irradiance.drop_records();
       renderer.kept_records().radiance.drop_records();
     }
+    // A moving scene's key frame or fixed-cache frame shoots its own light where the scene stands at it, so that it
+    // depends on no frame before it (whichever task renders it).
+    if ((pre_pass || fixed_cache) && renderers.animated()) renderer.forget_light();
     last_plan = renderer.plan(settings);
     RenderedImage image = renderer.render(last_plan);
-    renderers.look_ahead(frame, last, image.stats);
+    if (o.cache == CacheMode::kept) renderers.look_ahead(frame, last, image.stats);
     if (pre_pass) part.add_key_frame(frame, renderer.kept_records());
     ExrAttributes attributes = render_attributes(renderers.scene(), image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);
@@ -367,7 +409,13 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     result.pre_pass_irradiance = part.irradiance_records();
     result.pre_pass_radiance = part.radiance_records();
   } else if (!o.render.cache_out.empty()) {
-    save_cache_file(gpu, renderers.current(), scene, last_plan, o.render.cache_out);
+    KeptCache& kept = renderers.current().kept_records();
+    if (renderers.animated()) {  // the records as they hold at the last frame, with its time
+      kept.irradiance.settle_for_file();
+      kept.radiance.settle_for_file();
+      kept.times = renderers.times(last, false);
+    }
+    save_cache_file(gpu, kept, scene, last_plan, o.render.cache_out);
   }
   if (!o.mp4_path.empty()) {
     encode_mp4(find_ffmpeg(), png_pattern(o), first, last - first + 1, o.fps, o.mp4_path);
