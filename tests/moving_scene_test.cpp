@@ -410,6 +410,15 @@ double ghost_ratio(const std::string& before_path, const std::string& fresh_path
   return fresh_sum > 0.0 ? after_sum / fresh_sum : INFINITY;
 }
 
+// The quad's jump (STEP at t = 1 s) at 2 frames/s, a cache per frame written to fresh_%d.exr.
+WalkthroughRequest jump_walk(const std::string& dir) {
+  WalkthroughRequest o = quad_walk(dir, "jump", true);
+  o.fps = 2.0;
+  o.cache = CacheMode::per_frame;
+  o.render.outputs = {dir + "/fresh_%d.exr"};
+  return o;
+}
+
 // The quad jumps 1.2 to the right (and turns) at t = 1 s; frames 0 to 2 at 2 frames/s, so frame 2 sees it moved.
 // Records kept through the jump against a cache placed anew in each frame (--cache-per-frame, the scene loaded again
 // in its pose), at frame 2, over the pixels whose indirect light the jump changed by more than a quarter in the fresh
@@ -420,10 +429,7 @@ double ghost_ratio(const std::string& before_path, const std::string& fresh_path
 // cache's there.
 TEST(MovingScene, RecordsKeptThroughAMoveLeaveNoLightWhereTheMeshWas) {
   const std::string dir = test::scratch_dir();
-  WalkthroughRequest o = quad_walk(dir, "jump", true);
-  o.fps = 2.0;
-  o.cache = CacheMode::per_frame;
-  o.render.outputs = {dir + "/fresh_%d.exr"};
+  WalkthroughRequest o = jump_walk(dir);
   ASSERT_NO_THROW(render_walkthrough(o));
   o.cache = CacheMode::kept;
   o.render.outputs = {dir + "/kept_%d.exr"};
@@ -578,10 +584,7 @@ TEST(MovingScene, AFarmSplitOfAMovingWalkIsTheSameBitsAsOneProcess) {
 // not brought to the frame (RecordMoves::bring_to skipped) kept the quad's light where it was and failed for both.
 TEST(MovingScene, RecordsFromACacheFileOfAnEarlierTimeLeaveNoLightWhereTheMeshWas) {
   const std::string dir = test::scratch_dir();
-  WalkthroughRequest o = quad_walk(dir, "jump", true);
-  o.fps = 2.0;
-  o.cache = CacheMode::per_frame;
-  o.render.outputs = {dir + "/fresh_%d.exr"};
+  WalkthroughRequest o = jump_walk(dir);
   ASSERT_NO_THROW(render_walkthrough(o));
 
   WalkthroughRequest p = o;

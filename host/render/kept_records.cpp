@@ -232,6 +232,13 @@ size_t KeptRecords::mark_all_moved(const std::vector<char>* only) {
   return count;
 }
 
+size_t KeptRecords::let_marked_go() {
+  size_t count = 0;
+  for (float& change : moved_change_)
+    if (change == INFINITY) change = -INFINITY, ++count;
+  return count;
+}
+
 size_t KeptRecords::settle_for_file() {
   std::vector<char> drop(records_.size(), 0);
   size_t dropped = 0;

@@ -108,6 +108,10 @@ class KeptRecords {
   size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<char>* only = nullptr);
   // A light moved: every record's light may have changed.
   size_t mark_all_moved(const std::vector<char>* only = nullptr);
+  // The records marked to be computed again are marked to go instead: where a cache holds records of many times (a
+  // merged pre-pass), a record that no longer holds has a newer one beside it or placement puts one there, cheaper
+  // than computing it again in place. Returns how many.
+  size_t let_marked_go();
   // Before a cache file is written of a moving scene: every open window closed with the record's light at the time
   // now (set_time), and the records marked to be computed again or to go dropped, since a file keeps no marks.
   // Returns the records dropped.

@@ -113,7 +113,8 @@ class FrameRenderers {
   // `frame`: the scene posed there without marking anything, then each record marked by what moved since its own
   // time (RecordMoves::bring_to), to be computed again where it stands or to go. Where a light moved since a
   // single-time file's records, the photons they came with go too.
-  void bring_records_to(long long frame, const RecordTimes& times) {
+  // `let_go`: marked records go rather than being computed again (a fixed cache of many key frames' records).
+  void bring_records_to(long long frame, const RecordTimes& times, bool let_go = false) {
     if (!animator_) return;
     const double time = double(frame) / o_.fps;
     bool lights = false;
@@ -124,6 +125,7 @@ class FrameRenderers {
     for (KeptRecords* records : {&kept.irradiance, &kept.radiance}) {
       records->set_time(time);
       moves.bring_to(*records, times, time);
+      if (let_go) records->let_marked_go();
     }
     if (!times.by_key_frame && moves.between(times.time, time).lights) renderer_->forget_light();
   }
@@ -367,7 +369,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     Renderer& renderer = renderers.for_frame(frame);
     if (fixed_cache) {
       renderer.kept_records() = *fixed_cache;
-      renderers.bring_records_to(frame, fixed_cache->times);
+      renderers.bring_records_to(frame, fixed_cache->times, fixed_cache->times.by_key_frame);
     }
     if (pre_pass) {  // a key frame starts from no records; the light stays, the same in every task
       renderer.kept_records().irradiance.drop_records();
