@@ -190,7 +190,7 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
   double radius = has_maps ? INFINITY : 0.0;
   if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
   if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
-  if (lights_moved || moved_since_photons_ > radius) forget_light();
+  if (!light_held_ && (lights_moved || moved_since_photons_ > radius)) forget_light();
   if (!kept_records_) return 0;
   size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {

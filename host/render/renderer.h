@@ -71,6 +71,9 @@ class Renderer {
   // shot again now), so that the next frame shoots it with the scene as it is posed then: a frame whose light must
   // not depend on the frames before it (a cache pre-pass's key frame, a fixed cache's frame, of a moving scene).
   void forget_light();
+  // Held, the light changes only by forget_light: a move never makes it again, however far the parts go (a fixed
+  // cache's frames of a moving scene share the light of their key frame, sequence/walkthrough.cpp).
+  void hold_light(bool held) { light_held_ = held; }
 
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
   // later time: refits and uploads what the parts' moves changed, and nothing else (no record is marked, the photons
@@ -111,6 +114,7 @@ class Renderer {
   std::vector<TriangleRange> moving_parts_;
   std::unique_ptr<MovingBvh> moving_bvh_;  // with moving parts
   double moved_since_photons_ = 0.0;       // world units the parts have moved since the photons were shot (move())
+  bool light_held_ = false;                // hold_light
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

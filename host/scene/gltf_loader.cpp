@@ -58,7 +58,7 @@ class GltfReader {
                        ext.rfind("KHR_materials_", 0) == 0 ? "ignored: surfaces are opaque, shaded with the metallic-roughness BRDF"
                                                            : "ignored; the image may differ from the author's");
     }
-    if (!model_.animations.empty() && pose_.animation < 0)
+    if (!model_.animations.empty() && pose_.animation < 0 && !pose_.played_by_caller)
       note_unsupported(std::to_string(model_.animations.size()) + " animation(s)",
                        "render draws the nodes' rest transforms and weights; `rcsplat animate` plays them (meshes "
                        "and lights moved rigidly with one cache; skins with --cache-per-frame)");

@@ -14,6 +14,9 @@ namespace rcsplat {
 struct ScenePose {
   int animation = -1;
   double time = 0.0;
+  // The caller plays the file's animation itself (`animate` along the glTF's own animation): the rest pose is where
+  // it starts, not an animation left unplayed, so the loader notes none as not simulated.
+  bool played_by_caller = false;
 };
 
 // Reads only what `limits` allows: files inside the scene's folder, triangles and host memory within bounds.

@@ -104,6 +104,28 @@ class FrameRenderers {
     if (!animator_) return {};
     return {path_.moves_scene_animation, by_key_frame, o_.fps, by_key_frame ? 0.0 : double(frame) / o_.fps};
   }
+  // A fixed cache's key frame's light (photon map, caustic map, light guide), shot where the scene stands at key frame
+  // `key`: the scene posed there, every record and the light dropped, and the key frame rendered at 16 x 16 pixels
+  // (the light does not depend on the view or the resolution), then the scene posed back at frame `frame`. The frames
+  // from one key frame to the next share it, so that a frame depends on its key frame alone, whatever task renders
+  // it. Adds the work to `stats`.
+  KeptLight key_frame_light(long long key, long long frame, RenderSettings at_key, RenderStats& stats) {
+    const auto start = std::chrono::steady_clock::now();
+    bool lights = false;
+    renderer_->pose_for_look_ahead(pose(double(key) / o_.fps, lights));
+    renderer_->forget_light();
+    KeptCache& kept = renderer_->kept_records();
+    kept.irradiance.drop_records();
+    kept.radiance.drop_records();
+    at_key.width = at_key.height = 16;
+    at_key.color_only = true;
+    const RenderedImage shot = renderer_->render(renderer_->plan(at_key));
+    KeptLight light = kept.light;
+    renderer_->pose_for_look_ahead(pose(double(frame) / o_.fps, lights));
+    stats.photon_map.seconds += shot.stats.photon_map.seconds;
+    stats.total_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return light;
+  }
   // How far the scene moved between two times, for records made at one and used at the other.
   std::optional<RecordMoves> record_moves() const {
     if (!animator_) return std::nullopt;
@@ -279,7 +301,9 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   const RenderSettings& request = o.render.settings;
   const bool pre_pass = o.cache == CacheMode::pre_pass;
   WalkthroughResult result;
-  const Scene scene = load_scene(o.render);
+  // Along the glTF's own animation (no --keyframes, no --orbit) the walkthrough plays it: the loader's note that
+  // `render` leaves animations unplayed would mislead.
+  const Scene scene = load_scene(o.render, ScenePose{-1, 0.0, o.keyframes.empty() && !(o.orbit_seconds > 0.0)});
   const CameraPath path = choose_path(o, scene);
   const long long all_frames = (long long)std::floor(path.duration * o.fps + 1e-6) + 1;
   const long long first = o.first_frame, last = o.last_frame >= 0 ? o.last_frame : all_frames - 1;
@@ -350,6 +374,19 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
   // A fixed cache: what the file holds, put back before every frame (a frame's own records go with it).
   std::optional<KeptCache> fixed_cache;
   if (o.cache == CacheMode::fixed) fixed_cache.emplace(renderers.current().kept_records());
+  // A moving scene's merged cache: each frame takes the light of its key frame (the last at or before it; the first
+  // before any), shot once a run of frames that share it (FrameRenderers::key_frame_light); the renderer's moves do
+  // not make it again.
+  std::vector<long long> key_frames;
+  if (fixed_cache && renderers.animated() && fixed_cache->times.by_key_frame) {
+    for (const KeptRecords* kind : {&fixed_cache->irradiance, &fixed_cache->radiance})
+      key_frames.insert(key_frames.end(), kind->last_used().begin(), kind->last_used().end());
+    std::sort(key_frames.begin(), key_frames.end());
+    key_frames.erase(std::unique(key_frames.begin(), key_frames.end()), key_frames.end());
+    renderers.current().hold_light(true);
+  }
+  std::optional<long long> light_key;
+  KeptLight key_light;
   PrePassPart part(renderers.times(first, true));
 
   FramePlan last_plan;
@@ -367,19 +404,31 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     }
     const RenderSettings settings = frame_settings(frame);
     Renderer& renderer = renderers.for_frame(frame);
+    RenderStats key_light_stats;
+    if (!key_frames.empty()) {
+      const auto after = std::upper_bound(key_frames.begin(), key_frames.end(), frame);
+      const long long key = after == key_frames.begin() ? key_frames.front() : *(after - 1);
+      if (light_key != key) {
+        key_light = renderers.key_frame_light(key, frame, frame_settings(key), key_light_stats);
+        light_key = key;
+      }
+    }
     if (fixed_cache) {
       renderer.kept_records() = *fixed_cache;
+      if (light_key) renderer.kept_records().light = key_light;
       renderers.bring_records_to(frame, fixed_cache->times, fixed_cache->times.by_key_frame);
     }
-    if (pre_pass) {  // a key frame starts from no records; the light stays, the same in every task
+    if (pre_pass) {  // a key frame starts from no records (a still scene's light stays, the same in every task)
       renderer.kept_records().irradiance.drop_records();
       renderer.kept_records().radiance.drop_records();
     }
-    // A moving scene's key frame or fixed-cache frame shoots its own light where the scene stands at it, so that it
-    // depends on no frame before it (whichever task renders it).
-    if ((pre_pass || fixed_cache) && renderers.animated()) renderer.forget_light();
+    // A moving scene's key frame, or a frame of a fixed cache whose records hold one time, shoots its own light where
+    // the scene stands at it, so that it depends on no frame before it (whichever task renders it).
+    if ((pre_pass || (fixed_cache && !light_key)) && renderers.animated()) renderer.forget_light();
     last_plan = renderer.plan(settings);
     RenderedImage image = renderer.render(last_plan);
+    image.stats.photon_map.seconds += key_light_stats.photon_map.seconds;
+    image.stats.total_s += key_light_stats.total_s;
     if (o.cache == CacheMode::kept) renderers.look_ahead(frame, last, image.stats);
     if (pre_pass) part.add_key_frame(frame, renderer.kept_records());
     ExrAttributes attributes = render_attributes(renderers.scene(), image, settings);
