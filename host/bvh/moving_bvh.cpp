@@ -160,7 +160,7 @@ void MovingBvh::build_top() {
   std::copy(top.begin(), top.end(), tree_.nodes.begin());
 }
 
-MovingBvh::Changed MovingBvh::move(const std::vector<glm::vec3>& positions, const std::vector<size_t>& moved) {
+MovingBvh::Changed MovingBvh::move(const std::function<glm::vec3(size_t vertex)>& vertex, const std::vector<size_t>& moved) {
   Changed changed;
   for (const size_t m : moved) {
     if (m + 1 >= parts_.size()) throw Error("no such moving part");
@@ -170,7 +170,8 @@ MovingBvh::Changed MovingBvh::move(const std::vector<glm::vec3>& positions, cons
       TriangleBlock8& block = tree_.blocks[b];
       for (int lane = 0; lane < 8; ++lane) {
         if (block.prim[lane] < 0) continue;
-        const glm::vec3* v = &positions[size_t(block.prim[lane]) * 3];
+        const size_t first = size_t(block.prim[lane]) * 3;
+        const glm::vec3 v[3] = {vertex(first), vertex(first + 1), vertex(first + 2)};
         block.v0_x[lane] = v[0].x, block.v0_y[lane] = v[0].y, block.v0_z[lane] = v[0].z;
         block.v1_x[lane] = v[1].x, block.v1_y[lane] = v[1].y, block.v1_z[lane] = v[1].z;
         block.v2_x[lane] = v[2].x, block.v2_y[lane] = v[2].y, block.v2_z[lane] = v[2].z;
@@ -191,8 +192,10 @@ MovingBvh::Changed MovingBvh::move(const std::vector<glm::vec3>& positions, cons
             for (int lane = 0; lane < 8; ++lane) {
               const TriangleBlock8& block = tree_.blocks[b];
               if (block.prim[lane] < 0) continue;
-              const glm::vec3* v = &positions[size_t(block.prim[lane]) * 3];
-              box.add(v[0]), box.add(v[1]), box.add(v[2]);
+              // The block's lanes, written above (a part's leaves are its own blocks).
+              box.add(glm::vec3(block.v0_x[lane], block.v0_y[lane], block.v0_z[lane]));
+              box.add(glm::vec3(block.v1_x[lane], block.v1_y[lane], block.v1_z[lane]));
+              box.add(glm::vec3(block.v2_x[lane], block.v2_y[lane], block.v2_z[lane]));
             }
         }
         set_slot(node, i, node.child[i], box);

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <utility>
+#include <functional>
 #include <vector>
 
 #include "bvh/bvh8.h"
@@ -39,9 +40,13 @@ class MovingBvh {
     // For each moved part, the box it filled before and after the move, joined: lowest and highest corner.
     std::vector<std::pair<glm::vec3, glm::vec3>> swept;
   };
-  // The parts listed (indices into the ranges given at construction) moved to `positions` (the whole scene's, as
-  // before): their triangles are written into their blocks, their boxes refitted, and the top level made again.
-  Changed move(const std::vector<glm::vec3>& positions, const std::vector<size_t>& moved);
+  // The parts listed (indices into the ranges given at construction) moved: `vertex(i)` gives vertex i's position
+  // (3 a triangle, the scene's numbering) and is asked only for the moved parts' vertices; their triangles are written
+  // into their blocks, their boxes refitted, and the top level made again.
+  Changed move(const std::function<glm::vec3(size_t vertex)>& vertex, const std::vector<size_t>& moved);
+  Changed move(const std::vector<glm::vec3>& positions, const std::vector<size_t>& moved) {
+    return move([&positions](size_t i) { return positions[i]; }, moved);
+  }
 
  private:
   struct Part {

@@ -1,5 +1,6 @@
 #include "cl/device_scene.h"
 
+#include <algorithm>
 #include <numbers>
 
 #include "scene/scene_plan.h"
@@ -51,20 +52,55 @@ void DeviceScene::set_glass_caustics(GpuContext& gpu, const std::vector<PhotonHi
 void DeviceScene::move(GpuContext& gpu, const Scene& scene, const Bvh8* bvh, const MovingBvh::Changed& rows,
                        const std::vector<TriangleRange>& moved_triangles) {
   if (bvh) bvh_.write_rows(gpu, *bvh, rows);
-  PackedScene p = pack_scene(scene, frame_, Texels::left_out);
+  // Only the moved triangles are packed again: a move costs its part's size, not the scene's.
+  bool emitters_moved = false;
   for (const TriangleRange& r : moved_triangles) {
     if (!r.count) continue;
+    std::vector<TriangleShading> shading(r.count);
+    // Emitters are listed in triangle order.
+    auto e = std::lower_bound(emitter_triangle_.begin(), emitter_triangle_.end(), uint32_t(r.first));
+    for (size_t i = 0; i < r.count; ++i) {
+      const size_t t = r.first + i;
+      float twice_area = 0.0f;
+      shading[i] = pack_triangle(scene, frame_, t, &twice_area);
+      if (e == emitter_triangle_.end() || *e != t) continue;
+      const size_t k = size_t(e - emitter_triangle_.begin());
+      EmissiveTriangle& emitter = emitters_host_[k];
+      shading[i].emitter = int(k);
+      place_emitter(shading[i], twice_area, emitter);
+      const double sides = (emitter.sides_and_texture & 1) ? 2.0 : 1.0;
+      emitter_power_[k] = emitter_emitted_[k] * emitter.area * sides;
+      emitter_area_[k] = double(emitter.area) * sides;
+      emitters_moved = true;
+      ++e;
+    }
     gpu.queue().enqueueWriteBuffer(triangles_, CL_TRUE, r.first * sizeof(TriangleShading),
-                                   r.count * sizeof(TriangleShading), p.triangles.data() + r.first);
-    if (!p.tangents.empty())  // 4 floats a vertex, 3 vertices a triangle
-      gpu.queue().enqueueWriteBuffer(tangents_, CL_TRUE, r.first * 12 * sizeof(float), r.count * 12 * sizeof(float),
-                                     p.tangents.data() + r.first * 12);
+                                   r.count * sizeof(TriangleShading), shading.data());
+    if (scene.tangents.size() == 3 * scene.triangle_count()) {  // 4 floats a vertex, 3 vertices a triangle
+      std::vector<float> tangents;
+      tangents.reserve(r.count * 12);
+      for (size_t v = r.first * 3; v < (r.first + r.count) * 3; ++v) {
+        const glm::vec4& t = scene.tangents[v];
+        tangents.insert(tangents.end(), {t.x, t.y, t.z, t.w});
+      }
+      gpu.queue().enqueueWriteBuffer(tangents_, CL_TRUE, r.first * 12 * sizeof(float), tangents.size() * sizeof(float),
+                                     tangents.data());
+    }
   }
-  // Lights and emitters are few: written whole (an emitter's place in the power-proportional table may change).
-  upload_lights(gpu, p);
+  // An emitter's place in the power-proportional table may change (its area, under a scale); lights are few.
+  if (emitters_moved) {
+    select_emitters(emitters_host_, emitter_power_, emitter_area_);
+    emitters_ = gpu.upload(emitters_host_, CL_MEM_READ_ONLY, "lights");
+  }
+  lights_host_ = pack_lights(scene, frame_);
+  lights_ = gpu.upload(lights_host_, CL_MEM_READ_ONLY, "lights");
 }
 
 void DeviceScene::upload_lights(GpuContext& gpu, const PackedScene& p) {
+  emitter_triangle_ = p.emitter_triangle;
+  emitter_emitted_ = p.emitter_emitted;
+  emitter_power_ = p.emitter_power;
+  emitter_area_ = p.emitter_area;
   lights_ = gpu.upload(p.lights, CL_MEM_READ_ONLY, "lights");
   emitters_ = gpu.upload(p.emitters, CL_MEM_READ_ONLY, "lights");
   lights_host_ = p.lights;

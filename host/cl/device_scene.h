@@ -60,6 +60,7 @@ class DeviceScene {
   // The lights as uploaded (device frame): the light guide weighs them by power.
   const std::vector<PunctualLight>& lights() const { return lights_host_; }
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_host_; }
+  const cl::Buffer& triangles() const { return triangles_; }  // TriangleShading a triangle
   const std::vector<float>& emitter_mean_luminance() const { return emitter_mean_luminance_; }
   const SceneFrame& frame() const { return frame_; }
   // The environment's peak: the sum of its luminance times solid angle (0: none; kernels/environment.h).
@@ -83,6 +84,9 @@ class DeviceScene {
   std::vector<PunctualLight> lights_host_;
   std::vector<EmissiveTriangle> emitters_host_;
   std::vector<float> emitter_mean_luminance_;
+  // Each emitter's triangle (ascending), mean luminance, power and area as chosen (PackedScene): move's inputs.
+  std::vector<uint32_t> emitter_triangle_;
+  std::vector<double> emitter_emitted_, emitter_power_, emitter_area_;
   SceneFrame frame_;
 };
 

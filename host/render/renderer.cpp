@@ -163,7 +163,8 @@ MovingBvh::Changed Renderer::move_geometry(const std::vector<PartMove>& moved_pa
     StageTimer refit(bvh_s);
     std::vector<size_t> parts;
     for (const PartMove& m : moved_parts) parts.push_back(m.part);
-    if (!parts.empty()) rows = moving_bvh_->move(scene_frame_.device_positions(scene_), parts);
+    if (!parts.empty())
+      rows = moving_bvh_->move([this](size_t i) { return scene_frame_.to_device(scene_.positions[i]); }, parts);
   }
   {
     StageTimer timing(upload_s);

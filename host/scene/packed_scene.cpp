@@ -146,70 +146,100 @@ static void pack_layers(const SceneMaterial& m, Material& out) {
   out.lobe = layered_lobe(out.lobe, out.clearcoat, coat_roughness, sheen);
 }
 
-PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texels) {
-  PackedScene p;
-  size_t n = scene.triangle_count();
-  p.triangles.resize(n);
-  std::vector<double> emitter_power, emitter_area;
-  for (size_t t = 0; t < n; ++t) {
-    TriangleShading& s = p.triangles[t];
-    std::memset(&s, 0, sizeof s);
-    const glm::vec3 v[3] = {frame.to_device(scene.positions[3 * t]), frame.to_device(scene.positions[3 * t + 1]),
-                            frame.to_device(scene.positions[3 * t + 2])};
-    glm::vec3 ng = glm::cross(v[1] - v[0], v[2] - v[0]);
-    float twice_area = glm::length(ng);
-    ng = twice_area > 0.0f ? ng / twice_area : glm::vec3(0, 0, 1);
-    put3(s.geometric_normal, ng);
-    put3(s.v0, v[0]);
-    put3(s.v1, v[1]);
-    put3(s.v2, v[2]);
-    s.material = scene.triangle_material[t];
-    s.emitter = -1;
-    put3(s.normal0, scene.normals[3 * t]);
-    put3(s.normal1, scene.normals[3 * t + 1]);
-    put3(s.normal2, scene.normals[3 * t + 2]);
-    for (int k = 0; k < 3; ++k) s.color[k] = pack_vertex_color(scene.colors.empty() ? glm::vec3(1.0f) : scene.colors[3 * t + size_t(k)]);
-    for (int k = 0; k < 2; ++k) {
-      s.uv0[k] = scene.uvs[3 * t][k];
-      s.uv1[k] = scene.uvs[3 * t + 1][k];
-      s.uv2[k] = scene.uvs[3 * t + 2][k];
-    }
-    const SceneMaterial& m = scene.materials[s.material];
-    if (luminance_f(m.emission.x, m.emission.y, m.emission.z) > 0.0f && twice_area > 0.0f) {
-      const double emitted = mean_emitted_luminance(scene, t, m);
-      EmissiveTriangle e{};
-      put3(e.v0, v[0]);
-      put3(e.edge1, v[1] - v[0]);
-      put3(e.edge2, v[2] - v[0]);
-      e.area = 0.5f * twice_area;
-      put3(e.radiance, m.emission);
-      const bool textured = m.emissive_texture >= 0 && size_t(m.emissive_texture) < scene.textures.size();
-      e.sides_and_texture = (m.double_sided ? 1 : 0) | (textured ? int(t) + 1 : 0) << 1;
-      p.emitter_mean_luminance.push_back(float(emitted));
-      const double sides = m.double_sided ? 2.0 : 1.0;
-      emitter_power.push_back(emitted * e.area * sides);
-      emitter_area.push_back(double(e.area) * sides);
-      s.emitter = int(p.emitters.size());
-      p.emitters.push_back(e);
-    }
+TriangleShading pack_triangle(const Scene& scene, const SceneFrame& frame, size_t t, float* twice_area_out) {
+  TriangleShading s;
+  std::memset(&s, 0, sizeof s);
+  const glm::vec3 v[3] = {frame.to_device(scene.positions[3 * t]), frame.to_device(scene.positions[3 * t + 1]),
+                          frame.to_device(scene.positions[3 * t + 2])};
+  glm::vec3 ng = glm::cross(v[1] - v[0], v[2] - v[0]);
+  const float twice_area = glm::length(ng);
+  ng = twice_area > 0.0f ? ng / twice_area : glm::vec3(0, 0, 1);
+  put3(s.geometric_normal, ng);
+  put3(s.v0, v[0]);
+  put3(s.v1, v[1]);
+  put3(s.v2, v[2]);
+  s.material = scene.triangle_material[t];
+  s.emitter = -1;
+  put3(s.normal0, scene.normals[3 * t]);
+  put3(s.normal1, scene.normals[3 * t + 1]);
+  put3(s.normal2, scene.normals[3 * t + 2]);
+  for (int k = 0; k < 3; ++k) s.color[k] = pack_vertex_color(scene.colors.empty() ? glm::vec3(1.0f) : scene.colors[3 * t + size_t(k)]);
+  for (int k = 0; k < 2; ++k) {
+    s.uv0[k] = scene.uvs[3 * t][k];
+    s.uv1[k] = scene.uvs[3 * t + 1][k];
+    s.uv2[k] = scene.uvs[3 * t + 2][k];
   }
+  if (twice_area_out) *twice_area_out = twice_area;
+  return s;
+}
+
+bool emits(const Scene& scene, size_t t) {
+  const glm::vec3& e = scene.materials[scene.triangle_material[t]].emission;
+  return luminance_f(e.x, e.y, e.z) > 0.0f;
+}
+
+void place_emitter(const TriangleShading& s, float twice_area, EmissiveTriangle& e) {
+  const glm::vec3 v0(s.v0[0], s.v0[1], s.v0[2]), v1(s.v1[0], s.v1[1], s.v1[2]), v2(s.v2[0], s.v2[1], s.v2[2]);
+  put3(e.v0, v0);
+  put3(e.edge1, v1 - v0);
+  put3(e.edge2, v2 - v0);
+  e.area = 0.5f * twice_area;
+}
+
+void select_emitters(std::vector<EmissiveTriangle>& emitters, const std::vector<double>& emitter_power,
+                     const std::vector<double>& emitter_area) {
   // Emitters are chosen half in proportion to their power and half to their area: power alone starves a room whose
   // lights are a million times dimmer than another room's of all samples (HardCases.RoomsAMillionTimesApartInOneFrame:
   // its light vanished); the area half bounds the variance any emitter can cause by a factor 2 over power alone.
   double total_power = 0.0, total_area = 0.0, running = 0.0;
-  for (size_t i = 0; i < p.emitters.size(); ++i) {
+  for (size_t i = 0; i < emitters.size(); ++i) {
     total_power += emitter_power[i];
     total_area += emitter_area[i];
   }
-  for (size_t i = 0; i < p.emitters.size(); ++i) {
+  for (size_t i = 0; i < emitters.size(); ++i) {
     // A textured emitter may be black all over (its texture's mean is 0): then area alone chooses.
     double select = total_power > 0.0 ? 0.5 * emitter_power[i] / total_power + 0.5 * emitter_area[i] / total_area
                                        : emitter_area[i] / total_area;
     running += select;
-    p.emitters[i].pdf_select = float(select);
-    p.emitters[i].cdf = float(running);
+    emitters[i].pdf_select = float(select);
+    emitters[i].cdf = float(running);
   }
-  if (!p.emitters.empty()) p.emitters.back().cdf = 1.0f;  // no sample may fall past the last entry through rounding
+  if (!emitters.empty()) emitters.back().cdf = 1.0f;  // no sample may fall past the last entry through rounding
+}
+
+std::vector<PunctualLight> pack_lights(const Scene& scene, const SceneFrame& frame) {
+  std::vector<PunctualLight> lights;
+  for (const SceneLight& l : scene.lights) lights.push_back(pack_light(frame.device_light(l)));
+  return lights;
+}
+
+PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texels) {
+  PackedScene p;
+  size_t n = scene.triangle_count();
+  p.triangles.resize(n);
+  for (size_t t = 0; t < n; ++t) {
+    float twice_area = 0.0f;
+    TriangleShading& s = p.triangles[t];
+    s = pack_triangle(scene, frame, t, &twice_area);
+    const SceneMaterial& m = scene.materials[s.material];
+    if (emits(scene, t) && twice_area > 0.0f) {
+      const double emitted = mean_emitted_luminance(scene, t, m);
+      EmissiveTriangle e{};
+      place_emitter(s, twice_area, e);
+      put3(e.radiance, m.emission);
+      const bool textured = m.emissive_texture >= 0 && size_t(m.emissive_texture) < scene.textures.size();
+      e.sides_and_texture = (m.double_sided ? 1 : 0) | (textured ? int(t) + 1 : 0) << 1;
+      p.emitter_mean_luminance.push_back(float(emitted));
+      p.emitter_emitted.push_back(emitted);
+      p.emitter_triangle.push_back(uint32_t(t));
+      const double sides = m.double_sided ? 2.0 : 1.0;
+      p.emitter_power.push_back(emitted * e.area * sides);
+      p.emitter_area.push_back(double(e.area) * sides);
+      s.emitter = int(p.emitters.size());
+      p.emitters.push_back(e);
+    }
+  }
+  select_emitters(p.emitters, p.emitter_power, p.emitter_area);
 
   for (const SceneMaterial& m : scene.materials) {
     Material out{};
@@ -266,7 +296,7 @@ PackedScene pack_scene(const Scene& scene, const SceneFrame& frame, Texels texel
     p.tangents.reserve(4 * scene.tangents.size());
     for (const glm::vec4& t : scene.tangents) p.tangents.insert(p.tangents.end(), {t.x, t.y, t.z, t.w});
   }
-  for (const SceneLight& l : scene.lights) p.lights.push_back(pack_light(frame.device_light(l)));
+  p.lights = pack_lights(scene, frame);
   p.glass_caustics = scene.glass_light.caustics;
   p.environment = pack_environment(scene.environment);  // directions: the frame only translates and scales
   return p;

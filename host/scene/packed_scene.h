@@ -20,6 +20,10 @@ struct PackedScene {
   std::vector<PunctualLight> lights;
   std::vector<EmissiveTriangle> emitters;  // with a power-proportional selection CDF
   std::vector<float> emitter_mean_luminance;  // each emitter's luminance averaged over it (with its texture)
+  // What a move needs to place and weigh the emitters again (DeviceScene::move): each emitter's triangle, its mean
+  // luminance in double, and the power and area (times its sides) it was chosen by.
+  std::vector<uint32_t> emitter_triangle;
+  std::vector<double> emitter_emitted, emitter_power, emitter_area;
   PackedEnvironment environment;
   bool glass_caustics = false;  // Scene::glass_light.caustics
 };
@@ -29,6 +33,17 @@ struct PackedScene {
 // mip chain once more for it would double the work of packing a textured scene.
 enum class Texels { packed, left_out };
 PackedScene pack_scene(const Scene& scene, const SceneFrame& frame = {}, Texels texels = Texels::packed);
+
+// The pieces pack_scene is made of, for a scene whose parts moved (DeviceScene::move writes again only what moved):
+// triangle t's shading row (its emitter left at -1; twice its area in device units to twice_area), whether its
+// material emits, an emitter's corner and edges from its triangle's row, the emitters' selection probabilities and CDF
+// from their power and area, and the punctual lights.
+TriangleShading pack_triangle(const Scene& scene, const SceneFrame& frame, size_t t, float* twice_area = nullptr);
+bool emits(const Scene& scene, size_t t);
+void place_emitter(const TriangleShading& triangle, float twice_area, EmissiveTriangle& emitter);
+void select_emitters(std::vector<EmissiveTriangle>& emitters, const std::vector<double>& power,
+                     const std::vector<double>& area);
+std::vector<PunctualLight> pack_lights(const Scene& scene, const SceneFrame& frame);
 
 // A vertex colour in TriangleShading's 10-bit-per-channel form, and back.
 uint32_t pack_vertex_color(const glm::vec3& color);
