@@ -84,10 +84,7 @@ std::vector<CacheRecord> KeptRecords::for_view(const CameraParams& camera, const
       ++dropped;
       continue;
     }
-    if (window_end_[i] > window_start_[i])  // its light now, between the window's two (ends held past the end)
-      taken.push_back(interpolated(r, ahead_[i], (time_ - window_start_[i]) / (window_end_[i] - window_start_[i])));
-    else
-      taken.push_back(r);
+    taken.push_back(light_now(i));
     if (payload)
       payload->insert(payload->end(), payload_.begin() + std::ptrdiff_t(i * payload_per_record_),
                       payload_.begin() + std::ptrdiff_t((i + 1) * payload_per_record_));
@@ -191,44 +188,46 @@ void KeptRecords::keep_only(const std::vector<char>& drop) {
   payload_.resize(kept * payload_per_record_);
 }
 
+CacheRecord KeptRecords::light_now(size_t i) const {
+  if (window_end_[i] <= window_start_[i]) return records_[i];
+  return interpolated(records_[i], ahead_[i], (time_ - window_start_[i]) / (window_end_[i] - window_start_[i]));
+}
+
 void KeptRecords::settle_window(size_t i) {
   if (window_end_[i] <= window_start_[i]) return;
   records_[i] = interpolated(records_[i], ahead_[i], 1.0);
   window_end_[i] = window_start_[i] = -INFINITY;
 }
 
-size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<char>* only) {
+size_t KeptRecords::mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<size_t>* only) {
   size_t count = 0;
-  for (size_t i = 0; i < records_.size(); ++i) {
-    if (std::isinf(moved_change_[i]) || (only && !(*only)[i])) continue;
-    bool beside = false;
-    for (const SweptBox& move : moves) beside = beside || record_beside_move(records_[i], move);
+  for_each_record(only, [&](size_t i) {
+    if (std::isinf(moved_change_[i])) return;
     // Beside a moving part, what the record stands on and what hides it changed: it goes, and placement puts records
     // where the view now needs them, window or not (an interpolation would miss the contact).
-    if (beside) {
+    if (record_beside_any(records_[i], moves)) {
       moved_change_[i] = -INFINITY;
       ++count;
-      continue;
+      return;
     }
-    if (window_covers_now(i)) continue;  // its light at the window's end holds this move
+    if (window_covers_now(i)) return;  // its light at the window's end holds this move
     settle_window(i);
-    double change = double(moved_change_[i]);
-    for (const SweptBox& move : moves) change += moved_record_change(records_[i], move);
+    const double change = moved_record_change(records_[i], moves, double(moved_change_[i]));
     // Farther off only its light changed: it is computed again where it stands.
     moved_change_[i] = change > tolerance ? INFINITY : float(change);
     count += change > tolerance;
-  }
+  });
   return count;
 }
 
-size_t KeptRecords::mark_all_moved(const std::vector<char>* only) {
+size_t KeptRecords::mark_all_moved(const std::vector<size_t>* only) {
   size_t count = 0;
-  for (size_t i = 0; i < records_.size(); ++i) {
-    if (std::isinf(moved_change_[i]) || window_covers_now(i) || (only && !(*only)[i])) continue;
+  for_each_record(only, [&](size_t i) {
+    if (std::isinf(moved_change_[i]) || window_covers_now(i)) return;
     settle_window(i);
     moved_change_[i] = INFINITY;
     ++count;
-  }
+  });
   return count;
 }
 
@@ -243,11 +242,8 @@ size_t KeptRecords::settle_for_file() {
   std::vector<char> drop(records_.size(), 0);
   size_t dropped = 0;
   for (size_t i = 0; i < records_.size(); ++i) {
-    if (window_end_[i] > window_start_[i]) {
-      const double s = std::clamp((time_ - window_start_[i]) / (window_end_[i] - window_start_[i]), 0.0, 1.0);
-      records_[i] = interpolated(records_[i], ahead_[i], s);
-      window_end_[i] = window_start_[i] = -INFINITY;
-    }
+    records_[i] = light_now(i);
+    window_end_[i] = window_start_[i] = -INFINITY;
     drop[i] = std::isinf(moved_change_[i]);
     dropped += drop[i];
   }
@@ -301,6 +297,18 @@ bool record_beside_move(const CacheRecord& record, const SweptBox& swept) {
   const glm::dvec3 p = load(record.position);
   const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(swept.lo) - p, p - glm::dvec3(swept.hi)), glm::dvec3(0.0));
   return glm::length(outside) <= double(record.radius);
+}
+
+bool record_beside_any(const CacheRecord& record, const std::vector<SweptBox>& moves) {
+  for (const SweptBox& move : moves)
+    if (record_beside_move(record, move)) return true;
+  return false;
+}
+
+double moved_record_change(const CacheRecord& record, const std::vector<SweptBox>& moves, double before) {
+  double change = before;
+  for (const SweptBox& move : moves) change += moved_record_change(record, move);
+  return change;
 }
 
 double moved_record_change(const CacheRecord& record, const SweptBox& swept) {

@@ -60,6 +60,10 @@ struct SweptBox {
 double moved_record_change(const CacheRecord& record, const SweptBox& swept);
 // Whether the record's sphere of validity reaches the move's box (moved_record_change counts 1).
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept);
+// The same over several moves at once: beside any of them, and the sum of their bounds added to `before` (the
+// record's change since it was made, summed in the moves' order).
+bool record_beside_any(const CacheRecord& record, const std::vector<SweptBox>& moves);
+double moved_record_change(const CacheRecord& record, const std::vector<SweptBox>& moves, double before = 0.0);
 
 // A record's light at a later time (temporal windows, docs/ALGORITHM.md section 15): computed at the pixel it was
 // computed at, with the scene posed at that time. Its position, normal and radius stay the record's.
@@ -103,11 +107,11 @@ class KeptRecords {
   // it: for_view then hands it out to be computed again in place (and drops it here; the frame adds what it
   // computes). A record beside a moving part (record_beside_move) is marked to go instead: for_view drops it, and
   // placement puts records where the view needs them. Returns how many were marked.
-  // `only` (if not null, one entry a record): the records the moves apply to, the others left as they are (records
-  // of different times, each group brought to the present by its own moves: sequence/record_times.h).
-  size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<char>* only = nullptr);
+  // `only` (if not null): the indices of the records the moves apply to, the others left as they are (records of
+  // different times, each group brought to the present by its own moves: sequence/record_times.h).
+  size_t mark_moved(const std::vector<SweptBox>& moves, double tolerance, const std::vector<size_t>* only = nullptr);
   // A light moved: every record's light may have changed.
-  size_t mark_all_moved(const std::vector<char>* only = nullptr);
+  size_t mark_all_moved(const std::vector<size_t>* only = nullptr);
   // The records marked to be computed again are marked to go instead: where a cache holds records of many times (a
   // merged pre-pass), a record that no longer holds has a newer one beside it or placement puts one there, cheaper
   // than computing it again in place. Returns how many.
@@ -174,6 +178,17 @@ class KeptRecords {
   // Appends `count` records' bookkeeping: not marked, no window, used by this frame.
   void add_bookkeeping(size_t count, size_t in_place);
   bool window_covers_now(size_t i) const { return window_end_[i] >= time_; }
+  // Record i with its light at the time now: interpolated across its window where it has one (ends held past them).
+  CacheRecord light_now(size_t i) const;
+  // Calls mark(i) for every record, or for those listed in `only`.
+  template <typename Mark>
+  void for_each_record(const std::vector<size_t>* only, Mark mark) {
+    if (!only) {
+      for (size_t i = 0; i < records_.size(); ++i) mark(i);
+    } else {
+      for (const size_t i : *only) mark(i);
+    }
+  }
 };
 
 // The light records read that does not depend on the view, as photons and clusters: what the photon map, the caustic

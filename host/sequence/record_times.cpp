@@ -1,7 +1,6 @@
 #include "sequence/record_times.h"
 
 #include <algorithm>
-#include <set>
 
 namespace rcsplat {
 
@@ -24,23 +23,17 @@ const RecordMoves::Moves& RecordMoves::between(double t0, double t1) {
 bool RecordMoves::holds(const CacheRecord& record, double t0, double t1) {
   if (t0 == t1) return true;
   const Moves& moves = between(t0, t1);
-  if (moves.lights) return false;
-  double change = 0.0;
-  for (const SweptBox& part : moves.parts) {
-    if (record_beside_move(record, part)) return false;
-    change += moved_record_change(record, part);
-  }
-  return change <= tolerance_;
+  return !moves.lights && !record_beside_any(record, moves.parts) &&
+         moved_record_change(record, moves.parts) <= tolerance_;
 }
 
 size_t RecordMoves::bring_to(KeptRecords& kept, const RecordTimes& times, double now) {
-  std::set<double> made_at;
-  for (const uint64_t tag : kept.last_used()) made_at.insert(times.of(tag));
+  // The records of each time, in one pass (a merged file holds a key frame's records together, not all key frames').
+  std::map<double, std::vector<size_t>> made_at;
+  for (size_t i = 0; i < kept.size(); ++i) made_at[times.of(kept.last_used()[i])].push_back(i);
   size_t marked = 0;
-  std::vector<char> group(kept.size());
-  for (const double t : made_at) {
+  for (const auto& [t, group] : made_at) {
     if (t == now) continue;
-    for (size_t i = 0; i < kept.size(); ++i) group[i] = times.of(kept.last_used()[i]) == t;
     const Moves& moves = between(t, now);
     marked += moves.lights ? kept.mark_all_moved(&group) : kept.mark_moved(moves.parts, tolerance_, &group);
   }

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "cl/device_info.h"
@@ -143,7 +143,7 @@ class FrameRenderers {
     const std::vector<Renderer::PartMove> parts = pose(time, lights);
     if (!parts.empty()) renderer_->pose_for_look_ahead(parts);
     KeptCache& kept = renderer_->kept_records();
-    RecordMoves moves(scene_, *animator_, renderer_->device_scene().frame(), o_.moved_record_tolerance);
+    RecordMoves moves = *record_moves();
     for (KeptRecords* records : {&kept.irradiance, &kept.radiance}) {
       records->set_time(time);
       moves.bring_to(*records, times, time);
