@@ -231,13 +231,18 @@ Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
   cmd->add_option("--temporal-window", o.temporal_window,
                   "Records kept through a moving scene: a record a move marks is computed at its frame and at this "
                   "many frames later, and the frames between interpolate its light (1: computed at each frame its "
-                  "marks ask; default " + std::to_string(defaults.temporal_window) + "; none where a light moves)")
+                  "marks ask; default " + std::to_string(defaults.temporal_window) + ")")
       ->check(CLI::Range(1LL, 240LL));
   cmd->add_option("--max-lag", o.max_lag,
                   "Frames over which a sudden change (a record's light changing by more than a quarter across its "
                   "window: a light that switches, a door that opens) may be interpolated; 0: such records are computed "
                   "at each frame their marks ask (default " + std::to_string(defaults.max_lag) + ")")
       ->check(CLI::Range(0LL, 239LL));
+  cmd->add_option("--light-every", o.light_every,
+                  "Records kept through a moving scene: the photon map, caustic map and light guide are shot again "
+                  "only at the frames this divides, where the moves since their last shot call for it (1: at any "
+                  "frame; default " + std::to_string(defaults.light_every) + ")")
+      ->check(CLI::Range(1LL, 240LL));
   cmd->add_option("--stats", o.stats_path,
                   "Also write a CSV row a frame: time per pass, records, rays, device and host memory");
   cmd->add_option("--mp4", o.mp4_path,

@@ -117,6 +117,7 @@ struct GuideStats {
 // patches sorted on the device, every few photons for lookups on the host), the lookup photons' estimates (device).
 struct PhotonMapStats {
   uint64_t paths = 0, photons = 0;
+  bool made = false;  // this frame made the map (shot its photons, or read them from a cache file)
   float radius = 0;
   double seconds = 0, shoot_s = 0, grids_s = 0, estimate_s = 0;
 };

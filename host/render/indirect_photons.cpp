@@ -43,6 +43,7 @@ const PhotonMapPass* attach_photon_map(IndirectFrame& f) {
     const bool had_map = light.photon_map != nullptr;
     light.photon_map.reset();
     StageTimer timing(st.photon_map.seconds, f.gpu, st.program_s);
+    st.photon_map.made = true;
     const SceneFrame& frame = f.device_scene.frame();
     const bool rounds = f.settings.photon_paths == 0;
     // A path lands up to bounces - 1 times after a reflection: a round of kPhotonMapPhotons / (bounces - 1) paths

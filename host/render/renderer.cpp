@@ -175,23 +175,31 @@ MovingBvh::Changed Renderer::move_geometry(const std::vector<PartMove>& moved_pa
   return rows;
 }
 
-size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
-  if (moved_parts.empty() && !lights_moved) return 0;
-  StageTimer setup_time(setup_seconds_);
-  const MovingBvh::Changed rows = move_geometry(moved_parts, setup_.scene.bvh_build_s, setup_.scene.upload_s);
+void Renderer::forget_light_if_moved() {
   // Photons, clusters and the glass caustic map saw the scene as it was. A photon map is a density blurred over its
   // gather radius: a part that has moved less than that radius since the photons were shot changes its estimate by
   // less than the blur does, so the map is kept until the moves add up to the radius (the caustic map's radius, where
-  // there is one, the same); a light that moves makes it again at once. The light guide only steers samples and goes
-  // with the map. Made again, each is shot when a frame next asks for it.
-  double largest = 0.0;
-  for (const PartMove& m : moved_parts) largest = std::max(largest, m.displacement);
-  moved_since_photons_ += largest;
+  // there is one, the same); a light that moved makes it again. The light guide only steers samples and goes with
+  // the map. Made again, each is shot when a frame next asks for it. Held, it waits (hold_light).
   const bool has_maps = light_->photon_map || light_->caustic_map;
   double radius = has_maps ? INFINITY : 0.0;
   if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
   if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
-  if (!light_held_ && (lights_moved || moved_since_photons_ > radius)) forget_light();
+  if (!light_held_ && (lights_moved_since_photons_ || moved_since_photons_ > radius)) forget_light();
+}
+
+size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
+  if (moved_parts.empty() && !lights_moved) {
+    forget_light_if_moved();  // moves made while the light was held
+    return 0;
+  }
+  StageTimer setup_time(setup_seconds_);
+  const MovingBvh::Changed rows = move_geometry(moved_parts, setup_.scene.bvh_build_s, setup_.scene.upload_s);
+  double largest = 0.0;
+  for (const PartMove& m : moved_parts) largest = std::max(largest, m.displacement);
+  moved_since_photons_ += largest;
+  lights_moved_since_photons_ = lights_moved_since_photons_ || lights_moved;
+  forget_light_if_moved();
   if (!kept_records_) return 0;
   size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
@@ -199,7 +207,7 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     for (size_t i = 0; i < rows.swept.size(); ++i)
       swept.push_back({rows.swept[i].first, rows.swept[i].second,
                        float(moved_parts[i].displacement / scene_frame_.scale)});
-    // A light that moves changes every record's light (temporal gradients would follow it: not yet).
+    // A light that moves changes every record's light but where a temporal window holds it (the look ahead).
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
   }
   return marked;
@@ -208,6 +216,7 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
 void Renderer::forget_light() {
   light_ = std::make_unique<ViewIndependentLight>();
   moved_since_photons_ = 0.0;
+  lights_moved_since_photons_ = false;
   if (device_scene_->has_glass_caustics()) shoot_glass_caustic_map();
   if (kept_records_) kept_records_->light = KeptLight{};
 }

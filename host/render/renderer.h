@@ -72,7 +72,9 @@ class Renderer {
   // not depend on the frames before it (a cache pre-pass's key frame, a fixed cache's frame, of a moving scene).
   void forget_light();
   // Held, the light changes only by forget_light: a move never makes it again, however far the parts go (a fixed
-  // cache's frames of a moving scene share the light of their key frame, sequence/walkthrough.cpp).
+  // cache's frames of a moving scene share the light of their key frame; records kept through a moving scene shoot
+  // it again only at the frames --light-every divides; sequence/walkthrough.cpp). Let go, the next move, or the next
+  // call with no move, makes it again if the moves while it was held call for it.
   void hold_light(bool held) { light_held_ = held; }
 
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
@@ -94,6 +96,7 @@ class Renderer {
 
  private:
   double kept_per_bounce();
+  void forget_light_if_moved();  // drops the light where the moves since it was shot call for it (move)
   // Refits the moved parts' BVH and writes what they changed to the device; returns the rows it changed.
   MovingBvh::Changed move_geometry(const std::vector<PartMove>& moved_parts, double& bvh_s, double& upload_s);
   // Starts building every program the planned frame will use (GpuContext::build_ahead), so that they compile side by
@@ -114,6 +117,7 @@ class Renderer {
   std::vector<TriangleRange> moving_parts_;
   std::unique_ptr<MovingBvh> moving_bvh_;  // with moving parts
   double moved_since_photons_ = 0.0;       // world units the parts have moved since the photons were shot (move())
+  bool lights_moved_since_photons_ = false;
   bool light_held_ = false;                // hold_light
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;

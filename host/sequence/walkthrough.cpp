@@ -86,6 +86,7 @@ class FrameRenderers {
       const double time = double(frame) / o_.fps;
       renderer_->kept_records().irradiance.set_time(time);
       renderer_->kept_records().radiance.set_time(time);
+      if (o_.cache == CacheMode::kept) renderer_->hold_light(frame % o_.light_every != 0);
       bool lights = false;
       const std::vector<Renderer::PartMove> parts = pose(time, lights);
       renderer_->move(parts, lights, o_.moved_record_tolerance);
@@ -161,8 +162,9 @@ class FrameRenderers {
 
   // After frame `frame` (records kept through a moving scene): the records it computed again in place, computed
   // once more with the scene posed at the end of their temporal window, so that the frames before it interpolate
-  // (Renderer::look_ahead); those too sudden for the window get one of max_lag + 1 frames. No window where a light
-  // moves before its end: the photons the records gather would be the frame's. Adds what it did to the frame's row.
+  // (Renderer::look_ahead); those too sudden for the window get one of max_lag + 1 frames. A light that moves is
+  // posed at the end too: the records follow it as temporal radiance caching's gradients do, and the photons they
+  // gather stay the frame's (held for --light-every frames anyway). Adds what it did to the frame's row.
   void look_ahead(long long frame, long long last, RenderStats& stats) {
     if (!animator_ || o_.temporal_window <= 1) return;
     if (renderer_->kept_records().irradiance.computed_in_place_this_frame().empty()) return;
@@ -175,17 +177,11 @@ class FrameRenderers {
       const long long end = std::min(frame + length, last);
       if (end <= frame) break;
       bool lights = false;
-      const std::vector<Renderer::PartMove> ahead = pose(double(end) / o_.fps, lights);
-      if (!lights) {
-        renderer_->pose_for_look_ahead(ahead);
-        const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
-        stats.kept_records.ahead += done.computed;
-        stats.kept_records.windows += done.windows;
-      }
-      bool lights_back = false;
-      const std::vector<Renderer::PartMove> back = pose(now, lights_back);  // the animator too, for the next move
-      if (lights) break;  // the device never left `now`
-      renderer_->pose_for_look_ahead(back);
+      renderer_->pose_for_look_ahead(pose(double(end) / o_.fps, lights));
+      const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
+      stats.kept_records.ahead += done.computed;
+      stats.kept_records.windows += done.windows;
+      renderer_->pose_for_look_ahead(pose(now, lights));  // the animator too, for the next move
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.kept_records.ahead_s += seconds;
@@ -253,6 +249,7 @@ void check_walkthrough(const WalkthroughRequest& o) {
   if (o.temporal_window < 1 || o.temporal_window > 240) throw Error("--temporal-window must be 1 to 240 frames");
   if (o.max_lag < 0 || o.max_lag >= o.temporal_window)
     throw Error("--max-lag must be 0 to --temporal-window - 1 (" + std::to_string(o.temporal_window - 1) + ") frames");
+  if (o.light_every < 1 || o.light_every > 240) throw Error("--light-every must be 1 to 240 frames");
   const RenderJob& job = o.render;
   const CacheMode mode = o.cache;
   const bool pre_pass = mode == CacheMode::pre_pass, merging = mode == CacheMode::merge;
