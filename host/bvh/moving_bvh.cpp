@@ -166,12 +166,20 @@ MovingBvh::Changed MovingBvh::move(const std::function<glm::vec3(size_t vertex)>
     if (m + 1 >= parts_.size()) throw Error("no such moving part");
     const Part& part = parts_[m + 1];
     Box swept = node_box(tree_.nodes[part.node_first]);
+    const bool listed = part.triangles.count <= kListedTriangles;
+    std::vector<glm::vec3> before, after;
     for (size_t b = part.block_first; b < part.block_first + part.block_count; ++b) {
       TriangleBlock8& block = tree_.blocks[b];
       for (int lane = 0; lane < 8; ++lane) {
         if (block.prim[lane] < 0) continue;
         const size_t first = size_t(block.prim[lane]) * 3;
         const glm::vec3 v[3] = {vertex(first), vertex(first + 1), vertex(first + 2)};
+        if (listed) {
+          before.insert(before.end(), {glm::vec3(block.v0_x[lane], block.v0_y[lane], block.v0_z[lane]),
+                                       glm::vec3(block.v1_x[lane], block.v1_y[lane], block.v1_z[lane]),
+                                       glm::vec3(block.v2_x[lane], block.v2_y[lane], block.v2_z[lane])});
+          after.insert(after.end(), v, v + 3);
+        }
         block.v0_x[lane] = v[0].x, block.v0_y[lane] = v[0].y, block.v0_z[lane] = v[0].z;
         block.v1_x[lane] = v[1].x, block.v1_y[lane] = v[1].y, block.v1_z[lane] = v[1].z;
         block.v2_x[lane] = v[2].x, block.v2_y[lane] = v[2].y, block.v2_z[lane] = v[2].z;
@@ -203,6 +211,8 @@ MovingBvh::Changed MovingBvh::move(const std::function<glm::vec3(size_t vertex)>
     }
     swept.add(node_box(tree_.nodes[part.node_first]));
     changed.swept.emplace_back(swept.lo, swept.hi);
+    before.insert(before.end(), after.begin(), after.end());
+    changed.triangles.push_back(std::move(before));
     changed.nodes.push_back({part.node_first, part.node_count});
     changed.blocks.push_back({part.block_first, part.block_count});
   }

@@ -39,7 +39,11 @@ class MovingBvh {
     std::vector<Rows> nodes, blocks;
     // For each moved part, the box it filled before and after the move, joined: lowest and highest corner.
     std::vector<std::pair<glm::vec3, glm::vec3>> swept;
+    // For each moved part of at most kListedTriangles triangles, its triangles before the move and then after (three
+    // corners each); empty for a larger part.
+    std::vector<std::vector<glm::vec3>> triangles;
   };
+  static constexpr size_t kListedTriangles = 64;
   // The parts listed (indices into the ranges given at construction) moved: `vertex(i)` gives vertex i's position
   // (3 a triangle, the scene's numbering) and is asked only for the moved parts' vertices; their triangles are written
   // into their blocks, their boxes refitted, and the top level made again.

@@ -291,12 +291,49 @@ CacheRecord interpolated(const CacheRecord& record, const RecordLightAhead& ahea
   return r;
 }
 
+double distance_to_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  // The closest point by the region of the triangle's plane p projects into: a corner, an edge, or the inside.
+  const glm::dvec3 ab = b - a, ac = c - a;
+  const double d1 = glm::dot(ab, p - a), d2 = glm::dot(ac, p - a);
+  const double d3 = glm::dot(ab, p - b), d4 = glm::dot(ac, p - b);
+  const double d5 = glm::dot(ab, p - c), d6 = glm::dot(ac, p - c);
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  glm::dvec3 closest;
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    closest = a;
+  } else if (d3 >= 0.0 && d4 <= d3) {
+    closest = b;
+  } else if (d6 >= 0.0 && d5 <= d6) {
+    closest = c;
+  } else if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    closest = a + ab * (d1 / (d1 - d3));
+  } else if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    closest = a + ac * (d2 / (d2 - d6));
+  } else if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    closest = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  } else {
+    const double sum = va + vb + vc;
+    closest = a + ab * (vb / sum) + ac * (vc / sum);
+  }
+  const double d = glm::length(p - closest);
+  if (std::isfinite(d)) return d;
+  // A degenerate triangle (a divide by zero above): its corners and edges' ends bound it well enough.
+  return std::min({glm::length(p - a), glm::length(p - b), glm::length(p - c)});
+}
+
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept) {
   // The distance from the record to the box the part filled before and after the move: the box, not the sphere
   // around it, so that a thin part (a door) leaves the records across the room to be computed in place.
   const glm::dvec3 p = load(record.position);
   const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(swept.lo) - p, p - glm::dvec3(swept.hi)), glm::dvec3(0.0));
-  return glm::length(outside) <= double(record.radius);
+  if (!(glm::length(outside) <= double(record.radius))) return false;
+  if (swept.triangles.empty() || !std::isfinite(swept.displacement)) return true;
+  const double reach = double(record.radius) + double(swept.displacement);
+  for (size_t t = 0; t + 2 < swept.triangles.size(); t += 3)
+    if (distance_to_triangle(p, glm::dvec3(swept.triangles[t]), glm::dvec3(swept.triangles[t + 1]),
+                             glm::dvec3(swept.triangles[t + 2])) <= reach)
+      return true;
+  return false;
 }
 
 bool record_beside_any(const CacheRecord& record, const std::vector<SweptBox>& moves) {

@@ -43,10 +43,13 @@ struct KeptRecordsKey {
 KeptRecordsKey kept_records_key(const RenderSettings& frame_settings);
 
 // One move of a moving part (device coordinates): the box it filled before and after, joined, and how far any of its
-// points moved (infinite: unknown).
+// points moved (infinite: unknown). A small part (a door) also lists its triangles before and after the move, three
+// corners each, so that the beside rule measures the distance to the part itself rather than to its box, which for a
+// turned thin part takes in the room around it; empty: the box alone.
 struct SweptBox {
   glm::vec3 lo, hi;
   float displacement = INFINITY;
+  std::vector<glm::vec3> triangles;
 };
 
 // A bound on how much of a record's light one move may change, as a fraction of it (docs/ALGORITHM.md section 14).
@@ -58,8 +61,12 @@ struct SweptBox {
 // the scene's contrast, which this leaves to the tolerance. A record whose sphere of validity (radius R) reaches the
 // part's box counts 1: it stands on, under or beside it; so does one inside the sphere around the box.
 double moved_record_change(const CacheRecord& record, const SweptBox& swept);
-// Whether the record's sphere of validity reaches the move's box (moved_record_change counts 1).
+// Whether the record's sphere of validity reaches the move's box (moved_record_change counts 1); where the move
+// lists its triangles, whether the sphere, grown by the displacement, reaches one of them before or after the move
+// (any point of the part in between lies within the displacement of where it was before).
 bool record_beside_move(const CacheRecord& record, const SweptBox& swept);
+// The distance from p to the triangle (a, b, c), degenerate ones too.
+double distance_to_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 // The same over several moves at once: beside any of them, and the sum of their bounds added to `before` (the
 // record's change since it was made, summed in the moves' order).
 bool record_beside_any(const CacheRecord& record, const std::vector<SweptBox>& moves);

@@ -201,12 +201,12 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
   lights_moved_since_photons_ = lights_moved_since_photons_ || lights_moved;
   forget_light_if_moved();
   if (!kept_records_) return 0;
+  std::vector<SweptBox> swept;
+  for (size_t i = 0; i < rows.swept.size(); ++i)
+    swept.push_back({rows.swept[i].first, rows.swept[i].second,
+                     float(moved_parts[i].displacement / scene_frame_.scale), rows.triangles[i]});
   size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
-    std::vector<SweptBox> swept;
-    for (size_t i = 0; i < rows.swept.size(); ++i)
-      swept.push_back({rows.swept[i].first, rows.swept[i].second,
-                       float(moved_parts[i].displacement / scene_frame_.scale)});
     // A light that moves changes every record's light but where a temporal window holds it (the look ahead).
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
   }
