@@ -562,7 +562,8 @@ TEST(MovingScene, AWindowInterpolatesTheLightOfTheFramesBetweenItsEnds) {
 // a window of 3 frames (every window kept: --max-lag 2), frame 1 computes the records again and once more with the
 // lamp where it stands at frame 4; frames 2 and 3 interpolate and compute none. Against the same walk without windows
 // (each record computed again at each frame where it stands), their indirect light is 1.9% and 2.0% off (bound 4%).
-// Planted once: no look ahead where a light moves (as before) left no window, and frames 2 and 3 computed every record.
+// One bounce: no photons. Planted once: no look ahead where a light moves (as before) left no window, and frames 2 and
+// 3 computed every record; and the look ahead with photons too opened windows in the two-bounce walk.
 TEST(MovingScene, AWindowFollowsALampThatMoves) {
   const std::string dir = test::scratch_dir();
   WalkthroughRequest o = walk_without_windows(dir, "carry", 1, 16.0);
@@ -581,29 +582,40 @@ TEST(MovingScene, AWindowFollowsALampThatMoves) {
                                          dir + "/window_" + std::to_string(frame) + ".exr");
     EXPECT_LT(off, 0.04) << "frame " << frame;
   }
+  // Two bounces: the records' later bounces come from photons shot for the frame's pose, so no window opens while
+  // the lamp moves (the look ahead would pair the lamp at the window's end with the frame's photons).
+  o.render.settings.bounces = 2;
+  o.render.settings.photon_paths = 4000;
+  o.render.outputs = {dir + "/photons_%d.exr"};
+  const WalkthroughResult photons = render_walkthrough(o);
+  EXPECT_EQ(photons.rows[1].stats.kept_records.windows, 0u);
 }
 
-// Records kept through a moving scene shoot the light (photon map, light guide) again only at the frames
-// --light-every divides, where the moves since its last shot call for it; the frames between hold it. The carried
-// lamp moves (animation 'Carry'), frames 0 to 8 at 8 frames/s, two bounces: with --light-every 1 the photon map is made
-// at every frame, with 4 at frames 0, 4 and 8 alone. Planted once: the light not held (as before) made it at every
-// frame with 4 too.
+// Records kept through a moving scene shoot the light (photon map, light guide) again for the parts' moves only at
+// the frames --light-every divides, where the moves since its last shot passed the photon radius; the frames between
+// hold it. A light that moves shoots it again at once. The quad slides 1.2 over [0, 1] s, frames 0 to 8 at 8
+// frames/s, 0.15 a frame against a photon radius of about 0.25 (20,000 paths, 8 neighbours), two bounces: with
+// --light-every 1 the photon map is made at every second frame, with 4 at frames 0, 4 and 8 alone; the carried lamp
+// (animation 'Carry') with 4 makes it at every frame. Planted once each: the light not held (as before) made it at
+// frames 2 and 6 with 4 too; held through the lamp's moves too, it made it at frames 0, 4 and 8 alone for the lamp.
 TEST(MovingScene, RecordsKeptShootTheLightAgainOnlyAtTheFramesLightEveryDivides) {
   const std::string dir = test::scratch_dir();
   WalkthroughRequest o = quad_walk(dir, "light_every", false);
-  o.animation = 1;
   o.render.settings.width = o.render.settings.height = 32;
   o.render.settings.bounces = 2;
-  o.render.settings.photon_paths = 4000;
+  o.render.settings.photon_paths = 20000;
+  o.render.settings.photon_neighbours = 8;
   o.fps = 8.0;
-  for (const long long every : {1, 4}) {
+  for (const auto& [animation, every] : {std::pair{0, 1LL}, {0, 4LL}, {1, 4LL}}) {
+    o.animation = animation;
     o.light_every = every;
-    o.render.outputs = {dir + "/every" + std::to_string(every) + "_%d.exr"};
+    o.render.outputs = {dir + "/every" + std::to_string(every) + "_" + std::to_string(animation) + "_%d.exr"};
     const WalkthroughResult walk = render_walkthrough(o);
     ASSERT_EQ(walk.rows.size(), 9u);
     for (const FrameRow& row : walk.rows)
-      EXPECT_EQ(row.stats.photon_map.made, every == 1 || row.frame % 4 == 0)
-          << "--light-every " << every << ", frame " << row.frame;
+      EXPECT_EQ(row.stats.photon_map.made, animation == 1 || row.frame % (every == 1 ? 2 : 4) == 0)
+          << "animation " << animation << ", --light-every " << every << ", frame " << row.frame << ", photon radius "
+          << row.stats.photon_map.radius;
   }
 }
 

@@ -185,8 +185,11 @@ void Renderer::forget_light_if_moved() {
   double radius = has_maps ? INFINITY : 0.0;
   if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
   if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
-  if (!light_held_ && (lights_moved_since_photons_ || moved_since_photons_ > radius)) forget_light();
+  if ((!light_held_ && moved_since_photons_ > radius) || (!light_held_through_light_moves_ && lights_moved_since_photons_))
+    forget_light();
 }
+
+bool Renderer::has_photons() const { return light_->photon_map || light_->caustic_map; }
 
 size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
   if (moved_parts.empty() && !lights_moved) {

@@ -72,10 +72,18 @@ class Renderer {
   // not depend on the frames before it (a cache pre-pass's key frame, a fixed cache's frame, of a moving scene).
   void forget_light();
   // Held, the light changes only by forget_light: a move never makes it again, however far the parts go (a fixed
-  // cache's frames of a moving scene share the light of their key frame; records kept through a moving scene shoot
-  // it again only at the frames --light-every divides; sequence/walkthrough.cpp). Let go, the next move, or the next
-  // call with no move, makes it again if the moves while it was held call for it.
-  void hold_light(bool held) { light_held_ = held; }
+  // cache's frames of a moving scene share the light of their key frame, sequence/walkthrough.cpp).
+  // `through_light_moves` false: held against the parts' moves alone, and a light that moves makes it again at once
+  // (records kept through a moving scene shoot it again for their parts only at the frames --light-every divides:
+  // photons carry a lamp's light from its second bounce on, and a carried lamp's lags visibly). Let go, the next
+  // move, or the next call with no move, makes it again if the moves while it was held call for it.
+  void hold_light(bool held, bool through_light_moves = true) {
+    light_held_ = held;
+    light_held_through_light_moves_ = held && through_light_moves;
+  }
+  // Whether the light that depends on where things are holds photons (a photon map or a caustic map): then records
+  // computed with the scene posed ahead would gather photons shot for the frame's pose.
+  bool has_photons() const;
 
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
   // later time: refits and uploads what the parts' moves changed, and nothing else (no record is marked, the photons
@@ -119,6 +127,7 @@ class Renderer {
   double moved_since_photons_ = 0.0;       // world units the parts have moved since the photons were shot (move())
   bool lights_moved_since_photons_ = false;
   bool light_held_ = false;                // hold_light
+  bool light_held_through_light_moves_ = false;
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

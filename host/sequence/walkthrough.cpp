@@ -86,7 +86,7 @@ class FrameRenderers {
       const double time = double(frame) / o_.fps;
       renderer_->kept_records().irradiance.set_time(time);
       renderer_->kept_records().radiance.set_time(time);
-      if (o_.cache == CacheMode::kept) renderer_->hold_light(frame % o_.light_every != 0);
+      if (o_.cache == CacheMode::kept) renderer_->hold_light(frame % o_.light_every != 0, false);
       bool lights = false;
       const std::vector<Renderer::PartMove> parts = pose(time, lights);
       renderer_->move(parts, lights, o_.moved_record_tolerance);
@@ -163,8 +163,10 @@ class FrameRenderers {
   // After frame `frame` (records kept through a moving scene): the records it computed again in place, computed
   // once more with the scene posed at the end of their temporal window, so that the frames before it interpolate
   // (Renderer::look_ahead); those too sudden for the window get one of max_lag + 1 frames. A light that moves is
-  // posed at the end too: the records follow it as temporal radiance caching's gradients do, and the photons they
-  // gather stay the frame's (held for --light-every frames anyway). Adds what it did to the frame's row.
+  // posed at the end too, so that the records follow it as temporal radiance caching's gradients do, but only where
+  // the frame's light holds no photons: the records' later bounces would come from photons shot for the frame's pose,
+  // and on a lamp carried through Sponza that lag darkened the indirect light by 4.5% (benchmarks/RESULTS.md). Adds
+  // what it did to the frame's row.
   void look_ahead(long long frame, long long last, RenderStats& stats) {
     if (!animator_ || o_.temporal_window <= 1) return;
     if (renderer_->kept_records().irradiance.computed_in_place_this_frame().empty()) return;
@@ -178,10 +180,13 @@ class FrameRenderers {
       if (end <= frame) break;
       bool lights = false;
       renderer_->pose_for_look_ahead(pose(double(end) / o_.fps, lights));
-      const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
-      stats.kept_records.ahead += done.computed;
-      stats.kept_records.windows += done.windows;
+      if (!lights || !renderer_->has_photons()) {
+        const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
+        stats.kept_records.ahead += done.computed;
+        stats.kept_records.windows += done.windows;
+      }
       renderer_->pose_for_look_ahead(pose(now, lights));  // the animator too, for the next move
+      if (lights && renderer_->has_photons()) break;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.kept_records.ahead_s += seconds;
