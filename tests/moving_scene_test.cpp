@@ -563,7 +563,8 @@ TEST(MovingScene, AWindowInterpolatesTheLightOfTheFramesBetweenItsEnds) {
 // lamp where it stands at frame 4; frames 2 and 3 interpolate and compute none. Against the same walk without windows
 // (each record computed again at each frame where it stands), their indirect light is 1.9% and 2.0% off (bound 4%).
 // One bounce: no photons. Planted once: no look ahead where a light moves (as before) left no window, and frames 2 and
-// 3 computed every record; and the look ahead with photons too opened windows in the two-bounce walk.
+// 3 computed every record; the look ahead with photons too opened windows in the two-bounce walk; and the records of
+// the two-bounce walk computed again in place rather than let go.
 TEST(MovingScene, AWindowFollowsALampThatMoves) {
   const std::string dir = test::scratch_dir();
   WalkthroughRequest o = walk_without_windows(dir, "carry", 1, 16.0);
@@ -589,6 +590,13 @@ TEST(MovingScene, AWindowFollowsALampThatMoves) {
   o.render.outputs = {dir + "/photons_%d.exr"};
   const WalkthroughResult photons = render_walkthrough(o);
   EXPECT_EQ(photons.rows[1].stats.kept_records.windows, 0u);
+  // Every record in view would be computed again at each frame: they go instead, and placement puts what the view
+  // needs (computed in place, they piled up).
+  for (const int frame : {2, 3}) {
+    EXPECT_GT(each.rows[frame].stats.kept_records.in_place, 60u) << "one bounce, frame " << frame;
+    EXPECT_GT(photons.rows[frame].stats.kept_records.moved, 60u) << "frame " << frame;
+    EXPECT_EQ(photons.rows[frame].stats.kept_records.in_place, 0u) << "frame " << frame;
+  }
 }
 
 // Records kept through a moving scene shoot the light (photon map, light guide) again for the parts' moves only at

@@ -239,9 +239,10 @@ Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
                   "at each frame their marks ask (default " + std::to_string(defaults.max_lag) + ")")
       ->check(CLI::Range(0LL, 239LL));
   cmd->add_option("--light-every", o.light_every,
-                  "Records kept through a moving scene: the photon map, caustic map and light guide are shot again "
-                  "only at the frames this divides, where the moves since their last shot call for it (1: at any "
-                  "frame; default " + std::to_string(defaults.light_every) + ")")
+                  "Records kept through a moving scene: for the parts' moves, the photon map, caustic map and light "
+                  "guide are shot again only at the frames this divides, where the moves since their last shot passed "
+                  "the photon radius (1: at any frame; a light that moves shoots them at once; default " +
+                      std::to_string(defaults.light_every) + ")")
       ->check(CLI::Range(1LL, 240LL));
   cmd->add_option("--stats", o.stats_path,
                   "Also write a CSV row a frame: time per pass, records, rays, device and host memory");

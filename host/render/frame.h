@@ -151,6 +151,7 @@ struct KeptRecordsStats {
   uint64_t added = 0;    // placed by this frame
   uint64_t evicted = 0;  // dropped after this frame (the capacity)
   uint64_t moved = 0;    // dropped before this frame because something moved where they see (KeptRecords::drop_moved)
+  uint64_t in_place = 0;  // of those, computed again where they stood by this frame (in `added`); the rest went
   uint64_t kept = 0;     // held after this frame
   // Temporal windows (sequence/walkthrough.h): records computed again ahead of the frame, the windows that gave, and
   // the time that took (in the frame's total).

@@ -149,6 +149,7 @@ void KeptRecords::add(const CacheRecord* records, size_t count, const float* pay
   add_bookkeeping(count, std::min(in_place, count));
   if (payload_per_record && count) payload_.insert(payload_.end(), payload, payload + count * payload_per_record);
   stats_.added = count;
+  stats_.in_place = in_place;
   if (records_.size() > capacity_) {
     // The least recently used go first; among records last used by the same frame, the earliest kept.
     std::vector<size_t> order(records_.size());
