@@ -190,6 +190,7 @@ void Renderer::forget_light_if_moved() {
 }
 
 bool Renderer::has_photons() const { return light_->photon_map || light_->caustic_map; }
+bool Renderer::has_caustic_map() const { return light_->caustic_map != nullptr; }
 
 size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_moved, double record_tolerance) {
   if (moved_parts.empty() && !lights_moved) {
@@ -216,7 +217,7 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
     // again at each frame; they go instead and placement puts what the view needs: computed in place, the records of
     // a lamp carried through Sponza piled up to 1.7 times a fresh frame's, and the frame cost 1.3 times a fresh one.
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
-    if (lights_moved && had_photons) records->let_marked_go();
+    if (lights_moved && had_photons && !lights_by_windows_) records->let_marked_go();
   }
   return marked;
 }
@@ -232,6 +233,37 @@ void Renderer::forget_light() {
 void Renderer::pose_for_look_ahead(const std::vector<PartMove>& moved_parts) {
   double bvh_s = 0.0, upload_s = 0.0;  // the caller times the look ahead as a whole
   move_geometry(moved_parts, bvh_s, upload_s);
+}
+
+Renderer::LookAhead Renderer::look_ahead_with_its_light(double end, double sudden_change, const FramePlan& plan) {
+  LookAhead result;
+  if (!kept_records_ || !passes_ || !passes_->in_place.pass) return result;
+  const RenderSettings& settings = plan.frame_settings();
+  RenderedImage scratch;  // what the light's passes report; the caller times the look ahead as a whole
+  if (!light_ahead_ || light_ahead_time_ != end) {
+    light_ahead_ = std::make_unique<ViewIndependentLight>();
+    light_ahead_kept_ = std::make_unique<KeptLight>();
+    light_ahead_time_ = end;
+  }
+  IndirectFrame ahead{gpu_, scene_, *device_scene_, *gbuffer_, *direct_, plan, settings, scratch, *layers_,
+                      *light_ahead_, *passes_};
+  ahead.kept_light = light_ahead_kept_.get();
+  // Shot on first use for this end (its photons kept beside it for a cache file, as the frame's are), and bound to
+  // the batch's record pass; the next frame binds its own light again (frame_record_pass).
+  RecordPass& records = *passes_->in_place.pass;
+  records.begin_frame(attach_photon_map(ahead), settings.bounces);
+  attach_light_guide(ahead, records);
+  return look_ahead(end, sudden_change);
+}
+
+void Renderer::take_light_ahead(double now) {
+  if (!light_ahead_ || light_ahead_time_ != now) return;
+  light_ = std::move(light_ahead_);
+  light_ahead_time_ = -1.0;
+  moved_since_photons_ = 0.0;
+  lights_moved_since_photons_ = false;
+  if (kept_records_) kept_records_->light = std::move(*light_ahead_kept_);
+  light_ahead_kept_.reset();
 }
 
 Renderer::LookAhead Renderer::look_ahead(double end, double sudden_change) {

@@ -32,6 +32,7 @@ struct RadianceLobeTable;
 struct ViewIndependentLight;
 struct MethodPasses;
 struct KeptCache;
+struct KeptLight;
 
 class Renderer {
  public:
@@ -84,6 +85,7 @@ class Renderer {
   // Whether the light that depends on where things are holds photons (a photon map or a caustic map): then records
   // computed with the scene posed ahead would gather photons shot for the frame's pose.
   bool has_photons() const;
+  bool has_caustic_map() const;
 
   // Temporal windows (issue 62 item 3; docs/ALGORITHM.md section 15). The scene (changed in place) was posed at a
   // later time: refits and uploads what the parts' moves changed, and nothing else (no record is marked, the photons
@@ -96,6 +98,16 @@ class Renderer {
     uint32_t computed = 0, windows = 0;
   };
   LookAhead look_ahead(double end, double sudden_change);
+  // A light that moves (issue 62 item 4): the look ahead above, with the records' photons and light guide shot for
+  // the scene as it is posed now (at `end`) rather than the frame's: made once for each `end` (`plan`, the last frame's,
+  // says what to make) and kept until the frames reach it (take_light_ahead). Only without a caustic map.
+  LookAhead look_ahead_with_its_light(double end, double sudden_change, const FramePlan& plan);
+  // At the frame of time `now`, after its move: the light shot ahead for it, if any, becomes the light (photons shot
+  // for this pose; forget_light leaves it be).
+  void take_light_ahead(double now);
+  // Whether a light that moves is followed by windows (look_ahead_with_its_light) rather than by letting the records
+  // it marks go (Renderer::move).
+  void follow_lights_by_windows(bool follow) { lights_by_windows_ = follow; }
 
   const DeviceScene& device_scene() const { return *device_scene_; }
   // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
@@ -128,6 +140,10 @@ class Renderer {
   bool lights_moved_since_photons_ = false;
   bool light_held_ = false;                // hold_light
   bool light_held_through_light_moves_ = false;
+  bool lights_by_windows_ = false;                      // follow_lights_by_windows
+  std::unique_ptr<ViewIndependentLight> light_ahead_;  // look_ahead_with_its_light, for light_ahead_time_
+  std::unique_ptr<KeptLight> light_ahead_kept_;  // its photons and clusters, for a cache file
+  double light_ahead_time_ = -1.0;
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

@@ -78,6 +78,10 @@ class FrameRenderers {
         if (mover.triangle_count) parts.push_back({mover.first_triangle, mover.triangle_count});
       }
       renderer_ = std::make_unique<Renderer>(gpu_, *posed_, o_.render.settings.forced_switches, parts);
+      bool moves_a_light = false;
+      for (const size_t m : animator_->moving()) moves_a_light = moves_a_light || scene_.movers[m].light >= 0;
+      lights_by_windows_ = moves_a_light && o_.cache == CacheMode::kept && o_.temporal_window > 1;
+      renderer_->follow_lights_by_windows(lights_by_windows_);
     }
   }
   Renderer& for_frame(long long frame) {
@@ -86,10 +90,14 @@ class FrameRenderers {
       const double time = double(frame) / o_.fps;
       renderer_->kept_records().irradiance.set_time(time);
       renderer_->kept_records().radiance.set_time(time);
-      if (o_.cache == CacheMode::kept) renderer_->hold_light(frame % o_.light_every != 0, false);
+      // Records kept: the light is shot again at the frames --light-every divides; a light that moves shoots it at
+      // once unless windows follow it, whose look ahead shoots it for their ends (take_light_ahead).
+      const bool light_frame = frame % o_.light_every == 0;
+      if (o_.cache == CacheMode::kept) renderer_->hold_light(!light_frame, lights_by_windows_ && !light_frame);
       bool lights = false;
       const std::vector<Renderer::PartMove> parts = pose(time, lights);
       renderer_->move(parts, lights, o_.moved_record_tolerance);
+      renderer_->take_light_ahead(time);
       return *renderer_;
     }
     renderer_.reset();  // before the scene it renders from
@@ -167,8 +175,13 @@ class FrameRenderers {
   // the frame's light holds no photons: the records' later bounces would come from photons shot for the frame's pose,
   // and on a lamp carried through Sponza that lag darkened the indirect light by 4.5% (benchmarks/RESULTS.md). Adds
   // what it did to the frame's row.
-  void look_ahead(long long frame, long long last, RenderStats& stats) {
+  void look_ahead(long long frame, long long last, const FramePlan& plan, RenderStats& stats) {
     if (!animator_ || o_.temporal_window <= 1) return;
+    // A caustic map is not shot ahead (Renderer::look_ahead_with_its_light): a light that moves lets records go.
+    if (lights_by_windows_ && renderer_->has_caustic_map()) {
+      lights_by_windows_ = false;
+      renderer_->follow_lights_by_windows(false);
+    }
     if (renderer_->kept_records().irradiance.computed_in_place_this_frame().empty()) return;
     const auto start = std::chrono::steady_clock::now();
     const double now = double(frame) / o_.fps;
@@ -176,17 +189,23 @@ class FrameRenderers {
     std::vector<std::pair<long long, double>> looks{{o_.temporal_window, o_.max_lag + 1 >= o_.temporal_window ? INFINITY : 0.25}};
     if (o_.max_lag >= 1 && o_.max_lag + 1 < o_.temporal_window) looks.push_back({o_.max_lag + 1, INFINITY});
     for (const auto& [length, sudden] : looks) {
-      const long long end = std::min(frame + length, last);
+      long long end = std::min(frame + length, last);
+      // Windows over a light that moves end on the frames the window's length divides, so that the light shot for an
+      // end serves every window that ends there, and then the frame itself.
+      if (lights_by_windows_) end = std::min((frame / o_.temporal_window + 1) * o_.temporal_window, last);
       if (end <= frame) break;
       bool lights = false;
       renderer_->pose_for_look_ahead(pose(double(end) / o_.fps, lights));
-      if (!lights || !renderer_->has_photons()) {
-        const Renderer::LookAhead done = renderer_->look_ahead(double(end) / o_.fps, sudden);
+      const bool photons = lights && renderer_->has_photons();
+      if (!photons || lights_by_windows_) {
+        const Renderer::LookAhead done =
+            photons ? renderer_->look_ahead_with_its_light(double(end) / o_.fps, sudden, plan)
+                    : renderer_->look_ahead(double(end) / o_.fps, sudden);
         stats.kept_records.ahead += done.computed;
         stats.kept_records.windows += done.windows;
       }
       renderer_->pose_for_look_ahead(pose(now, lights));  // the animator too, for the next move
-      if (lights && renderer_->has_photons()) break;
+      if (photons || lights_by_windows_) break;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.kept_records.ahead_s += seconds;
@@ -200,6 +219,7 @@ class FrameRenderers {
   const CameraPath& path_;
   const bool moves_;
   std::optional<SceneAnimator> animator_;  // records kept through a moving scene
+  bool lights_by_windows_ = false;         // records kept, windows on, and the animation moves a light
   std::vector<long> part_of_;              // each moving mover's part of the renderer's BVH (-1: a light alone)
   std::unique_ptr<Scene> posed_;
   std::unique_ptr<Renderer> renderer_;
@@ -431,7 +451,7 @@ WalkthroughResult render_walkthrough(const WalkthroughRequest& o) {
     RenderedImage image = renderer.render(last_plan);
     image.stats.photon_map.seconds += key_light_stats.photon_map.seconds;
     image.stats.total_s += key_light_stats.total_s;
-    if (o.cache == CacheMode::kept) renderers.look_ahead(frame, last, image.stats);
+    if (o.cache == CacheMode::kept) renderers.look_ahead(frame, last, last_plan, image.stats);
     if (pre_pass) part.add_key_frame(frame, renderer.kept_records());
     ExrAttributes attributes = render_attributes(renderers.scene(), image, settings);
     attributes["rcsplat:frame"] = std::to_string(frame);
