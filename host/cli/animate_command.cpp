@@ -241,7 +241,7 @@ Command add_animate_command(CLI::App& app, const HelpGroups& groups) {
   cmd->add_option("--light-every", o.light_every,
                   "Records kept through a moving scene: for the parts' moves, the photon map, caustic map and light "
                   "guide are shot again only at the frames this divides, where the moves since their last shot passed "
-                  "the photon radius (1: at any frame; a light that moves shoots them at once; default " +
+                  "the photon radius (1: at any frame; a light that moves shoots them for each window's end; default " +
                       std::to_string(defaults.light_every) + ")")
       ->check(CLI::Range(1LL, 240LL));
   cmd->add_option("--stats", o.stats_path,

@@ -212,10 +212,11 @@ size_t Renderer::move(const std::vector<PartMove>& moved_parts, bool lights_move
                      float(moved_parts[i].displacement / scene_frame_.scale), rows.triangles[i]});
   size_t marked = 0;
   for (KeptRecords* records : {&kept_records_->irradiance, &kept_records_->radiance}) {
-    // A light that moves changes every record's light but where a temporal window holds it (the look ahead). With
-    // photons no window opens while it moves (sequence/walkthrough.cpp), so every record in view would be computed
-    // again at each frame; they go instead and placement puts what the view needs: computed in place, the records of
-    // a lamp carried through Sponza piled up to 1.7 times a fresh frame's, and the frame cost 1.3 times a fresh one.
+    // A light that moves changes every record's light but where a temporal window holds it (the look ahead). Where
+    // no window follows it and there are photons (no windows, or a caustic map: sequence/walkthrough.cpp), every
+    // record in view would be computed again at each frame; they go instead and placement puts what the view needs:
+    // computed in place, the records of a lamp carried through Sponza piled up to 1.7 times a fresh frame's, and the
+    // frame cost 1.3 times a fresh one.
     marked += lights_moved ? records->mark_all_moved() : records->mark_moved(swept, record_tolerance);
     if (lights_moved && had_photons && !lights_by_windows_) records->let_marked_go();
   }

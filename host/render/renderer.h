@@ -76,8 +76,9 @@ class Renderer {
   // cache's frames of a moving scene share the light of their key frame, sequence/walkthrough.cpp).
   // `through_light_moves` false: held against the parts' moves alone, and a light that moves makes it again at once
   // (records kept through a moving scene shoot it again for their parts only at the frames --light-every divides:
-  // photons carry a lamp's light from its second bounce on, and a carried lamp's lags visibly). Let go, the next
-  // move, or the next call with no move, makes it again if the moves while it was held call for it.
+  // photons carry a lamp's light from its second bounce on, and a carried lamp's lags visibly), unless windows follow
+  // the light and shoot it for their ends (look_ahead_with_its_light). Let go, the next move, or the next call with
+  // no move, makes it again if the moves while it was held call for it.
   void hold_light(bool held, bool through_light_moves = true) {
     light_held_ = held;
     light_held_through_light_moves_ = held && through_light_moves;

@@ -171,10 +171,10 @@ class FrameRenderers {
   // After frame `frame` (records kept through a moving scene): the records it computed again in place, computed
   // once more with the scene posed at the end of their temporal window, so that the frames before it interpolate
   // (Renderer::look_ahead); those too sudden for the window get one of max_lag + 1 frames. A light that moves is
-  // posed at the end too, so that the records follow it as temporal radiance caching's gradients do, but only where
-  // the frame's light holds no photons: the records' later bounces would come from photons shot for the frame's pose,
-  // and on a lamp carried through Sponza that lag darkened the indirect light by 4.5% (benchmarks/RESULTS.md). Adds
-  // what it did to the frame's row.
+  // posed at the end too, so that the records follow it as temporal radiance caching's gradients do; where the
+  // frame's light holds photons, they are shot for the end as well (Renderer::look_ahead_with_its_light), since the
+  // frame's would carry the lamp's later bounces from where it was: on a lamp carried through Sponza that lag
+  // darkened the indirect light by 4.5% (benchmarks/RESULTS.md). Adds what it did to the frame's row.
   void look_ahead(long long frame, long long last, const FramePlan& plan, RenderStats& stats) {
     if (!animator_ || o_.temporal_window <= 1) return;
     // A caustic map is not shot ahead (Renderer::look_ahead_with_its_light): a light that moves lets records go.

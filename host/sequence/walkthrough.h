@@ -57,7 +57,8 @@ struct WalkthroughRequest {
   // Records kept through a moving scene: for the parts' moves, the light that depends on where things are (photon
   // map, caustic map, light guide) is shot again only at the frames this divides, where the parts moved past the
   // photon radius since its last shot; the frames between hold it. 1: at any frame the moves call for it. A light
-  // that moves shoots it again at once. A farm's frames take their key frame's (docs/FARM.md).
+  // that moves shoots it for each temporal window's end (or, without windows, at once). A farm's frames take their
+  // key frame's (docs/FARM.md).
   long long light_every = 8;
   std::string stats_path;  // a CSV row a frame, rewritten after each frame
   std::string mp4_path;    // a preview made by ffmpeg from the PNG frames
