@@ -181,8 +181,7 @@ void Renderer::forget_light_if_moved() {
   // less than the blur does, so the map is kept until the moves add up to the radius (the caustic map's radius, where
   // there is one, the same); a light that moved makes it again. The light guide only steers samples and goes with
   // the map. Made again, each is shot when a frame next asks for it. Held, it waits (hold_light).
-  const bool has_maps = light_->photon_map || light_->caustic_map;
-  double radius = has_maps ? INFINITY : 0.0;
+  double radius = has_photons() ? INFINITY : 0.0;
   if (light_->photon_map) radius = std::min(radius, double(light_->photon_radius));
   if (light_->caustic_map) radius = std::min(radius, double(light_->caustic_radius));
   if ((!light_held_ && moved_since_photons_ > radius) || (!light_held_through_light_moves_ && lights_moved_since_photons_))
@@ -236,19 +235,25 @@ void Renderer::pose_for_look_ahead(const std::vector<PartMove>& moved_parts) {
   move_geometry(moved_parts, bvh_s, upload_s);
 }
 
+// The light shot for a window's end (look_ahead_with_its_light), with its photons and clusters for a cache file.
+struct Renderer::LightAhead {
+  double time = 0.0;
+  std::unique_ptr<ViewIndependentLight> light = std::make_unique<ViewIndependentLight>();
+  KeptLight kept;
+};
+
 Renderer::LookAhead Renderer::look_ahead_with_its_light(double end, double sudden_change, const FramePlan& plan) {
   LookAhead result;
   if (!kept_records_ || !passes_ || !passes_->in_place.pass) return result;
   const RenderSettings& settings = plan.frame_settings();
   RenderedImage scratch;  // what the light's passes report; the caller times the look ahead as a whole
-  if (!light_ahead_ || light_ahead_time_ != end) {
-    light_ahead_ = std::make_unique<ViewIndependentLight>();
-    light_ahead_kept_ = std::make_unique<KeptLight>();
-    light_ahead_time_ = end;
+  if (!light_ahead_ || light_ahead_->time != end) {
+    light_ahead_ = std::make_unique<LightAhead>();
+    light_ahead_->time = end;
   }
   IndirectFrame ahead{gpu_, scene_, *device_scene_, *gbuffer_, *direct_, plan, settings, scratch, *layers_,
-                      *light_ahead_, *passes_};
-  ahead.kept_light = light_ahead_kept_.get();
+                      *light_ahead_->light, *passes_};
+  ahead.kept_light = &light_ahead_->kept;
   // Shot on first use for this end (its photons kept beside it for a cache file, as the frame's are), and bound to
   // the batch's record pass; the next frame binds its own light again (frame_record_pass).
   RecordPass& records = *passes_->in_place.pass;
@@ -258,13 +263,12 @@ Renderer::LookAhead Renderer::look_ahead_with_its_light(double end, double sudde
 }
 
 void Renderer::take_light_ahead(double now) {
-  if (!light_ahead_ || light_ahead_time_ != now) return;
-  light_ = std::move(light_ahead_);
-  light_ahead_time_ = -1.0;
+  if (!light_ahead_ || light_ahead_->time != now) return;
+  light_ = std::move(light_ahead_->light);
   moved_since_photons_ = 0.0;
   lights_moved_since_photons_ = false;
-  if (kept_records_) kept_records_->light = std::move(*light_ahead_kept_);
-  light_ahead_kept_.reset();
+  if (kept_records_) kept_records_->light = std::move(light_ahead_->kept);
+  light_ahead_.reset();
 }
 
 Renderer::LookAhead Renderer::look_ahead(double end, double sudden_change) {

@@ -32,7 +32,6 @@ struct RadianceLobeTable;
 struct ViewIndependentLight;
 struct MethodPasses;
 struct KeptCache;
-struct KeptLight;
 
 class Renderer {
  public:
@@ -109,6 +108,7 @@ class Renderer {
   // Whether a light that moves is followed by windows (look_ahead_with_its_light) rather than by letting the records
   // it marks go (Renderer::move).
   void follow_lights_by_windows(bool follow) { lights_by_windows_ = follow; }
+  bool follows_lights_by_windows() const { return lights_by_windows_; }
 
   const DeviceScene& device_scene() const { return *device_scene_; }
   // The irradiance and radiance records kept across frames (RenderSettings::keep_records), made empty on first use:
@@ -142,9 +142,8 @@ class Renderer {
   bool light_held_ = false;                // hold_light
   bool light_held_through_light_moves_ = false;
   bool lights_by_windows_ = false;                      // follow_lights_by_windows
-  std::unique_ptr<ViewIndependentLight> light_ahead_;  // look_ahead_with_its_light, for light_ahead_time_
-  std::unique_ptr<KeptLight> light_ahead_kept_;  // its photons and clusters, for a cache file
-  double light_ahead_time_ = -1.0;
+  struct LightAhead;
+  std::unique_ptr<LightAhead> light_ahead_;  // look_ahead_with_its_light's, until the frames reach its time
   std::unique_ptr<DeviceScene> device_scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<DirectPass> direct_;

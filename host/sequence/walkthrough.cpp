@@ -80,8 +80,7 @@ class FrameRenderers {
       renderer_ = std::make_unique<Renderer>(gpu_, *posed_, o_.render.settings.forced_switches, parts);
       bool moves_a_light = false;
       for (const size_t m : animator_->moving()) moves_a_light = moves_a_light || scene_.movers[m].light >= 0;
-      lights_by_windows_ = moves_a_light && o_.cache == CacheMode::kept && o_.temporal_window > 1;
-      renderer_->follow_lights_by_windows(lights_by_windows_);
+      renderer_->follow_lights_by_windows(moves_a_light && o_.cache == CacheMode::kept && o_.temporal_window > 1);
     }
   }
   Renderer& for_frame(long long frame) {
@@ -93,7 +92,8 @@ class FrameRenderers {
       // Records kept: the light is shot again at the frames --light-every divides; a light that moves shoots it at
       // once unless windows follow it, whose look ahead shoots it for their ends (take_light_ahead).
       const bool light_frame = frame % o_.light_every == 0;
-      if (o_.cache == CacheMode::kept) renderer_->hold_light(!light_frame, lights_by_windows_ && !light_frame);
+      if (o_.cache == CacheMode::kept)
+        renderer_->hold_light(!light_frame, renderer_->follows_lights_by_windows() && !light_frame);
       bool lights = false;
       const std::vector<Renderer::PartMove> parts = pose(time, lights);
       renderer_->move(parts, lights, o_.moved_record_tolerance);
@@ -178,10 +178,8 @@ class FrameRenderers {
   void look_ahead(long long frame, long long last, const FramePlan& plan, RenderStats& stats) {
     if (!animator_ || o_.temporal_window <= 1) return;
     // A caustic map is not shot ahead (Renderer::look_ahead_with_its_light): a light that moves lets records go.
-    if (lights_by_windows_ && renderer_->has_caustic_map()) {
-      lights_by_windows_ = false;
-      renderer_->follow_lights_by_windows(false);
-    }
+    if (renderer_->has_caustic_map()) renderer_->follow_lights_by_windows(false);
+    const bool lights_by_windows = renderer_->follows_lights_by_windows();
     if (renderer_->kept_records().irradiance.computed_in_place_this_frame().empty()) return;
     const auto start = std::chrono::steady_clock::now();
     const double now = double(frame) / o_.fps;
@@ -192,12 +190,12 @@ class FrameRenderers {
       long long end = std::min(frame + length, last);
       // Windows over a light that moves end on the frames the window's length divides, so that the light shot for an
       // end serves every window that ends there, and then the frame itself.
-      if (lights_by_windows_) end = std::min((frame / o_.temporal_window + 1) * o_.temporal_window, last);
+      if (lights_by_windows) end = std::min((frame / o_.temporal_window + 1) * o_.temporal_window, last);
       if (end <= frame) break;
       bool lights = false;
       renderer_->pose_for_look_ahead(pose(double(end) / o_.fps, lights));
       const bool photons = lights && renderer_->has_photons();
-      if (!photons || lights_by_windows_) {
+      if (!photons || lights_by_windows) {
         const Renderer::LookAhead done =
             photons ? renderer_->look_ahead_with_its_light(double(end) / o_.fps, sudden, plan)
                     : renderer_->look_ahead(double(end) / o_.fps, sudden);
@@ -205,7 +203,7 @@ class FrameRenderers {
         stats.kept_records.windows += done.windows;
       }
       renderer_->pose_for_look_ahead(pose(now, lights));  // the animator too, for the next move
-      if (photons || lights_by_windows_) break;
+      if (photons || lights_by_windows) break;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.kept_records.ahead_s += seconds;
@@ -219,7 +217,6 @@ class FrameRenderers {
   const CameraPath& path_;
   const bool moves_;
   std::optional<SceneAnimator> animator_;  // records kept through a moving scene
-  bool lights_by_windows_ = false;         // records kept, windows on, and the animation moves a light
   std::vector<long> part_of_;              // each moving mover's part of the renderer's BVH (-1: a light alone)
   std::unique_ptr<Scene> posed_;
   std::unique_ptr<Renderer> renderer_;
